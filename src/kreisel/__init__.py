@@ -1,0 +1,45 @@
+"""kreisel — rigid-body mechanics after the chapter in ``seed/`` (刚体力学).
+
+Layers, each depending only on the ones before it::
+
+    so3 <- kinematics <- inertia, dynamics <- tops, frames, earth, nav, se3
+
+Conventions: scalar-first Hamilton quaternions, active rotations, ``R`` maps
+body components to space components, uppercase Euler sequences intrinsic and
+lowercase extrinsic, SI units, ``frame="space" | "body"``.
+"""
+
+from importlib.metadata import PackageNotFoundError, version as _version
+
+from .so3 import *  # noqa: F401,F403
+from .so3 import __all__ as _so3_all
+from .kinematics import *  # noqa: F401,F403
+from .kinematics import __all__ as _kinematics_all
+from . import inertia  # noqa: F401
+from .inertia import RigidBody  # noqa: F401
+from .dynamics import *  # noqa: F401,F403
+from .dynamics import __all__ as _dynamics_all
+from .tops import *  # noqa: F401,F403
+from .tops import __all__ as _tops_all
+from .se3 import *  # noqa: F401,F403
+from .se3 import __all__ as _se3_all
+from . import frames, earth, nav  # noqa: F401
+
+try:
+    __version__ = _version("kreisel")
+except PackageNotFoundError:  # running from a source tree without installation
+    __version__ = "0+unknown"
+
+__all__ = [
+    *_so3_all,
+    *_kinematics_all,
+    *_dynamics_all,
+    *_tops_all,
+    *_se3_all,
+    "inertia",
+    "RigidBody",
+    "frames",
+    "earth",
+    "nav",
+    "__version__",
+]

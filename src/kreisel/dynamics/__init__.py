@@ -1,0 +1,3 @@
+"""dynamics layer of kreisel."""
+
+__all__ = []

@@ -1,0 +1,3 @@
+"""earth layer of kreisel."""
+
+__all__ = []

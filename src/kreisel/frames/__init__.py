@@ -1,0 +1,3 @@
+"""frames layer of kreisel."""
+
+__all__ = []

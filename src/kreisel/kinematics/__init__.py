@@ -1,0 +1,3 @@
+"""kinematics layer of kreisel."""
+
+__all__ = []

@@ -1,0 +1,3 @@
+"""nav layer of kreisel."""
+
+__all__ = []

@@ -1,0 +1,3 @@
+"""se3 layer of kreisel."""
+
+__all__ = []

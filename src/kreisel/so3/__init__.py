@@ -1,0 +1,3 @@
+"""so3 layer of kreisel."""
+
+__all__ = []

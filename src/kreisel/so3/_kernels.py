@@ -1,0 +1,124 @@
+"""Scalar quaternion kernels shared by every compiled loop in kreisel.
+
+These work on one element (1-D arrays of length 3 or 4) and are meant to be
+called from other numba functions: ``numba.guvectorize`` wrappers in
+:mod:`kreisel.so3` broadcast them over batches, and the integrators in
+:mod:`kreisel.dynamics` and :mod:`kreisel.nav` call them inside their time
+loops. Conventions: scalar-first Hamilton quaternions, ``R(q)`` of seed 二.4.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+_jit = njit(cache=True, fastmath=False, nogil=True)
+
+
+@_jit
+def qmul(p, q, out):
+    """Hamilton product ``out = p q`` (seed 二.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
+    p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    out[0] = p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3
+    out[1] = p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2
+    out[2] = p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1
+    out[3] = p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0
+
+
+@_jit
+def qnormalize(q):
+    """Scale ``q`` in place to unit norm."""
+    n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+    q[0] /= n
+    q[1] /= n
+    q[2] /= n
+    q[3] /= n
+
+
+@_jit
+def qrotate(q, v, out):
+    """``out = R(q) v`` for a unit quaternion, without forming the matrix."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
+    t0 = 2.0 * (q2 * v[2] - q3 * v[1])
+    t1 = 2.0 * (q3 * v[0] - q1 * v[2])
+    t2 = 2.0 * (q1 * v[1] - q2 * v[0])
+    out[0] = v[0] + q0 * t0 + q2 * t2 - q3 * t1
+    out[1] = v[1] + q0 * t1 + q3 * t0 - q1 * t2
+    out[2] = v[2] + q0 * t2 + q1 * t1 - q2 * t0
+
+
+@_jit
+def qrotate_inverse(q, v, out):
+    """``out = R(q)^T v`` for a unit quaternion."""
+    q0, q1, q2, q3 = q[0], -q[1], -q[2], -q[3]
+    t0 = 2.0 * (q2 * v[2] - q3 * v[1])
+    t1 = 2.0 * (q3 * v[0] - q1 * v[2])
+    t2 = 2.0 * (q1 * v[1] - q2 * v[0])
+    out[0] = v[0] + q0 * t0 + q2 * t2 - q3 * t1
+    out[1] = v[1] + q0 * t1 + q3 * t0 - q1 * t2
+    out[2] = v[2] + q0 * t2 + q1 * t1 - q2 * t0
+
+
+@_jit
+def quat_to_matrix(q, out):
+    """``out = R(q)`` exactly as printed in seed 二.4 (q need not be unit: it is scaled)."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    out[0, 0] = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s
+    out[0, 1] = 2.0 * (q1 * q2 - q0 * q3) * s
+    out[0, 2] = 2.0 * (q1 * q3 + q0 * q2) * s
+    out[1, 0] = 2.0 * (q1 * q2 + q0 * q3) * s
+    out[1, 1] = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * s
+    out[1, 2] = 2.0 * (q2 * q3 - q0 * q1) * s
+    out[2, 0] = 2.0 * (q1 * q3 - q0 * q2) * s
+    out[2, 1] = 2.0 * (q2 * q3 + q0 * q1) * s
+    out[2, 2] = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * s
+
+
+@_jit
+def rotvec_to_quat(psi, out):
+    """Exponential ``out = (cos(ψ/2), n sin(ψ/2))``, ψ = |psi|, with no sign flip.
+
+    sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
+    result is accurate to the last bit at tiny angles.
+    """
+    x, y, z = psi[0], psi[1], psi[2]
+    a2 = x * x + y * y + z * z
+    a = math.sqrt(a2)
+    if a < 1e-4:
+        s = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0
+        c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0
+    else:
+        s = math.sin(0.5 * a) / a
+        c = math.cos(0.5 * a)
+    out[0] = c
+    out[1] = s * x
+    out[2] = s * y
+    out[3] = s * z
+
+
+@_jit
+def quat_to_rotvec(q, out):
+    """Logarithm of a unit quaternion as a rotation vector with |ψ| <= π.
+
+    Uses ψ = 2 atan2(|v|, |q0|) (well conditioned everywhere, including
+    ψ -> 0 and ψ -> π) after choosing the hemisphere q0 >= 0.
+    """
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    if q0 < 0.0:
+        q0, q1, q2, q3 = -q0, -q1, -q2, -q3
+    v = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+    n = math.sqrt(q0 * q0 + v * v)
+    ang = 2.0 * math.atan2(v, q0)
+    if v < 1e-8 * n:
+        # ψ/sin(ψ/2) -> 2/|q| (1 + ψ²/24) at small angle, with ψ ≈ 2v/q0
+        r = v / q0
+        k = 2.0 / q0 * (1.0 - r * r / 3.0)
+    else:
+        k = ang / v
+    out[0] = k * q1
+    out[1] = k * q2
+    out[2] = k * q3

@@ -1,0 +1,3 @@
+"""tops layer of kreisel."""
+
+__all__ = []
