@@ -1,0 +1,145 @@
+"""The :class:`RigidBody`: mass and inertia tensor in body axes, validated once."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import as_float_array
+from . import solids
+from .tensors import as_symmetric_tensor, check_moments, principal_axes
+
+
+def _read_only(a):
+    a = np.array(a, dtype=np.float64)
+    a.setflags(write=False)
+    return a
+
+
+class RigidBody:
+    """A rigid body for Euler's equations: its mass and inertia tensor in body axes.
+
+    The body axes have their origin at the reference point of the tensor —
+    the centre of mass for a free body, the fixed point for a top with a
+    fixed point (seed 四.1, 四.4).
+
+    Parameters
+    ----------
+    inertia : (3,) or (3, 3) array_like
+        Either the three principal moments (the body axes are then principal
+        axes, in the given order) or a symmetric tensor in body axes, kg m².
+    mass : float
+        Mass m > 0, kg.
+
+    Raises
+    ------
+    ValueError
+        If the tensor is not symmetric, not finite, not positive definite
+        (Euler's equations need I⁻¹, so a thin rod with a zero moment is
+        refused), violates a triangle inequality I_i <= I_j + I_k of its
+        principal moments (equality, a thin plate, is accepted to within
+        rounding), or if the mass is not a positive finite number.
+
+    Attributes
+    ----------
+    inertia : (3, 3) ndarray
+        Inertia tensor in body axes (read-only).
+    mass : float
+    principal_moments : (3,) ndarray
+        Ascending principal moments.
+    principal_axes : (3, 3) ndarray
+        Proper rotation whose columns are the principal axes in body
+        components: ``inertia = principal_axes @ diag(principal_moments) @ principal_axes.T``.
+    is_principal : bool
+        True when the tensor is diagonal (exactly) in body axes.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> body = kr.RigidBody([3.0, 1.0, 2.0], mass=2.0)
+    >>> body.principal_moments
+    array([1., 2., 3.])
+    >>> body.is_principal
+    True
+    >>> kr.RigidBody.box(12.0, (1.0, 2.0, 3.0)).inertia.diagonal()
+    array([13., 10.,  5.])
+    """
+
+    __slots__ = ("_inertia", "_mass", "_moments", "_axes")
+
+    def __init__(self, inertia, mass=1.0):
+        if not np.isscalar(mass) and np.ndim(mass) != 0:
+            raise ValueError(f"mass must be a scalar, got shape {np.shape(mass)}")
+        m = float(as_float_array(mass, "mass"))
+        if m <= 0.0:
+            raise ValueError(f"mass must be > 0, got {m!r}")
+        a = as_float_array(inertia, "inertia")
+        if a.shape == (3,):
+            tensor = np.diag(a)
+        elif a.shape == (3, 3):
+            tensor = as_symmetric_tensor(a, "inertia")
+        else:
+            raise ValueError(
+                f"inertia must be 3 principal moments (3,) or a tensor (3, 3), got shape {a.shape}"
+            )
+        moments, axes = principal_axes(tensor)
+        check_moments(moments, "inertia", definite=True)
+        self._inertia = _read_only(tensor)
+        self._mass = m
+        self._moments = _read_only(moments)
+        self._axes = _read_only(axes)
+
+    @property
+    def inertia(self):
+        return self._inertia
+
+    @property
+    def mass(self):
+        return self._mass
+
+    @property
+    def principal_moments(self):
+        return self._moments
+
+    @property
+    def principal_axes(self):
+        return self._axes
+
+    @property
+    def is_principal(self):
+        return bool(np.count_nonzero(self._inertia - np.diag(np.diagonal(self._inertia))) == 0)
+
+    def __repr__(self):
+        if self.is_principal:
+            body = np.array2string(np.diagonal(self._inertia), separator=", ")
+        else:
+            body = np.array2string(self._inertia, separator=", ").replace("\n", "")
+        return f"RigidBody({body}, mass={self._mass!r})"
+
+
+def _solid_constructor(solid):
+    def constructor(cls, mass, *args, **kwargs):
+        return cls(solid(mass, *args, **kwargs), mass)
+
+    constructor.__name__ = solid.__name__
+    constructor.__qualname__ = f"RigidBody.{solid.__name__}"
+    constructor.__doc__ = (
+        f"Rigid body of the homogeneous solid of :func:`kreisel.inertia.{solid.__name__}`"
+        " (same arguments, body axes and reference point)."
+    )
+    return classmethod(constructor)
+
+
+for _solid in (
+    solids.box,
+    solids.solid_sphere,
+    solids.hollow_sphere,
+    solids.solid_cylinder,
+    solids.hollow_cylinder,
+    solids.solid_cone,
+    solids.solid_ellipsoid,
+    solids.thin_disk,
+    solids.thin_ring,
+    solids.torus,
+):
+    setattr(RigidBody, _solid.__name__, _solid_constructor(_solid))
+del _solid

@@ -1,0 +1,305 @@
+"""Inertia tensors of homogeneous primitive solids, shells and thin bodies.
+
+Each function returns the ``(..., 3, 3)`` tensor about the centre of mass (the
+cone can also be taken about its apex or base) in the body axes documented on
+it; bodies of revolution have their symmetry axis along z. Arguments
+broadcast over leading axes. Formulas are the textbook integrals of
+I = ∫ ρ (r² 1 − r rᵀ) dV (seed 四.1).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import as_float_array
+from .tensors import _as_mass
+
+
+def _length(x, name, allow_zero=False):
+    a = as_float_array(x, name)
+    bad = a < 0 if allow_zero else a <= 0
+    if np.any(bad):
+        relation = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be {relation}, got {float(a[bad].flat[0])!r}")
+    return a
+
+
+def _diagonal(xx, yy, zz):
+    """Diagonal tensors ``(..., 3, 3)`` from broadcastable moments."""
+    xx, yy, zz = np.broadcast_arrays(xx, yy, zz)
+    out = np.zeros(xx.shape + (3, 3))
+    out[..., 0, 0] = xx
+    out[..., 1, 1] = yy
+    out[..., 2, 2] = zz
+    return out
+
+
+def _axisymmetric(transverse, axial):
+    """diag(I_⊥, I_⊥, I_z): the tensor of a body of revolution about z."""
+    return _diagonal(transverse, transverse, axial)
+
+
+def _from_extents(mass, squares):
+    """m diag(b + c, a + c, a + b) for per-axis mean squares (a, b, c) = (<x²>, <y²>, <z²>)."""
+    m = _as_mass(mass)[..., None]
+    a, b, c = np.moveaxis(m * squares, -1, 0)
+    return _diagonal(b + c, a + c, a + b)
+
+
+def box(mass, size):
+    """Solid rectangular box centred on the origin, edges along the axes.
+
+    I = m/12 diag(b² + c², a² + c², a² + b²) for full edge lengths (a, b, c).
+
+    Parameters
+    ----------
+    mass : (...) array_like
+        Mass, kg.
+    size : (..., 3) array_like
+        Full edge lengths along x, y, z, m, each >= 0 (a zero edge gives a
+        thin rectangular plate, two zero edges a thin rod).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.box(12.0, (1.0, 2.0, 3.0))
+    array([[13.,  0.,  0.],
+           [ 0., 10.,  0.],
+           [ 0.,  0.,  5.]])
+    """
+    edges = as_float_array(size, "size", tail=(3,))
+    _length(edges, "size", allow_zero=True)
+    return _from_extents(mass, edges**2 / 12.0)
+
+
+def solid_ellipsoid(mass, semi_axes):
+    """Solid ellipsoid x²/a² + y²/b² + z²/c² <= 1.
+
+    I = m/5 diag(b² + c², a² + c², a² + b²).
+
+    Parameters
+    ----------
+    mass : (...) array_like
+        Mass, kg.
+    semi_axes : (..., 3) array_like
+        Semi-axes (a, b, c) along x, y, z, m.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.solid_ellipsoid(5.0, (1.0, 2.0, 3.0)).diagonal()
+    array([13., 10.,  5.])
+    """
+    semi = as_float_array(semi_axes, "semi_axes", tail=(3,))
+    _length(semi, "semi_axes")
+    return _from_extents(mass, semi**2 / 5.0)
+
+
+def solid_sphere(mass, radius):
+    """Solid ball: I = 2/5 m r² 1.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.solid_sphere(5.0, 1.0).diagonal()
+    array([2., 2., 2.])
+    """
+    m = _as_mass(mass)
+    r = _length(radius, "radius")
+    moment = 0.4 * m * r**2
+    return _diagonal(moment, moment, moment)
+
+
+def hollow_sphere(mass, radius, inner_radius=None):
+    """Spherical shell: thin (``inner_radius=None``) or thick (inner <= r <= radius).
+
+    Thin shell: I = 2/3 m r². Thick shell: I = 2/5 m (R⁵ − r⁵)/(R³ − r³),
+    evaluated as 2/5 m (R⁴ + R³r + R²r² + Rr³ + r⁴)/(R² + Rr + r²), which has
+    no cancellation as r → R and tends to the thin-shell value there.
+
+    Parameters
+    ----------
+    mass : (...) array_like
+        Mass, kg.
+    radius : (...) array_like
+        Outer radius R, m.
+    inner_radius : (...) array_like, optional
+        Inner radius r, 0 <= r <= R; ``None`` means a thin shell (r = R).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.hollow_sphere(3.0, 1.0).diagonal()
+    array([2., 2., 2.])
+    >>> kr.inertia.hollow_sphere(5.0, 1.0, 0.0).diagonal()   # the solid ball
+    array([2., 2., 2.])
+    """
+    m = _as_mass(mass)
+    R = _length(radius, "radius")
+    r = R if inner_radius is None else _length(inner_radius, "inner_radius", allow_zero=True)
+    if np.any(r > R):
+        raise ValueError("inner_radius must not exceed radius")
+    numerator = R**4 + R**3 * r + R**2 * r**2 + R * r**3 + r**4
+    moment = 0.4 * m * numerator / (R**2 + R * r + r**2)
+    return _diagonal(moment, moment, moment)
+
+
+def solid_cylinder(mass, radius, height):
+    """Solid circular cylinder, axis z, centred on the origin.
+
+    I_z = m r²/2, I_x = I_y = m (3 r² + h²)/12.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.solid_cylinder(12.0, 1.0, 3.0).diagonal()
+    array([12., 12.,  6.])
+    """
+    return hollow_cylinder(mass, radius, height, inner_radius=0.0)
+
+
+def hollow_cylinder(mass, radius, height, inner_radius=None):
+    """Cylindrical tube, axis z, centred on the origin.
+
+    I_z = m (R² + r²)/2, I_x = I_y = m (3 (R² + r²) + h²)/12, with outer
+    radius R and inner radius r; ``inner_radius=None`` is a thin-walled tube
+    (r = R: I_z = m R², I_x = m (6 R² + h²)/12).
+
+    Parameters
+    ----------
+    mass : (...) array_like
+        Mass, kg.
+    radius : (...) array_like
+        Outer radius R, m.
+    height : (...) array_like
+        Length along z, m.
+    inner_radius : (...) array_like, optional
+        Inner radius r, 0 <= r <= R.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.hollow_cylinder(12.0, 1.0, 2.0).diagonal()
+    array([10., 10., 12.])
+    """
+    m = _as_mass(mass)
+    R = _length(radius, "radius")
+    h = _length(height, "height")
+    r = R if inner_radius is None else _length(inner_radius, "inner_radius", allow_zero=True)
+    if np.any(r > R):
+        raise ValueError("inner_radius must not exceed radius")
+    radial = R**2 + r**2
+    return _axisymmetric(m * (3.0 * radial + h**2) / 12.0, 0.5 * m * radial)
+
+
+_CONE_REFERENCE = {"center_of_mass": 0.0, "apex": 0.75, "base": -0.25}
+
+
+def solid_cone(mass, radius, height, about="center_of_mass"):
+    """Solid right circular cone, axis z.
+
+    The centre of mass lies on the axis 3h/4 from the apex and h/4 from the
+    centre of the base. I_z = 3/10 m r² about any point of the axis; the
+    transverse moment is
+
+    - about the centre of mass: 3/20 m r² + 3/80 m h²,
+    - about the apex: 3/20 m r² + 3/5 m h²,
+    - about the centre of the base: 3/20 m r² + 1/10 m h².
+
+    Parameters
+    ----------
+    mass : (...) array_like
+        Mass, kg.
+    radius : (...) array_like
+        Base radius, m.
+    height : (...) array_like
+        Apex-to-base height, m.
+    about : {"center_of_mass", "apex", "base"}
+        Reference point of the tensor (all on the z axis, so the tensor stays
+        diagonal; which way the apex points does not change it).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.solid_cone(20.0, 1.0, 1.0, about="apex").diagonal()
+    array([15.,  15.,  6.])
+    """
+    if about not in _CONE_REFERENCE:
+        raise ValueError(f"about must be one of {sorted(_CONE_REFERENCE)}, got {about!r}")
+    m = _as_mass(mass)
+    r = _length(radius, "radius")
+    h = _length(height, "height")
+    # distance from the reference point to the centre of mass along z, in units of h
+    offset = _CONE_REFERENCE[about] * h
+    transverse = m * (3.0 / 20.0 * r**2 + 3.0 / 80.0 * h**2) + m * offset**2
+    return _axisymmetric(transverse, 0.3 * m * r**2)
+
+
+def thin_rod(mass, length):
+    """Thin straight rod along z, centred on the origin: I = m L²/12 diag(1, 1, 0).
+
+    The tensor is only semi-definite (no moment about the rod's own axis).
+    For the tensor about an end use :func:`parallel_axis` with r_c = (0, 0, L/2).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.thin_rod(3.0, 2.0).diagonal()
+    array([1., 1., 0.])
+    """
+    m = _as_mass(mass)
+    L = _length(length, "length")
+    transverse = m * L**2 / 12.0
+    return _axisymmetric(transverse, np.zeros_like(transverse))
+
+
+def thin_disk(mass, radius):
+    """Thin uniform disk in the xy plane, centred on the origin.
+
+    I_z = m r²/2, I_x = I_y = m r²/4 (a thin plate: I_z = I_x + I_y).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.thin_disk(4.0, 1.0).diagonal()
+    array([1., 1., 2.])
+    """
+    m = _as_mass(mass)
+    r = _length(radius, "radius")
+    return _axisymmetric(0.25 * m * r**2, 0.5 * m * r**2)
+
+
+def thin_ring(mass, radius):
+    """Thin circular hoop in the xy plane, centred on the origin.
+
+    I_z = m r², I_x = I_y = m r²/2.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.thin_ring(2.0, 1.0).diagonal()
+    array([1., 1., 2.])
+    """
+    m = _as_mass(mass)
+    r = _length(radius, "radius")
+    return _axisymmetric(0.5 * m * r**2, m * r**2)
+
+
+def torus(mass, major_radius, minor_radius):
+    """Solid torus about the z axis, centred on the origin.
+
+    I_z = m (R² + 3/4 a²), I_x = I_y = m (R²/2 + 5/8 a²), with R the distance
+    from the axis to the centre of the tube and a <= R the tube radius.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.torus(8.0, 1.0, 1.0).diagonal()
+    array([ 9.,  9., 14.])
+    """
+    m = _as_mass(mass)
+    R = _length(major_radius, "major_radius")
+    a = _length(minor_radius, "minor_radius")
+    if np.any(a > R):
+        raise ValueError("minor_radius must not exceed major_radius (a self-intersecting torus)")
+    return _axisymmetric(m * (0.5 * R**2 + 0.625 * a**2), m * (R**2 + 0.75 * a**2))

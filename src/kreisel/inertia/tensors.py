@@ -1,0 +1,455 @@
+"""Inertia tensors as arrays: point sets, the parallel-axis theorem, rotation
+into other axes, principal axes, moments about an axis, radius of gyration and
+the inertia ellipsoid (seed 四.1–3).
+
+Every function broadcasts over leading axes: a tensor is ``(..., 3, 3)``, a
+vector ``(..., 3)``, a mass ``(...)``.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .._validation import as_float_array
+
+# Relative tolerance for accepting a tensor as symmetric and as satisfying the
+# triangle inequalities / semi-definiteness. Tensors that went through a few
+# floating-point operations (R I Rᵀ, mesh integration, sums of parts) carry
+# relative errors of order 1e-15; 1e-9 accepts those and printed tables with
+# nine significant digits while still refusing genuinely unphysical input.
+TOLERANCE = 1e-9
+
+
+def _scale(tensor):
+    """Size of a tensor for relative tolerances: its largest absolute entry."""
+    return np.max(np.abs(tensor), axis=(-2, -1))
+
+
+def as_symmetric_tensor(tensor, name="I"):
+    """Validate a ``(..., 3, 3)`` symmetric matrix and return its symmetric part.
+
+    Raises ``ValueError`` naming ``name`` when the matrix is not symmetric to
+    within :data:`TOLERANCE` relative to its largest entry.
+    """
+    a = as_float_array(tensor, name, tail=(3, 3))
+    asymmetry = np.max(np.abs(a - np.swapaxes(a, -1, -2)), axis=(-2, -1))
+    if np.any(asymmetry > TOLERANCE * _scale(a)):
+        worst = float(np.max(asymmetry))
+        raise ValueError(
+            f"{name} must be symmetric (I_jk = I_kj); largest |I_jk - I_kj| is {worst:.3g}"
+        )
+    return 0.5 * (a + np.swapaxes(a, -1, -2))
+
+
+def check_moments(moments, name="I", definite=False):
+    """Refuse principal moments ``(..., 3)`` that no mass distribution has.
+
+    A physical inertia tensor is positive semi-definite (definite unless all
+    mass lies on a line, seed 四.1) and its principal moments obey the triangle
+    inequalities I_i <= I_j + I_k (equality for a thin plate). Both are
+    checked to within :data:`TOLERANCE` relative to the trace.
+
+    Parameters
+    ----------
+    moments : (..., 3) ndarray
+        Principal moments, any order.
+    name : str
+        Argument name for the error message.
+    definite : bool
+        Require strictly positive moments (Euler's equations need I⁻¹).
+    """
+    trace = np.sum(moments, axis=-1)
+    slack = TOLERANCE * np.abs(trace)
+    smallest = np.min(moments, axis=-1)
+    if definite and np.any(smallest <= slack):
+        raise ValueError(
+            f"{name} must be positive definite (all principal moments > 0), smallest principal "
+            f"moment is {float(np.min(smallest)):.6g}; a body whose mass lies on a line (ideal "
+            "thin rod) has a zero moment and no Euler equations"
+        )
+    if np.any(smallest < -slack):
+        raise ValueError(
+            f"{name} must be positive semi-definite (all principal moments >= 0), smallest "
+            f"principal moment is {float(np.min(smallest)):.6g}"
+        )
+    excess = 2.0 * np.max(moments, axis=-1) - trace  # I_max - (I_j + I_k)
+    if np.any(excess > slack):
+        raise ValueError(
+            f"{name} violates the triangle inequality I_i <= I_j + I_k of principal moments "
+            f"(largest moment exceeds the sum of the other two by {float(np.max(excess)):.6g})"
+        )
+
+
+def _as_mass(mass, name="mass", allow_zero=False):
+    m = as_float_array(mass, name)
+    bad = m < 0 if allow_zero else m <= 0
+    if np.any(bad):
+        relation = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be {relation}, got {float(m[bad].flat[0])!r}")
+    return m
+
+
+def _outer_term(mass, r):
+    """M (r² 1 − r rᵀ), the inertia of a point mass M at r about the origin."""
+    r = np.asarray(r)
+    rr = r[..., :, None] * r[..., None, :]
+    return np.asarray(mass)[..., None, None] * (
+        np.einsum("...i,...i->...", r, r)[..., None, None] * np.eye(3) - rr
+    )
+
+
+def second_moment_to_inertia(second_moment):
+    """Inertia I = tr(S) 1 − S from the second moment S = ∫ ρ r rᵀ dV (seed 四.1)."""
+    trace = np.trace(second_moment, axis1=-2, axis2=-1)
+    return trace[..., None, None] * np.eye(3) - second_moment
+
+
+def points(masses, positions):
+    """Inertia tensor of point masses about the origin (seed 四.1).
+
+    I = Σ_P m_P (r_P² 1 − r_P r_Pᵀ).
+
+    Parameters
+    ----------
+    masses : (..., N) array_like
+        Point masses, kg, each >= 0.
+    positions : (..., N, 3) array_like
+        Positions seen from the reference point, m.
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        Inertia tensor about the origin of ``positions``, kg m².
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.points([1.0, 1.0], [[1.0, 0, 0], [-1.0, 0, 0]])
+    array([[0., 0., 0.],
+           [0., 2., 0.],
+           [0., 0., 2.]])
+    """
+    m = _as_mass(masses, "masses", allow_zero=True)
+    r = as_float_array(positions, "positions", tail=(3,))
+    if r.ndim < 2:
+        raise ValueError(f"positions must have shape (..., N, 3), got {r.shape}")
+    try:
+        np.broadcast_shapes(m.shape, r.shape[:-1])
+    except ValueError:
+        raise ValueError(
+            f"masses {m.shape} and positions {r.shape} do not broadcast as (..., N) and (..., N, 3)"
+        ) from None
+    second_moment = np.einsum("...n,...ni,...nj->...ij", m, r, r)
+    return second_moment_to_inertia(second_moment)
+
+
+def parallel_axis(I_cm, mass, r_c):
+    """Move an inertia tensor from the centre of mass to another point (seed 四.1).
+
+    I = I_C + M (r_C² 1 − r_C r_Cᵀ), with r_C the centre of mass seen from
+    the new reference point.
+
+    Parameters
+    ----------
+    I_cm : (..., 3, 3) array_like
+        Inertia tensor about the centre of mass, kg m².
+    mass : (...) array_like
+        Total mass M > 0, kg.
+    r_c : (..., 3) array_like
+        Position of the centre of mass relative to the new point, m.
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        Inertia tensor about the new point, same axes.
+
+    See Also
+    --------
+    parallel_axis_to_center_of_mass : the inverse shift.
+
+    Examples
+    --------
+    A rod of length 2 about its end: m L²/12 + m (L/2)² = m L²/3.
+
+    >>> import kreisel as kr
+    >>> I = kr.inertia.parallel_axis(kr.inertia.thin_rod(3.0, 2.0), 3.0, [0, 0, 1.0])
+    >>> I.diagonal()
+    array([4., 4., 0.])
+    """
+    I_c = as_symmetric_tensor(I_cm, "I_cm")
+    m = _as_mass(mass)
+    r = as_float_array(r_c, "r_c", tail=(3,))
+    return I_c + _outer_term(m, r)
+
+
+def parallel_axis_to_center_of_mass(I_point, mass, r_c):
+    """Inverse of :func:`parallel_axis`: I_C = I_O − M (r_C² 1 − r_C r_Cᵀ).
+
+    Parameters
+    ----------
+    I_point : (..., 3, 3) array_like
+        Inertia tensor about a point O, kg m².
+    mass : (...) array_like
+        Total mass M > 0, kg.
+    r_c : (..., 3) array_like
+        Position of the centre of mass relative to O, m.
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+        Inertia tensor about the centre of mass. Note the subtraction loses
+        relative accuracy when M r_C² dominates I_O.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> kr.inertia.parallel_axis_to_center_of_mass([[4.0, 0, 0], [0, 4, 0], [0, 0, 0]], 3.0, [0, 0, 1])
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 0.]])
+    """
+    I_o = as_symmetric_tensor(I_point, "I_point")
+    m = _as_mass(mass)
+    r = as_float_array(r_c, "r_c", tail=(3,))
+    return I_o - _outer_term(m, r)
+
+
+def as_rotation_matrix(rotation, name="rotation"):
+    """Rotation matrices ``(..., 3, 3)`` from matrices, unit quaternions or rotation objects.
+
+    Accepts ``(..., 3, 3)`` proper orthogonal matrices, ``(..., 4)``
+    scalar-first quaternions (scaled to unit norm) and any object with an
+    ``as_matrix()`` method (``kreisel.Rotation``, ``scipy.spatial.transform.Rotation``).
+    """
+    if hasattr(rotation, "as_matrix"):
+        rotation = rotation.as_matrix()
+    a = as_float_array(rotation, name)
+    if a.shape[-1:] == (4,):
+        norm = np.linalg.norm(a, axis=-1)
+        if np.any(norm == 0.0):
+            raise ValueError(f"{name} quaternion must be nonzero")
+        from ._compiled import quaternions_to_matrices
+
+        flat = np.ascontiguousarray(a.reshape(-1, 4))
+        return quaternions_to_matrices(flat).reshape(a.shape[:-1] + (3, 3))
+    if a.ndim < 2 or a.shape[-2:] != (3, 3):
+        raise ValueError(
+            f"{name} must be a (..., 3, 3) rotation matrix or a (..., 4) quaternion, got shape {a.shape}"
+        )
+    error = np.max(np.abs(np.swapaxes(a, -1, -2) @ a - np.eye(3)), axis=(-2, -1))
+    if np.any(error > 1e-9):
+        raise ValueError(f"{name} must be orthogonal (RᵀR = 1); deviation {float(np.max(error)):.3g}")
+    if np.any(np.linalg.det(a) < 0):
+        raise ValueError(f"{name} must be a proper rotation (det R = +1), got a reflection")
+    return a
+
+
+def rotate(I, rotation):
+    """Express an inertia tensor in rotated axes: I′ = R I Rᵀ.
+
+    With ``R`` mapping body components to space components (a = R a′),
+    ``rotate(I_body, R)`` is the tensor in space axes — equivalently the
+    tensor, in unchanged axes, of the body after rotating it actively by R.
+    Use the transpose (or the inverse quaternion) for the opposite direction.
+
+    Parameters
+    ----------
+    I : (..., 3, 3) array_like
+        Symmetric inertia tensor.
+    rotation : (..., 3, 3) or (..., 4) array_like or rotation object
+        Rotation matrix, scalar-first quaternion, or an object with ``as_matrix()``.
+
+    Returns
+    -------
+    (..., 3, 3) ndarray
+
+    Examples
+    --------
+    A quarter turn about z swaps the x and y moments.
+
+    >>> import numpy as np, kreisel as kr
+    >>> q = [np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)]
+    >>> np.round(kr.inertia.rotate(np.diag([1.0, 2.0, 3.0]), q), 12).diagonal()
+    array([2., 1., 3.])
+    """
+    tensor = as_symmetric_tensor(I, "I")
+    R = as_rotation_matrix(rotation)
+    out = R @ tensor @ np.swapaxes(R, -1, -2)
+    return 0.5 * (out + np.swapaxes(out, -1, -2))
+
+
+def principal_axes(I):
+    """Principal moments and principal axes of an inertia tensor (seed 四.2).
+
+    Parameters
+    ----------
+    I : (..., 3, 3) array_like
+        Symmetric tensor.
+
+    Returns
+    -------
+    moments : (..., 3) ndarray
+        Principal moments in ascending order.
+    R : (..., 3, 3) ndarray
+        Proper rotation (det +1) whose columns are the principal axes, so that
+        I = R diag(moments) Rᵀ. Signs are fixed: the largest component of the
+        first two axes is positive and the third is their cross product. For
+        repeated moments (symmetric top, sphere) any orthonormal basis of the
+        degenerate plane is a valid answer; the one returned is orthonormal to
+        rounding and reconstructs I to rounding, and an already diagonal tensor
+        gives a permutation of the coordinate axes.
+
+    Examples
+    --------
+    >>> import numpy as np, kreisel as kr
+    >>> moments, R = kr.inertia.principal_axes(np.diag([3.0, 1.0, 2.0]))
+    >>> moments
+    array([1., 2., 3.])
+    >>> R
+    array([[0., 0., 1.],
+           [1., 0., 0.],
+           [0., 1., 0.]])
+    """
+    tensor = as_symmetric_tensor(I, "I")
+    moments, vectors = np.linalg.eigh(tensor)
+    first_two = vectors[..., :, :2]
+    index = np.argmax(np.abs(first_two), axis=-2)[..., None, :]
+    sign = np.where(np.take_along_axis(first_two, index, axis=-2) < 0, -1.0, 1.0)
+    first_two = first_two * sign
+    third = np.cross(first_two[..., :, 0], first_two[..., :, 1])
+    R = np.concatenate([first_two, third[..., :, None]], axis=-1)
+    return moments, R
+
+
+def _unit(axis, name="axis"):
+    n = as_float_array(axis, name, tail=(3,))
+    norm = np.linalg.norm(n, axis=-1)
+    if np.any(norm == 0.0):
+        raise ValueError(f"{name} must be a nonzero vector")
+    return n / norm[..., None]
+
+
+def moment_about_axis(I, axis):
+    """Moment of inertia about an axis through the reference point: I_n = nᵀ I n (seed 四.3).
+
+    Parameters
+    ----------
+    I : (..., 3, 3) array_like
+        Inertia tensor.
+    axis : (..., 3) array_like
+        Axis direction (need not be unit: it is normalised).
+
+    Returns
+    -------
+    (...) ndarray
+
+    Examples
+    --------
+    >>> import numpy as np, kreisel as kr
+    >>> round(float(kr.inertia.moment_about_axis(np.diag([1.0, 2.0, 3.0]), [1.0, 1.0, 0.0])), 12)
+    1.5
+    """
+    tensor = as_symmetric_tensor(I, "I")
+    n = _unit(axis)
+    return np.einsum("...i,...ij,...j->...", n, tensor, n)
+
+
+def radius_of_gyration(I, mass, axis):
+    """Radius of gyration k = sqrt(I_n / m) about an axis (seed 四.3).
+
+    Parameters
+    ----------
+    I : (..., 3, 3) array_like
+        Inertia tensor about a point on the axis.
+    mass : (...) array_like
+        Mass m > 0.
+    axis : (..., 3) array_like
+        Axis direction (normalised).
+
+    Returns
+    -------
+    (...) ndarray
+        k in metres.
+
+    Examples
+    --------
+    A thin ring about its axis has k equal to its radius.
+
+    >>> import kreisel as kr
+    >>> float(kr.inertia.radius_of_gyration(kr.inertia.thin_ring(2.0, 0.5), 2.0, [0, 0, 1]))
+    0.5
+    """
+    m = _as_mass(mass)
+    moment = moment_about_axis(I, axis)
+    # rounding can leave a zero moment slightly negative
+    return np.sqrt(np.maximum(moment, 0.0) / m)
+
+
+class InertiaEllipsoid(NamedTuple):
+    """The surface xᵀ I x = 1 (seed 四.3): its semi-axes, axes and a sampled surface.
+
+    Attributes
+    ----------
+    semi_axes : (..., 3) ndarray
+        1/sqrt(I_k) for the ascending principal moments I_k (so descending).
+    axes : (..., 3, 3) ndarray
+        Columns are the principal directions matching ``semi_axes``.
+    x, y, z : (..., n_polar, n_azimuth) ndarray
+        Surface points for plotting (e.g. ``plot_surface(x, y, z)``).
+    """
+
+    semi_axes: np.ndarray
+    axes: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+
+
+def inertia_ellipsoid(I, n_polar=25, n_azimuth=49):
+    """Inertia ellipsoid xᵀ I x = 1 of a tensor (seed 四.3).
+
+    A point at distance ρ along a unit direction n lies on the surface when
+    ρ = 1/sqrt(I_n), I_n the moment about n.
+
+    Parameters
+    ----------
+    I : (..., 3, 3) array_like
+        Positive definite inertia tensor (a zero moment would make the
+        surface an unbounded cylinder and is refused).
+    n_polar, n_azimuth : int
+        Surface samples in polar angle (pole to pole) and azimuth (closed loop).
+
+    Returns
+    -------
+    InertiaEllipsoid
+
+    Examples
+    --------
+    >>> import numpy as np, kreisel as kr
+    >>> e = kr.inertia.inertia_ellipsoid(np.diag([1.0, 4.0, 16.0]))
+    >>> e.semi_axes
+    array([1.  , 0.5 , 0.25])
+    >>> e.x.shape
+    (25, 49)
+    """
+    for value, label in ((n_polar, "n_polar"), (n_azimuth, "n_azimuth")):
+        if not isinstance(value, (int, np.integer)) or value < 2:
+            raise ValueError(f"{label} must be an integer >= 2, got {value!r}")
+    moments, R = principal_axes(I)
+    if np.any(moments <= 0.0):
+        raise ValueError(
+            "I must be positive definite for a bounded inertia ellipsoid, smallest principal "
+            f"moment is {float(np.min(moments)):.6g}"
+        )
+    semi = 1.0 / np.sqrt(moments)
+    polar = np.linspace(0.0, np.pi, n_polar)[:, None]
+    azimuth = np.linspace(0.0, 2.0 * np.pi, n_azimuth)[None, :]
+    unit = np.stack(
+        np.broadcast_arrays(np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)),
+        axis=-1,
+    )  # (n_polar, n_azimuth, 3) in principal axes
+    scaled = unit * semi[..., None, None, :]
+    surface = np.einsum("...ij,...pqj->...pqi", R, scaled)
+    return InertiaEllipsoid(semi, R, surface[..., 0], surface[..., 1], surface[..., 2])
