@@ -1,3 +1,19 @@
-"""nav layer of kreisel."""
+"""Strapdown attitude from gyro data (seed 三.3, 三.5; MATH.md §4).
 
-__all__ = []
+Attitude from angle increments with the optimal coning correction, from
+sampled rates (q̇ = ½ q ω′ or the Bortz equation), the exact coning motion
+that tests them, IMU error models with Allan deviation, and IMU log
+reading/attitude writing.
+"""
+
+from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
+from .strapdown import attitude_from_increments, attitude_from_rates
+
+__all__ = [
+    "ConingMotion",
+    "coning_motion",
+    "coning_drift",
+    "coning_coefficients",
+    "attitude_from_increments",
+    "attitude_from_rates",
+]
