@@ -85,7 +85,7 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
     Examples
     --------
     >>> import numpy as np
-    >>> q = attitude_from_increments([1, 0, 0, 0], np.tile([0, 0, np.pi / 200], (100, 1)), 2)
+    >>> q = attitude_from_increments([1, 0, 0, 0], np.tile([0, 0, np.pi / 100], (100, 1)), 2)
     >>> q.shape
     (51, 4)
     >>> np.round(q[-1], 12) + 0.0      # a half turn about z
@@ -93,7 +93,7 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
     """
     k = coning_coefficients(samples_per_update)
     q0 = _unit_quaternions(q0)
-    dtheta = as_float_array(dtheta, "dtheta", tail=(3,))
+    dtheta = as_float_array(dtheta, "dtheta", tail=(3,), finite=False)
     if dtheta.ndim < 2:
         raise ValueError(f"dtheta must have shape (..., n, 3), got {dtheta.shape}")
     bad = ~np.isfinite(dtheta)
@@ -151,7 +151,7 @@ def attitude_from_rates(q0, t, omega_body, method="quaternion"):
     --------
     >>> import numpy as np
     >>> t = np.linspace(0.0, 1.0, 11)
-    >>> q = attitude_from_rates([1, 0, 0, 0], t, np.tile([0.0, 0.0, np.pi], (11, 1)))
+    >>> q = attitude_from_rates([1, 0, 0, 0], t, np.tile([0.0, 0.0, np.pi], (11, 1)), method="bortz")
     >>> np.round(q[-1], 12) + 0.0       # a half turn about z
     array([0., 0., 0., 1.])
     """
@@ -164,7 +164,8 @@ def attitude_from_rates(q0, t, omega_body, method="quaternion"):
     step = np.diff(t)
     if np.any(step <= 0):
         i = int(np.argmax(step <= 0)) + 1
-        raise ValueError(f"t must be strictly increasing: t[{i}] = {t[i]!r} follows t[{i - 1}] = {t[i - 1]!r}")
+        raise ValueError(f"t must be strictly increasing: t[{i}] = {float(t[i])!r} follows "
+                         f"t[{i - 1}] = {float(t[i - 1])!r}")
     omega_body = as_float_array(omega_body, "omega_body", tail=(t.size, 3), finite=False)
     bad = ~np.isfinite(omega_body)
     if bad.any():
