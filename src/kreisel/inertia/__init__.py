@@ -5,7 +5,10 @@ function says otherwise; every function broadcasts over leading axes.
 :class:`RigidBody` bundles a validated tensor and mass for the dynamics.
 """
 
+from . import meshes
 from .body import RigidBody
+from .mesh import from_mesh
+from .properties import MassProperties, combine, from_points
 from .solids import (
     box,
     hollow_cylinder,
@@ -33,7 +36,12 @@ from .tensors import (
 
 __all__ = [
     "RigidBody",
+    "MassProperties",
     "points",
+    "from_points",
+    "from_mesh",
+    "combine",
+    "meshes",
     "box",
     "solid_sphere",
     "hollow_sphere",

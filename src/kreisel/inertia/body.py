@@ -108,6 +108,56 @@ class RigidBody:
     def is_principal(self):
         return bool(np.count_nonzero(self._inertia - np.diag(np.diagonal(self._inertia))) == 0)
 
+    @classmethod
+    def from_properties(cls, properties):
+        """Rigid body of a :class:`MassProperties`: body origin at its centre of mass, same axes."""
+        return cls(properties.inertia, properties.mass)
+
+    @classmethod
+    def from_mesh(cls, vertices, faces, density=1.0):
+        """Rigid body of a homogeneous closed triangle mesh (:func:`kreisel.inertia.from_mesh`).
+
+        The body origin is the mesh's centre of mass, the body axes are the
+        mesh's axes (use :attr:`principal_axes` for the principal frame).
+
+        Examples
+        --------
+        >>> import kreisel as kr
+        >>> v, f = kr.inertia.meshes.box_mesh((1.0, 2.0, 3.0))
+        >>> body = kr.RigidBody.from_mesh(v, f, density=2.0)
+        >>> body.mass, body.principal_moments.round(12)
+        (12.0, array([ 5., 10., 13.]))
+        """
+        from .mesh import from_mesh
+
+        return cls.from_properties(from_mesh(vertices, faces, density))
+
+    @classmethod
+    def from_parts(cls, parts):
+        """Rigid body assembled from parts at poses (:func:`kreisel.inertia.combine`).
+
+        The body origin is the composite centre of mass, the body axes those
+        in which the parts were placed.
+
+        Examples
+        --------
+        >>> import kreisel as kr
+        >>> ball = kr.RigidBody.solid_sphere(1.0, 0.1)
+        >>> dumbbell = kr.RigidBody.from_parts([(ball, [-1.0, 0, 0]), (ball, [1.0, 0, 0])])
+        >>> dumbbell.principal_moments
+        array([0.008, 2.008, 2.008])
+        """
+        from .properties import combine
+
+        return cls.from_properties(combine(parts))
+
+    @classmethod
+    def from_points(cls, masses, positions):
+        """Rigid body of point masses, body origin at their centre of mass (:func:`kreisel.inertia.from_points`)."""
+        from .properties import from_points
+
+        return cls.from_properties(from_points(masses, positions))
+
     def __repr__(self):
         if self.is_principal:
             body = np.array2string(np.diagonal(self._inertia), separator=", ")
