@@ -122,3 +122,104 @@ def quat_to_rotvec(q, out):
     out[0] = k * q1
     out[1] = k * q2
     out[2] = k * q3
+
+
+# ---------------------------------------------------------------------------
+# Scalar helpers returning tuples: fused kernels (rotvec -> matrix, matrix ->
+# Euler angles, ...) chain them without allocating temporaries per element.
+
+
+@_jit
+def write_matrix(q0, q1, q2, q3, out):
+    """Write ``R(q)`` (seed 二.4) of a possibly non-unit quaternion into ``out``."""
+    s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    out[0, 0] = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s
+    out[0, 1] = 2.0 * (q1 * q2 - q0 * q3) * s
+    out[0, 2] = 2.0 * (q1 * q3 + q0 * q2) * s
+    out[1, 0] = 2.0 * (q1 * q2 + q0 * q3) * s
+    out[1, 1] = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * s
+    out[1, 2] = 2.0 * (q2 * q3 - q0 * q1) * s
+    out[2, 0] = 2.0 * (q1 * q3 - q0 * q2) * s
+    out[2, 1] = 2.0 * (q2 * q3 + q0 * q1) * s
+    out[2, 2] = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * s
+
+
+@_jit
+def matrix_quat(R):
+    """Unit quaternion with q0 >= 0 of a rotation matrix (Shepperd/Markley).
+
+    The component with the largest square is taken from the diagonal and the
+    others from sums/differences of off-diagonal pairs divided by it, so no
+    digit is lost anywhere, including near ψ = π where the trace formula
+    fails. A slightly non-orthogonal ``R`` gives a nearby rotation after the
+    final normalisation.
+    """
+    r00, r11, r22 = R[0, 0], R[1, 1], R[2, 2]
+    tr = r00 + r11 + r22
+    if tr >= r00 and tr >= r11 and tr >= r22:
+        q0 = 1.0 + tr
+        q1 = R[2, 1] - R[1, 2]
+        q2 = R[0, 2] - R[2, 0]
+        q3 = R[1, 0] - R[0, 1]
+    elif r00 >= r11 and r00 >= r22:
+        q0 = R[2, 1] - R[1, 2]
+        q1 = 1.0 + r00 - r11 - r22
+        q2 = R[0, 1] + R[1, 0]
+        q3 = R[0, 2] + R[2, 0]
+    elif r11 >= r22:
+        q0 = R[0, 2] - R[2, 0]
+        q1 = R[0, 1] + R[1, 0]
+        q2 = 1.0 + r11 - r00 - r22
+        q3 = R[1, 2] + R[2, 1]
+    else:
+        q0 = R[1, 0] - R[0, 1]
+        q1 = R[0, 2] + R[2, 0]
+        q2 = R[1, 2] + R[2, 1]
+        q3 = 1.0 + r22 - r00 - r11
+    n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    if q0 < 0.0:
+        n = -n
+    return q0 / n, q1 / n, q2 / n, q3 / n
+
+
+@_jit
+def rotvec_quat(x, y, z):
+    """Tuple form of :func:`rotvec_to_quat` (exponential, no sign flip)."""
+    a2 = x * x + y * y + z * z
+    a = math.sqrt(a2)
+    if a < 1e-4:
+        s = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0
+        c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0
+    else:
+        s = math.sin(0.5 * a) / a
+        c = math.cos(0.5 * a)
+    return c, s * x, s * y, s * z
+
+
+@_jit
+def quat_rotvec(q0, q1, q2, q3):
+    """Tuple form of :func:`quat_to_rotvec`: log with |ψ| <= π, any nonzero norm.
+
+    ψ = 2 atan2(|v|, |q0|) is well conditioned at every angle; the factor
+    ψ/|v| is expanded at small |v| where it tends to 2/q0.
+    """
+    if q0 < 0.0:
+        q0, q1, q2, q3 = -q0, -q1, -q2, -q3
+    v = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+    if v < 1e-8 * q0:
+        r = v / q0
+        k = 2.0 / q0 * (1.0 - r * r / 3.0)
+    else:
+        k = 2.0 * math.atan2(v, q0) / v
+    return k * q1, k * q2, k * q3
+
+
+@_jit
+def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
+    """Tuple form of the Hamilton product ``p q``."""
+    return (
+        p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
+        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
+        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
+    )

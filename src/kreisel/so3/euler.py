@@ -1,0 +1,304 @@
+"""Euler angles in all 12 axis sequences, intrinsic and extrinsic (seed 二.3).
+
+A sequence is three letters from ``xyz`` with no two adjacent equal;
+uppercase means intrinsic (rotations about the moving axes), lowercase
+extrinsic (about the fixed axes), as in scipy. Intrinsic ``"ABC"`` with
+angles (α, β, γ) is ``R = R_A(α) R_B(β) R_C(γ)``; extrinsic ``"abc"`` is
+``R = R_c(γ) R_b(β) R_a(α)``. The seed's mechanics angles (φ, θ, ψ) are
+``"ZXZ"``: ``R = R_z(φ) R_x(θ) R_z(ψ)``; the quantum-mechanics (α, β, γ) are
+``"ZYZ"``; the seed's Tait–Bryan angles are ``"XYZ"``.
+
+Angles from a rotation use the direct half-angle quaternion method
+(Bernardes & Viollet 2022): the middle angle is 2 atan2 of two half-angle
+norms and the outer ones are sums/differences of two atan2 half angles. In
+gimbal lock (middle angle 0 or π for proper Euler sequences, ±π/2 for
+Tait–Bryan) only the sum or difference of the outer angles is determined;
+the formula still returns a pair whose rotation reproduces the input to
+rounding (~1e-16) at and arbitrarily near the singular angle. Exactly at the
+singularity the third intrinsic angle (the first extrinsic one) is set to 0. :func:`gimbal_lock` reports which
+inputs are within a tolerance of it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _kernels as k
+from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array
+
+__all__ = [
+    "parse_sequence",
+    "euler_to_quat",
+    "quat_to_euler",
+    "euler_to_matrix",
+    "matrix_to_euler",
+    "gimbal_lock",
+]
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def parse_sequence(seq):
+    """Parse an Euler axis sequence.
+
+    Parameters
+    ----------
+    seq : str
+        Three letters from ``xyz``, all uppercase (intrinsic) or all lowercase
+        (extrinsic), no two adjacent letters equal ("ZXZ", "xyz", ...).
+
+    Returns
+    -------
+    axes : tuple of 3 int
+        Axis indices 0, 1, 2 for x, y, z, in the order written.
+    intrinsic : bool
+
+    Examples
+    --------
+    >>> parse_sequence("ZXZ")
+    ((2, 0, 2), True)
+    >>> parse_sequence("xyz")
+    ((0, 1, 2), False)
+    """
+    if not isinstance(seq, str):
+        raise ValueError(f"seq must be a 3-letter string of x, y, z, got {seq!r}")
+    if len(seq) != 3:
+        raise ValueError(f"seq must have exactly 3 letters, got {seq!r}")
+    if not (seq.isupper() or seq.islower()):
+        raise ValueError(f"seq must be all uppercase (intrinsic) or all lowercase (extrinsic), got {seq!r}")
+    lower = seq.lower()
+    if any(c not in _AXES for c in lower):
+        raise ValueError(f"seq may only contain the letters x, y, z, got {seq!r}")
+    if lower[0] == lower[1] or lower[1] == lower[2]:
+        raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
+    return tuple(_AXES[c] for c in lower), seq.isupper()
+
+
+def _intrinsic_axes(seq):
+    """Axes of the equivalent intrinsic sequence and whether angles are reversed."""
+    axes, intrinsic = parse_sequence(seq)
+    if intrinsic:
+        return np.array(axes, dtype=np.int64), False
+    return np.array(axes[::-1], dtype=np.int64), True
+
+
+@gufunc(["void(f8[:], i8[:], f8[:], f8[:])"], "(3),(3),(4)->(4)")
+def _euler_to_quat(angles, axes, carrier4, out):
+    q0, q1, q2, q3 = _euler_quat(angles, axes)
+    out[0], out[1], out[2], out[3] = q0, q1, q2, q3
+
+
+@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(3)->(3,3)")
+def _euler_to_matrix(angles, axes, out):
+    q0, q1, q2, q3 = _euler_quat(angles, axes)
+    k.write_matrix(q0, q1, q2, q3, out)
+
+
+@gufunc(["void(f8[:], i8[:], f8[:])"], "(4),(3)->(3)")
+def _quat_to_euler(q, axes, out):
+    _euler_angles(q[0], q[1], q[2], q[3], axes, out)
+
+
+@gufunc(["void(f8[:, :], i8[:], f8[:])"], "(3,3),(3)->(3)")
+def _matrix_to_euler(R, axes, out):
+    q0, q1, q2, q3 = k.matrix_quat(R)
+    _euler_angles(q0, q1, q2, q3, axes, out)
+
+
+@k._jit
+def _euler_quat(angles, axes):
+    # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
+    r0, r1, r2, r3 = 1.0, 0.0, 0.0, 0.0
+    for i in range(3):
+        h = 0.5 * angles[i]
+        s = math.sin(h)
+        c = math.cos(h)
+        a = axes[i]
+        e1 = s if a == 0 else 0.0
+        e2 = s if a == 1 else 0.0
+        e3 = s if a == 2 else 0.0
+        r0, r1, r2, r3 = k.quat_product(r0, r1, r2, r3, c, e1, e2, e3)
+    return r0, r1, r2, r3
+
+
+@k._jit
+def _euler_angles(q0, q1, q2, q3, axes, out):
+    # Bernardes & Viollet's method is written for extrinsic sequences; the
+    # intrinsic "ABC" is the extrinsic "cba", hence the reversed axes.
+    i, j, l = axes[2], axes[1], axes[0]
+    proper = i == l
+    if proper:
+        l = 3 - i - j
+    # Levi-Civita sign of (i, j, l).
+    sign = 1.0 if (j - i) % 3 == 1 else -1.0
+    qv = (q1, q2, q3)
+    if proper:
+        a, b, c, d = q0, qv[i], qv[j], sign * qv[l]
+    else:
+        a = q0 - qv[j]
+        b = qv[i] + sign * qv[l]
+        c = q0 + qv[j]
+        d = sign * qv[l] - qv[i]
+    # (a, b) has norm ~cos(β/2) and phase (α+γ)/2, (c, d) norm ~sin(β/2) and
+    # phase (γ-α)/2; at gimbal lock one pair vanishes, but every nonzero
+    # pair still carries its phase to full precision.
+    ab = math.hypot(a, b)
+    cd = math.hypot(c, d)
+    beta = 2.0 * math.atan2(cd, ab)
+    half_sum = math.atan2(b, a)
+    half_diff = math.atan2(d, c)
+    # At exact gimbal lock the vanishing pair's phase is arbitrary; choosing it
+    # equal to the other phase puts the whole rotation in the first angle and
+    # makes the third one 0.
+    if cd == 0.0:
+        half_diff = half_sum
+    elif ab == 0.0:
+        half_sum = half_diff
+    first = half_sum + half_diff
+    third = half_sum - half_diff
+    if not proper:
+        first *= sign
+        beta -= 0.5 * math.pi
+    out[0] = _wrap(first)
+    out[1] = beta
+    out[2] = _wrap(third)
+
+
+@k._jit
+def _wrap(x):
+    if x > math.pi:
+        return x - 2.0 * math.pi
+    if x < -math.pi:
+        return x + 2.0 * math.pi
+    return x
+
+
+def _angles_array(angles, degrees):
+    a = finite_array(angles, "angles", (3,))
+    return np.deg2rad(a) if degrees else a
+
+
+def euler_to_quat(seq, angles, degrees=False):
+    """Quaternion of Euler angles in any of the 24 conventions (seed 二.3).
+
+    Parameters
+    ----------
+    seq : str
+        Axis sequence, e.g. ``"ZXZ"`` (seed mechanics angles φ, θ, ψ).
+    angles : array_like, shape (..., 3)
+        Angles in the order of ``seq``; radians unless ``degrees=True``.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternions; the sign is that of the product of the three
+        elementary half-angle quaternions (not canonicalised).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(euler_to_quat("ZXZ", [90.0, 0.0, 0.0], degrees=True), 12)
+    array([0.70710678, 0.        , 0.        , 0.70710678])
+    """
+    axes, reverse = _intrinsic_axes(seq)
+    a = _angles_array(angles, degrees)
+    return _euler_to_quat(a[..., ::-1] if reverse else a, axes)
+
+
+def euler_to_matrix(seq, angles, degrees=False):
+    """Rotation matrix of Euler angles, e.g. the seed's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(euler_to_matrix("xyz", [0.0, 0.0, 90.0], degrees=True), 12) + 0.0
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    axes, reverse = _intrinsic_axes(seq)
+    a = _angles_array(angles, degrees)
+    return _euler_to_matrix(a[..., ::-1] if reverse else a, axes)
+
+
+def _finish(angles, reverse, degrees):
+    if reverse:
+        angles = np.ascontiguousarray(angles[..., ::-1])
+    return np.rad2deg(angles) if degrees else angles
+
+
+def quat_to_euler(seq, q, degrees=False):
+    """Euler angles of nonzero quaternions (direct half-angle method).
+
+    Ranges: first and third angle in [-π, π]; middle angle in [0, π] for
+    proper Euler sequences (``"ZXZ"``, …) and [-π/2, π/2] for Tait–Bryan
+    ones. The rotation rebuilt from the angles matches ``q`` to rounding even
+    at and near gimbal lock (see :func:`gimbal_lock`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q = euler_to_quat("ZXZ", [0.3, 0.2, 0.1])
+    >>> np.round(quat_to_euler("ZXZ", q), 12)
+    array([0.3, 0.2, 0.1])
+    """
+    axes, reverse = _intrinsic_axes(seq)
+    q = quaternion_array(q, "q")
+    return _finish(_quat_to_euler(q, axes), reverse, degrees)
+
+
+def matrix_to_euler(seq, R, degrees=False):
+    """Euler angles of rotation matrices, exact through gimbal lock.
+
+    Goes through Shepperd's quaternion and the half-angle method, so no
+    warning is raised and no digit is lost near the singular middle angle;
+    use :func:`gimbal_lock` to find the singular inputs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> R = euler_to_matrix("ZXZ", [0.3, 0.2, 0.1])
+    >>> np.round(matrix_to_euler("ZXZ", R), 12)
+    array([0.3, 0.2, 0.1])
+    """
+    axes, reverse = _intrinsic_axes(seq)
+    R = matrix_array(R, "R")
+    return _finish(_matrix_to_euler(R, axes), reverse, degrees)
+
+
+def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):
+    """Which Euler-angle triples are within ``tolerance`` of gimbal lock.
+
+    Gimbal lock (seed 二.3 (3)) is a middle angle of 0 or π for proper Euler
+    sequences and ±π/2 for Tait–Bryan sequences: the first and third axes
+    coincide and only the sum or difference of the outer angles is defined.
+
+    Parameters
+    ----------
+    seq : str
+    angles : array_like, shape (..., 3)
+        e.g. the output of :func:`matrix_to_euler`.
+    tolerance : float
+        Distance of the middle angle from the singular value, in radians
+        (in degrees when ``degrees=True``).
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+
+    Examples
+    --------
+    >>> gimbal_lock("ZXZ", [[0.3, 0.0, 0.1], [0.3, 0.5, 0.1]])
+    array([ True, False])
+    """
+    axes, _ = parse_sequence(seq)
+    a = finite_array(angles, "angles", (3,))
+    middle = np.deg2rad(a[..., 1]) if degrees else a[..., 1]
+    tol = np.deg2rad(tolerance) if degrees else tolerance
+    if axes[0] == axes[2]:
+        distance = np.minimum(np.abs(middle), np.abs(np.abs(middle) - np.pi))
+    else:
+        distance = np.abs(np.abs(middle) - 0.5 * np.pi)
+    return distance <= tol

@@ -1,0 +1,104 @@
+"""Rotation matrices (direction cosine matrices, seed 一 and 二.1) and quaternions.
+
+``R`` maps body components to space components, ``a = R a′``; ``RᵀR = 1`` and
+``det R = 1`` (seed 二.1 (1)–(2)).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _kernels as k
+from ._gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
+
+__all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
+
+
+@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)")
+def _quat_to_matrix(q, carrier3, out):
+    k.quat_to_matrix(q, out)
+
+
+@gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)")
+def _matrix_to_quat(R, carrier4, out):
+    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
+
+
+def quat_to_matrix(q):
+    """Rotation matrix ``R(q)`` exactly as in seed 二.4, for nonzero quaternions.
+
+    ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
+    ``R(q) = R(-q)``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Scalar-first quaternions.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> R = quat_to_matrix([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)])
+    >>> np.round(R, 12) + 0.0
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    return _quat_to_matrix(quaternion_array(q, "q"))
+
+
+def matrix_to_quat(R):
+    """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
+
+    Shepperd's method (largest of q0², q1², q2², q3² taken from the diagonal):
+    full precision at every angle, including ψ → π. Nearly orthogonal input
+    (defect up to 1e-6) is projected onto SO(3) first; det <= 0 or larger
+    defects raise ``ValueError``.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> matrix_to_quat([[-1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]])    # π about z
+    array([0., 0., 0., 1.])
+    """
+    return _matrix_to_quat(matrix_array(R, "R"))
+
+
+def orthonormalize(R):
+    """Nearest rotation matrix (in the Frobenius norm) to each 3×3 matrix.
+
+    Uses the SVD ``R = U S Vᵀ`` and returns ``U diag(1, 1, ±1) Vᵀ`` with the
+    sign making the determinant +1 — the re-orthonormalisation a DCM needs
+    after accumulating rounding errors (seed 二.4 (2) ②).
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        Finite matrices of full rank.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> R = orthonormalize([[1.0, 1e-3, 0], [0, 1.0, 0], [0, 0, 1.0]])
+    >>> bool(np.allclose(R @ R.T, np.eye(3), atol=1e-15))
+    True
+    """
+    M = finite_array(R, "R", (3, 3))
+    if M.size and np.min(np.linalg.svd(M, compute_uv=False)) <= 1e-12 * np.max(np.abs(M)):
+        raise ValueError("R must have full rank (a singular matrix has no unique nearest rotation)")
+    return nearest_rotation(M)

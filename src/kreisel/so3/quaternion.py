@@ -1,0 +1,177 @@
+"""Quaternion algebra (seed 二.4 and appendix (4)): scalar-first Hamilton quaternions.
+
+A quaternion ``q = q0 + q1 i1 + q2 i2 + q3 i3`` is stored as ``[q0, q1, q2, q3]``
+with ``i_j i_k = -δ_jk + ε_jkl i_l``. Unit quaternions act on vectors by
+``r -> q r q⁻¹`` (active rotation, ``R(q)`` of seed 二.4); ``q`` and ``-q``
+give the same rotation (double cover).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _kernels as k
+from ._gufunc import gufunc, quaternion_array, vector_array
+
+__all__ = [
+    "quat_multiply",
+    "quat_conjugate",
+    "quat_inverse",
+    "quat_norm",
+    "quat_normalize",
+    "quat_apply",
+    "quat_identity",
+]
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)")
+def _multiply(p, q, out):
+    k.qmul(p, q, out)
+
+
+@gufunc(["void(f8[:], f8[:])"], "(4)->(4)")
+def _normalize(q, out):
+    for i in range(4):
+        out[i] = q[i]
+    k.qnormalize(out)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)")
+def _apply(q, v, out):
+    # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    c0 = q2 * v[2] - q3 * v[1]
+    c1 = q3 * v[0] - q1 * v[2]
+    c2 = q1 * v[1] - q2 * v[0]
+    d = q1 * v[0] + q2 * v[1] + q3 * v[2]
+    s = q0 * q0 - q1 * q1 - q2 * q2 - q3 * q3
+    out[0] = (s * v[0] + 2.0 * (d * q1 + q0 * c0)) / n2
+    out[1] = (s * v[1] + 2.0 * (d * q2 + q0 * c1)) / n2
+    out[2] = (s * v[2] + 2.0 * (d * q3 + q0 * c2)) / n2
+
+
+def quat_multiply(p, q):
+    """Hamilton product ``p q`` (seed 二.4), broadcasting over leading axes.
+
+    ``R(p q) = R(p) R(q)``: the product first applies ``q``, then ``p``.
+
+    Parameters
+    ----------
+    p, q : array_like, shape (..., 4)
+        Scalar-first quaternions (any finite values; not necessarily unit).
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> quat_multiply([0, 1, 0, 0], [0, 0, 1, 0])      # i1 i2 = i3
+    array([0., 0., 0., 1.])
+    """
+    p = quaternion_array(p, "p", nonzero=False)
+    q = quaternion_array(q, "q", nonzero=False)
+    return _multiply(p, q)
+
+
+def quat_conjugate(q):
+    """Conjugate ``q* = q0 - q·i`` (seed 二.4); the inverse rotation for unit ``q``.
+
+    Examples
+    --------
+    >>> quat_conjugate([1.0, 2.0, 3.0, 4.0])
+    array([ 1., -2., -3., -4.])
+    """
+    q = quaternion_array(q, "q", nonzero=False)
+    out = -q
+    out[..., 0] = q[..., 0]
+    return out
+
+
+def quat_norm(q):
+    """Norm ``|q| = sqrt(q* q)``, shape ``(...)``.
+
+    Examples
+    --------
+    >>> float(quat_norm([1.0, 1.0, 1.0, 1.0]))
+    2.0
+    """
+    q = quaternion_array(q, "q", nonzero=False)
+    return np.sqrt(np.einsum("...i,...i->...", q, q))
+
+
+def quat_inverse(q):
+    """Inverse ``q⁻¹ = q* / |q|²`` (seed 二.4) of nonzero quaternions.
+
+    Examples
+    --------
+    >>> quat_inverse([0.0, 0.0, 2.0, 0.0])
+    array([ 0. , -0. , -0.5, -0. ])
+    """
+    q = quaternion_array(q, "q")
+    out = quat_conjugate(q)
+    out /= np.einsum("...i,...i->...", q, q)[..., None]
+    return out
+
+
+def quat_normalize(q):
+    """Scale nonzero quaternions to unit norm (the renormalisation of seed 二.4 (2) ②).
+
+    Raises ``ValueError`` for zero or non-finite input rather than returning NaN.
+
+    Examples
+    --------
+    >>> quat_normalize([2.0, 0.0, 0.0, 0.0])
+    array([1., 0., 0., 0.])
+    """
+    q = quaternion_array(q, "q")
+    return _normalize(q)
+
+
+def quat_apply(q, v, inverse=False):
+    """Rotate vectors: ``R(q) v`` (or ``R(q)ᵀ v`` with ``inverse=True``).
+
+    With ``R`` mapping body to space components this turns body components
+    ``a′`` into space components ``a = R a′``; ``inverse=True`` goes back.
+    ``q`` need not be unit: it stands for the rotation ``q/|q|``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+    v : array_like, shape (..., 3)
+        Broadcast against ``q`` over the leading axes.
+    inverse : bool
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q = [np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)]       # 90° about z
+    >>> np.round(quat_apply(q, [1.0, 0.0, 0.0]), 12) + 0.0
+    array([0., 1., 0.])
+    """
+    q = quaternion_array(q, "q")
+    v = vector_array(v, "v")
+    if inverse:
+        q = q * np.array([1.0, -1.0, -1.0, -1.0])
+    return _apply(q, v)
+
+
+def quat_identity(shape=()):
+    """Identity quaternions ``[1, 0, 0, 0]`` of batch shape ``shape``.
+
+    Examples
+    --------
+    >>> quat_identity(2)
+    array([[1., 0., 0., 0.],
+           [1., 0., 0., 0.]])
+    """
+    shape = (shape,) if np.ndim(shape) == 0 else tuple(shape)
+    out = np.zeros((*shape, 4))
+    out[..., 0] = 1.0
+    return out

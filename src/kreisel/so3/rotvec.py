@@ -1,0 +1,329 @@
+"""Rotation vectors, generators and the exponential map (seed 二.2).
+
+The rotation vector ψ = ψ n (the seed's "Rodrigues parameters" or angular
+displacement) parametrises ``R(ψ) = exp(ψ_j X_j)`` with the generators
+``X_j`` of seed 二.2 (2), ``(X_j)_kl = -ε_jkl``. Logarithms return |ψ| <= π.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+
+from . import _kernels as k
+from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
+
+__all__ = [
+    "generators",
+    "hat",
+    "vee",
+    "rotvec_to_matrix",
+    "matrix_to_rotvec",
+    "rotvec_to_quat",
+    "quat_to_rotvec",
+    "rotvec_to_axis_angle",
+    "axis_angle_to_rotvec",
+    "compose_rotvec",
+    "bch",
+    "adjoint_action",
+]
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)")
+def _rotvec_to_quat(psi, carrier4, out):
+    k.rotvec_to_quat(psi, out)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)")
+def _quat_to_rotvec(q, carrier3, out):
+    out[0], out[1], out[2] = k.quat_rotvec(q[0], q[1], q[2], q[3])
+
+
+@gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)")
+def _rotvec_to_matrix(psi, out):
+    q0, q1, q2, q3 = k.rotvec_quat(psi[0], psi[1], psi[2])
+    k.write_matrix(q0, q1, q2, q3, out)
+
+
+@gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)")
+def _matrix_to_rotvec(R, out):
+    q0, q1, q2, q3 = k.matrix_quat(R)
+    out[0], out[1], out[2] = k.quat_rotvec(q0, q1, q2, q3)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
+def _compose_rotvec(a, b, out):
+    p0, p1, p2, p3 = k.rotvec_quat(a[0], a[1], a[2])
+    q0, q1, q2, q3 = k.rotvec_quat(b[0], b[1], b[2])
+    r0, r1, r2, r3 = k.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+    out[0], out[1], out[2] = k.quat_rotvec(r0, r1, r2, r3)
+
+
+def generators():
+    """The generators ``X_1, X_2, X_3`` of seed 二.2 (2), shape (3, 3, 3).
+
+    ``(X_j)_kl = -ε_jkl``; ``[X_j, X_k] = ε_jkl X_l`` and ``R(ψ) = exp(ψ_j X_j)``.
+
+    Examples
+    --------
+    >>> generators()[2]
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  0.]])
+    """
+    return hat(np.eye(3))
+
+
+def hat(v):
+    """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of seed 二.2 (3)).
+
+    Parameters
+    ----------
+    v : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> hat([1.0, 2.0, 3.0])
+    array([[ 0., -3.,  2.],
+           [ 3.,  0., -1.],
+           [-2.,  1.,  0.]])
+    """
+    v = vector_array(v, "v")
+    out = np.zeros(v.shape + (3,))
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    out[..., 0, 1], out[..., 0, 2] = -z, y
+    out[..., 1, 0], out[..., 1, 2] = z, -x
+    out[..., 2, 0], out[..., 2, 1] = -y, x
+    return out
+
+
+def vee(A):
+    """Inverse of :func:`hat`: the vector of the skew part of ``A``.
+
+    Uses ``(A - Aᵀ)/2``, so a matrix that is skew up to rounding maps to the
+    nearest vector.
+
+    Examples
+    --------
+    >>> vee(hat([1.0, 2.0, 3.0]))
+    array([1., 2., 3.])
+    """
+    A = finite_array(A, "A", (3, 3))
+    return 0.5 * np.stack(
+        [A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1
+    )
+
+
+def rotvec_to_matrix(psi):
+    """Exponential map ``R(ψ) = exp(ψ·X)`` (seed 二.2 (3), Rodrigues' formula).
+
+    Evaluated through the half-angle quaternion so that every entry is
+    accurate to rounding for all |ψ| (series for sin(ψ/2)/ψ below 1e-4).
+    ``R(2π n) = 1``.
+
+    Parameters
+    ----------
+    psi : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(rotvec_to_matrix([np.pi / 2, 0.0, 0.0]), 12) + 0.0
+    array([[ 1.,  0.,  0.],
+           [ 0.,  0., -1.],
+           [ 0.,  1.,  0.]])
+    """
+    return _rotvec_to_matrix(vector_array(psi, "psi"))
+
+
+def matrix_to_rotvec(R):
+    """Logarithm ``ψ = log R`` with |ψ| <= π.
+
+    Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
+    digits at ψ → 0 or ψ → π (unlike arccos((tr R - 1)/2)). At exactly
+    ψ = π both ±ψ are logarithms; the sign follows the extracted quaternion.
+
+    Examples
+    --------
+    >>> matrix_to_rotvec(np.diag([1.0, -1.0, -1.0]))
+    array([3.14159265, 0.        , 0.        ])
+    """
+    return _matrix_to_rotvec(matrix_array(R, "R"))
+
+
+def rotvec_to_quat(psi):
+    """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (seed appendix (4)).
+
+    No sign flip: ψ = 2π n gives ``q = -1`` — the double cover SU(2) → SO(3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(rotvec_to_quat([0.0, 0.0, 2 * np.pi]), 12) + 0.0
+    array([-1.,  0.,  0.,  0.])
+    """
+    return _rotvec_to_quat(vector_array(psi, "psi"))
+
+
+def quat_to_rotvec(q):
+    """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
+
+    ``q`` and ``-q`` give the same ψ; ψ = 2 atan2(|v|, |q0|) is accurate at
+    every angle.
+
+    Examples
+    --------
+    >>> quat_to_rotvec([0.0, 0.0, 0.0, 1.0])
+    array([0.        , 0.        , 3.14159265])
+    """
+    return _quat_to_rotvec(quaternion_array(q, "q"))
+
+
+def rotvec_to_axis_angle(psi):
+    """Split ψ = ψ n into the unit axis ``n`` and the angle ``ψ >= 0``.
+
+    For ψ = 0 the axis is arbitrary and reported as ``[0, 0, 1]``.
+
+    Returns
+    -------
+    axis : ndarray, shape (..., 3)
+    angle : ndarray, shape (...)
+
+    Examples
+    --------
+    >>> axis, angle = rotvec_to_axis_angle([0.0, 3.0, 4.0])
+    >>> axis, float(angle)
+    (array([0. , 0.6, 0.8]), 5.0)
+    """
+    psi = vector_array(psi, "psi")
+    angle = np.linalg.norm(psi, axis=-1)
+    zero = angle == 0.0
+    axis = psi / np.where(zero, 1.0, angle)[..., None]
+    axis[zero] = (0.0, 0.0, 1.0)
+    return axis, angle
+
+
+def axis_angle_to_rotvec(axis, angle, degrees=False):
+    """Rotation vector ψ n from an axis (any nonzero length) and an angle.
+
+    Examples
+    --------
+    >>> axis_angle_to_rotvec([0.0, 0.0, 2.0], 90.0, degrees=True)
+    array([0.        , 0.        , 1.57079633])
+    """
+    axis = vector_array(axis, "axis")
+    angle = finite_array(angle, "angle", ())
+    if degrees:
+        angle = np.deg2rad(angle)
+    length = np.linalg.norm(axis, axis=-1)
+    if np.any(length == 0.0):
+        raise ValueError("axis must be nonzero vectors")
+    return axis * (angle / length)[..., None]
+
+
+def compose_rotvec(a, b):
+    """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
+
+    Rotation vectors do not add (seed 二.2 (4)); this is the closed form the
+    BCH series (:func:`bch`) approximates, computed through quaternions.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(compose_rotvec([np.pi / 2, 0, 0], [0, np.pi / 2, 0]), 6)
+    array([1.209200, 1.209200, 1.209200])
+    """
+    a = vector_array(a, "a")
+    b = vector_array(b, "b")
+    return _compose_rotvec(a, b)
+
+
+def _bernoulli_even(n_max):
+    # B_2, B_4, ... by the recurrence Σ_{j<m} C(m+1, j) B_j = -(m+1) B_m; exact enough in floats.
+    B = [1.0]
+    for m in range(1, n_max + 1):
+        B.append(-sum(math.comb(m + 1, j) * B[j] for j in range(m)) / (m + 1))
+    return B
+
+
+def bch(a, b, order=3):
+    """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (seed 二.2 (4)).
+
+    ``a + b + [a, b]/2 + [a - b, [a, b]]/12 + …`` truncated after the terms of
+    total degree ``order``, with ``[a, b] = a × b`` in so(3). The terms are
+    generated by Varadarajan's recursion
+
+    ``(n+1) Z_{n+1} = ½[a - b, Z_n] + Σ_p B_2p/(2p)! Σ_{k_1+…+k_2p=n} [Z_k1, […[Z_k2p, a + b]…]]``.
+
+    The error of order ``N`` is O(|ψ|^(N+1)); compare :func:`compose_rotvec`.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (..., 3)
+    order : int >= 1
+
+    Examples
+    --------
+    >>> bch([1e-3, 0, 0], [0, 1e-3, 0], order=2)
+    array([1.e-03, 1.e-03, 5.e-07])
+    """
+    if not isinstance(order, (int, np.integer)) or order < 1:
+        raise ValueError(f"order must be an integer >= 1, got {order!r}")
+    a = vector_array(a, "a")
+    b = vector_array(b, "b")
+    a, b = np.broadcast_arrays(a, b)
+    B = _bernoulli_even(order)
+    s = a + b
+    d = a - b
+    Z = [None, s]
+    for n in range(1, order):
+        term = 0.5 * np.cross(d, Z[n])
+        for p in range(1, n // 2 + 1):
+            coeff = B[2 * p] / math.factorial(2 * p)
+            for ks in _compositions(n, 2 * p):
+                nested = s
+                for kk in reversed(ks):
+                    nested = np.cross(Z[kk], nested)
+                term = term + coeff * nested
+        Z.append(term / (n + 1))
+    return np.sum(Z[1:], axis=0)
+
+
+def _compositions(n, parts):
+    """Ordered tuples of ``parts`` positive integers summing to ``n``."""
+    for cuts in itertools.combinations(range(1, n), parts - 1):
+        yield tuple(j - i for i, j in zip((0, *cuts), (*cuts, n)))
+
+
+def adjoint_action(Q, psi):
+    """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
+
+    Implements the identity of seed 二.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
+    axis turns as a vector and the angle is unchanged (equivalently
+    ``Q (ψ·X) Qᵀ = (Qψ)·X``).
+
+    Parameters
+    ----------
+    Q : array_like, shape (..., 3, 3)
+        Rotation matrices.
+    psi : array_like, shape (..., 3)
+
+    Examples
+    --------
+    >>> Q = rotvec_to_matrix([0.0, 0.0, np.pi / 2])
+    >>> np.round(adjoint_action(Q, [0.1, 0.0, 0.0]), 12) + 0.0
+    array([0. , 0.1, 0. ])
+    """
+    Q = matrix_array(Q, "Q")
+    psi = vector_array(psi, "psi")
+    return np.einsum("...ij,...j->...i", Q, psi)
