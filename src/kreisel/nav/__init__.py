@@ -7,6 +7,8 @@ reading/attitude writing.
 """
 
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
+from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
+                         allan_deviation, gauss_markov_allan_deviation)
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = [
@@ -16,4 +18,10 @@ __all__ = [
     "coning_coefficients",
     "attitude_from_increments",
     "attitude_from_rates",
+    "GyroErrorModel",
+    "allan_deviation",
+    "gauss_markov_allan_deviation",
+    "DEG_PER_SQRT_HOUR",
+    "DEG_PER_HOUR",
+    "DEG_PER_HOUR_PER_SQRT_HOUR",
 ]
