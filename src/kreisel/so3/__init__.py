@@ -4,12 +4,31 @@ rotation, conversions between them, the exponential map and the ``Rotation`` cla
 Conventions: scalar-first Hamilton quaternions, active rotations with ``R``
 mapping body to space components, rotation vectors with |ψ| <= π from logs,
 uppercase Euler sequences intrinsic and lowercase extrinsic.
+
+Modules: :mod:`.quaternion` (algebra, seed 二.4), :mod:`.matrix` (DCM, 二.1),
+:mod:`.rotvec` (generators, exp/log, BCH, adjoint action, 二.2),
+:mod:`.euler` (二.3), :mod:`.su2` (SU(2), Cayley–Klein, Euler parameters,
+appendix), :mod:`.rodrigues` (Gibbs vector, MRPs), :mod:`.interpolation`
+(slerp, mean), :mod:`.rotation` (the ``Rotation`` class).
 """
 
-from . import euler, matrix, quaternion, rotvec
+from . import euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, su2
 from .euler import *  # noqa: F401,F403
+from .interpolation import *  # noqa: F401,F403
 from .matrix import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
+from .rodrigues import *  # noqa: F401,F403
+from .rotation import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
+from .su2 import *  # noqa: F401,F403
 
-__all__ = [*quaternion.__all__, *matrix.__all__, *rotvec.__all__, *euler.__all__]
+__all__ = [
+    *quaternion.__all__,
+    *matrix.__all__,
+    *rotvec.__all__,
+    *euler.__all__,
+    *su2.__all__,
+    *rodrigues.__all__,
+    *interpolation.__all__,
+    *rotation.__all__,
+]

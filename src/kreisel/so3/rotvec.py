@@ -68,7 +68,7 @@ def generators():
 
     Examples
     --------
-    >>> generators()[2]
+    >>> generators()[2] + 0.0
     array([[ 0., -1.,  0.],
            [ 1.,  0.,  0.],
            [ 0.,  0.,  0.]])
@@ -240,8 +240,8 @@ def compose_rotvec(a, b):
     Examples
     --------
     >>> import numpy as np
-    >>> np.round(compose_rotvec([np.pi / 2, 0, 0], [0, np.pi / 2, 0]), 6)
-    array([1.209200, 1.209200, 1.209200])
+    >>> np.round(compose_rotvec([np.pi / 2, 0, 0], [0, np.pi / 2, 0]), 4)
+    array([1.2092, 1.2092, 1.2092])
     """
     a = vector_array(a, "a")
     b = vector_array(b, "b")

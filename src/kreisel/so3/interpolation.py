@@ -1,0 +1,97 @@
+"""Interpolation and averaging of rotations: slerp and the chordal mean.
+
+Both work on quaternions and respect the double cover: slerp takes the
+shorter arc (``q`` and ``-q`` are the same rotation) and the mean is
+sign-independent.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._gufunc import finite_array, gufunc, quaternion_array
+from . import _kernels as k
+
+__all__ = ["quat_slerp", "quat_mean"]
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(4),()->(4)")
+def _slerp(p, q, t, out):
+    # p exp(t log(p* q)), the shorter arc; quaternions are taken as unit.
+    p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
+    r0, r1, r2, r3 = k.quat_product(p0, -p1, -p2, -p3, q[0], q[1], q[2], q[3])
+    x, y, z = k.quat_rotvec(r0, r1, r2, r3)
+    s0, s1, s2, s3 = k.rotvec_quat(t * x, t * y, t * z)
+    out[0], out[1], out[2], out[3] = k.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
+
+
+def quat_slerp(p, q, t):
+    """Spherical linear interpolation from rotation ``p`` (t = 0) to ``q`` (t = 1).
+
+    ``p exp(t log(p⁻¹ q))`` along the shorter great arc, at constant angular
+    rate; ``t`` outside [0, 1] extrapolates. Inputs are normalised.
+
+    Parameters
+    ----------
+    p, q : array_like, shape (..., 4)
+    t : array_like, shape (...)
+        Broadcast with the leading axes of ``p`` and ``q``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> q = quat_slerp([1.0, 0, 0, 0], [0.0, 0, 0, 1.0], 0.5)      # halfway to 180° about z
+    >>> np.round(q, 12)
+    array([0.70710678, 0.        , 0.        , 0.70710678])
+    """
+    p = quaternion_array(p, "p")
+    q = quaternion_array(q, "q")
+    t = finite_array(t, "t", ())
+    p = p / np.linalg.norm(p, axis=-1, keepdims=True)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return _slerp(p, q, t)
+
+
+def quat_mean(q, weights=None, axis=-2):
+    """Chordal L2 mean of rotations (Markley et al. 2007), sign-independent.
+
+    The rotation minimising ``Σ w_i ‖R - R_i‖_F²`` is the eigenvector of
+    ``M = Σ w_i q_i q_iᵀ`` with the largest eigenvalue.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., n, 4)
+        Nonzero quaternions (normalised here); averaged along ``axis``.
+    weights : array_like, shape (..., n), optional
+        Non-negative weights, not all zero.
+    axis : int
+        Axis of ``q`` holding the samples (not the last one).
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternions with q0 >= 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = 0.1
+    >>> qs = [[np.cos(a), 0, 0, np.sin(a)], [np.cos(a), 0, 0, -np.sin(a)]]
+    >>> quat_mean(qs)
+    array([1., 0., 0., 0.])
+    """
+    q = quaternion_array(q, "q")
+    if q.ndim < 2:
+        raise ValueError(f"q must have shape (..., n, 4) with a sample axis, got {q.shape}")
+    q = np.moveaxis(q, axis, -2)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    if weights is None:
+        w = np.ones(q.shape[:-1])
+    else:
+        w = finite_array(weights, "weights", None)
+        if np.any(w < 0) or np.any(np.sum(np.broadcast_to(w, q.shape[:-1]), axis=-1) <= 0):
+            raise ValueError("weights must be non-negative and not all zero")
+    M = np.einsum("...n,...ni,...nj->...ij", np.broadcast_to(w, q.shape[:-1]), q, q)
+    _, vectors = np.linalg.eigh(M)
+    mean = vectors[..., :, -1]
+    return np.where(mean[..., :1] < 0.0, -mean, mean)

@@ -1,0 +1,76 @@
+"""Classical Rodrigues (Gibbs) vectors and modified Rodrigues parameters (MRPs).
+
+Gibbs vector ``g = n tan(ψ/2) = q_v / q0`` (infinite at ψ = π); MRPs
+``p = n tan(ψ/4) = q_v / (1 + q0)``, taken with q0 >= 0 so that |p| <= 1
+(the "shadow" set ``-p/|p|²`` describes the same rotation). Both are
+stereographic-type projections of the unit quaternion (appendix of the seed:
+"other parameters describing rigid-body motion").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._gufunc import quaternion_array, vector_array
+
+__all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
+
+
+def _canonical_unit(q):
+    q = quaternion_array(q, "q")
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return np.where(q[..., :1] < 0.0, -q, q)
+
+
+def quat_to_gibbs(q):
+    """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(quat_to_gibbs([np.cos(np.pi / 8), 0, 0, np.sin(np.pi / 8)]), 12)   # 90° about z
+    array([0.        , 0.        , 0.41421356])
+    """
+    q = _canonical_unit(q)
+    if np.any(q[..., 0] == 0.0):
+        raise ValueError("q must not be a half-turn (ψ = π): its Gibbs vector is infinite")
+    return q[..., 1:] / q[..., :1]
+
+
+def gibbs_to_quat(g):
+    """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
+
+    Examples
+    --------
+    >>> gibbs_to_quat([0.0, 0.0, 1.0])
+    array([0.70710678, 0.        , 0.        , 0.70710678])
+    """
+    g = vector_array(g, "g")
+    q = np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1)
+    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+
+
+def quat_to_mrp(q):
+    """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(quat_to_mrp([0.0, 1.0, 0.0, 0.0]), 12)   # half-turn about x
+    array([1., 0., 0.])
+    """
+    q = _canonical_unit(q)
+    return q[..., 1:] / (1.0 + q[..., :1])
+
+
+def mrp_to_quat(p):
+    """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
+
+    Examples
+    --------
+    >>> mrp_to_quat([1.0, 0.0, 0.0])
+    array([0., 1., 0., 0.])
+    """
+    p = vector_array(p, "p")
+    p2 = np.sum(p * p, axis=-1, keepdims=True)
+    return np.concatenate([1.0 - p2, 2.0 * p], axis=-1) / (1.0 + p2)

@@ -1,0 +1,248 @@
+"""The ``Rotation`` object: a batch of rotations with every representation (seed 一, 二, appendix).
+
+A ``Rotation`` holds unit quaternions (scalar first) of any batch shape and
+converts to and from all representations of :mod:`kreisel.so3`. ``a * b``
+composes (``b`` first, then ``a``): ``(a * b).as_matrix() == a.as_matrix() @ b.as_matrix()``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import euler as _euler
+from . import interpolation as _interp
+from . import matrix as _matrix
+from . import quaternion as _quat
+from . import rodrigues as _rodrigues
+from . import rotvec as _rotvec
+from . import su2 as _su2
+
+__all__ = ["Rotation"]
+
+
+def _scalar_first(q, scalar_first):
+    q = np.asarray(q, dtype=np.float64)
+    return q if scalar_first else q[..., [3, 0, 1, 2]]
+
+
+class Rotation:
+    """Rotations of batch shape ``shape`` (``()`` for a single rotation).
+
+    Build with a ``from_*`` class method, read with the matching ``as_*``.
+    Active convention: ``apply`` maps body components to space components.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> r = Rotation.from_euler("ZXZ", [90, 0, 0], degrees=True)
+    >>> r
+    Rotation.from_quat([0.707107, 0, 0, 0.707107])
+    >>> np.round(r.apply([1.0, 0.0, 0.0]), 12) + 0.0
+    array([0., 1., 0.])
+    >>> round(float(np.degrees((r * r).magnitude())), 9)
+    180.0
+    """
+
+    __slots__ = ("_q",)
+
+    def __init__(self, quat, *, _validated=False):
+        # Internal constructors pass quaternions that are already unit.
+        self._q = quat if _validated else _quat.quat_normalize(quat)
+
+    @classmethod
+    def _wrap(cls, q):
+        return cls(q, _validated=True)
+
+    # -- construction -------------------------------------------------------
+    @classmethod
+    def from_quat(cls, quat, scalar_first=True):
+        """From quaternions (normalised); ``scalar_first=False`` for ``[x, y, z, w]`` input."""
+        return cls(_scalar_first(quat, scalar_first))
+
+    @classmethod
+    def from_matrix(cls, matrix):
+        """From rotation matrices (nearly orthogonal ones are projected)."""
+        return cls._wrap(_matrix.matrix_to_quat(matrix))
+
+    @classmethod
+    def from_rotvec(cls, rotvec, degrees=False):
+        """From rotation vectors ψ = ψ n (exponential map)."""
+        psi = np.asarray(rotvec, dtype=np.float64)
+        return cls._wrap(_rotvec.rotvec_to_quat(np.deg2rad(psi) if degrees else psi))
+
+    @classmethod
+    def from_axis_angle(cls, axis, angle, degrees=False):
+        """From an axis (any nonzero length) and an angle."""
+        return cls.from_rotvec(_rotvec.axis_angle_to_rotvec(axis, angle, degrees=degrees))
+
+    @classmethod
+    def from_euler(cls, seq, angles, degrees=False):
+        """From Euler angles in any of the 24 conventions (see :mod:`kreisel.so3.euler`)."""
+        return cls._wrap(_euler.euler_to_quat(seq, angles, degrees=degrees))
+
+    @classmethod
+    def from_su2(cls, u):
+        """From SU(2) matrices ``exp(-i σ·ψ/2)``."""
+        return cls._wrap(_su2.su2_to_quat(u))
+
+    @classmethod
+    def from_cayley_klein(cls, ck):
+        """From Cayley–Klein parameters ``(α, β, γ, δ)``."""
+        return cls._wrap(_su2.cayley_klein_to_quat(ck))
+
+    @classmethod
+    def from_euler_parameters(cls, e):
+        """From the seed's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`)."""
+        return cls._wrap(_su2.euler_parameters_to_quat(e))
+
+    @classmethod
+    def from_gibbs(cls, g):
+        """From Gibbs (classical Rodrigues) vectors ``n tan(ψ/2)``."""
+        return cls._wrap(_rodrigues.gibbs_to_quat(g))
+
+    @classmethod
+    def from_mrp(cls, p):
+        """From modified Rodrigues parameters ``n tan(ψ/4)``."""
+        return cls._wrap(_rodrigues.mrp_to_quat(p))
+
+    @classmethod
+    def from_scipy(cls, rotation):
+        """From a ``scipy.spatial.transform.Rotation`` (scalar-last internally)."""
+        return cls.from_quat(rotation.as_quat(), scalar_first=False)
+
+    @classmethod
+    def identity(cls, shape=()):
+        """Identity rotations of batch shape ``shape``."""
+        return cls._wrap(_quat.quat_identity(shape))
+
+    @classmethod
+    def random(cls, shape=(), rng=None):
+        """Rotations uniform on SO(3) (Haar measure): normalised 4-D Gaussians.
+
+        ``rng`` is a seed or a ``numpy.random.Generator``.
+
+        Examples
+        --------
+        >>> Rotation.random(5, rng=1).shape
+        (5,)
+        """
+        rng = np.random.default_rng(rng)
+        shape = (shape,) if np.ndim(shape) == 0 else tuple(shape)
+        q = rng.standard_normal((*shape, 4))
+        return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
+
+    # -- representations ----------------------------------------------------
+    def as_quat(self, canonical=False, scalar_first=True):
+        """Unit quaternions; ``canonical=True`` picks the sign with q0 >= 0."""
+        q = self._q
+        if canonical:
+            q = np.where(q[..., :1] < 0.0, -q, q)
+        return np.array(q if scalar_first else q[..., [1, 2, 3, 0]])
+
+    def as_matrix(self):
+        """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``."""
+        return _matrix.quat_to_matrix(self._q)
+
+    def as_rotvec(self, degrees=False):
+        """Rotation vectors with |ψ| <= π."""
+        psi = _rotvec.quat_to_rotvec(self._q)
+        return np.rad2deg(psi) if degrees else psi
+
+    def as_axis_angle(self, degrees=False):
+        """``(axis, angle)`` with angle in [0, π] (axis ``[0, 0, 1]`` for the identity)."""
+        axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
+        return axis, (np.rad2deg(angle) if degrees else angle)
+
+    def as_euler(self, seq, degrees=False):
+        """Euler angles (exact through gimbal lock)."""
+        return _euler.quat_to_euler(seq, self._q, degrees=degrees)
+
+    def as_su2(self):
+        """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign)."""
+        return _su2.quat_to_su2(self._q)
+
+    def as_cayley_klein(self):
+        """Cayley–Klein parameters ``(α, β, γ, δ)``."""
+        return _su2.quat_to_cayley_klein(self._q)
+
+    def as_euler_parameters(self):
+        """Euler parameters of the seed appendix (2), ``e = q*``."""
+        return _su2.quat_to_euler_parameters(self._q)
+
+    def as_gibbs(self):
+        """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns)."""
+        return _rodrigues.quat_to_gibbs(self._q)
+
+    def as_mrp(self):
+        """Modified Rodrigues parameters with |p| <= 1."""
+        return _rodrigues.quat_to_mrp(self._q)
+
+    def to_scipy(self):
+        """The same rotations as a ``scipy.spatial.transform.Rotation``."""
+        from scipy.spatial.transform import Rotation as ScipyRotation
+
+        return ScipyRotation.from_quat(self._q[..., [1, 2, 3, 0]])
+
+    # -- group operations ---------------------------------------------------
+    def __mul__(self, other):
+        if not isinstance(other, Rotation):
+            return NotImplemented
+        return Rotation._wrap(_quat.quat_multiply(self._q, other._q))
+
+    def inv(self):
+        """Inverse rotations."""
+        return Rotation._wrap(_quat.quat_conjugate(self._q))
+
+    def apply(self, vectors, inverse=False):
+        """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting."""
+        return _quat.quat_apply(self._q, vectors, inverse=inverse)
+
+    def magnitude(self):
+        """Rotation angles in [0, π]."""
+        return np.linalg.norm(self.as_rotvec(), axis=-1)
+
+    def mean(self, weights=None):
+        """Chordal L2 mean over the first batch axis (see :func:`quat_mean`)."""
+        if self._q.ndim < 2:
+            raise ValueError("mean needs a batch of rotations")
+        return Rotation._wrap(_interp.quat_mean(self._q, weights, axis=0))
+
+    def slerp(self, other, t):
+        """Spherical linear interpolation from ``self`` (t = 0) to ``other`` (t = 1)."""
+        return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
+
+    def approx_equal(self, other, atol=1e-12):
+        """Whether the rotations agree to ``atol`` in angle (sign of q ignored)."""
+        return (self.inv() * other).magnitude() <= atol
+
+    # -- container protocol -------------------------------------------------
+    @property
+    def shape(self):
+        """Batch shape (``()`` for a single rotation)."""
+        return self._q.shape[:-1]
+
+    @property
+    def single(self):
+        """True for a single rotation (batch shape ``()``)."""
+        return self._q.ndim == 1
+
+    def __len__(self):
+        if self.single:
+            raise TypeError("a single Rotation has no len()")
+        return self._q.shape[0]
+
+    def __getitem__(self, index):
+        if self.single:
+            raise TypeError("a single Rotation is not subscriptable")
+        if isinstance(index, tuple):
+            index = (*index, slice(None))
+        return Rotation._wrap(self._q[index])
+
+    def __repr__(self):
+        def fmt(x):
+            return np.format_float_positional(x, precision=6, trim="-")
+
+        if self.single:
+            return "Rotation.from_quat([" + ", ".join(fmt(x) for x in self._q) + "])"
+        body = np.array2string(self._q, precision=6, suppress_small=True, separator=", ", threshold=20)
+        return f"Rotation.from_quat({body})  # shape {self.shape}"
