@@ -1,0 +1,308 @@
+"""Kinematics and mechanics of a particle seen from a moving, rotating frame.
+
+Seed 四.7 (five-term acceleration) and seed 八.1 (Lagrangian and Hamiltonian of a
+particle in a non-inertial frame). All vectors are components along the moving
+frame's axes unless a docstring says otherwise; every function broadcasts over
+leading axes.
+
+A note on seed 八.1. The seed's Lagrangian carries the translational term
+``-m ṙ·a0``; its Euler–Lagrange equation would give a force ``+m ȧ0`` (a jerk),
+not the inertial force ``-m a0``. The seed's own identity
+``(ṙ + ω×r)·v0 = d/dt(r·v0) - r·a0`` (v0, a0 the frame origin's velocity and
+acceleration, in moving-frame components) gives the translational potential
+``m a0·r`` instead, as in Landau & Lifshitz §39. kreisel uses
+
+    L = ½ m (ṙ + ω×r)² - m a0·r - V,       p = m (ṙ + ω×r),
+    H = p²/2m - p·(ω×r) + m a0·r + V = ½ m ṙ² - ½ m (ω×r)² + m a0·r + V,
+
+which the tests check against a simulation in the inertial frame.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from .._validation import as_float_array
+
+__all__ = [
+    "AccelerationTerms",
+    "InertialForces",
+    "LagrangianTerms",
+    "HamiltonianTerms",
+    "absolute_velocity",
+    "absolute_acceleration",
+    "inertial_forces",
+    "canonical_momentum",
+    "velocity_from_momentum",
+    "lagrangian_terms",
+    "lagrangian",
+    "hamiltonian_terms",
+    "hamiltonian",
+]
+
+AccelerationTerms = namedtuple(
+    "AccelerationTerms", ["translational", "euler", "centripetal", "relative", "coriolis", "total"]
+)
+AccelerationTerms.__doc__ = """Five terms of the absolute acceleration (seed 四.7).
+
+translational (a_C), euler (ε×r), centripetal (ω×(ω×r)), relative (a_rel),
+coriolis (2 ω×v_rel) and their sum ``total``.
+"""
+
+InertialForces = namedtuple("InertialForces", ["translational", "coriolis", "centrifugal", "euler", "total"])
+InertialForces.__doc__ = """Fictitious (inertial) forces in a moving frame (seed 八.1).
+
+translational (-m a0), coriolis (-2m ω×ṙ), centrifugal (-m ω×(ω×r)),
+euler (-m ω̇×r) and their sum ``total``.
+"""
+
+LagrangianTerms = namedtuple("LagrangianTerms", ["kinetic", "coriolis", "centrifugal", "translational", "potential"])
+LagrangianTerms.__doc__ = """Terms of L (seed 八.1), which is their sum.
+
+kinetic ½mṙ², coriolis m ṙ·(ω×r), centrifugal ½m(ω×r)², translational
+-m a0·r, potential -V.
+"""
+
+HamiltonianTerms = namedtuple("HamiltonianTerms", ["kinetic", "coriolis", "translational", "potential"])
+HamiltonianTerms.__doc__ = """Terms of H(r, p) (seed 八.1), which is their sum.
+
+kinetic p²/2m, coriolis -p·(ω×r) (the generalised potential of the Coriolis
+and centrifugal forces), translational m a0·r, potential V.
+"""
+
+
+def _vectors(**named):
+    return [as_float_array(v, k, tail=(3,)) for k, v in named.items()]
+
+
+def _scalar(x, name, positive=False):
+    a = as_float_array(x, name)
+    if positive and np.any(a <= 0):
+        raise ValueError(f"{name} must be positive")
+    return a
+
+
+def _dot(a, b):
+    return np.sum(a * b, axis=-1)
+
+
+def absolute_velocity(v_origin, omega, r_rel, v_rel):
+    """Absolute velocity from the three terms of seed 四.7: v = v_C + v_rel + ω×r.
+
+    Parameters
+    ----------
+    v_origin : (..., 3) array_like
+        Velocity of the frame's reference point C.
+    omega : (..., 3) array_like
+        Angular velocity of the frame.
+    r_rel, v_rel : (..., 3) array_like
+        Position of the point relative to C and its velocity observed in the
+        frame (``v_rel = R d r'/dt``). All four in the same components.
+
+    Returns
+    -------
+    (..., 3) ndarray
+
+    Examples
+    --------
+    >>> absolute_velocity([0, 0, 0], [0, 0, 1], [1, 0, 0], [0, 0, 0]).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    v_origin, omega, r_rel, v_rel = _vectors(v_origin=v_origin, omega=omega, r_rel=r_rel, v_rel=v_rel)
+    return v_origin + v_rel + np.cross(omega, r_rel)
+
+
+def absolute_acceleration(a_origin, angular_acceleration, omega, r_rel, v_rel, a_rel):
+    """Absolute acceleration as the five terms of seed 四.7.
+
+    a = a_C + ε×r + ω×(ω×r) + a_rel + 2 ω×v_rel, with every vector in the same
+    components (space components give the seed's formula after multiplying by
+    R(t); moving-frame components give the primed form).
+
+    Parameters
+    ----------
+    a_origin : (..., 3) array_like
+        Acceleration of the reference point C.
+    angular_acceleration : (..., 3) array_like
+        ε = dω/dt.
+    omega : (..., 3) array_like
+        Angular velocity of the frame.
+    r_rel, v_rel, a_rel : (..., 3) array_like
+        Relative position, velocity and acceleration observed in the frame.
+
+    Returns
+    -------
+    AccelerationTerms
+        The five (..., 3) terms and their ``total``.
+
+    Examples
+    --------
+    >>> terms = absolute_acceleration([0, 0, 0], [0, 0, 0], [0, 0, 2], [1, 0, 0], [0, 1, 0], [0, 0, 0])
+    >>> terms.centripetal.tolist(), terms.coriolis.tolist()
+    ([-4.0, 0.0, 0.0], [-4.0, 0.0, 0.0])
+    """
+    a_origin, eps, omega, r, v, a = _vectors(
+        a_origin=a_origin, angular_acceleration=angular_acceleration, omega=omega, r_rel=r_rel, v_rel=v_rel, a_rel=a_rel
+    )
+    euler = np.cross(eps, r)
+    centripetal = np.cross(omega, np.cross(omega, r))
+    coriolis = 2.0 * np.cross(omega, v)
+    total = a_origin + euler + centripetal + a + coriolis
+    shape = total.shape
+    return AccelerationTerms(
+        *(np.broadcast_to(x, shape).copy() for x in (a_origin, euler, centripetal, a, coriolis)), total
+    )
+
+
+def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), mass=1.0):
+    """Fictitious forces on a particle observed in a moving frame (seed 八.1).
+
+    m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r, all in moving-frame
+    components; this returns the four inertial terms separately.
+
+    Parameters
+    ----------
+    r, v : (..., 3) array_like
+        Position and velocity relative to the frame (``v = ṙ`` of the
+        components).
+    omega, omega_dot : (..., 3) array_like
+        Angular velocity of the frame and its time derivative.
+    a0 : (..., 3) array_like
+        Acceleration of the frame origin (moving-frame components).
+    mass : float or array_like
+        Particle mass, kg.
+
+    Returns
+    -------
+    InertialForces
+
+    Examples
+    --------
+    >>> f = inertial_forces([1, 0, 0], [0, 1, 0], [0, 0, 1])
+    >>> f.centrifugal.tolist(), f.coriolis.tolist()
+    ([1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
+    """
+    r, v, omega, omega_dot, a0 = _vectors(r=r, v=v, omega=omega, omega_dot=omega_dot, a0=a0)
+    m = _scalar(mass, "mass", positive=True)[..., None]
+    translational = -m * a0
+    coriolis = -2.0 * m * np.cross(omega, v)
+    centrifugal = -m * np.cross(omega, np.cross(omega, r))
+    euler = -m * np.cross(omega_dot, r)
+    total = translational + coriolis + centrifugal + euler
+    shape = total.shape
+    return InertialForces(
+        *(np.broadcast_to(x, shape).copy() for x in (translational, coriolis, centrifugal, euler)), total
+    )
+
+
+def canonical_momentum(r, v, omega, mass=1.0):
+    """Canonical momentum p = m (ṙ + ω×r) (seed 八.1): the inertial momentum minus m v0.
+
+    Examples
+    --------
+    >>> canonical_momentum([1, 0, 0], [0, 0, 0], [0, 0, 1], mass=2.0).tolist()
+    [0.0, 2.0, 0.0]
+    """
+    r, v, omega = _vectors(r=r, v=v, omega=omega)
+    m = _scalar(mass, "mass", positive=True)[..., None]
+    return m * (v + np.cross(omega, r))
+
+
+def velocity_from_momentum(r, p, omega, mass=1.0):
+    """Relative velocity ṙ = p/m - ω×r, the inverse of :func:`canonical_momentum`.
+
+    Examples
+    --------
+    >>> velocity_from_momentum([1, 0, 0], [0, 2, 0], [0, 0, 1], mass=2.0).tolist()
+    [0.0, 0.0, 0.0]
+    """
+    r, p, omega = _vectors(r=r, p=p, omega=omega)
+    m = _scalar(mass, "mass", positive=True)[..., None]
+    return p / m - np.cross(omega, r)
+
+
+def lagrangian_terms(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
+    """The terms of the moving-frame Lagrangian of seed 八.1 (see the module note on a0).
+
+    Parameters
+    ----------
+    r, v : (..., 3) array_like
+        Position and relative velocity ṙ.
+    omega : (..., 3) array_like
+        Frame angular velocity.
+    a0 : (..., 3) array_like
+        Frame origin acceleration.
+    potential : float or array_like
+        V(t, r) already evaluated at the points, J.
+    mass : float or array_like
+        kg.
+
+    Returns
+    -------
+    LagrangianTerms
+
+    Examples
+    --------
+    >>> t = lagrangian_terms([1, 0, 0], [0, 1, 0], [0, 0, 1])
+    >>> float(t.kinetic), float(t.coriolis), float(t.centrifugal)
+    (0.5, 1.0, 0.5)
+    """
+    r, v, omega, a0 = _vectors(r=r, v=v, omega=omega, a0=a0)
+    potential = _scalar(potential, "potential")
+    m = _scalar(mass, "mass", positive=True)
+    wr = np.cross(omega, r)
+    terms = (0.5 * m * _dot(v, v), m * _dot(v, wr), 0.5 * m * _dot(wr, wr), -m * _dot(a0, r), -potential)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in terms))
+    return LagrangianTerms(*(np.broadcast_to(x, shape).copy() for x in terms))
+
+
+def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
+    """L = ½ m (ṙ + ω×r)² - m a0·r - V (seed 八.1), J.
+
+    Examples
+    --------
+    >>> float(lagrangian([1, 0, 0], [0, 1, 0], [0, 0, 1]))
+    2.0
+    """
+    return sum(lagrangian_terms(r, v, omega, a0, potential, mass))
+
+
+def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
+    """The terms of H(r, p) = p²/2m - p·(ω×r) + m a0·r + V (seed 八.1).
+
+    Parameters
+    ----------
+    r, p : (..., 3) array_like
+        Position and canonical momentum (:func:`canonical_momentum`).
+    omega, a0, potential, mass
+        As in :func:`lagrangian_terms`.
+
+    Returns
+    -------
+    HamiltonianTerms
+
+    Examples
+    --------
+    >>> h = hamiltonian_terms([1, 0, 0], [0, 2, 0], [0, 0, 1])
+    >>> float(h.kinetic), float(h.coriolis)
+    (2.0, -2.0)
+    """
+    r, p, omega, a0 = _vectors(r=r, p=p, omega=omega, a0=a0)
+    potential = _scalar(potential, "potential")
+    m = _scalar(mass, "mass", positive=True)
+    terms = (_dot(p, p) / (2.0 * m), -_dot(p, np.cross(omega, r)), m * _dot(a0, r), potential)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in terms))
+    return HamiltonianTerms(*(np.broadcast_to(x, shape).copy() for x in terms))
+
+
+def hamiltonian(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
+    """H(r, p) of seed 八.1; conserved (the Jacobi integral) when ω, a0, V do not depend on t.
+
+    Examples
+    --------
+    >>> float(hamiltonian([1, 0, 0], [0, 1, 0], [0, 0, 1]))
+    -0.5
+    """
+    return sum(hamiltonian_terms(r, p, omega, a0, potential, mass))
