@@ -1,3 +1,37 @@
-"""kinematics layer of kreisel."""
+"""Kinematics of a rigid body (seed 三 and 四.6–7).
 
-__all__ = []
+Every map between a parameterisation's rates and the angular velocity, in
+space (``frame="space"``, hat(ω) = Ṙ Rᵀ) or body components
+(``frame="body"``, hat(ω′) = Rᵀ Ṙ): rotation matrices, quaternions, rotation
+vectors (dexp and the Bortz equation), Euler angles of all 24 conventions,
+with NaN and a warning at coordinate singularities; angular acceleration;
+velocity and acceleration of body points and of points moving on the body
+(five-term acceleration); screw axis of a twist; planar instantaneous
+centre and centrodes.
+"""
+
+from . import acceleration, euler, motion, rates, rotvec, screw
+from ._singularity import (
+    SINGULAR_TOL,
+    GimbalLockWarning,
+    KinematicSingularityWarning,
+    RotationVectorSingularityWarning,
+)
+from .acceleration import *  # noqa: F401,F403
+from .rates import *  # noqa: F401,F403
+from .euler import *  # noqa: F401,F403
+from .motion import *  # noqa: F401,F403
+from .rotvec import *  # noqa: F401,F403
+from .screw import *  # noqa: F401,F403
+
+__all__ = [
+    *rates.__all__,
+    *rotvec.__all__,
+    *euler.__all__,
+    *acceleration.__all__,
+    *motion.__all__,
+    *screw.__all__,
+    "KinematicSingularityWarning",
+    "GimbalLockWarning",
+    "RotationVectorSingularityWarning",
+]

@@ -1,0 +1,156 @@
+"""Scalar kernels of the kinematic maps (one element each, compiled by numba).
+
+They take and return plain floats and tuples so that the gufunc loops in
+this package (and integrators in higher layers) can inline them without
+allocating. Conventions as in :mod:`kreisel.so3._kernels`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from . import _series as s
+
+_jit = njit(cache=True, nogil=True)
+
+_BORTZ_SERIES = s.BORTZ_SERIES
+_BORTZ_SERIES_BELOW = s.BORTZ_SERIES_BELOW
+_SINE_REMAINDER_SERIES = s.SINE_REMAINDER_SERIES
+_SINE_REMAINDER_SERIES_BELOW = s.SINE_REMAINDER_SERIES_BELOW
+_COSINE_REMAINDER_SLOPE_SERIES = s.COSINE_REMAINDER_SLOPE_SERIES
+_SINE_REMAINDER_SLOPE_SERIES = s.SINE_REMAINDER_SLOPE_SERIES
+_SLOPE_SERIES_BELOW = s.SLOPE_SERIES_BELOW
+
+
+@_jit
+def horner(coefficients, x):
+    """Polynomial with ``coefficients`` highest order first, at ``x``."""
+    acc = 0.0
+    for c in coefficients:
+        acc = acc * x + c
+    return acc
+
+
+@_jit
+def cross(ax, ay, az, bx, by, bz):
+    return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+
+
+@_jit
+def dexp_coefficients(angle):
+    """``A = (1 - cos ψ)/ψ²`` and ``B = (ψ - sin ψ)/ψ³`` of seed 三.4.
+
+    A is evaluated as ½ (sin(ψ/2)/(ψ/2))², which has no cancellation; B
+    from its series below ψ = 1.
+    """
+    if angle == 0.0:
+        return 0.5, 1.0 / 6.0
+    h = 0.5 * angle
+    sinc = math.sin(h) / h
+    a = 0.5 * sinc * sinc
+    if angle < _SINE_REMAINDER_SERIES_BELOW:
+        b = horner(_SINE_REMAINDER_SERIES, angle * angle)
+    else:
+        b = (angle - math.sin(angle)) / (angle * angle * angle)
+    return a, b
+
+
+@_jit
+def dexp_coefficient_slopes(angle):
+    """``A'(ψ)/ψ`` and ``B'(ψ)/ψ`` for the time derivative of the dexp matrix."""
+    if angle < _SLOPE_SERIES_BELOW:
+        x = angle * angle
+        return horner(_COSINE_REMAINDER_SLOPE_SERIES, x), horner(_SINE_REMAINDER_SLOPE_SERIES, x)
+    sn = math.sin(angle)
+    cs = math.cos(angle)
+    a2 = angle * angle
+    da = (angle * sn - 2.0 * (1.0 - cs)) / (a2 * a2)
+    db = (3.0 * sn - angle * cs - 2.0 * angle) / (a2 * a2 * angle)
+    return da, db
+
+
+@_jit
+def bortz_coefficient(angle):
+    """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of seed 三.5, written as
+    ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
+    summed from its series 1/12 + ψ²/720 + ψ⁴/30240 + ... below ψ = 1."""
+    if angle < _BORTZ_SERIES_BELOW:
+        return horner(_BORTZ_SERIES, angle * angle)
+    h = 0.5 * angle
+    return (1.0 - h * math.cos(h) / math.sin(h)) / (angle * angle)
+
+
+@_jit
+def rotvec_singular(angle, tol):
+    """True where dexp⁻¹ has a pole: |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``."""
+    return angle > math.pi and abs(math.sin(0.5 * angle)) <= tol
+
+
+@_jit
+def axis_rotate(k, c, s, x, y, z):
+    """Active rotation of (x, y, z) about coordinate axis ``k`` by the angle with cosine c, sine s."""
+    if k == 0:
+        return x, c * y - s * z, s * y + c * z
+    if k == 1:
+        return c * x + s * z, y, c * z - s * x
+    return c * x - s * y, s * x + c * y, z
+
+
+@_jit
+def unit(k):
+    if k == 0:
+        return 1.0, 0.0, 0.0
+    if k == 1:
+        return 0.0, 1.0, 0.0
+    return 0.0, 0.0, 1.0
+
+
+@_jit
+def euler_columns(angles, code):
+    """Columns of the Euler-rate matrix M (ω = M · rates) and the Gram entry g = c0·c2.
+
+    ``code = (a, b, c, extrinsic, body)`` with (a, b, c) the axes of the
+    intrinsic sequence equivalent to the user's one (an extrinsic "abc"
+    with angles (α, β, γ) is the intrinsic "CBA" with (γ, β, α)); columns
+    are returned in that intrinsic order. Seed 三.6 for ZXZ, generally:
+    space  ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇,
+    body   ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇.
+    c1 is a unit vector orthogonal to c0 and c2, so MᵀM has the form
+    [[1, 0, g], [0, 1, 0], [g, 0, 1]] with det M = ±sqrt(1 - g²).
+    """
+    a, b, c = code[0], code[1], code[2]
+    if code[3]:
+        first, middle, last = angles[2], angles[1], angles[0]
+    else:
+        first, middle, last = angles[0], angles[1], angles[2]
+    cb = math.cos(middle)
+    sb = math.sin(middle)
+    if code[4]:
+        cg = math.cos(last)
+        sg = math.sin(last)
+        ex, ey, ez = unit(a)
+        ex, ey, ez = axis_rotate(b, cb, -sb, ex, ey, ez)
+        c0 = axis_rotate(c, cg, -sg, ex, ey, ez)
+        ex, ey, ez = unit(b)
+        c1 = axis_rotate(c, cg, -sg, ex, ey, ez)
+        c2 = unit(c)
+    else:
+        ca = math.cos(first)
+        sa = math.sin(first)
+        c0 = unit(a)
+        ex, ey, ez = unit(b)
+        c1 = axis_rotate(a, ca, sa, ex, ey, ez)
+        ex, ey, ez = unit(c)
+        ex, ey, ez = axis_rotate(b, cb, sb, ex, ey, ez)
+        c2 = axis_rotate(a, ca, sa, ex, ey, ez)
+    if a == c:
+        # proper Euler: g = e_a · R_b(β) e_a = cos β, det² = sin² β
+        g = cb
+        det = sb
+    else:
+        # Tait–Bryan: g = e_a · R_b(β) e_c = ε_abc sin β, det² = cos² β
+        g = sb if (b - a) % 3 == 1 else -sb
+        det = cb
+    return c0, c1, c2, g, det

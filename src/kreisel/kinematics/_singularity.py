@@ -1,0 +1,38 @@
+"""Warnings for coordinate singularities of the rate maps.
+
+Angular velocity is always well defined; what can fail is the *rate of a
+parameterisation*: Euler-angle rates at gimbal lock (seed 二.3, 三.6) and
+rotation-vector rates where dexp⁻¹ has a pole, |ψ| = 2π, 4π, ... (seed 三.5).
+There the affected entries are returned as NaN, never as a large wrong
+number, and one of these warnings is issued. Each rate function has a
+``*_singular`` companion that returns the mask without warning.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+#: Default singularity threshold on the determinant of the rate map
+#: (|sin β| or |cos β| for Euler angles, |sin(ψ/2)| for rotation vectors).
+#: Away from it the rates are returned with relative error ≲ 1e-16/|det|,
+#: i.e. at worst ~1e-8.
+SINGULAR_TOL = 1e-8
+
+
+class KinematicSingularityWarning(UserWarning):
+    """A parameterisation rate was requested where the parameterisation is singular."""
+
+
+class GimbalLockWarning(KinematicSingularityWarning):
+    """Euler-angle rates requested at gimbal lock: the first and third rates are NaN."""
+
+
+class RotationVectorSingularityWarning(KinematicSingularityWarning):
+    """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
+
+
+def warn_if_any(mask, category, message):
+    """Issue ``category`` once when any entry of ``mask`` is set."""
+    if mask.any():
+        count = int(mask.sum())
+        warnings.warn(f"{message} ({count} of {mask.size} samples; entries set to NaN)", category, stacklevel=3)

@@ -1,0 +1,189 @@
+"""Angular acceleration ε = dω/dt from second derivatives of any parameterisation (seed 三.9).
+
+Space and body components are related by ``ε′ = Rᵀ ε`` (the term Ṙᵀω
+vanishes because hat(ω)ᵀω = 0), so ``ε′ = dω′/dt`` as well.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validation import as_float_array, check_frame
+from ..so3 import quat_conjugate, quat_multiply
+from . import _kernels as k
+from ._checks import batch_shape, vectors
+from ._compiled import kernel
+from .euler import _angles, euler_rate_matrix
+from .rates import _quaternions, _skew_part_vee
+from ..so3.euler import parse_sequence
+
+__all__ = [
+    "angular_acceleration",
+    "angular_acceleration_from_quat",
+    "angular_acceleration_from_rotvec",
+    "angular_acceleration_from_euler",
+]
+
+
+def angular_acceleration(R, Rdot, Rddot, frame="space"):
+    """Angular acceleration from a rotation matrix and its first two derivatives.
+
+    ``hat(ε) = skew(R̈ Rᵀ)`` (space) and ``hat(ε′) = skew(Rᵀ R̈)`` (body): the
+    derivative of hat(ω) = Ṙ Rᵀ is R̈ Rᵀ + Ṙ Ṙᵀ, whose second term is symmetric.
+
+    Parameters
+    ----------
+    R, Rdot, Rddot : array_like, shape (..., 3, 3)
+    frame : {"space", "body"}
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    Rotation about z with angle t²/2 (ω = t, ε = 1):
+
+    >>> t = 0.7
+    >>> c, s = np.cos(t * t / 2), np.sin(t * t / 2)
+    >>> R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    >>> Rd = t * np.array([[-s, -c, 0], [c, -s, 0], [0, 0, 0]])
+    >>> Rdd = np.array([[-s, -c, 0], [c, -s, 0], [0, 0, 0]]) - t * t * np.array([[c, -s, 0], [s, c, 0], [0, 0, 0]])
+    >>> angular_acceleration(R, Rd, Rdd).round(15) + 0.0
+    array([0., 0., 1.])
+    """
+    body = check_frame(frame)
+    R = as_float_array(R, "R", (3, 3))
+    Rdot = as_float_array(Rdot, "Rdot", (3, 3))
+    Rddot = as_float_array(Rddot, "Rddot", (3, 3))
+    batch_shape(("R", R, 2), ("Rdot", Rdot, 2), ("Rddot", Rddot, 2))
+    Rt = np.swapaxes(R, -1, -2)
+    return _skew_part_vee(Rt @ Rddot if body else Rddot @ Rt)
+
+
+def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
+    """Angular acceleration from a quaternion and its first two derivatives.
+
+    With ``ω = 2 vec(q̇ q⁻¹)``: ``ε = 2 vec(q̈ q⁻¹ − (q̇ q⁻¹)²)`` (space) and
+    ``ε′ = 2 vec(q⁻¹ q̈ − (q⁻¹ q̇)²)`` (body); for unit q the squared term is
+    real and drops out, leaving ε = 2 vec(q̈ q*).
+
+    Parameters
+    ----------
+    q, qdot, qddot : array_like, shape (..., 4)
+    frame : {"space", "body"}
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> angular_acceleration_from_quat([1.0, 0, 0, 0], [0.0, 0, 0, 0], [0.0, 0.5, 0, 0])
+    array([1., 0., 0.])
+    """
+    body = check_frame(frame)
+    q = _quaternions(q, "q")
+    qdot = vectors(qdot, "qdot", 4)
+    qddot = vectors(qddot, "qddot", 4)
+    batch_shape(("q", q, 1), ("qdot", qdot, 1), ("qddot", qddot, 1))
+    q_inv = quat_conjugate(q) / np.einsum("...i,...i->...", q, q)[..., None]
+    if body:
+        rate, curvature = quat_multiply(q_inv, qdot), quat_multiply(q_inv, qddot)
+    else:
+        rate, curvature = quat_multiply(qdot, q_inv), quat_multiply(qddot, q_inv)
+    return 2.0 * (curvature - quat_multiply(rate, rate))[..., 1:]
+
+
+# ε = J ψ̈ + (dJ/dt) ψ̇ with J = 1 + sign A hat(ψ) + B hat(ψ)²; since
+# hat(ψ̇)ψ̇ = 0, (dJ/dt)ψ̇ = (ψ·ψ̇)[sign A'/ψ ψ×ψ̇ + B'/ψ ψ×(ψ×ψ̇)] + B ψ̇×(ψ×ψ̇).
+@kernel(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(n),(n),(n),()->(n)")
+def _rotvec_acceleration(psi, v, acc, sign, out):
+    x, y, z = psi[0], psi[1], psi[2]
+    angle = math.sqrt(x * x + y * y + z * z)
+    a, b = k.dexp_coefficients(angle)
+    da, db = k.dexp_coefficient_slopes(angle)
+    radial = x * v[0] + y * v[1] + z * v[2]
+    cx, cy, cz = k.cross(x, y, z, v[0], v[1], v[2])
+    ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
+    vx, vy, vz = k.cross(v[0], v[1], v[2], cx, cy, cz)
+    ax, ay, az = k.cross(x, y, z, acc[0], acc[1], acc[2])
+    aax, aay, aaz = k.cross(x, y, z, ax, ay, az)
+    lin = sign * (a * ax + radial * da * cx), sign * (a * ay + radial * da * cy), sign * (a * az + radial * da * cz)
+    out[0] = acc[0] + lin[0] + b * aax + radial * db * ccx + b * vx
+    out[1] = acc[1] + lin[1] + b * aay + radial * db * ccy + b * vy
+    out[2] = acc[2] + lin[2] + b * aaz + radial * db * ccz + b * vz
+
+
+def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
+    """Angular acceleration from a rotation vector and its first two derivatives.
+
+    Differentiates the dexp map of seed 三.4, ``ω = J(ψ) ψ̇``; the
+    coefficient derivatives are summed from their series at small ψ, so the
+    result is accurate to a few ulp for all ψ.
+
+    Parameters
+    ----------
+    psi, psidot, psiddot : array_like, shape (..., 3)
+    frame : {"space", "body"}
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> angular_acceleration_from_rotvec([0.0, 0.0, 1.0], [0.0, 0.0, 2.0], [0.0, 0.0, 3.0])
+    array([0., 0., 3.])
+    """
+    sign = -1.0 if check_frame(frame) else 1.0
+    psi = vectors(psi, "psi")
+    psidot = vectors(psidot, "psidot")
+    psiddot = vectors(psiddot, "psiddot")
+    batch_shape(("psi", psi, 1), ("psidot", psidot, 1), ("psiddot", psiddot, 1))
+    return _rotvec_acceleration(psi, psidot, psiddot, sign)
+
+
+def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="space", degrees=False):
+    """Angular acceleration from Euler angles and their first two derivatives (seed 三.6, 三.9).
+
+    With the rate-matrix columns c₀, c₁, c₂ in the order of the equivalent
+    intrinsic sequence (outermost rotation first) and its rates r:
+    ``ε = Σ r̈ᵢ cᵢ + r₀ r₁ c₀×c₁ + r₂ (r₀ c₀ + r₁ c₁)×c₂``, in either frame.
+
+    Parameters
+    ----------
+    seq : str
+    angles, rates, accelerations : array_like, shape (..., 3)
+        Angles and their first and second time derivatives (radians, or
+        degrees with ``degrees=True``).
+    frame : {"space", "body"}
+    degrees : bool
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ε in rad/s².
+
+    Examples
+    --------
+    >>> angular_acceleration_from_euler("ZXZ", [0.0, 0.5, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], frame="body")
+    array([0., 0., 1.])
+    """
+    _, intrinsic = parse_sequence(seq)
+    M = euler_rate_matrix(seq, angles, frame=frame, degrees=degrees)
+    rates = _angles(rates, degrees, "rates")
+    accelerations = _angles(accelerations, degrees, "accelerations")
+    batch_shape(("angles", M, 2), ("rates", rates, 1), ("accelerations", accelerations, 1))
+    order = slice(None) if intrinsic else slice(None, None, -1)
+    c = np.swapaxes(M, -1, -2)[..., order, :]
+    r = rates[..., order]
+    c0, c1, c2 = c[..., 0, :], c[..., 1, :], c[..., 2, :]
+    r0, r1, r2 = r[..., 0:1], r[..., 1:2], r[..., 2:3]
+    return (
+        np.einsum("...ij,...i->...j", M.swapaxes(-1, -2), accelerations)
+        + r0 * r1 * np.cross(c0, c1)
+        + r2 * np.cross(r0 * c0 + r1 * c1, c2)
+    )

@@ -1,0 +1,281 @@
+"""Euler kinematic equations for all 24 conventions (seed 三.6).
+
+For the intrinsic sequence ``"ABC"`` with angles (α, β, γ),
+``R = R_a(α) R_b(β) R_c(γ)`` and
+
+    ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇                  (space)
+    ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇                 (body)
+
+(for ZXZ these are the seed's matrices); an extrinsic ``"abc"`` with
+(α, β, γ) is the intrinsic ``"CBA"`` with (γ, β, α). The matrix M with
+ω = M · rates has orthonormal middle column orthogonal to the outer ones,
+so it is inverted in closed form:
+
+    β̇ = c₁·ω,   α̇ = (c₀ − g c₂)·ω / det²,   γ̇ = (c₂ − g c₀)·ω / det²,
+
+``g = c₀·c₂`` = cos β (proper Euler) or ±sin β (Tait–Bryan), ``det² = 1 − g²``.
+At gimbal lock (sin β = 0, resp. cos β = 0) only the middle rate β̇ is
+determined: α̇ and γ̇ are returned as NaN with a :class:`GimbalLockWarning`.
+Near it the rates carry a relative error of about 1e-16/|det|.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validation import check_frame
+from ..so3.euler import parse_sequence
+from . import _kernels as k
+from ._checks import batch_shape, tolerance, vectors
+from ._compiled import kernel
+from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
+
+__all__ = [
+    "euler_rate_matrix",
+    "euler_rate_matrix_inverse",
+    "angular_velocity_from_euler_rates",
+    "euler_rates",
+    "euler_rates_singular",
+]
+
+
+def _code(seq, frame):
+    """Kernel code ``(a, b, c, extrinsic, body)``, (a, b, c) the equivalent intrinsic axes."""
+    body = check_frame(frame)
+    axes, intrinsic = parse_sequence(seq)
+    if not intrinsic:
+        axes = axes[::-1]
+    return np.array([*axes, not intrinsic, body], dtype=np.int64)
+
+
+@kernel(["void(f8[:], f8[:], i8[:], f8[:])"], "(n),(n),(m)->(n)")
+def _omega_from_rates(angles, rates, code, out):
+    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    if code[3]:
+        r0, r1, r2 = rates[2], rates[1], rates[0]
+    else:
+        r0, r1, r2 = rates[0], rates[1], rates[2]
+    out[0] = r0 * c0[0] + r1 * c1[0] + r2 * c2[0]
+    out[1] = r0 * c0[1] + r1 * c1[1] + r2 * c2[1]
+    out[2] = r0 * c0[2] + r1 * c1[2] + r2 * c2[2]
+
+
+@kernel(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(n),(n),(m),()->(n)")
+def _rates_from_omega(angles, w, code, tol, out):
+    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    u0 = c0[0] * w[0] + c0[1] * w[1] + c0[2] * w[2]
+    u1 = c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2]
+    u2 = c2[0] * w[0] + c2[1] * w[1] + c2[2] * w[2]
+    out[1] = u1
+    if abs(det) <= tol:
+        out[0] = out[2] = math.nan
+        return
+    d2 = det * det
+    r0 = (u0 - g * u2) / d2
+    r2 = (u2 - g * u0) / d2
+    if code[3]:
+        out[0], out[2] = r2, r0
+    else:
+        out[0], out[2] = r0, r2
+
+
+@kernel(["void(f8[:], i8[:], f8[:, :])"], "(n),(m)->(n,n)")
+def _matrix(angles, code, out):
+    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    if code[3]:
+        c0, c2 = c2, c0
+    for i in range(3):
+        out[i, 0] = c0[i]
+        out[i, 1] = c1[i]
+        out[i, 2] = c2[i]
+
+
+@kernel(["void(f8[:], i8[:], f8, f8[:, :])"], "(n),(m),()->(n,n)")
+def _matrix_inverse(angles, code, tol, out):
+    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    first, last = (2, 0) if code[3] else (0, 2)
+    singular = abs(det) <= tol
+    d2 = det * det
+    for i in range(3):
+        out[1, i] = c1[i]
+        out[first, i] = math.nan if singular else (c0[i] - g * c2[i]) / d2
+        out[last, i] = math.nan if singular else (c2[i] - g * c0[i]) / d2
+
+
+def _angles(angles, degrees, name="angles"):
+    a = vectors(angles, name)
+    return np.deg2rad(a) if degrees else a
+
+
+def euler_rate_matrix(seq, angles, frame="space", degrees=False):
+    """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (seed 三.6).
+
+    For ``"ZXZ"`` (φ, θ, ψ) the space matrix is the seed's
+    ``[[0, cos φ, sin φ sin θ], [0, sin φ, −cos φ sin θ], [1, 0, cos θ]]`` and
+    the body matrix ``[[sin θ sin ψ, cos ψ, 0], [sin θ cos ψ, −sin ψ, 0], [cos θ, 0, 1]]``.
+    Column j is the axis about which angle j turns, in ``frame`` components.
+
+    Parameters
+    ----------
+    seq : str
+        Axis sequence, e.g. ``"ZXZ"`` (uppercase intrinsic, lowercase extrinsic).
+    angles : array_like, shape (..., 3)
+    frame : {"space", "body"}
+    degrees : bool
+        Angles in degrees (M is dimensionless either way).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> euler_rate_matrix("ZXZ", [0.0, np.pi / 2, 0.0], frame="body").round(12) + 0.0
+    array([[0., 1., 0.],
+           [1., 0., 0.],
+           [0., 0., 1.]])
+    """
+    code = _code(seq, frame)
+    return _matrix(_angles(angles, degrees), code)
+
+
+def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SINGULAR_TOL):
+    """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (seed 三.6).
+
+    For ``"ZXZ"`` body components this is the seed's
+    ``[[sin ψ/sin θ, cos ψ/sin θ, 0], [cos ψ, −sin ψ, 0], [−cot θ sin ψ, −cot θ cos ψ, 1]]``.
+    At gimbal lock (|det M| ≤ ``tol``) the first and third rows are NaN and
+    a :class:`GimbalLockWarning` is issued; the middle row is always defined.
+
+    Parameters
+    ----------
+    seq : str
+    angles : array_like, shape (..., 3)
+    frame : {"space", "body"}
+    degrees : bool
+        Angles in degrees; the matrix then maps rad/s to deg/s.
+    tol : float
+        Singularity threshold on |det M| = |sin β| (proper Euler) or |cos β| (Tait–Bryan).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> M = euler_rate_matrix("xyz", [0.1, 0.2, 0.3])
+    >>> np.allclose(euler_rate_matrix_inverse("xyz", [0.1, 0.2, 0.3]) @ M, np.eye(3))
+    True
+    """
+    code = _code(seq, frame)
+    tol = tolerance(tol)
+    out = _matrix_inverse(_angles(angles, degrees), code, tol)
+    warn_if_any(np.isnan(out[..., 0, 0]), GimbalLockWarning, f"Euler-rate matrix inverse of {seq!r} at gimbal lock")
+    return np.rad2deg(out) if degrees else out
+
+
+def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees=False):
+    """Angular velocity from Euler angles and their rates (seed 三.6, Euler kinematic equations).
+
+    Parameters
+    ----------
+    seq : str
+        Axis sequence, e.g. ``"ZXZ"`` for the seed's (φ, θ, ψ).
+    angles, rates : array_like, shape (..., 3)
+        Angles and their time derivatives (rad and rad/s, or deg and deg/s
+        with ``degrees=True``); batch shapes broadcast.
+    frame : {"space", "body"}
+        Components of the returned angular velocity (always rad/s).
+    degrees : bool
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    Pure spin ψ̇ about the body z axis:
+
+    >>> angular_velocity_from_euler_rates("ZXZ", [0.3, 0.4, 0.5], [0.0, 0.0, 2.0], frame="body")
+    array([0., 0., 2.])
+    """
+    code = _code(seq, frame)
+    angles = _angles(angles, degrees)
+    rates = _angles(rates, degrees, "rates")
+    batch_shape(("angles", angles, 1), ("rates", rates, 1))
+    return _omega_from_rates(angles, rates, code)
+
+
+def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_TOL):
+    """Euler-angle rates from the angular velocity (seed 三.6, inverted Euler kinematic equations).
+
+    At gimbal lock (|sin β| ≤ ``tol`` for proper Euler sequences, |cos β| ≤ ``tol``
+    for Tait–Bryan) the first and third rates are NaN — only their sum or
+    difference is determined — and a :class:`GimbalLockWarning` is issued;
+    the middle rate is always returned. :func:`euler_rates_singular` gives
+    the mask without warnings.
+
+    Parameters
+    ----------
+    seq : str
+    angles : array_like, shape (..., 3)
+    omega : array_like, shape (..., 3)
+        Angular velocity (rad/s) in the components given by ``frame``.
+    frame : {"space", "body"}
+    degrees : bool
+        Angles in degrees; rates are then returned in deg/s.
+    tol : float
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> euler_rates("ZXZ", [0.3, 0.4, 0.5], [0.0, 0.0, 2.0], frame="body")
+    array([0., 0., 2.])
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     euler_rates("ZXZ", [0.3, 0.0, 0.5], [1.0, 0.0, 2.0], frame="body")
+    array([       nan, 0.87758256,        nan])
+    """
+    code = _code(seq, frame)
+    tol = tolerance(tol)
+    angles = _angles(angles, degrees)
+    omega = vectors(omega, "omega")
+    batch_shape(("angles", angles, 1), ("omega", omega, 1))
+    out = _rates_from_omega(angles, omega, code, tol)
+    warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
+    return np.rad2deg(out, out=out) if degrees else out
+
+
+def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL):
+    """Mask of the Euler angles at which :func:`euler_rates` is singular (no warning).
+
+    Parameters
+    ----------
+    seq : str
+    angles : array_like, shape (..., 3)
+    degrees : bool
+    tol : float
+        As in :func:`euler_rates`.
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+
+    Examples
+    --------
+    >>> euler_rates_singular("ZXZ", [[0.1, 0.0, 0.2], [0.1, 0.5, 0.2]]).tolist()
+    [True, False]
+    >>> euler_rates_singular("xyz", [10.0, 90.0, 0.0], degrees=True).tolist()
+    True
+    """
+    axes, _ = parse_sequence(seq)
+    tol = tolerance(tol)
+    middle = _angles(angles, degrees)[..., 1]
+    det = np.sin(middle) if axes[0] == axes[2] else np.cos(middle)
+    return np.abs(det) <= tol

@@ -1,0 +1,221 @@
+"""Velocity and acceleration of points of, and points moving on, a rigid body (seed 三.7, 三.9, 四.6–7).
+
+All vectors must be given in one common set of components (space or
+body); the formulas are the same in both.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ._checks import batch_shape, vectors
+
+__all__ = [
+    "point_velocity",
+    "point_acceleration",
+    "relative_derivative",
+    "VelocityTerms",
+    "AccelerationTerms",
+    "three_term_velocity",
+    "five_term_acceleration",
+]
+
+
+def _vectors(**named):
+    arrays = {name: vectors(value, name) for name, value in named.items()}
+    batch_shape(*((name, a, 1) for name, a in arrays.items()))
+    return arrays.values()
+
+
+def point_velocity(omega, r, reference_velocity=0.0):
+    """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (seed 三.7).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity.
+    r : array_like, shape (..., 3)
+        Position r_CP of the point relative to the reference point C.
+    reference_velocity : array_like, shape (..., 3)
+        Velocity v_C of the reference point (default at rest).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> point_velocity([0.0, 0.0, 2.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+    array([1., 2., 0.])
+    """
+    return three_term_velocity(omega, r, 0.0, reference_velocity).total
+
+
+def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
+    """Acceleration of a body-fixed point (seed 三.9).
+
+    ``a_P = a_C + ε × r_CP + ω × (ω × r_CP)``: translational, rotational
+    (tangential) and centripetal (axipetal, 向轴) transport accelerations.
+
+    Parameters
+    ----------
+    omega, epsilon : array_like, shape (..., 3)
+        Angular velocity and angular acceleration.
+    r : array_like, shape (..., 3)
+        Position r_CP relative to the reference point C.
+    reference_acceleration : array_like, shape (..., 3)
+        Acceleration a_C of the reference point (default 0).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> point_acceleration([0.0, 0.0, 2.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+    array([-4.,  0.,  0.])
+    """
+    return five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total
+
+
+def relative_derivative(omega, vector, relative_rate):
+    """Rate of change of a vector from its rate relative to the body (seed 四.6).
+
+    ``B′ = dA′/dt + ω′ × A′``: the components of B = dA/dt on the body axes
+    from the time derivative of A's body components. In space components
+    the same formula reads ``dA/dt = R dA′/dt + ω × A``.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity of the body.
+    vector : array_like, shape (..., 3)
+        The vector A.
+    relative_rate : array_like, shape (..., 3)
+        dA′/dt, the rate seen from the body.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    A vector fixed in a body spinning about z:
+
+    >>> relative_derivative([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+    array([0., 1., 0.])
+    """
+    omega, a, rate = _vectors(omega=omega, vector=vector, relative_rate=relative_rate)
+    return rate + np.cross(omega, a)
+
+
+class VelocityTerms(NamedTuple):
+    """Absolute velocity of a point moving on a body, term by term (seed 四.7)."""
+
+    translational: np.ndarray  #: v_C, transport velocity of the reference point (平动牵连速度)
+    relative: np.ndarray  #: v_CP = R d r′_CP/dt, velocity relative to the body (相对速度)
+    rotational: np.ndarray  #: ω × r_CP, rotational transport velocity (转动牵连速度)
+
+    @property
+    def total(self):
+        """The absolute velocity, the sum of the three terms."""
+        return self.translational + self.relative + self.rotational
+
+
+class AccelerationTerms(NamedTuple):
+    """Absolute acceleration of a point moving on a body, term by term (seed 四.7)."""
+
+    translational: np.ndarray  #: a_C (平动牵连加速度)
+    tangential: np.ndarray  #: ε × r_CP, rotational transport acceleration (转动牵连加速度)
+    centripetal: np.ndarray  #: ω × (ω × r_CP), axipetal acceleration (向轴加速度)
+    relative: np.ndarray  #: a_CP = R d² r′_CP/dt², acceleration relative to the body (相对加速度)
+    coriolis: np.ndarray  #: 2 ω × v_CP (Coriolis 加速度)
+
+    @property
+    def total(self):
+        """The absolute acceleration, the sum of the five terms."""
+        return self.translational + self.tangential + self.centripetal + self.relative + self.coriolis
+
+
+def _as_vector(value):
+    return np.broadcast_to(np.asarray(value, dtype=float), (3,)) if np.ndim(value) == 0 else value
+
+
+def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
+    """Velocity of a point moving relative to a body: ``v_P = v_C + v_CP + ω × r_CP`` (seed 四.7).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+    r : array_like, shape (..., 3)
+        Position r_CP of the point relative to the body's reference point C.
+    relative_velocity : array_like, shape (..., 3)
+        v_CP = R d r′_CP/dt: the velocity seen from the body, in the same
+        components as the other vectors (not d r_CP/dt).
+    reference_velocity : array_like, shape (..., 3)
+        v_C (default 0).
+
+    Returns
+    -------
+    VelocityTerms
+        ``translational``, ``relative``, ``rotational``, and their ``total``.
+
+    Examples
+    --------
+    >>> terms = three_term_velocity([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+    >>> terms.rotational, terms.total
+    (array([0., 1., 0.]), array([1., 1., 0.]))
+    """
+    omega, r, v_rel, v_c = _vectors(
+        omega=omega, r=r, relative_velocity=_as_vector(relative_velocity), reference_velocity=_as_vector(reference_velocity)
+    )
+    shape = np.broadcast_shapes(omega.shape, r.shape, v_rel.shape, v_c.shape)
+    rotational = np.cross(omega, r)
+    return VelocityTerms(*(np.array(np.broadcast_to(x, shape)) for x in (v_c, v_rel, rotational)))
+
+
+def five_term_acceleration(omega, epsilon, r, relative_velocity, relative_acceleration, reference_acceleration=0.0):
+    """Acceleration of a point moving relative to a body, as five named terms (seed 四.7).
+
+    ``a_P = a_C + ε × r_CP + ω × (ω × r_CP) + a_CP + 2 ω × v_CP``:
+    translational, tangential (rotational transport), centripetal, relative
+    and Coriolis accelerations.
+
+    Parameters
+    ----------
+    omega, epsilon : array_like, shape (..., 3)
+        Angular velocity and angular acceleration of the body.
+    r : array_like, shape (..., 3)
+        Position r_CP relative to the body's reference point C.
+    relative_velocity, relative_acceleration : array_like, shape (..., 3)
+        v_CP = R d r′_CP/dt and a_CP = R d² r′_CP/dt², seen from the body
+        (0 for a body-fixed point).
+    reference_acceleration : array_like, shape (..., 3)
+        a_C (default 0).
+
+    Returns
+    -------
+    AccelerationTerms
+        The five terms and their ``total``.
+
+    Examples
+    --------
+    A bead sliding outwards at 1 m/s along a rod turning at 2 rad/s:
+
+    >>> terms = five_term_acceleration([0, 0, 2.0], [0, 0, 0], [0.5, 0, 0], [1.0, 0, 0], [0, 0, 0])
+    >>> terms.coriolis, terms.centripetal
+    (array([0., 4., 0.]), array([-2.,  0.,  0.]))
+    """
+    omega, epsilon, r, v_rel, a_rel, a_c = _vectors(
+        omega=omega,
+        epsilon=epsilon,
+        r=r,
+        relative_velocity=_as_vector(relative_velocity),
+        relative_acceleration=_as_vector(relative_acceleration),
+        reference_acceleration=_as_vector(reference_acceleration),
+    )
+    shape = np.broadcast_shapes(omega.shape, epsilon.shape, r.shape, v_rel.shape, a_rel.shape, a_c.shape)
+    terms = (a_c, np.cross(epsilon, r), np.cross(omega, np.cross(omega, r)), a_rel, 2.0 * np.cross(omega, v_rel))
+    return AccelerationTerms(*(np.array(np.broadcast_to(x, shape)) for x in terms))

@@ -1,0 +1,156 @@
+"""Angular velocity from the rotation matrix and from quaternions (seed 三.1–3).
+
+``hat(ω) = Ṙ Rᵀ`` (space components), ``hat(ω′) = Rᵀ Ṙ`` (body components),
+``q̇ = ½ ω q = ½ q ω′``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import as_float_array, check_frame
+from ._checks import batch_shape, vectors
+from ._compiled import THREE, kernel
+
+__all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
+
+
+def _skew_part_vee(A):
+    # vee of the antisymmetric part: the least-squares angular velocity when
+    # Ṙ Rᵀ is not exactly antisymmetric (noisy or finite-difference data)
+    return 0.5 * np.stack(
+        [A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1
+    )
+
+
+def angular_velocity(R, Rdot, frame="space"):
+    """Angular velocity from the rotation matrix and its time derivative (seed 三.1).
+
+    ``hat(ω) = Ṙ Rᵀ`` in space components, ``hat(ω′) = Rᵀ Ṙ`` in body
+    components (seed 三.6). The antisymmetric part is taken, so for inexact
+    data (e.g. finite differences) the result is the least-squares ω.
+
+    Parameters
+    ----------
+    R, Rdot : array_like, shape (..., 3, 3)
+        Rotation matrices (body → space) and their time derivatives; batch
+        shapes broadcast.
+    frame : {"space", "body"}
+        Components of the returned angular velocity.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = 0.3
+    >>> R = np.array([[np.cos(t), -np.sin(t), 0], [np.sin(t), np.cos(t), 0], [0, 0, 1]])
+    >>> Rdot = 2.0 * np.array([[-np.sin(t), -np.cos(t), 0], [np.cos(t), -np.sin(t), 0], [0, 0, 0]])
+    >>> angular_velocity(R, Rdot)
+    array([0., 0., 2.])
+    """
+    body = check_frame(frame)
+    R = as_float_array(R, "R", (3, 3))
+    Rdot = as_float_array(Rdot, "Rdot", (3, 3))
+    batch_shape(("R", R, 2), ("Rdot", Rdot, 2))
+    A = np.swapaxes(R, -1, -2) @ Rdot if body else Rdot @ np.swapaxes(R, -1, -2)
+    return _skew_part_vee(A)
+
+
+# sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
+# products differ only in the sign of the cross-product term.
+@kernel(["void(f8[:], f8[:], f8, f8[:])"], "(n),(m),()->(n)")
+def _quat_rate(q, w, sign, out):
+    q0, vx, vy, vz = q[0], q[1], q[2], q[3]
+    wx, wy, wz = w[0], w[1], w[2]
+    cx = wy * vz - wz * vy
+    cy = wz * vx - wx * vz
+    cz = wx * vy - wy * vx
+    out[0] = -0.5 * (wx * vx + wy * vy + wz * vz)
+    out[1] = 0.5 * (q0 * wx + sign * cx)
+    out[2] = 0.5 * (q0 * wy + sign * cy)
+    out[3] = 0.5 * (q0 * wz + sign * cz)
+
+
+# ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
+# for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
+@kernel(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(n),(n),(),(m)->(m)")
+def _quat_angular_velocity(q, qd, sign, three, out):
+    q0, vx, vy, vz = q[0], q[1], q[2], q[3]
+    p0, px, py, pz = qd[0], qd[1], qd[2], qd[3]
+    s = 2.0 / (q0 * q0 + vx * vx + vy * vy + vz * vz)
+    cx = py * vz - pz * vy
+    cy = pz * vx - px * vz
+    cz = px * vy - py * vx
+    out[0] = s * (q0 * px - p0 * vx - sign * cx)
+    out[1] = s * (q0 * py - p0 * vy - sign * cy)
+    out[2] = s * (q0 * pz - p0 * vz - sign * cz)
+
+
+def _quaternions(q, name):
+    q = vectors(q, name, 4)
+    if q.size and not np.all(np.einsum("...i,...i->...", q, q) > 0.0):
+        raise ValueError(f"{name} must be nonzero quaternions")
+    return q
+
+
+def quat_rate(q, omega, frame="space"):
+    """Quaternion rate from the angular velocity (seed 三.3).
+
+    ``q̇ = ½ ω q`` with space components, ``q̇ = ½ q ω′`` with body
+    components (pure quaternions ω = (0, ω)); the latter is the attitude
+    equation of strapdown navigation.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Scalar-first attitude quaternions (body → space).
+    omega : array_like, shape (..., 3)
+        Angular velocity in the components given by ``frame``.
+    frame : {"space", "body"}
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        q̇, orthogonal to q (the norm is preserved).
+
+    Examples
+    --------
+    >>> quat_rate([0.6, 0.8, 0.0, 0.0], [2.0, 0.0, 0.0])
+    array([-0.8,  0.6,  0. ,  0. ])
+    """
+    sign = -1.0 if check_frame(frame) else 1.0
+    q = _quaternions(q, "q")
+    omega = vectors(omega, "omega")
+    batch_shape(("q", q, 1), ("omega", omega, 1))
+    return _quat_rate(q, omega, sign)
+
+
+def angular_velocity_from_quat_rate(q, qdot, frame="space"):
+    """Angular velocity from a quaternion and its rate (seed 三.3).
+
+    ``ω = 2 q̇ q*`` (space) and ``ω′ = 2 q* q̇`` (body), taking the vector
+    part; ``q*`` is replaced by ``q⁻¹ = q*/|q|²`` so that non-unit
+    quaternions give the angular velocity of the rotation they represent.
+
+    Parameters
+    ----------
+    q, qdot : array_like, shape (..., 4)
+    frame : {"space", "body"}
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> angular_velocity_from_quat_rate([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0], frame="body")
+    array([0., 0., 2.])
+    """
+    sign = -1.0 if check_frame(frame) else 1.0
+    q = _quaternions(q, "q")
+    qdot = vectors(qdot, "qdot", 4)
+    batch_shape(("q", q, 1), ("qdot", qdot, 1))
+    return _quat_angular_velocity(q, qdot, sign, THREE)
