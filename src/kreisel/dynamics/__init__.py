@@ -1,3 +1,38 @@
-"""dynamics layer of kreisel."""
+"""Dynamics: torque-driven rigid bodies, geometric integrators, trajectories (seed 四.4–7).
 
-__all__ = []
+:func:`simulate` integrates Euler's dynamic equations dJ′/dt + ω′ × J′ = M′
+(seed 四.5) with quaternion attitude under built-in torque models or any
+callable; :func:`simulate_batch` runs many bodies in parallel;
+:func:`simulate_6dof` adds the centre-of-mass translation. Every result is a
+:class:`Trajectory`.
+"""
+
+from .engine import METHODS, simulate, simulate_6dof, simulate_batch
+from .forces import ConstantForce, ForceModel, ForceSum, LinearDrag
+from .torques import (
+    ConstantTorque,
+    GravityTorque,
+    LinearDamping,
+    MagneticTorque,
+    TorqueModel,
+    TorqueSum,
+)
+from .trajectory import Trajectory
+
+__all__ = [
+    "simulate",
+    "simulate_batch",
+    "simulate_6dof",
+    "Trajectory",
+    "METHODS",
+    "TorqueModel",
+    "GravityTorque",
+    "ConstantTorque",
+    "MagneticTorque",
+    "LinearDamping",
+    "TorqueSum",
+    "ForceModel",
+    "ConstantForce",
+    "LinearDrag",
+    "ForceSum",
+]

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, check_frame
+from ..so3 import quat_apply
+
+_VECTOR = ("x", "y", "z")
+_QUAT = ("w", "x", "y", "z")
 
 
 class Trajectory:
@@ -27,6 +31,9 @@ class Trajectory:
         diagonal tensor), kg m².
     meta : dict, optional
         Free-form description (method, step, body, ...), kept on export.
+    **extra : array_like
+        Further arrays sampled at ``t`` (e.g. ``position`` and ``velocity``
+        of a six-degree-of-freedom body), stored as attributes and exported.
 
     Examples
     --------
@@ -79,3 +86,210 @@ class Trajectory:
     def energy(self):
         """Rotational kinetic energy T = ½ ω′·I ω′ (seed 五.2)."""
         return 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
+
+    @property
+    def omega_space(self):
+        """ω = R ω′ in space components (seed 三.1)."""
+        return quat_apply(self.q, self.omega)
+
+    @property
+    def angular_momentum_space(self):
+        """J = R J′ in space components; constant for a free body (seed 四.4)."""
+        return quat_apply(self.q, self.angular_momentum_body)
+
+    def angular_momentum(self, frame="space"):
+        """Angular momentum J (``frame="space"``) or J′ (``frame="body"``), kg m²/s."""
+        return self.angular_momentum_body if check_frame(frame) else self.angular_momentum_space
+
+    def euler(self, seq, degrees=False):
+        """Euler angles of the attitude in any sequence, e.g. ``"ZXZ"`` (seed 二.3).
+
+        Examples
+        --------
+        >>> tr = Trajectory([0.0], [[np.cos(0.3), 0, 0, np.sin(0.3)]], [[0, 0, 1]], [1, 1, 2])
+        >>> np.round(tr.euler("ZYX")[0], 12) + 0.0
+        array([0.6, 0. , 0. ])
+        """
+        from ..so3 import quat_to_euler
+
+        return quat_to_euler(seq, self.q, degrees=degrees)
+
+    def drift(self):
+        """Drift of the free-body first integrals over the trajectory (seed 五.2).
+
+        Returns
+        -------
+        dict of ndarray (batch shape)
+            ``energy``: max |T − T0| / T0; ``angular_momentum``: max ||J| − |J0|| / |J0|;
+            ``direction``: max angle (rad) between the space J and its initial direction;
+            ``quaternion_norm``: max ||q| − 1|. Under a torque these measure the change
+            the torque made, not an error.
+
+        Examples
+        --------
+        >>> tr = Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
+        >>> {k: float(v) for k, v in tr.drift().items()}
+        {'energy': 0.0, 'angular_momentum': 0.0, 'direction': 0.0, 'quaternion_norm': 0.0}
+        """
+        energy = self.energy
+        j = self.angular_momentum_space
+        size = np.linalg.norm(j, axis=-1)
+        j0 = j[..., :1, :]
+        s0 = size[..., :1]
+        cross = np.linalg.norm(np.cross(j, j0), axis=-1)
+        angle = np.arctan2(cross, np.einsum("...i,...i->...", j, j0))
+        e0 = energy[..., :1]
+        return {
+            "energy": np.max(np.abs(energy - e0), axis=-1) / np.where(e0[..., 0] != 0, np.abs(e0[..., 0]), 1.0),
+            "angular_momentum": np.max(np.abs(size - s0), axis=-1) / np.where(s0[..., 0] != 0, s0[..., 0], 1.0),
+            "direction": np.max(angle, axis=-1),
+            "quaternion_norm": np.max(np.abs(np.linalg.norm(self.q, axis=-1) - 1.0), axis=-1),
+        }
+
+    # ------------------------------------------------------------------ export
+
+    def _batch_dims(self):
+        return tuple(f"batch_{k}" for k in range(len(self.batch_shape)))
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dims ``(batch_k..., time, component)``.
+
+        Variables ``q``, ``omega``, ``omega_space``, ``angular_momentum``
+        (space), ``energy``, ``inertia`` and every extra array; ``meta`` goes to
+        the attributes (values JSON-encoded).
+
+        Examples
+        --------
+        >>> tr = Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
+        >>> ds = tr.to_xarray()
+        >>> ds["omega"].dims
+        ('time', 'axis')
+        """
+        import json
+
+        import xarray as xr
+
+        b = self._batch_dims()
+        data = {
+            "q": (b + ("time", "quaternion"), self.q),
+            "omega": (b + ("time", "axis"), self.omega),
+            "omega_space": (b + ("time", "axis"), self.omega_space),
+            "angular_momentum": (b + ("time", "axis"), self.angular_momentum_space),
+            "energy": (b + ("time",), self.energy),
+            "inertia": (b[: self.inertia.ndim - 2] + ("axis", "axis_col"), self.inertia),
+        }
+        for name in self._extra:
+            value = np.asarray(getattr(self, name))
+            dims = b + ("time", "axis") if value.shape[-1:] == (3,) else b + ("time",)
+            dims = dims[len(dims) - value.ndim:]
+            data[name] = (dims, value)
+        attrs = {"meta": json.dumps(self.meta, default=str), "extra": json.dumps(list(self._extra)),
+                 "kreisel": "Trajectory: q body->space scalar-first; omega body components (rad/s)"}
+        return xr.Dataset(data, coords={"time": self.t, "quaternion": list(_QUAT), "axis": list(_VECTOR),
+                                        "axis_col": list(_VECTOR)}, attrs=attrs)
+
+    @classmethod
+    def from_xarray(cls, ds):
+        """Rebuild a trajectory from :meth:`to_xarray` output."""
+        import json
+
+        extra_names = json.loads(ds.attrs.get("extra", "[]"))
+        extra = {name: ds[name].values for name in extra_names}
+        return cls(ds["time"].values, ds["q"].values, ds["omega"].values, ds["inertia"].values,
+                   meta=json.loads(ds.attrs.get("meta", "{}")), **extra)
+
+    def to_pandas(self):
+        """A ``pandas.DataFrame`` indexed by time (and by body for a batch).
+
+        Columns ``q0..q3``, ``omega_1..3`` (body), ``omega_space_x..z``,
+        ``J_x..z`` (space), ``energy`` and the extras.
+
+        Examples
+        --------
+        >>> tr = Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
+        >>> list(tr.to_pandas().columns[:4])
+        ['q0', 'q1', 'q2', 'q3']
+        """
+        import pandas as pd
+
+        n = self.t.size
+        columns = {}
+        for k in range(4):
+            columns[f"q{k}"] = self.q[..., k]
+        for k in range(3):
+            columns[f"omega_{k + 1}"] = self.omega[..., k]
+        space = self.omega_space
+        momentum = self.angular_momentum_space
+        for k, c in enumerate(_VECTOR):
+            columns[f"omega_space_{c}"] = space[..., k]
+        for k, c in enumerate(_VECTOR):
+            columns[f"J_{c}"] = momentum[..., k]
+        columns["energy"] = self.energy
+        for name in self._extra:
+            value = np.asarray(getattr(self, name))
+            if value.shape[-1:] == (3,) and value.ndim >= 2:
+                for k, c in enumerate(_VECTOR):
+                    columns[f"{name}_{c}"] = value[..., k]
+            else:
+                columns[name] = value
+        flat = {key: np.reshape(v, -1) for key, v in columns.items()}
+        if self.batch_shape:
+            count = int(np.prod(self.batch_shape))
+            index = pd.MultiIndex.from_arrays([np.repeat(np.arange(count), n), np.tile(self.t, count)],
+                                              names=["body", "t"])
+        else:
+            index = pd.Index(self.t, name="t")
+        return pd.DataFrame(flat, index=index)
+
+    def save(self, path):
+        """Write to NetCDF (``.nc``, via xarray's scipy engine) or CSV (``.csv``, one body).
+
+        CSV keeps the inertia tensor and ``meta`` in a leading ``#`` comment
+        line so :meth:`load` restores them.
+        """
+        import json
+        import os
+
+        path = os.fspath(path)
+        if path.endswith(".nc"):
+            self.to_xarray().to_netcdf(path, engine="scipy")
+        elif path.endswith(".csv"):
+            if self.batch_shape:
+                raise ValueError("CSV holds one body; save a batched trajectory as .nc")
+            header = json.dumps({"inertia": self.inertia.tolist(), "meta": self.meta,
+                                 "extra": list(self._extra)}, default=str)
+            with open(path, "w", encoding="utf-8", newline="") as fh:
+                fh.write("# kreisel-trajectory " + header + "\n")
+                self.to_pandas().to_csv(fh, float_format="%.17g")
+        else:
+            raise ValueError(f"path must end in .nc or .csv, got {path!r}")
+
+    @classmethod
+    def load(cls, path):
+        """Read a file written by :meth:`save` (format from the extension)."""
+        import json
+        import os
+
+        path = os.fspath(path)
+        if path.endswith(".nc"):
+            import xarray as xr
+
+            with xr.open_dataset(path, engine="scipy") as ds:
+                return cls.from_xarray(ds.load())
+        if path.endswith(".csv"):
+            import pandas as pd
+
+            with open(path, encoding="utf-8") as fh:
+                first = fh.readline()
+                if not first.startswith("# kreisel-trajectory "):
+                    raise ValueError(f"{path} is not a kreisel trajectory CSV")
+                header = json.loads(first[len("# kreisel-trajectory "):])
+                df = pd.read_csv(fh, index_col=0)
+            extra = {}
+            for name in header["extra"]:
+                cols = [f"{name}_{c}" for c in _VECTOR]
+                extra[name] = df[cols].to_numpy() if cols[0] in df else df[name].to_numpy()
+            return cls(df.index.to_numpy(), df[[f"q{k}" for k in range(4)]].to_numpy(),
+                       df[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
+                       meta=header["meta"], **extra)
+        raise ValueError(f"path must end in .nc or .csv, got {path!r}")
