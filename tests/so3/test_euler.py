@@ -1,0 +1,148 @@
+"""Euler angles: the seed's ZXZ and ZYZ matrices, scipy for all 24 conventions, gimbal lock."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation as S
+
+import kreisel as kr
+
+PROPER = ["xyx", "xzx", "yxy", "yzy", "zxz", "zyz"]
+TAIT_BRYAN = ["xyz", "xzy", "yxz", "yzx", "zxy", "zyx"]
+ALL_SEQUENCES = [s for base in PROPER + TAIT_BRYAN for s in (base, base.upper())]
+
+
+def test_there_are_24_conventions():
+    assert len(set(ALL_SEQUENCES)) == 24
+
+
+def test_seed_zxz_matrix(rng):
+    """R(φ, θ, ψ) = Rz(φ) Rx(θ) Rz(ψ) as printed in seed 二.3 (2)."""
+    for phi, theta, psi in rng.uniform(-3, 3, size=(10, 3)):
+        c, s = np.cos, np.sin
+        expected = np.array(
+            [
+                [c(psi) * c(phi) - c(theta) * s(psi) * s(phi), -c(theta) * c(psi) * s(phi) - s(psi) * c(phi), s(theta) * s(phi)],
+                [c(psi) * s(phi) + c(theta) * s(psi) * c(phi), c(theta) * c(psi) * c(phi) - s(psi) * s(phi), -s(theta) * c(phi)],
+                [s(theta) * s(psi), s(theta) * c(psi), c(theta)],
+            ]
+        )
+        np.testing.assert_allclose(kr.euler_to_matrix("ZXZ", [phi, theta, psi]), expected, atol=1e-15)
+
+
+def test_seed_zyz_matrix(rng):
+    """Quantum-mechanics R(α, β, γ) = Rz(α) Ry(β) Rz(γ), seed 二.3 (2)."""
+    for a, b, g in rng.uniform(-3, 3, size=(10, 3)):
+        c, s = np.cos, np.sin
+        expected = np.array(
+            [
+                [c(a) * c(b) * c(g) - s(a) * s(g), -c(a) * c(b) * s(g) - s(a) * c(g), c(a) * s(b)],
+                [s(a) * c(b) * c(g) + c(a) * s(g), -s(a) * c(b) * s(g) + c(a) * c(g), s(a) * s(b)],
+                [-s(b) * c(g), s(b) * s(g), c(b)],
+            ]
+        )
+        np.testing.assert_allclose(kr.euler_to_matrix("ZYZ", [a, b, g]), expected, atol=1e-15)
+
+
+def test_intrinsic_zxz_equals_body_axis_rotations():
+    """R_z''(ψ) R_x'(θ) R_z(φ) = R_z(φ) R_x(θ) R_z(ψ) (seed 二.3 (2)); extrinsic reverses the order."""
+    phi, theta, psi = 0.4, 1.1, -2.0
+    Rz = lambda a: kr.rotvec_to_matrix([0, 0, a])  # noqa: E731
+    Rx = lambda a: kr.rotvec_to_matrix([a, 0, 0])  # noqa: E731
+    np.testing.assert_allclose(kr.euler_to_matrix("ZXZ", [phi, theta, psi]), Rz(phi) @ Rx(theta) @ Rz(psi), atol=1e-15)
+    np.testing.assert_allclose(kr.euler_to_matrix("zxz", [phi, theta, psi]), Rz(psi) @ Rx(theta) @ Rz(phi), atol=1e-15)
+
+
+@pytest.mark.parametrize("seq", ALL_SEQUENCES)
+def test_against_scipy(seq, random_quats):
+    q = random_quats(300)
+    R = kr.quat_to_matrix(q)
+    angles = S.from_matrix(R).as_euler(seq)
+    np.testing.assert_allclose(kr.matrix_to_euler(seq, R), angles, atol=5e-15)
+    np.testing.assert_allclose(kr.quat_to_euler(seq, q), angles, atol=5e-15)
+    np.testing.assert_allclose(kr.euler_to_matrix(seq, angles), S.from_euler(seq, angles).as_matrix(), atol=2e-15)
+    qs = kr.euler_to_quat(seq, angles)
+    np.testing.assert_allclose(kr.quat_to_matrix(qs), R, atol=2e-15)
+    np.testing.assert_allclose(
+        kr.euler_to_matrix(seq, np.degrees(angles), degrees=True), S.from_euler(seq, angles).as_matrix(), atol=2e-15
+    )
+    np.testing.assert_allclose(kr.matrix_to_euler(seq, R, degrees=True), np.degrees(angles), atol=1e-12)
+
+
+def _singular_middles(seq):
+    return [0.0, np.pi] if seq[0].lower() == seq[2].lower() else [-np.pi / 2, np.pi / 2]
+
+
+@pytest.mark.parametrize("seq", ALL_SEQUENCES)
+def test_gimbal_lock_reconstruction_is_exact(seq):
+    """At and near the singular middle angle the rebuilt rotation matches to ~1e-15.
+
+    (scipy's as_euler sets the third angle to 0 within 1e-7 of the singularity
+    and loses up to ~1e-9 there.)
+    """
+    worst = 0.0
+    for middle in _singular_middles(seq):
+        for offset in (0.0, 1e-15, 1e-12, 1e-9, 3e-8, 1e-7, -1e-7, 1e-5):
+            m = middle + offset if middle <= 0 or middle == np.pi / 2 else middle - abs(offset)
+            for first, third in [(0.3, 1.1), (-2.9, 2.5), (1.0, -1.0)]:
+                R = kr.euler_to_matrix(seq, [first, m, third])
+                angles = kr.matrix_to_euler(seq, R)
+                worst = max(worst, np.abs(kr.euler_to_matrix(seq, angles) - R).max())
+                q = kr.matrix_to_quat(R)
+                worst = max(worst, np.abs(kr.euler_to_matrix(seq, kr.quat_to_euler(seq, q)) - R).max())
+    assert worst < 1.5e-15
+
+
+def test_gimbal_lock_exact_sets_third_intrinsic_angle_to_zero():
+    R = kr.euler_to_matrix("ZXZ", [0.3, 0.0, 0.5])
+    np.testing.assert_allclose(kr.matrix_to_euler("ZXZ", R), [0.8, 0.0, 0.0], atol=1e-15)
+    # Extrinsic: the first angle is the third intrinsic one. Rz(0.5) Ry(π/2) exactly:
+    R = np.array([[0.0, 0, 1], [0, 1, 0], [-1, 0, 0]])
+    R = np.array([[np.cos(0.5), -np.sin(0.5), 0], [np.sin(0.5), np.cos(0.5), 0], [0, 0, 1]]) @ R
+    angles = kr.matrix_to_euler("xyz", R)
+    assert angles[0] == 0.0
+    np.testing.assert_allclose(kr.euler_to_matrix("xyz", angles), R, atol=1e-15)
+
+
+def test_gimbal_lock_report():
+    angles = [[0.1, 1e-9, 0.2], [0.1, 0.5, 0.2], [0.1, np.pi - 1e-9, 0.2], [0.1, np.pi / 2, 0.2]]
+    np.testing.assert_array_equal(kr.gimbal_lock("ZXZ", angles), [True, False, True, False])
+    np.testing.assert_array_equal(kr.gimbal_lock("xyz", angles), [False, False, False, True])
+    np.testing.assert_array_equal(kr.gimbal_lock("XYZ", np.degrees(angles), degrees=True, tolerance=1e-3), [False, False, False, True])
+
+
+def test_ranges(random_quats):
+    q = random_quats(2000)
+    proper = kr.quat_to_euler("ZXZ", q)
+    assert np.all((proper[:, 1] >= 0) & (proper[:, 1] <= np.pi))
+    tb = kr.quat_to_euler("xyz", q)
+    assert np.all(np.abs(tb[:, 1]) <= np.pi / 2)
+    assert np.all(np.abs(np.concatenate([proper[:, ::2], tb[:, ::2]])) <= np.pi)
+
+
+def test_parse_sequence():
+    assert kr.parse_sequence("ZXZ") == ((2, 0, 2), True)
+    assert kr.parse_sequence("yzx") == ((1, 2, 0), False)
+    assert sorted(kr.parse_sequence(s) for s in ALL_SEQUENCES) == sorted(
+        (tuple("xyz".index(c) for c in s.lower()), s.isupper()) for s in ALL_SEQUENCES
+    )
+
+
+@pytest.mark.parametrize("bad", ["xYz", "XY", "XYZX", "XXY", "xyy", "abc", "", 3, "XYW"])
+def test_malformed_sequences_are_refused(bad):
+    with pytest.raises(ValueError, match="seq"):
+        kr.parse_sequence(bad)
+    with pytest.raises(ValueError, match="seq"):
+        kr.euler_to_matrix(bad, [0.1, 0.2, 0.3])
+
+
+def test_bad_angles_are_refused():
+    with pytest.raises(ValueError, match=r"angles must have shape \(\.\.\., 3\)"):
+        kr.euler_to_quat("ZXZ", [0.1, 0.2])
+    with pytest.raises(ValueError, match="angles must be finite"):
+        kr.euler_to_quat("ZXZ", [0.1, np.nan, 0.2])
+
+
+def test_broadcasting():
+    angles = np.zeros((2, 5, 3))
+    assert kr.euler_to_matrix("XYZ", angles).shape == (2, 5, 3, 3)
+    assert kr.matrix_to_euler("zyx", np.broadcast_to(np.eye(3), (4, 3, 3))).shape == (4, 3)

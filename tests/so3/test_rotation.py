@@ -1,0 +1,116 @@
+"""The Rotation object layer: every representation, group operations, scipy interop."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation as S
+
+import kreisel as kr
+from kreisel import Rotation
+
+
+def test_round_trips_through_every_representation():
+    r = Rotation.random(50, rng=7)
+    R = r.as_matrix()
+    pairs = [
+        ("quat", ()),
+        ("matrix", ()),
+        ("rotvec", ()),
+        ("euler", ("ZXZ",)),
+        ("euler", ("xyz",)),
+        ("su2", ()),
+        ("cayley_klein", ()),
+        ("euler_parameters", ()),
+        ("gibbs", ()),
+        ("mrp", ()),
+    ]
+    for name, args in pairs:
+        rep = getattr(r, f"as_{name}")(*args)
+        back = getattr(Rotation, f"from_{name}")(*args, rep)
+        np.testing.assert_allclose(back.as_matrix(), R, atol=3e-15, err_msg=name)
+    axis, angle = r.as_axis_angle(degrees=True)
+    np.testing.assert_allclose(Rotation.from_axis_angle(axis, angle, degrees=True).as_matrix(), R, atol=3e-15)
+    np.testing.assert_allclose(Rotation.from_rotvec(r.as_rotvec(degrees=True), degrees=True).as_matrix(), R, atol=3e-15)
+
+
+def test_composition_inverse_apply(rng):
+    a, b = Rotation.random(20, rng=1), Rotation.random(20, rng=2)
+    np.testing.assert_allclose((a * b).as_matrix(), a.as_matrix() @ b.as_matrix(), atol=2e-15)
+    np.testing.assert_allclose((a * a.inv()).magnitude(), 0, atol=1e-7)
+    v = rng.normal(size=(20, 3))
+    np.testing.assert_allclose(a.apply(v), np.einsum("nij,nj->ni", a.as_matrix(), v), atol=1e-14)
+    np.testing.assert_allclose(a.apply(a.apply(v), inverse=True), v, atol=1e-14)
+    assert a.approx_equal(a).all()
+
+
+def test_container_protocol_and_repr():
+    r = Rotation.random((4, 3), rng=3)
+    assert r.shape == (4, 3) and len(r) == 4
+    assert r[1].shape == (3,) and r[1, 2].single
+    np.testing.assert_array_equal(r[1, 2].as_quat(), r.as_quat()[1, 2])
+    one = Rotation.from_rotvec([0, 0, np.pi / 2])
+    assert repr(one) == "Rotation.from_quat([0.707107, 0, 0, 0.707107])"
+    assert "shape (4, 3)" in repr(r)
+    with pytest.raises(TypeError):
+        len(one)
+    with pytest.raises(TypeError):
+        one[0]
+    assert Rotation.identity(3).magnitude().tolist() == [0.0, 0.0, 0.0]
+
+
+def test_canonical_and_scalar_last():
+    r = Rotation.from_quat([-0.5, 0.5, 0.5, 0.5])
+    assert r.as_quat(canonical=True)[0] > 0 and r.as_quat()[0] < 0
+    np.testing.assert_allclose(r.as_quat(scalar_first=False), [0.5, 0.5, 0.5, -0.5])
+    np.testing.assert_allclose(Rotation.from_quat([0.5, 0.5, 0.5, -0.5], scalar_first=False).as_quat(), r.as_quat())
+
+
+def test_scipy_interop():
+    r = Rotation.random(10, rng=4)
+    s = r.to_scipy()
+    assert isinstance(s, S)
+    np.testing.assert_allclose(s.as_matrix(), r.as_matrix(), atol=1e-15)
+    np.testing.assert_allclose(Rotation.from_scipy(s).as_matrix(), r.as_matrix(), atol=1e-15)
+
+
+def test_random_is_uniform_and_seeded():
+    r = Rotation.random(20000, rng=5)
+    np.testing.assert_array_equal(r.as_quat(), Rotation.random(20000, rng=5).as_quat())
+    # Haar measure: the rotation angle has density (1 - cos ψ)/π, so E[ψ] = π/2 + 2/π.
+    assert r.magnitude().mean() == pytest.approx(np.pi / 2 + 2 / np.pi, abs=0.02)
+    # Each column of R is uniform on the sphere: zero mean.
+    np.testing.assert_allclose(r.as_matrix().mean(axis=0), 0.0, atol=0.02)
+
+
+def test_mean_matches_scipy_and_is_sign_independent():
+    r = Rotation.from_rotvec(0.3 * np.random.default_rng(6).normal(size=(30, 3)))
+    w = np.linspace(0.5, 2.0, 30)
+    expected = S.from_quat(r.as_quat(scalar_first=False)).mean(weights=w)
+    flipped = Rotation.from_quat(r.as_quat() * np.where(np.arange(30) % 2, -1, 1)[:, None])
+    np.testing.assert_allclose(flipped.mean(w).as_matrix(), expected.as_matrix(), atol=1e-14)
+    with pytest.raises(ValueError, match="weights"):
+        r.mean(-w)
+
+
+def test_slerp_constant_rate_and_endpoints():
+    a, b = Rotation.random(rng=8), Rotation.random(rng=9)
+    t = np.linspace(0, 1, 11)
+    path = a.slerp(b, t)
+    np.testing.assert_allclose(path[0].as_matrix(), a.as_matrix(), atol=1e-15)
+    np.testing.assert_allclose(path[-1].as_matrix(), b.as_matrix(), atol=1e-14)
+    steps = (path[:-1].inv() * path[1:]).magnitude()
+    np.testing.assert_allclose(steps, (a.inv() * b).magnitude() / 10, rtol=1e-12)
+    # Shorter arc even when b is given with the opposite sign.
+    minus_b = Rotation.from_quat(-b.as_quat())
+    np.testing.assert_allclose(a.slerp(minus_b, 0.5).as_matrix(), path[5].as_matrix(), atol=1e-14)
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="q must be nonzero"):
+        Rotation.from_quat([0.0, 0, 0, 0])
+    with pytest.raises(ValueError, match="R must be rotation matrices"):
+        Rotation.from_matrix(np.diag([1.0, 1.0, 2.0]))
+    with pytest.raises(ValueError, match="det > 0"):
+        Rotation.from_matrix(np.diag([1.0, 1.0, -1.0]))
+    with pytest.raises(ValueError, match="seq"):
+        Rotation.from_euler("xYz", [0, 0, 0])
+    assert kr.Rotation is Rotation
