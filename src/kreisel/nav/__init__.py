@@ -9,6 +9,7 @@ reading/attitude writing.
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
 from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
                          allan_deviation, gauss_markov_allan_deviation)
+from .logs import ImuLog, convert_attitude_frame, read_imu_log, write_attitude
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = [
@@ -24,4 +25,8 @@ __all__ = [
     "DEG_PER_SQRT_HOUR",
     "DEG_PER_HOUR",
     "DEG_PER_HOUR_PER_SQRT_HOUR",
+    "ImuLog",
+    "read_imu_log",
+    "write_attitude",
+    "convert_attitude_frame",
 ]

@@ -6,15 +6,15 @@ Datasheets quote gyro noise in navigation units; the model works in SI:
 term                       datasheet unit   SI unit                      Allan deviation
 =========================  ===============  ===========================  ===================
 angle random walk N        deg/√h           rad/√s  (× π/180/60)         N/√τ (slope −1/2)
-bias instability σ, T_c    deg/h, s         rad/s   (× π/180/3600)       peak ≈ 0.62σ at 1.89 T_c
+bias instability σ, T_c    deg/h, s         rad/s   (× π/180/3600)       peak ≈ 0.617σ at 1.89 T_c
 rate random walk K         deg/h/√h         rad/s/√s (× π/180/3600/60)   K√(τ/3) (slope +1/2)
 =========================  ===============  ===========================  ===================
 
 Bias instability is modelled as a first-order Gauss–Markov process of
 stationary standard deviation σ and correlation time T_c, whose Allan
 variance is σ²T_c²/τ² (2x − 3 + 4e^{−x} − e^{−2x}), x = τ/T_c: flat near
-its maximum ≈ 0.6198σ at τ ≈ 1.89 T_c. (A datasheet "bias instability" B is
-the Allan floor divided by 0.664, so σ ≈ 1.07 B reproduces it.)
+its maximum ≈ 0.6174σ at τ ≈ 1.89 T_c. (A datasheet "bias instability" B is
+the Allan floor divided by 0.664, so σ ≈ 1.075 B reproduces it.)
 """
 
 from __future__ import annotations
@@ -257,7 +257,7 @@ def gauss_markov_allan_deviation(tau, sigma, correlation_time):
     >>> x = np.linspace(0.5, 5, 4000)
     >>> a = gauss_markov_allan_deviation(x, 1.0, 1.0)
     >>> round(float(x[np.argmax(a)]), 2), round(float(a.max()), 4)
-    (1.89, 0.6198)
+    (1.89, 0.6174)
     """
     tau = as_float_array(tau, "tau")
     if np.any(tau <= 0):
