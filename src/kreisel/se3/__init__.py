@@ -1,3 +1,17 @@
-"""se3 layer of kreisel."""
+"""Rigid displacements SE(3) (seed 一.3 Chasles' theorem, 三.7–8 point velocity and screw motion).
 
-__all__ = []
+:class:`RigidTransform` holds batched poses (R, r_C); :func:`change_base_point`
+re-expresses a displacement about another body point (R unchanged);
+:class:`Screw` carries the Chasles/Mozzi screw of finite displacements;
+:mod:`~kreisel.se3.lie` has twists ``ξ = (ω, v)``, exp/log and the SE(3)
+Jacobians; :func:`sclerp` interpolates along screws and
+:func:`point_trajectory` follows body points of a moving body.
+"""
+
+from . import lie, motion, screw, transform
+from .lie import *  # noqa: F401,F403
+from .motion import *  # noqa: F401,F403
+from .screw import *  # noqa: F401,F403
+from .transform import *  # noqa: F401,F403
+
+__all__ = [*transform.__all__, *screw.__all__, *lie.__all__, *motion.__all__]

@@ -1,0 +1,407 @@
+"""Rigid displacements (R, r_C) as batched objects: :class:`RigidTransform`.
+
+Seed 一.3 (Chasles' theorem): every body point P moves as
+``r_P = R r′_CP + r_C``: a rotation ``R`` about the base point C followed by
+the translation ``r_C`` of C. A :class:`RigidTransform` stores that pair as a
+unit quaternion (scalar first, ``R = R(q)`` of seed 二.4) and a translation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import as_float_array
+from ..so3 import (
+    Rotation,
+    matrix_to_quat,
+    quat_apply,
+    quat_multiply,
+    quat_normalize,
+    quat_to_matrix,
+)
+from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array, vector_array
+from . import _kernels, lie
+from .screw import change_base_point, screw_parameters, screw_pose
+
+__all__ = ["RigidTransform"]
+
+#: Largest accepted departure from rigidity: |bottom row - (0, 0, 0, 1)| of a
+#: homogeneous matrix, ||q_r| - 1| and the relative q_r·q_d of a dual
+#: quaternion. Inputs within it are projected onto SE(3); others are refused.
+RIGIDITY_TOLERANCE = ORTHOGONALITY_TOLERANCE
+
+
+def _is_scipy_rotation(obj):
+    # Checked by module name so that scipy is imported only when it is used.
+    return type(obj).__name__ == "Rotation" and type(obj).__module__.startswith("scipy.spatial.transform")
+
+
+def rotation_to_quat(rotation, name="rotation"):
+    """Unit quaternions ``(..., 4)`` from a kreisel/scipy ``Rotation``, matrices or quaternions.
+
+    Arrays ending in ``(3, 3)`` are rotation matrices (refused beyond
+    ``ORTHOGONALITY_TOLERANCE``), arrays ending in ``(4,)`` are scalar-first
+    quaternions of any nonzero norm (normalised).
+    """
+    if isinstance(rotation, Rotation):
+        return rotation.as_quat()
+    if _is_scipy_rotation(rotation):
+        return rotation.as_quat(scalar_first=True)
+    a = as_float_array(rotation, name, finite=False)
+    if a.shape[-2:] == (3, 3):
+        return matrix_to_quat(matrix_array(a, name))
+    if a.shape[-1:] == (4,):
+        return quat_normalize(quaternion_array(a, name))
+    raise ValueError(
+        f"{name} must be a Rotation, rotation matrices (..., 3, 3) or quaternions (..., 4), got shape {a.shape}"
+    )
+
+
+def _batch_shape(shape):
+    if shape is None:
+        return ()
+    if isinstance(shape, (int, np.integer)):
+        shape = (int(shape),)
+    try:
+        shape = tuple(int(n) for n in shape)
+    except TypeError as exc:
+        raise TypeError(f"shape must be None, an int or a tuple of ints, got {shape!r}") from exc
+    if any(n < 0 for n in shape):
+        raise ValueError(f"shape must have non-negative entries, got {shape}")
+    return shape
+
+
+class RigidTransform:
+    """Rigid displacements ``r -> R r + r_C`` (seed 一.3), batched like numpy arrays.
+
+    The rotation ``R`` maps body components to space components and ``r_C``
+    is the space position of the base point C, so a body point with body
+    components ``r′_CP`` sits at ``r_P = R r′_CP + r_C`` (Chasles' theorem).
+    ``a * b`` applies ``b`` first, then ``a`` (as for matrices).
+
+    Construct with the ``from_*`` class methods; ``RigidTransform(rotation,
+    translation)`` is :meth:`from_rotation_translation`.
+
+    Parameters
+    ----------
+    rotation : Rotation or array_like
+        A kreisel (or scipy) ``Rotation``, rotation matrices ``(..., 3, 3)``
+        or scalar-first quaternions ``(..., 4)``.
+    translation : array_like, shape (..., 3)
+        Space position of the base point, ``r_C``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> T = RigidTransform([[0, -1, 0], [1, 0, 0], [0, 0, 1]], [1.0, 0.0, 0.0])
+    >>> T.apply([1.0, 0.0, 0.0])                  # rotate 90° about z, then shift
+    array([1., 1., 0.])
+    >>> (T * T.inv()).as_matrix().round(12) + 0.0
+    array([[1., 0., 0., 0.],
+           [0., 1., 0., 0.],
+           [0., 0., 1., 0.],
+           [0., 0., 0., 1.]])
+    """
+
+    __slots__ = ("_quat", "_translation")
+    __array_priority__ = 20.0  # ndarray * RigidTransform must not broadcast elementwise
+
+    def __init__(self, rotation, translation):
+        quat = rotation_to_quat(rotation, "rotation")
+        translation = vector_array(translation, "translation")
+        self._set(quat, translation)
+
+    # -- construction ------------------------------------------------------------------------
+
+    def _set(self, quat, translation):
+        batch = np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1])
+        self._quat = np.broadcast_to(quat, batch + (4,))
+        self._translation = np.broadcast_to(translation, batch + (3,))
+
+    @classmethod
+    def _from_arrays(cls, quat, translation):
+        # Trusted arrays (unit quaternions, finite translations): no checks.
+        obj = cls.__new__(cls)
+        obj._set(quat, translation)
+        return obj
+
+    @classmethod
+    def from_rotation_translation(cls, rotation, translation):
+        """Pose with rotation ``R`` about the base point and its translation ``r_C``.
+
+        Parameters
+        ----------
+        rotation : Rotation or array_like
+            kreisel/scipy ``Rotation``, matrices ``(..., 3, 3)`` or quaternions ``(..., 4)``.
+        translation : array_like, shape (..., 3)
+            ``r_C``; broadcast against the rotation's batch shape.
+
+        Examples
+        --------
+        >>> RigidTransform.from_rotation_translation([1, 0, 0, 0], [1, 2, 3])
+        RigidTransform(quat=[1.0, 0.0, 0.0, 0.0], translation=[1.0, 2.0, 3.0])
+        """
+        return cls(rotation, translation)
+
+    @classmethod
+    def from_rotation(cls, rotation):
+        """Pure rotation about the origin (zero translation)."""
+        return cls._from_arrays(rotation_to_quat(rotation, "rotation"), np.zeros(3))
+
+    @classmethod
+    def from_translation(cls, translation):
+        """Pure translation (identity rotation)."""
+        return cls._from_arrays(np.array([1.0, 0.0, 0.0, 0.0]), vector_array(translation, "translation"))
+
+    @classmethod
+    def identity(cls, shape=None):
+        """Identity transforms of batch shape ``shape`` (``None`` or ``()``: a single one)."""
+        shape = _batch_shape(shape)
+        quat = np.zeros(shape + (4,))
+        quat[..., 0] = 1.0
+        return cls._from_arrays(quat, np.zeros(shape + (3,)))
+
+    @classmethod
+    def random(cls, shape=None, rng=None, translation_scale=1.0):
+        """Random poses: uniform (Haar) rotations and Gaussian translations.
+
+        Parameters
+        ----------
+        shape : None, int or tuple of int
+            Batch shape (``None``: a single transform).
+        rng : None, int or numpy.random.Generator
+            Seed or generator, for reproducible draws.
+        translation_scale : float
+            Standard deviation of each translation component, metres.
+
+        Examples
+        --------
+        >>> len(RigidTransform.random(5, rng=0))
+        5
+        """
+        shape = _batch_shape(shape)
+        rng = np.random.default_rng(rng)
+        rotation = Rotation.random(shape, rng=rng)
+        translation = translation_scale * rng.standard_normal(shape + (3,))
+        return cls._from_arrays(rotation.as_quat(), translation)
+
+    @classmethod
+    def from_matrix(cls, matrix):
+        """Poses from homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]`` of shape ``(..., 4, 4)``.
+
+        Raises ``ValueError`` when the bottom row is not (0, 0, 0, 1) or the
+        upper-left block is not a rotation (tolerance ``RIGIDITY_TOLERANCE``).
+        """
+        m = as_float_array(matrix, "matrix", (4, 4))
+        bottom = m[..., 3, :] - np.array([0.0, 0.0, 0.0, 1.0])
+        if m.size and not np.max(np.abs(bottom)) <= RIGIDITY_TOLERANCE:
+            raise ValueError("matrix must be rigid: its bottom row must be (0, 0, 0, 1)")
+        quat = matrix_to_quat(matrix_array(m[..., :3, :3], "matrix[..., :3, :3]"))
+        return cls._from_arrays(quat, np.ascontiguousarray(m[..., :3, 3]))
+
+    @classmethod
+    def from_dual_quat(cls, dual_quat):
+        """Poses from unit dual quaternions ``σ = q_r + ε q_d`` stored as ``(..., 8)``.
+
+        Layout ``[q_r, q_d]`` with both parts scalar first (Hamilton);
+        ``q_d = ½ (0, r_C) q_r``, hence ``r_C = 2 vec(q_d q_r*)``. Unit means
+        ``|q_r| = 1`` and ``q_r·q_d = 0``; inputs off by more than
+        ``RIGIDITY_TOLERANCE`` raise ``ValueError``, closer ones are projected.
+        """
+        d = as_float_array(dual_quat, "dual_quat", (8,))
+        real, dual = d[..., :4], d[..., 4:]
+        norm = np.sqrt(np.sum(real * real, axis=-1))
+        along = np.sum(real * dual, axis=-1)
+        scale = 1.0 + np.sqrt(np.sum(dual * dual, axis=-1))
+        if d.size and not (
+            np.max(np.abs(norm - 1.0)) <= RIGIDITY_TOLERANCE and np.max(np.abs(along) / scale) <= RIGIDITY_TOLERANCE
+        ):
+            raise ValueError("dual_quat must be unit dual quaternions: |q_r| = 1 and q_r·q_d = 0")
+        real = real / norm[..., None]
+        dual = dual / norm[..., None] - (along / norm**2)[..., None] * real
+        conj = real * np.array([1.0, -1.0, -1.0, -1.0])
+        translation = 2.0 * quat_multiply(dual, conj)[..., 1:]
+        return cls._from_arrays(real, translation)
+
+    @classmethod
+    def from_exp_coords(cls, exp_coords):
+        """Exponential map of twists ``ξ = (ω, v)`` (rotation part first), ``(..., 6)``.
+
+        ``T = exp([[hat ω, v], [0, 0]])``: ``R = exp(hat ω)`` and
+        ``r_C = J_l(ω) v`` with the SO(3) left Jacobian (see :mod:`kreisel.se3.lie`).
+        """
+        xi = vector_array(exp_coords, "exp_coords", 6)
+        return cls._from_arrays(*lie.exp(xi))
+
+    @classmethod
+    def from_screw(cls, axis, point, angle, translation=0.0):
+        """Screw displacements (Chasles/Mozzi): turn by ``angle`` about the line
+        ``point + λ axis`` and slide ``translation`` along ``axis``.
+
+        Parameters
+        ----------
+        axis : array_like, shape (..., 3)
+            Nonzero direction (normalised here).
+        point : array_like, shape (..., 3)
+            Any point of the axis.
+        angle : array_like, shape (...)
+            Rotation angle, right-handed about ``axis``, radians.
+        translation : array_like, shape (...)
+            Slide along ``axis``, metres.
+
+        Examples
+        --------
+        >>> T = RigidTransform.from_screw([0, 0, 1], [1.0, 0.0, 0.0], 3.141592653589793, 2.0)
+        >>> T.apply([1.0, 0.0, 0.0]).round(12) + 0.0          # a point of the axis only slides
+        array([1., 0., 2.])
+        """
+        return cls._from_arrays(*screw_pose(axis, point, angle, translation))
+
+    @classmethod
+    def from_scipy(cls, transform):
+        """Convert a ``scipy.spatial.transform.RigidTransform`` (scipy >= 1.16)."""
+        if not hasattr(transform, "as_components"):
+            raise TypeError(f"transform must be a scipy RigidTransform, got {type(transform).__name__}")
+        translation, rotation = transform.as_components()
+        return cls._from_arrays(rotation.as_quat(scalar_first=True), np.asarray(translation, dtype=np.float64))
+
+    # -- conversion ----------------------------------------------------------------------------
+
+    @property
+    def shape(self):
+        """Batch shape (``()`` for a single transform)."""
+        return self._quat.shape[:-1]
+
+    @property
+    def single(self):
+        """True for a single transform (batch shape ``()``)."""
+        return self._quat.ndim == 1
+
+    @property
+    def rotation(self):
+        """The rotation part as a kreisel :class:`~kreisel.so3.Rotation`."""
+        return Rotation.from_quat(self._quat)
+
+    @property
+    def translation(self):
+        """The translation ``r_C``, ``(..., 3)``."""
+        return np.array(self._translation)
+
+    def as_quat(self):
+        """Unit quaternions of the rotation part, scalar first, ``(..., 4)``."""
+        return np.array(self._quat)
+
+    def as_components(self):
+        """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``."""
+        return self.rotation, self.translation
+
+    def as_matrix(self):
+        """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``."""
+        m = np.zeros(self.shape + (4, 4))
+        m[..., :3, :3] = quat_to_matrix(self._quat)
+        m[..., :3, 3] = self._translation
+        m[..., 3, 3] = 1.0
+        return m
+
+    def as_dual_quat(self):
+        """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``."""
+        pure = np.zeros(self.shape + (4,))
+        pure[..., 1:] = self._translation
+        return np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1)
+
+    def as_exp_coords(self):
+        """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``."""
+        return lie.log(self._quat, self._translation)
+
+    def as_screw(self):
+        """Chasles/Mozzi screw of each displacement, as a :class:`~kreisel.se3.Screw`.
+
+        Axis direction, the axis point closest to the origin, the angle in
+        [0, π], the slide along the axis and the pitch. Pure rotations have
+        zero slide; pure translations have angle 0, the direction of travel as
+        axis, point 0 and pitch ``inf``. Accurate near π (no division by
+        sin θ) and at small angles.
+
+        Examples
+        --------
+        >>> T = RigidTransform.from_translation([0.0, 3.0, 0.0])
+        >>> T.as_screw().axis, float(T.as_screw().translation)
+        (array([0., 1., 0.]), 3.0)
+        """
+        return screw_parameters(self._quat, self._translation)
+
+    def adjoint(self):
+        """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``."""
+        return lie.adjoint(quat_to_matrix(self._quat), self._translation)
+
+    def to_scipy(self):
+        """Equivalent ``scipy.spatial.transform.RigidTransform``."""
+        from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
+        from scipy.spatial.transform import Rotation as ScipyRotation
+
+        rotation = ScipyRotation.from_quat(self._quat, scalar_first=True)
+        return ScipyRigidTransform.from_components(self._translation, rotation)
+
+    # -- group operations ------------------------------------------------------------------------
+
+    def __mul__(self, other):
+        if not isinstance(other, RigidTransform):
+            return NotImplemented
+        return RigidTransform._from_arrays(*_kernels.compose(self._quat, self._translation, other._quat, other._translation))
+
+    def inv(self):
+        """Inverse displacements ``(Rᵀ, -Rᵀ r_C)``."""
+        return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
+
+    def apply(self, points, inverse=False):
+        """Move points: ``R r + r_C`` (seed 一.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
+
+        Parameters
+        ----------
+        points : array_like, shape (..., 3)
+            Broadcast against the batch shape.
+        inverse : bool
+            Apply the inverse displacement.
+        """
+        points = vector_array(points, "points")
+        kernel = _kernels.apply_inverse if inverse else _kernels.apply
+        return kernel(self._quat, self._translation, points)
+
+    def apply_vector(self, vectors, inverse=False):
+        """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``."""
+        return quat_apply(self._quat, vector_array(vectors, "vectors"), inverse=inverse)
+
+    def change_base_point(self, offset):
+        """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`."""
+        return change_base_point(self, offset)
+
+    # -- container protocol ----------------------------------------------------------------------
+
+    def __len__(self):
+        if self.single:
+            raise TypeError("a single RigidTransform has no len()")
+        return self.shape[0]
+
+    def __getitem__(self, key):
+        if self.single:
+            raise TypeError("a single RigidTransform is not subscriptable")
+        # Index an array of batch positions so that any numpy index (slices,
+        # masks, Ellipsis, fancy) acts on the batch axes only.
+        index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
+        return RigidTransform._from_arrays(
+            self._quat.reshape(-1, 4)[index], self._translation.reshape(-1, 3)[index]
+        )
+
+    def __iter__(self):
+        for i in range(len(self)):
+            yield self[i]
+
+    def __repr__(self):
+        def fmt(a):
+            return np.array2string(a, separator=", ", precision=6, threshold=24, floatmode="maxprec_equal")
+
+        if self.single:
+            q = "[" + ", ".join(repr(float(x)) for x in self._quat) + "]"
+            t = "[" + ", ".join(repr(float(x)) for x in self._translation) + "]"
+            return f"RigidTransform(quat={q}, translation={t})"
+        return f"RigidTransform(shape={self.shape}, quat={fmt(self._quat)}, translation={fmt(self._translation)})"
