@@ -2,6 +2,9 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation as ScipyRotation
 
 import kreisel as kr
 from kreisel.inertia import solids
@@ -91,3 +94,21 @@ def test_solid_constructors_match_inertia_functions(name, args):
     body = getattr(kr.RigidBody, name)(3.0, *args)
     np.testing.assert_array_equal(body.inertia, getattr(solids, name)(3.0, *args))
     assert body.mass == 3.0
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_every_physical_body_is_accepted(seed, planar):
+    # point clouds, including planar ones (thin plates, triangle equality) in random
+    # orientations where the equality only holds up to rounding
+    rng = np.random.default_rng(seed)
+    masses = rng.uniform(0.1, 1.0, 7)
+    positions = rng.normal(size=(7, 3)) * rng.uniform(1e-3, 1e3)
+    if planar:
+        positions[:, 2] = 0.0
+        positions = positions @ ScipyRotation.random(random_state=rng).as_matrix().T
+    body = kr.RigidBody.from_points(masses, positions)
+    m1, m2, m3 = body.principal_moments
+    assert m3 <= m1 + m2 + 1e-12 * m3
+    if planar:
+        assert m3 == pytest.approx(m1 + m2, rel=1e-12)

@@ -90,22 +90,27 @@ class RigidBody:
 
     @property
     def inertia(self):
+        """(3, 3) inertia tensor in body axes, kg m² (read-only)."""
         return self._inertia
 
     @property
     def mass(self):
+        """Mass, kg."""
         return self._mass
 
     @property
     def principal_moments(self):
+        """(3,) principal moments in ascending order, kg m²."""
         return self._moments
 
     @property
     def principal_axes(self):
+        """(3, 3) proper rotation whose columns are the principal axes in body components."""
         return self._axes
 
     @property
     def is_principal(self):
+        """Whether the body axes are principal axes (tensor exactly diagonal)."""
         return bool(np.count_nonzero(self._inertia - np.diag(np.diagonal(self._inertia))) == 0)
 
     @classmethod
