@@ -1,6 +1,29 @@
-"""tops layer of kreisel: the Euler, symmetric, Lagrange and Kovalevskaya tops (seed 五–七)."""
+"""tops layer of kreisel: the Euler, symmetric, Lagrange and Kovalevskaya tops (seed 五–七).
+
+Exact solutions (no time stepping) by elliptic functions and integrals of the
+third kind (:mod:`._elliptic`, built on Carlson's integrals), the stability and
+Poinsot geometry of the free top, regular precession and the body and space
+cones, the Lagrange top's integrals, nutation and apex locus, and the
+Kovalevskaya integral.
+"""
 
 from ._elliptic import complete_elliptic_pi, elliptic_pi
 from .euler_top import EulerTop, SteadyRotation
+from .kovalevskaya import KovalevskayaIntegrals, KovalevskayaTop
+from .lagrange import FastTop, LagrangeConstants, LagrangeTop, larmor_precession_rate
+from .symmetric import Cones, SymmetricTop
 
-__all__ = ["EulerTop", "SteadyRotation", "elliptic_pi", "complete_elliptic_pi"]
+__all__ = [
+    "EulerTop",
+    "SteadyRotation",
+    "SymmetricTop",
+    "Cones",
+    "LagrangeTop",
+    "LagrangeConstants",
+    "FastTop",
+    "larmor_precession_rate",
+    "KovalevskayaTop",
+    "KovalevskayaIntegrals",
+    "elliptic_pi",
+    "complete_elliptic_pi",
+]

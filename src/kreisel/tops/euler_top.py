@@ -16,7 +16,7 @@ from scipy import special
 
 from .._validation import as_float_array
 from ..dynamics.trajectory import Trajectory
-from . import _quat
+from ..so3 import matrix_to_quat, quat_apply, quat_conjugate, quat_multiply, rotvec_to_quat
 from ._elliptic import _pi_reduced
 
 __all__ = ["EulerTop", "SteadyRotation"]
@@ -31,6 +31,24 @@ def _check_moments(values, names):
             raise ValueError(f"{name} must be a positive scalar moment of inertia, got {value!r}")
         moments.append(float(value))
     return np.array(moments)
+
+
+def _zxz_quat_from_half_angles(cos_half_theta, sin_half_theta, half_sum, half_difference):
+    """Quaternion of Rz(φ) Rx(θ) Rz(ψ) from cos, sin of θ/2 and (φ ± ψ)/2.
+
+    Taking the half-angles directly lets θ come from atan2 of the angular
+    momentum components (well conditioned for every θ) and lets φ, ψ be
+    reduced modulo 4π before halving.
+    """
+    return np.stack(
+        [
+            cos_half_theta * np.cos(half_sum),
+            sin_half_theta * np.cos(half_difference),
+            sin_half_theta * np.sin(half_difference),
+            cos_half_theta * np.sin(half_sum),
+        ],
+        axis=-1,
+    )
 
 
 @dataclass(frozen=True)
@@ -76,7 +94,7 @@ class _Steady:
 
     def omega_and_quat(self, t, q0):
         omega = np.broadcast_to(self.omega0, t.shape + (3,))
-        q = _quat.qmul(q0, _quat.rotvec_to_quat(t[:, None] * self.omega0))
+        q = quat_multiply(q0, rotvec_to_quat(t[:, None] * self.omega0))
         return omega, q
 
     period = np.inf
@@ -104,11 +122,11 @@ class _Symmetric:
         e = np.zeros(3)
         e[self.axis] = 1.0
         momentum_body0 = self.moments * self.omega0
-        momentum_space = _quat.rotate(q0, momentum_body0)
-        body_turn = _quat.rotvec_to_quat(t[:, None] * (self.c * e))
-        space_turn = _quat.rotvec_to_quat(t[:, None] * (momentum_space / self.perpendicular))
-        q = _quat.qmul(_quat.qmul(space_turn, q0), body_turn)
-        omega = _quat.rotate_inverse(body_turn, momentum_body0) / self.moments
+        momentum_space = quat_apply(q0, momentum_body0)
+        body_turn = rotvec_to_quat(t[:, None] * (self.c * e))
+        space_turn = rotvec_to_quat(t[:, None] * (momentum_space / self.perpendicular))
+        q = quat_multiply(quat_multiply(space_turn, q0), body_turn)
+        omega = quat_apply(body_turn, momentum_body0, inverse=True) / self.moments
         return omega, q
 
 
@@ -239,12 +257,12 @@ class _Asymmetric:
         # the quaternion has period 4π in φ; reducing keeps (φ ± ψ)/2 exact to rounding
         phi = np.remainder(self._precession(t_all), 4.0 * np.pi)
         psi = self._spin(t_all, omega_all)
-        q_model = _quat.half_angles_zxz_to_quat(
+        q_model = _zxz_quat_from_half_angles(
             np.cos(half_theta), np.sin(half_theta), 0.5 * (phi + psi), 0.5 * (phi - psi)
         )
         # constant rotation from the frame with J along z to the actual space frame
-        c = _quat.qmul(q0, _quat.qconj(q_model[0]))
-        return omega, _quat.qmul(c, q_model[1:])
+        c = quat_multiply(q0, quat_conjugate(q_model[0]))
+        return omega, quat_multiply(c, q_model[1:])
 
 
 class EulerTop:
@@ -280,7 +298,7 @@ class EulerTop:
             permutation[:, 2] *= -1.0
         # columns of P are the sorted axes in the user's body axes: ω_user = P ω_sorted
         self._permutation = permutation
-        self._q_permutation = _quat.matrix_to_quat(permutation)
+        self._q_permutation = matrix_to_quat(permutation)
         self._sorted = self.moments[order]
 
     def __repr__(self):
@@ -467,10 +485,10 @@ class EulerTop:
             regimes[index] = motion.regime
             if isinstance(motion, _Asymmetric):
                 # work in the sorted right-handed axes: R_sorted = R_user P
-                q0_sorted = _quat.qmul(q0[index], self._q_permutation)
+                q0_sorted = quat_multiply(q0[index], self._q_permutation)
                 omega_sorted, q_sorted = motion.omega_and_quat(t, q0_sorted)
                 omega_out[index] = omega_sorted @ self._permutation.T
-                q_out[index] = _quat.qmul(q_sorted, _quat.qconj(self._q_permutation))
+                q_out[index] = quat_multiply(q_sorted, quat_conjugate(self._q_permutation))
             else:
                 omega_out[index], q_out[index] = motion.omega_and_quat(t, q0[index])
         meta = {"method": "exact", "body": "EulerTop", "moments": tuple(self.moments)}

@@ -1,0 +1,433 @@
+"""The heavy symmetric (Lagrange) top (seed 六): integrals, V_eff, nutation, apex locus, exact solution.
+
+Gravity along space −z; centre of mass on the body's third axis at distance
+l from the pivot; I1 = I2 about the pivot, I3 about the symmetry axis; state
+as the seed's ZXZ angles (φ, θ, ψ) and their rates. With u = cos θ,
+a = J3/I1, b = Jz/I1, α = (2E − J3²/I3)/I1, β = 2mgl/I1 (MATH.md §2):
+
+    u̇² = f(u) = (1 − u²)(α − βu) − (b − au)² = β(u − u1)(u − u2)(u − u3),
+
+u1 <= u2 <= 1 < u3, solved by u = u1 + (u2 − u1) sn²(λt + v0 | m) with φ and
+ψ from incomplete elliptic integrals of the third kind.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize, special
+
+from .._validation import as_float_array
+from ..dynamics.trajectory import Trajectory
+from ..so3 import euler_to_quat, quat_to_euler
+from ._elliptic import _complete_pi, _pi_reduced
+from .euler_top import _check_moments
+
+__all__ = ["LagrangeTop", "LagrangeConstants", "FastTop", "larmor_precession_rate"]
+
+ELEMENTARY_CHARGE = 1.602176634e-19  # C (exact, SI 2019)
+ELECTRON_MASS = 9.1093837139e-31  # kg (CODATA 2022)
+
+
+@dataclass(frozen=True)
+class LagrangeConstants:
+    """Conserved quantities of the Lagrange top (seed 六.2).
+
+    Attributes
+    ----------
+    J3 : float
+        p_ψ = I3 ω3, angular momentum about the symmetry axis.
+    Jz : float
+        p_φ = I1 φ̇ sin²θ + J3 cos θ, angular momentum about the vertical.
+    E : float
+        Energy ½ I1 (θ̇² + φ̇² sin²θ) + J3²/(2 I3) + mgl cos θ.
+    """
+
+    J3: float
+    Jz: float
+    E: float
+
+
+@dataclass(frozen=True)
+class FastTop:
+    """Fast top released from rest at θ0 with spin ω3 (seed 六.7): approximations and exact values.
+
+    Attributes
+    ----------
+    approx_nutation_amplitude : float
+        Peak-to-peak range of u = cos θ, 2 I1 mgl sin²θ0 / J3².
+    approx_nutation_frequency : float
+        Angular frequency J3/I1 of the nutation.
+    approx_precession_rate : float
+        Mean precession rate mgl/J3 = mgl/(I3 ω3).
+    exact_nutation_amplitude : float
+        u2 − u1 from the roots of f(u).
+    exact_nutation_frequency : float
+        2π / (nutation period 2K(m)/λ).
+    exact_precession_rate : float
+        Mean φ̇ over one nutation period (complete integrals of the third kind).
+    """
+
+    approx_nutation_amplitude: float
+    approx_nutation_frequency: float
+    approx_precession_rate: float
+    exact_nutation_amplitude: float
+    exact_nutation_frequency: float
+    exact_precession_rate: float
+
+
+def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTRON_MASS):
+    """Larmor precession rate eB/(2m) of an orbiting charge (seed 六.8), rad/s.
+
+    The magnetic energy V = −μ·B = μB cos θ has the form of the top's mgl cos θ,
+    so the fast-top mean precession mgl/J3 becomes μB/J with μ = e ω a²/2 and
+    J = m ω a², i.e. eB/(2m), independent of the orbit.
+
+    Examples
+    --------
+    >>> f"{larmor_precession_rate(1.0):.6e}"  # electron in 1 T
+    '8.794010e+10'
+    """
+    b = as_float_array(magnetic_field, "magnetic_field")
+    q = as_float_array(charge, "charge")
+    m = as_float_array(mass, "mass")
+    if np.any(m <= 0.0):
+        raise ValueError("mass must be positive")
+    return np.abs(q) * b / (2.0 * m)
+
+
+def _body_rates_to_omega(angles, rates):
+    """Body ω′ from ZXZ angles and rates (Euler kinematic equations, seed 三.6)."""
+    from ..kinematics import angular_velocity_from_euler_rates
+
+    return angular_velocity_from_euler_rates("ZXZ", angles, rates, frame="body")
+
+
+class _Quadrature:
+    """Roots of f(u) and the elliptic solution for one initial state (MATH.md §2)."""
+
+    def __init__(self, top, constants, u0, udot0):
+        I1 = top.I1
+        self.a = constants.J3 / I1
+        self.b = constants.Jz / I1
+        self.alpha = (2.0 * constants.E - constants.J3**2 / top.I3) / I1
+        self.beta = 2.0 * top.mgl / I1
+        a, b, alpha, beta = self.a, self.b, self.alpha, self.beta
+        # f(u) = c3 u³ + c2 u² + c1 u + c0
+        coefficients = (beta, -(alpha + a * a), 2.0 * a * b - beta, alpha - b * b)
+        f = lambda u: ((coefficients[0] * u + coefficients[1]) * u + coefficients[2]) * u + coefficients[3]
+        if udot0 != 0.0:
+            # f(u0) = u̇0² > 0 and f(±1) = −(b ∓ a)² <= 0 bracket one root on each side
+            root = optimize.brentq(f, -1.0, u0, xtol=1e-16, rtol=1e-15, maxiter=200)
+        else:
+            root = u0  # released at a turning point: u0 itself is a root
+        # deflate f by (u − root): f = β (u − root)(u² + p u + r)
+        p = coefficients[1] / beta + root
+        r = coefficients[2] / beta + root * p
+        discriminant = max(p * p - 4.0 * r, 0.0)
+        # numerically stable quadratic roots
+        w = -0.5 * (p + np.copysign(np.sqrt(discriminant), p))
+        others = [w, r / w] if w != 0.0 else [0.0, -p]
+        # f(±1) <= 0 and f -> +inf: two roots in [−1, 1], the third above 1
+        u1, u2, u3 = sorted([root, *others])
+        self.u1, self.u2, self.u3 = u1, u2, u3
+        self.lam = 0.5 * np.sqrt(beta * (u3 - u1))
+        self.m = (u2 - u1) / (u3 - u1)
+        self.quarter = special.ellipk(self.m)
+        # amplitude at t = 0: sn² v0 = (u0 − u1)/(u2 − u1), sign from u̇0
+        amplitude0 = np.arctan2(np.sqrt(max(u0 - u1, 0.0)), np.sqrt(max(u2 - u0, 0.0)))
+        self.v0 = np.copysign(special.ellipkinc(amplitude0, self.m), udot0)
+
+    def _elliptic(self, t):
+        v = self.lam * t + self.v0
+        j = np.round(v / (2.0 * self.quarter))
+        sn, cn, dn, ph = special.ellipj(v - 2.0 * self.quarter * j, self.m)
+        parity = 1.0 - 2.0 * np.mod(j, 2.0)
+        return parity * sn, parity * cn, dn, ph, j
+
+    def _partial_fraction_terms(self):
+        """(coefficient, characteristic) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
+        a, b, u1, u2 = self.a, self.b, self.u1, self.u2
+        return (
+            ((b - a) / (1.0 - u1), (u2 - u1) / (1.0 - u1)),
+            ((b + a) / (1.0 + u1), -(u2 - u1) / (1.0 + u1)),
+        )
+
+    def angles_and_rates(self, t, top):
+        sn, cn, dn, ph, j = self._elliptic(t)
+        _, _, _, ph0, j0 = self._elliptic(np.zeros(1))
+        u = self.u1 + (self.u2 - self.u1) * sn * sn
+        udot = 2.0 * (self.u2 - self.u1) * self.lam * sn * cn * dn
+        # 1 ∓ u from the factored forms keep their relative accuracy near θ = 0, π
+        one_minus_u = (1.0 - self.u1) - (self.u2 - self.u1) * sn * sn
+        one_plus_u = (1.0 + self.u1) + (self.u2 - self.u1) * sn * sn
+        sin_theta = np.sqrt(one_minus_u * one_plus_u)
+        theta = np.arctan2(sin_theta, u)
+        plus, minus = [
+            coefficient * (_pi_reduced(ph, j, n, self.m) - _pi_reduced(ph0, j0, n, self.m))
+            if coefficient != 0.0
+            else np.zeros_like(t)
+            for coefficient, n in self._partial_fraction_terms()
+        ]
+        phi = (plus + minus) / (2.0 * self.lam)
+        psi = self.a * (top.I1 / top.I3 - 1.0) * t - (plus - minus) / (2.0 * self.lam)
+        phidot = (self.b - self.a * u) / (one_minus_u * one_plus_u)
+        thetadot = -udot / sin_theta
+        psidot = self.a * top.I1 / top.I3 - u * phidot
+        return np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1)
+
+    def mean_precession_rate(self):
+        """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
+        total = sum(c * _complete_pi(n, self.m) for c, n in self._partial_fraction_terms() if c != 0.0)
+        return float(total / (2.0 * self.quarter))
+
+
+class LagrangeTop:
+    """Heavy symmetric top on a fixed pivot (seed 六, Lagrange top).
+
+    Parameters
+    ----------
+    I1 : float
+        Transverse moment about the pivot (I1 = I2), kg m².
+    I3 : float
+        Moment about the symmetry axis, kg m².
+    mgl : float
+        Weight times distance from the pivot to the centre of mass (> 0), N m.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> top = LagrangeTop(1.0, 0.5, 1.0)
+    >>> [round(float(x), 6) for x in top.turning_points([0.0, 0.5, 0.0], [0.0, 0.0, 10.0])]
+    [0.5, 0.539237]
+    >>> top.apex_locus_kind([0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
+    'cusp'
+    >>> bool(top.sleeping_top_stable(5.0)), bool(top.sleeping_top_stable(3.0))
+    (True, False)
+    """
+
+    def __init__(self, I1, I3, mgl):
+        self.I1, self.I3, self.mgl = _check_moments((I1, I3, mgl), ("I1", "I3", "mgl"))
+
+    def __repr__(self):
+        return f"LagrangeTop(I1={self.I1:g}, I3={self.I3:g}, mgl={self.mgl:g})"
+
+    # ---- state and constants ---------------------------------------------------------
+    @staticmethod
+    def _check_state(euler0, rates0):
+        euler0 = as_float_array(euler0, "euler0", tail=(3,))
+        rates0 = as_float_array(rates0, "rates0", tail=(3,))
+        if euler0.ndim != 1 or rates0.ndim != 1:
+            raise ValueError("euler0 and rates0 must each have shape (3,): (phi, theta, psi) and their rates")
+        if not 0.0 < euler0[1] < np.pi:
+            raise ValueError(
+                f"euler0 must have 0 < theta < pi (ZXZ angles are singular on the vertical), got theta={euler0[1]}"
+            )
+        return euler0, rates0
+
+    def constants(self, euler0, rates0):
+        """J3, Jz and E of the state (seed 六.2).
+
+        Examples
+        --------
+        >>> LagrangeTop(1.0, 0.5, 1.0).constants([0.0, np.pi / 2, 0.0], [1.0, 0.0, 2.0])
+        LagrangeConstants(J3=1.0, Jz=1.0, E=2.0)
+        """
+        euler0, rates0 = self._check_state(euler0, rates0)
+        return self._constants(euler0, rates0)
+
+    def _constants(self, euler0, rates0):
+        theta = euler0[1]
+        phidot, thetadot, psidot = rates0
+        J3 = self.I3 * (np.cos(theta) * phidot + psidot)
+        Jz = self.I1 * phidot * np.sin(theta) ** 2 + J3 * np.cos(theta)
+        E = 0.5 * self.I1 * (thetadot**2 + (phidot * np.sin(theta)) ** 2) + J3**2 / (2 * self.I3)
+        E += self.mgl * np.cos(theta)
+        return LagrangeConstants(float(J3), float(Jz), float(E))
+
+    def effective_potential(self, theta, J3, Jz):
+        """V_eff(θ) = (Jz − J3 cos θ)²/(2 I1 sin²θ) + mgl cos θ + J3²/(2 I3) (seed 六.2).
+
+        Examples
+        --------
+        >>> float(LagrangeTop(1.0, 0.5, 1.0).effective_potential(np.pi / 2, 1.0, 0.0))
+        1.0
+        """
+        theta = as_float_array(theta, "theta")
+        J3 = float(as_float_array(J3, "J3"))
+        Jz = float(as_float_array(Jz, "Jz"))
+        if np.any((theta <= 0.0) | (theta >= np.pi)):
+            raise ValueError("theta must lie in (0, pi): V_eff is infinite on the vertical")
+        c, s = np.cos(theta), np.sin(theta)
+        return (Jz - J3 * c) ** 2 / (2 * self.I1 * s * s) + self.mgl * c + J3**2 / (2 * self.I3)
+
+    def _quadrature(self, euler0, rates0):
+        euler0, rates0 = self._check_state(euler0, rates0)
+        constants = self._constants(euler0, rates0)
+        u0 = np.cos(euler0[1])
+        udot0 = -np.sin(euler0[1]) * rates0[1]
+        return _Quadrature(self, constants, u0, udot0), euler0, rates0
+
+    # ---- nutation and the apex ------------------------------------------------------
+    def turning_points(self, euler0, rates0):
+        """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (seed 六.4)."""
+        quad, _, _ = self._quadrature(euler0, rates0)
+        return float(np.arccos(quad.u2)), float(np.arccos(quad.u1))
+
+    def cubic_roots(self, euler0, rates0):
+        """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (seed 六.4)."""
+        quad, _, _ = self._quadrature(euler0, rates0)
+        return quad.u1, quad.u2, quad.u3
+
+    def apex_locus_kind(self, euler0, rates0, rtol=1e-9):
+        """Shape of the path of the symmetry axis on the unit sphere (seed 六.5).
+
+        φ̇ = (b − a u)/(1 − u²) has the sign of b − a u: ``"monotone"`` if it keeps
+        one sign on [u1, u2], ``"cusp"`` if it vanishes at a turning point
+        (within ``rtol`` of |a| + |b|, e.g. released with θ̇ = φ̇ = 0), ``"loop"``
+        if it changes sign inside the nutation range.
+        """
+        quad, _, _ = self._quadrature(euler0, rates0)
+        g1 = quad.b - quad.a * quad.u1
+        g2 = quad.b - quad.a * quad.u2
+        tol = rtol * (abs(quad.a) + abs(quad.b))
+        if min(abs(g1), abs(g2)) <= tol:
+            return "cusp"
+        return "loop" if g1 * g2 < 0.0 else "monotone"
+
+    def nutation_period(self, euler0, rates0):
+        """Period of θ(t), 2K(m)/λ, seconds."""
+        quad, _, _ = self._quadrature(euler0, rates0)
+        return float(2.0 * quad.quarter / quad.lam)
+
+    def mean_precession_rate(self, euler0, rates0):
+        """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind)."""
+        quad, _, _ = self._quadrature(euler0, rates0)
+        return quad.mean_precession_rate()
+
+    def steady_precession_rates(self, theta, omega3):
+        """(slow, fast) rates φ̇ of steady precession at fixed θ with spin ω3.
+
+        From the θ equation with θ̈ = θ̇ = 0: I1 cos θ φ̇² − J3 φ̇ + mgl = 0,
+        φ̇ = (J3 ∓ √(J3² − 4 I1 mgl cos θ)) / (2 I1 cos θ); at θ = π/2 only the
+        slow rate mgl/J3 exists (fast = ±inf). NaN when J3² < 4 I1 mgl cos θ
+        (no steady precession at that tilt).
+
+        Examples
+        --------
+        >>> slow, fast = LagrangeTop(1.0, 0.5, 1.0).steady_precession_rates(0.5, 20.0)
+        >>> round(slow, 6), round(fast, 6)
+        (0.100877, 11.296567)
+        """
+        theta = float(as_float_array(theta, "theta"))
+        J3 = self.I3 * float(as_float_array(omega3, "omega3"))
+        c = np.cos(theta)
+        discriminant = J3 * J3 - 4.0 * self.I1 * self.mgl * c
+        if discriminant < 0.0:
+            return float("nan"), float("nan")
+        root = np.sqrt(discriminant)
+        # slow root without cancellation: 2 mgl / (J3 ± root), sign chosen with J3
+        big = J3 + np.copysign(root, J3)
+        slow = 2.0 * self.mgl / big
+        fast = big / (2.0 * self.I1 * c) if c != 0.0 else np.copysign(np.inf, J3)
+        return float(slow), float(fast)
+
+    def sleeping_top_threshold(self):
+        """Smallest spin ω3 = 2√(I1 mgl)/I3 for which the upright top is stable, rad/s."""
+        return float(2.0 * np.sqrt(self.I1 * self.mgl) / self.I3)
+
+    def sleeping_top_stable(self, omega3):
+        """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (seed 六.6)."""
+        J3 = self.I3 * as_float_array(omega3, "omega3")
+        return J3 * J3 > 4.0 * self.I1 * self.mgl
+
+    def fast_top(self, theta0, omega3):
+        """Fast top released from rest at θ0 with spin ω3: seed 六.7 estimates against the exact motion.
+
+        Examples
+        --------
+        >>> ft = LagrangeTop(1.0, 0.5, 1.0).fast_top(0.8, 200.0)
+        >>> round(ft.approx_precession_rate, 6), round(ft.exact_precession_rate, 6)
+        (0.01, 0.010001)
+        """
+        theta0 = float(as_float_array(theta0, "theta0"))
+        omega3 = float(as_float_array(omega3, "omega3"))
+        euler0 = np.array([0.0, theta0, 0.0])
+        rates0 = np.array([0.0, 0.0, omega3])
+        quad, _, _ = self._quadrature(euler0, rates0)
+        J3 = self.I3 * omega3
+        return FastTop(
+            approx_nutation_amplitude=2.0 * self.I1 * self.mgl * np.sin(theta0) ** 2 / J3**2,
+            approx_nutation_frequency=abs(J3) / self.I1,
+            approx_precession_rate=self.mgl / J3,
+            exact_nutation_amplitude=float(quad.u2 - quad.u1),
+            exact_nutation_frequency=float(np.pi * quad.lam / quad.quarter),
+            exact_precession_rate=quad.mean_precession_rate(),
+        )
+
+    # ---- motion -------------------------------------------------------------------
+    def _trajectory(self, t, euler, rates, meta):
+        q = euler_to_quat("ZXZ", euler)
+        omega = _body_rates_to_omega(euler, rates)
+        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, euler=euler, euler_rates=rates)
+
+    def solve(self, t, euler0, rates0):
+        """Exact motion by quadrature (MATH.md §2): u(t) by sn², φ and ψ by Π.
+
+        Parameters
+        ----------
+        t : (n,) array_like
+            Times in seconds, t = 0 being the initial state.
+        euler0, rates0 : (3,) array_like
+            ZXZ angles (φ, θ, ψ) with 0 < θ < π, and their rates.
+
+        Returns
+        -------
+        Trajectory
+            With ``q``, body ``omega`` and the extra arrays ``euler`` (n, 3)
+            and ``euler_rates`` (n, 3).
+
+        Examples
+        --------
+        >>> tr = LagrangeTop(1.0, 0.5, 1.0).solve([0.0, 1.0], [0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
+        >>> round(float(tr.euler[1, 1]), 6)
+        0.530101
+        """
+        t = as_float_array(t, "t")
+        if t.ndim != 1:
+            raise ValueError(f"t must be one-dimensional, got shape {t.shape}")
+        quad, euler0, rates0 = self._quadrature(euler0, rates0)
+        euler, rates = quad.angles_and_rates(t, self)
+        euler[:, 0] += euler0[0]
+        euler[:, 2] += euler0[2]
+        meta = {"method": "exact", "body": repr(self), "roots": (quad.u1, quad.u2, quad.u3)}
+        return self._trajectory(t, euler, rates, meta)
+
+    def simulate(self, t, euler0, rates0, method=None, **options):
+        """Numerical motion: :func:`kreisel.simulate` with :class:`kreisel.dynamics.GravityTorque`.
+
+        The body is (I1, I1, I3) about the pivot, weight ``mgl`` at lever (0, 0, 1)
+        (only the product m g l enters). ``options`` go to :func:`kreisel.simulate`
+        (``dt``, ``rtol``, ``atol``). The returned trajectory also carries the
+        ZXZ angles ``euler`` recovered from ``q`` (φ and ψ unwrapped).
+
+        Examples
+        --------
+        >>> tr = LagrangeTop(1.0, 0.5, 1.0).simulate([0.0, 1.0], [0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
+        >>> round(float(tr.euler[1, 1]), 6)
+        0.530101
+        """
+        from ..dynamics import GravityTorque, simulate
+
+        euler0, rates0 = self._check_state(euler0, rates0)
+        omega0 = _body_rates_to_omega(euler0, rates0)
+        q0 = euler_to_quat("ZXZ", euler0)
+        torque = GravityTorque(self.mgl, [0.0, 0.0, 1.0])
+        tr = simulate([self.I1, self.I1, self.I3], t, omega0, q0, torque=torque, method=method, **options)
+        euler = quat_to_euler("ZXZ", tr.q)
+        euler[:, 0] = np.unwrap(euler[:, 0])
+        euler[:, 2] = np.unwrap(euler[:, 2])
+        euler[:, 0] += euler0[0] - euler[0, 0]
+        euler[:, 2] += euler0[2] - euler[0, 2]
+        return Trajectory(tr.t, tr.q, tr.omega, tr.inertia, meta=tr.meta, euler=euler)
