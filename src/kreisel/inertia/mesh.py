@@ -58,7 +58,8 @@ def check_closed_oriented(faces, n_vertices):
             "with the same direction (neighbouring faces must traverse a shared edge in opposite "
             "directions)"
         )
-    missing = ~np.isin(reverse, code)
+    position = np.minimum(np.searchsorted(order, reverse), order.size - 1)
+    missing = order[position] != reverse
     if np.any(missing):
         i, j = (int(v) for v in edges[np.flatnonzero(missing)[0]])
         raise ValueError(
@@ -80,9 +81,8 @@ def _tetrahedron_moments(vertices, faces, origin):
     s = a + b + c
     volume = six_volume.sum() / 6.0
     first = six_volume @ s / 24.0
-    second = np.einsum("n,nij->ij", six_volume / 120.0,
-                       np.einsum("ni,nj->nij", a, a) + np.einsum("ni,nj->nij", b, b)
-                       + np.einsum("ni,nj->nij", c, c) + np.einsum("ni,nj->nij", s, s))
+    weight = (six_volume / 120.0)[:, None]
+    second = sum((weight * x).T @ x for x in (a, b, c, s))
     return volume, first, second
 
 
