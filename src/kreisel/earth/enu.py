@@ -66,7 +66,7 @@ def enu_to_ecef_matrix(latitude_deg, longitude_deg=0.0):
     --------
     >>> import numpy as np
     >>> M = enu_to_ecef_matrix(0.0, 0.0)
-    >>> np.round(M, 12).tolist()
+    >>> (np.round(M, 12) + 0.0).tolist()
     [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
     """
     c, s = latitude_cos_sin(latitude_deg)

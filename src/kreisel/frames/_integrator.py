@@ -197,17 +197,31 @@ def land(rhs, params, t0, y0, rtol, atol, max_step, A, B, C, E3, E5):
     while True:
         h_taken, h_next = advance(rhs, params, t, y, f, h, np.inf, rtol, atol, max_step, A, B, C, E3, E5, K, y_new, f_new)
         if y_new[2] <= 0.0 and y_new[5] < 0.0:
-            break
+            if y[2] > 0.0:
+                break
+            # a launch from the ground that is back below it after one step: shorten
+            h = 0.5 * h_taken
+            continue
         t += h_taken
         h = h_next
         y[:] = y_new
         f[:] = f_new
+    # safeguarded Newton (bisection fallback) on the length of the last step
+    lo, hi = 0.0, h_taken
     tau = h_taken * y[2] / (y[2] - y_new[2])
-    for _ in range(50):
+    for _ in range(100):
         rk_step(rhs, params, t, y, f, tau, A, B, C, K, y_new, f_new)
-        d = -y_new[2] / y_new[5]
-        tau += d
-        if abs(d) <= 1e-15 * tau:
+        if y_new[2] > 0.0:
+            lo = tau
+        else:
+            hi = tau
+        step = -y_new[2] / y_new[5] if y_new[5] != 0.0 else np.inf
+        new_tau = tau + step
+        if not (lo < new_tau < hi):
+            new_tau = 0.5 * (lo + hi)
+        converged = abs(new_tau - tau) <= 1e-15 * tau
+        tau = new_tau
+        if converged:
             break
     rk_step(rhs, params, t, y, f, tau, A, B, C, K, y_new, f_new)
     return t + tau, y_new

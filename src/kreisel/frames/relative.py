@@ -181,7 +181,7 @@ def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), 
     Examples
     --------
     >>> f = inertial_forces([1, 0, 0], [0, 1, 0], [0, 0, 1])
-    >>> f.centrifugal.tolist(), f.coriolis.tolist()
+    >>> (f.centrifugal + 0.0).tolist(), (f.coriolis + 0.0).tolist()
     ([1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
     """
     r, v, omega, omega_dot, a0 = _vectors(r=r, v=v, omega=omega, omega_dot=omega_dot, a0=a0)

@@ -1,0 +1,183 @@
+"""Earth examples of seed 八.2–八.3 against the seed's numbers, closed forms and references."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.linalg import expm
+
+import kreisel as kr
+
+E = kr.earth
+SEED_OMEGA = 7.27221e-5
+HEFEI = 31.8584
+HEFEI_G = 9.7947
+
+
+def test_contract_constant():
+    assert E.OMEGA_EARTH == 7.2921159e-5
+
+
+def test_seed_hefei_drop_analytic_and_simulated():
+    analytic = E.eastward_deflection(100.0, HEFEI, g=HEFEI_G, omega=SEED_OMEGA)
+    east, north = E.simulate_drop(100.0, HEFEI, g=HEFEI_G, omega=SEED_OMEGA)
+    assert round(float(analytic), 4) == 0.0186
+    assert round(float(east), 4) == 0.0186
+    # east has no O(ω²) correction: only the O(ω³) remainder separates them
+    assert east == pytest.approx(analytic, rel=1e-6)
+    assert -1e-5 < north < 0  # second-order southward drift in the north
+
+
+def test_seed_hefei_foucault_period():
+    T = float(E.foucault_period(HEFEI, omega=SEED_OMEGA))
+    hours, minutes = divmod(T / 60.0, 60.0)
+    assert (int(hours), int(minutes)) == (45, 28)
+
+
+def test_deflection_scales_as_h_to_three_halves():
+    h = np.array([1.0, 4.0, 100.0, 2500.0])
+    d = E.eastward_deflection(h, 40.0)
+    np.testing.assert_allclose(d / d[0], h**1.5, rtol=1e-13)
+    east, _ = E.simulate_drop(h[1:3], 40.0)
+    np.testing.assert_allclose(east[1] / east[0], (h[2] / h[1]) ** 1.5, rtol=1e-5)
+
+
+def test_poles_and_equator():
+    assert E.eastward_deflection(50.0, 90.0) == 0.0
+    assert E.eastward_deflection(50.0, -90.0) == 0.0
+    east, north = E.simulate_drop(50.0, np.array([90.0, -90.0, 0.0]))
+    assert np.all(np.abs(east[:2]) < 1e-15) and np.all(np.abs(north) < 1e-15)
+    assert east[2] == pytest.approx(E.eastward_deflection(50.0, 0.0), rel=1e-6)
+    sidereal_day = 2 * np.pi / E.OMEGA_EARTH
+    np.testing.assert_allclose(E.foucault_period([90.0, -90.0]), sidereal_day, rtol=1e-15)
+    assert np.isinf(E.foucault_period(0.0))
+    assert E.foucault_precession_rate(0.0) == 0.0
+
+
+def test_hemispheres():
+    e_n, n_n = E.simulate_drop(200.0, 35.0)
+    e_s, n_s = E.simulate_drop(200.0, -35.0)
+    assert e_n == pytest.approx(e_s, rel=1e-12) and e_n > 0
+    assert n_n == pytest.approx(-n_s, rel=1e-9) and n_n < 0
+    assert E.foucault_precession_rate(35.0) < 0 < E.foucault_precession_rate(-35.0)
+
+
+@pytest.mark.parametrize("lat", [-60.0, 0.0, 31.8584, 75.0])
+def test_drop_matches_exact_linear_solution(lat):
+    # r̈ = -g z - ω×(ω×r) - 2ω×ṙ is linear: solve by the matrix exponential
+    g, h, w = 9.80665, 300.0, E.angular_velocity_enu(lat)
+    W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    M = np.zeros((7, 7))
+    M[:3, 3:6] = np.eye(3)
+    M[3:6, :3] = -W @ W
+    M[3:6, 3:6] = -2 * W
+    M[5, 6] = -g
+    state = lambda t: expm(M * t) @ np.array([0, 0, h, 0, 0, 0, 1.0])
+    t = np.sqrt(2 * h / g)
+    for _ in range(30):
+        s = state(t)
+        t -= s[2] / s[5]
+    east, north = E.simulate_drop(h, lat, g=g)
+    ref = state(t)
+    assert east == pytest.approx(ref[0], rel=1e-8, abs=1e-14)
+    assert north == pytest.approx(ref[1], rel=1e-6, abs=1e-14)
+
+
+def test_angular_velocity_matches_enu_basis():
+    lat = np.array([-70.0, -10.0, 0.0, 31.8584, 89.0])
+    lon = np.array([10.0, -100.0, 0.0, 117.0, 45.0])
+    M = E.enu_to_ecef_matrix(lat, lon)
+    np.testing.assert_allclose(M @ np.swapaxes(M, -1, -2), np.broadcast_to(np.eye(3), M.shape), atol=1e-15)
+    np.testing.assert_allclose(np.linalg.det(M), 1.0, rtol=1e-14)
+    w_ecef = np.array([0.0, 0.0, E.OMEGA_EARTH])
+    np.testing.assert_allclose(
+        np.einsum("...ji,j->...i", M, w_ecef), E.angular_velocity_enu(lat), rtol=1e-14, atol=1e-22
+    )
+
+
+@pytest.mark.parametrize("speed,elev,az,lat", [(800.0, 45.0, 90.0, 45.0), (300.0, 30.0, 200.0, -30.0), (600.0, 70.0, 0.0, 10.0)])
+def test_shell_deviation_against_first_order_estimate(speed, elev, az, lat):
+    east, north = E.shell_deviation(speed, elev, az, lat)
+    e1, n1 = E.shell_deviation_estimate(speed, elev, az, lat)
+    flight = 2 * speed * np.sin(np.deg2rad(elev)) / 9.80665
+    size = np.hypot(e1, n1)
+    # neglected terms are O(ωT) relative to the first-order deviation
+    assert np.hypot(east - e1, north - n1) < 3 * E.OMEGA_EARTH * flight * size
+
+
+def test_shell_deviation_against_scipy():
+    speed, elev, az, lat, g = 400.0, 50.0, 120.0, 52.0, 9.81
+    w = E.angular_velocity_enu(lat)
+
+    def rhs(t, y):
+        r, v = y[:3], y[3:]
+        return np.concatenate([v, [0, 0, -g] - np.cross(w, np.cross(w, r)) - 2 * np.cross(w, v)])
+
+    ground = lambda t, y: y[2]
+    ground.terminal, ground.direction = True, -1
+    e, a = np.deg2rad(elev), np.deg2rad(az)
+    v0 = speed * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    sol = solve_ivp(rhs, (0, 200), np.concatenate([np.zeros(3), v0]), method="DOP853",
+                    rtol=1e-12, atol=1e-12, events=ground)
+    land = sol.y_events[0][0]
+    reach = speed**2 * np.sin(2 * e) / g
+    east, north = E.shell_deviation(speed, elev, az, lat, g=g)
+    assert east == pytest.approx(land[0] - reach * np.cos(a), abs=1e-6)
+    assert north == pytest.approx(land[1] - reach * np.sin(a), abs=1e-6)
+
+
+@pytest.mark.parametrize("lat", [0.0, 40.0, -65.0])
+def test_vertical_shot_lands_west(lat):
+    # classic result: a body shot straight up lands (4/3) ω cos λ v³/g² to the west
+    v, g = 100.0, 9.80665
+    west = 4.0 / 3.0 * E.OMEGA_EARTH * np.cos(np.deg2rad(lat)) * v**3 / g**2
+    east, north = E.shell_deviation_estimate(v, 90.0, 0.0, lat)
+    assert east == pytest.approx(-west, rel=1e-12) and abs(north) < 1e-12
+    east, north = E.shell_deviation(v, 90.0, 0.0, lat)
+    assert east == pytest.approx(-west, rel=1e-4)
+
+
+# Foucault pendulum: a 1 m pendulum (period 2 s) on a fast planet, ω = 0.02 rad/s,
+# so that a few hundred swings show the precession; the seed-scale run uses
+# the real rate with a 10 m pendulum over 2 hours.
+FAST = 0.02
+
+
+@pytest.mark.parametrize("lat", [45.0, -45.0, 80.0, -20.0])
+def test_foucault_rate_measured_in_both_hemispheres(lat):
+    res = E.foucault_pendulum(1.0, lat, 300.0, 0.05, omega=FAST, azimuth_deg=30.0)
+    expected = E.foucault_precession_rate(lat, omega=FAST)
+    assert res.precession_rate == pytest.approx(expected, rel=0.02)
+    # direction: clockwise in the north, counter-clockwise in the south
+    assert np.sign(res.swing_azimuth[-1] - res.swing_azimuth[0]) == np.sign(expected)
+    assert res.t[0] == 0 and res.swing_azimuth[0] == pytest.approx(np.deg2rad(30.0))
+    assert np.all(np.abs(np.diff(res.swing_azimuth)) < 0.1)  # unwrapped, continuous
+    assert res.jacobi[1] == pytest.approx(res.jacobi[0], rel=1e-8)
+
+
+def test_foucault_equator_does_not_precess():
+    res = E.foucault_pendulum(1.0, 0.0, 200.0, 0.05, omega=FAST)
+    # only Airy/anisotropy effects of O(amplitude² ω, ω²/ω0) remain
+    assert abs(res.precession_rate) < 1e-3 * FAST
+
+
+def test_foucault_hefei_real_rate():
+    res = E.foucault_pendulum(10.0, HEFEI, 7200.0, 0.05, g=HEFEI_G, omega=SEED_OMEGA)
+    expected = E.foucault_precession_rate(HEFEI, omega=SEED_OMEGA)
+    assert res.precession_rate == pytest.approx(expected, rel=0.02)
+    turn_time = 2 * np.pi / abs(res.precession_rate)
+    assert turn_time == pytest.approx(float(E.foucault_period(HEFEI, omega=SEED_OMEGA)), rel=0.02)
+
+
+def test_foucault_period_broadcasts_and_validates():
+    lat = np.array([[10.0, -10.0], [45.0, 90.0]])
+    assert E.foucault_period(lat).shape == (2, 2)
+    with pytest.raises(ValueError, match="latitude_deg"):
+        E.foucault_period(91.0)
+    with pytest.raises(ValueError, match="omega"):
+        E.eastward_deflection(10.0, 10.0, omega=-1.0)
+    with pytest.raises(ValueError, match="height"):
+        E.simulate_drop(0.0, 10.0)
+    with pytest.raises(ValueError, match="amplitude"):
+        E.foucault_pendulum(1.0, 10.0, 10.0, 2.0)
+    with pytest.raises(ValueError, match="elevation_deg"):
+        E.shell_deviation(100.0, 0.0, 0.0, 10.0)
