@@ -109,7 +109,7 @@ def unit(k):
 
 @_jit
 def euler_columns(angles, code):
-    """Columns of the Euler-rate matrix M (ω = M · rates) and the Gram entry g = c0·c2.
+    """Columns of the Euler-rate matrix M (ω = M · rates) and det M.
 
     ``code = (a, b, c, extrinsic, body)`` with (a, b, c) the axes of the
     intrinsic sequence equivalent to the user's one (an extrinsic "abc"
@@ -117,8 +117,8 @@ def euler_columns(angles, code):
     are returned in that intrinsic order. Seed 三.6 for ZXZ, generally:
     space  ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇,
     body   ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇.
-    c1 is a unit vector orthogonal to c0 and c2, so MᵀM has the form
-    [[1, 0, g], [0, 1, 0], [g, 0, 1]] with det M = ±sqrt(1 - g²).
+    det M = c0·(c1×c2) is −sin β for proper Euler sequences and
+    ε_abc cos β for Tait–Bryan ones, in either frame (det R = 1).
     """
     a, b, c = code[0], code[1], code[2]
     if code[3]:
@@ -146,11 +146,7 @@ def euler_columns(angles, code):
         ex, ey, ez = axis_rotate(b, cb, sb, ex, ey, ez)
         c2 = axis_rotate(a, ca, sa, ex, ey, ez)
     if a == c:
-        # proper Euler: g = e_a · R_b(β) e_a = cos β, det² = sin² β
-        g = cb
-        det = sb
+        det = -sb
     else:
-        # Tait–Bryan: g = e_a · R_b(β) e_c = ε_abc sin β, det² = cos² β
-        g = sb if (b - a) % 3 == 1 else -sb
-        det = cb
-    return c0, c1, c2, g, det
+        det = cb if (b - a) % 3 == 1 else -cb
+    return c0, c1, c2, det

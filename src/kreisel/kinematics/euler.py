@@ -7,14 +7,15 @@ For the intrinsic sequence ``"ABC"`` with angles (α, β, γ),
     ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇                 (body)
 
 (for ZXZ these are the seed's matrices); an extrinsic ``"abc"`` with
-(α, β, γ) is the intrinsic ``"CBA"`` with (γ, β, α). The matrix M with
-ω = M · rates has orthonormal middle column orthogonal to the outer ones,
-so it is inverted in closed form:
+(α, β, γ) is the intrinsic ``"CBA"`` with (γ, β, α). The columns c₀, c₁, c₂
+of M (ω = M · rates) are unit vectors with c₁ orthogonal to the other two,
+so ``c₁ × c₂ ∥ c₀ − (c₀·c₂) c₂`` and the inverse has the cancellation-free
+closed form
 
-    β̇ = c₁·ω,   α̇ = (c₀ − g c₂)·ω / det²,   γ̇ = (c₂ − g c₀)·ω / det²,
+    α̇ = (c₁ × c₂)·ω / det,   β̇ = c₁·ω,   γ̇ = (c₀ × c₁)·ω / det,
 
-``g = c₀·c₂`` = cos β (proper Euler) or ±sin β (Tait–Bryan), ``det² = 1 − g²``.
-At gimbal lock (sin β = 0, resp. cos β = 0) only the middle rate β̇ is
+with ``det M`` = −sin β (proper Euler) or ±cos β (Tait–Bryan) taken from the
+angle itself. At gimbal lock (det = 0) only the middle rate β̇ is
 determined: α̇ and γ̇ are returned as NaN with a :class:`GimbalLockWarning`.
 Near it the rates carry a relative error of about 1e-16/|det|.
 """
@@ -52,7 +53,7 @@ def _code(seq, frame):
 
 @kernel(["void(f8[:], f8[:], i8[:], f8[:])"], "(n),(n),(m)->(n)")
 def _omega_from_rates(angles, rates, code, out):
-    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles, code)
     if code[3]:
         r0, r1, r2 = rates[2], rates[1], rates[0]
     else:
@@ -64,17 +65,15 @@ def _omega_from_rates(angles, rates, code, out):
 
 @kernel(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(n),(n),(m),()->(n)")
 def _rates_from_omega(angles, w, code, tol, out):
-    c0, c1, c2, g, det = k.euler_columns(angles, code)
-    u0 = c0[0] * w[0] + c0[1] * w[1] + c0[2] * w[2]
-    u1 = c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2]
-    u2 = c2[0] * w[0] + c2[1] * w[1] + c2[2] * w[2]
-    out[1] = u1
+    c0, c1, c2, det = k.euler_columns(angles, code)
+    out[1] = c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2]
     if abs(det) <= tol:
         out[0] = out[2] = math.nan
         return
-    d2 = det * det
-    r0 = (u0 - g * u2) / d2
-    r2 = (u2 - g * u0) / d2
+    a0, a1, a2 = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    b0, b1, b2 = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
+    r0 = (a0 * w[0] + a1 * w[1] + a2 * w[2]) / det
+    r2 = (b0 * w[0] + b1 * w[1] + b2 * w[2]) / det
     if code[3]:
         out[0], out[2] = r2, r0
     else:
@@ -83,7 +82,7 @@ def _rates_from_omega(angles, w, code, tol, out):
 
 @kernel(["void(f8[:], i8[:], f8[:, :])"], "(n),(m)->(n,n)")
 def _matrix(angles, code, out):
-    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles, code)
     if code[3]:
         c0, c2 = c2, c0
     for i in range(3):
@@ -94,14 +93,15 @@ def _matrix(angles, code, out):
 
 @kernel(["void(f8[:], i8[:], f8, f8[:, :])"], "(n),(m),()->(n,n)")
 def _matrix_inverse(angles, code, tol, out):
-    c0, c1, c2, g, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles, code)
     first, last = (2, 0) if code[3] else (0, 2)
-    singular = abs(det) <= tol
-    d2 = det * det
+    inv = math.nan if abs(det) <= tol else 1.0 / det
+    a = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    b = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
     for i in range(3):
         out[1, i] = c1[i]
-        out[first, i] = math.nan if singular else (c0[i] - g * c2[i]) / d2
-        out[last, i] = math.nan if singular else (c2[i] - g * c0[i]) / d2
+        out[first, i] = a[i] * inv
+        out[last, i] = b[i] * inv
 
 
 def _angles(angles, degrees, name="angles"):
