@@ -20,7 +20,6 @@ the Allan floor divided by 0.664, so σ ≈ 1.075 B reproduces it.)
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import lfilter
 
 from .._validation import as_float_array
 
@@ -154,6 +153,8 @@ class GyroErrorModel:
         if self.angle_random_walk > 0:
             error += self.angle_random_walk / np.sqrt(dt) * rng.standard_normal(size)
         if self.bias_instability > 0:
+            from scipy.signal import lfilter  # heavy import, needed only here
+
             decay = np.exp(-dt / self.correlation_time)
             drive = self.bias_instability * np.sqrt(-np.expm1(-2.0 * dt / self.correlation_time)) \
                 * rng.standard_normal(size)

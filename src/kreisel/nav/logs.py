@@ -24,7 +24,6 @@ import difflib
 import os
 
 import numpy as np
-import pandas as pd
 
 from .._fileio import atomic_output
 from .._validation import as_float_array
@@ -101,6 +100,13 @@ class ImuLog:
         return np.concatenate([[start], self.t[samples_per_update - 1:: samples_per_update]]), q
 
 
+def _pandas():
+    # pandas costs most of a second to import; only log reading and writing need it
+    import pandas
+
+    return pandas
+
+
 def _show(value):
     """A log value as the user wrote it: numbers plainly, text quoted."""
     value = value.item() if isinstance(value, np.generic) else value
@@ -108,6 +114,7 @@ def _show(value):
 
 
 def _numeric_column(frame, column, line_offset):
+    pd = _pandas()
     raw = frame[column]
     values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
     bad = ~np.isfinite(values)
@@ -165,6 +172,7 @@ def read_imu_log(source, time="t", gyro=("gx", "gy", "gz"), kind="rate", units=N
     >>> np.round(q[-1], 12)                         # 18 degrees about z
     array([0.98768834, 0.        , 0.        , 0.15643447])
     """
+    pd = _pandas()
     if kind not in _UNITS:
         raise ValueError(f"kind must be 'rate' or 'increment', got {kind!r}")
     units = next(iter(_UNITS[kind])) if units is None else units
@@ -286,7 +294,7 @@ def write_attitude(path, t, q, frame="NED", input_frame="NED", degrees=True):
     q = q * np.where(q[:, :1] < 0, -1.0, 1.0)
     yaw_pitch_roll = quat_to_euler("ZYX", q, degrees=degrees)
     unit = "deg" if degrees else "rad"
-    table = pd.DataFrame({"t": t, "q0": q[:, 0], "q1": q[:, 1], "q2": q[:, 2], "q3": q[:, 3],
+    table = _pandas().DataFrame({"t": t, "q0": q[:, 0], "q1": q[:, 1], "q2": q[:, 2], "q3": q[:, 3],
                           f"roll_{unit}": yaw_pitch_roll[:, 2], f"pitch_{unit}": yaw_pitch_roll[:, 1],
                           f"yaw_{unit}": yaw_pitch_roll[:, 0]})
     with atomic_output(path) as tmp:
