@@ -222,30 +222,36 @@ def _quat_times_axis(q, k, c, s):
 
 
 @_jit
-def _axis_flow(k, h, inertia, y):
+def _axis_flow(k, h, inertia, m, q):
     """Exact flow of H_k = m_k²/(2 I_k): m turns about body axis k by −h ω_k, q by +h ω_k."""
     i = (k + 1) % 3
     j = (k + 2) % 3
-    half = 0.5 * h * y[k]
+    half = 0.5 * h * m[k] / inertia[k]
     s2 = math.sin(half)
     c2 = math.cos(half)
-    c = 1.0 - 2.0 * s2 * s2
-    s = 2.0 * s2 * c2
-    mi = inertia[i] * y[i]
-    mj = inertia[j] * y[j]
-    y[i] = (c * mi + s * mj) / inertia[i]
-    y[j] = (c * mj - s * mi) / inertia[j]
-    _quat_times_axis(y[3:7], k, c2, s2)
+    c = math.cos(2.0 * half)
+    s = math.sin(2.0 * half)
+    mi = m[i]
+    mj = m[j]
+    m[i] = c * mi + s * mj
+    m[j] = c * mj - s * mi
+    _quat_times_axis(q, k, c2, s2)
 
 
 @_jit
-def _strang_free(h, inertia, y):
-    # symmetric, hence second order; each flow keeps |m| and the space J exactly
-    _axis_flow(0, 0.5 * h, inertia, y)
-    _axis_flow(1, 0.5 * h, inertia, y)
-    _axis_flow(2, h, inertia, y)
-    _axis_flow(1, 0.5 * h, inertia, y)
-    _axis_flow(0, 0.5 * h, inertia, y)
+def _strang_free(h, inertia, y, m):
+    # symmetric, hence second order; each flow keeps |m| and the space J exactly.
+    # The flows act on m = I ω′ so that ω′ <-> m round trips happen once per step.
+    q = y[3:7]
+    for a in range(3):
+        m[a] = inertia[a] * y[a]
+    _axis_flow(0, 0.5 * h, inertia, m, q)
+    _axis_flow(1, 0.5 * h, inertia, m, q)
+    _axis_flow(2, h, inertia, m, q)
+    _axis_flow(1, 0.5 * h, inertia, m, q)
+    _axis_flow(0, 0.5 * h, inertia, m, q)
+    for a in range(3):
+        y[a] = m[a] / inertia[a]
 
 
 @_jit
@@ -311,7 +317,7 @@ def _kick_drift_kick(method, t, h, inertia, rows, y, scratch):
     if method == DMV:
         status = _dmv_free(h, inertia, y)
     else:
-        _strang_free(h, inertia, y)
+        _strang_free(h, inertia, y, scratch[10:13])
     if torqued:
         _kick(t + h, 0.5 * h, inertia, rows, y, scratch)
     return status

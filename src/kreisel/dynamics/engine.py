@@ -97,11 +97,18 @@ def _dop853_tables():
 # ---------------------------------------------------------------------------- input checks
 
 
-def check_principal_moments(moments, name="body"):
-    """Validate principal moments ``(..., 3)``: positive, finite, triangle inequalities."""
+def check_principal_moments(moments, name="body", allow_unphysical=False):
+    """Validate principal moments ``(..., 3)``: positive, finite, triangle inequalities.
+
+    ``allow_unphysical=True`` skips the triangle inequalities (only I_i > 0 is
+    needed by Euler's equations), for textbook test problems such as Hairer,
+    Lubich and Wanner's free body with I = (2, 1, 2/3).
+    """
     m = as_float_array(moments, name, tail=(3,))
     if np.any(m <= 0.0):
         raise ValueError(f"{name}: principal moments must be positive, got {m[np.any(m <= 0, axis=-1)][0]}")
+    if allow_unphysical:
+        return m
     total = m.sum(axis=-1, keepdims=True)
     # I_i <= I_j + I_k, equality (a thin plate) accepted to within rounding
     if np.any(2.0 * m > total * (1.0 + 1e-12)):
@@ -111,7 +118,7 @@ def check_principal_moments(moments, name="body"):
     return m
 
 
-def resolve_body(body):
+def resolve_body(body, allow_unphysical=False):
     """Return (tensor (3, 3), principal moments (3,), axes or None, mass) for one body.
 
     ``axes`` has the principal axes as columns in body coordinates; it is None
@@ -123,18 +130,18 @@ def resolve_body(body):
         body = body.inertia
     a = as_float_array(body, "body")
     if a.shape == (3,):
-        moments = check_principal_moments(a)
+        moments = check_principal_moments(a, allow_unphysical=allow_unphysical)
         return np.diag(moments), moments, None, mass
     if a.shape != (3, 3):
         raise ValueError(f"body must be a RigidBody, 3 principal moments or a (3, 3) tensor, got shape {a.shape}")
     if not np.allclose(a, a.T, rtol=1e-12, atol=1e-12 * np.abs(a).max()):
         raise ValueError("body: the inertia tensor must be symmetric")
     if not np.any(a - np.diag(np.diag(a))):
-        return a, check_principal_moments(np.diag(a)), None, mass
+        return a, check_principal_moments(np.diag(a), allow_unphysical=allow_unphysical), None, mass
     moments, axes = np.linalg.eigh(a)
     if np.linalg.det(axes) < 0.0:
         axes[:, 2] = -axes[:, 2]
-    return a, check_principal_moments(moments), axes, mass
+    return a, check_principal_moments(moments, allow_unphysical=allow_unphysical), axes, mass
 
 
 def _check_times(t):
@@ -280,9 +287,10 @@ def _normalized(q):
     return q / np.linalg.norm(q, axis=-1, keepdims=True)
 
 
-def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, translation=None, force=None):
+def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, translation=None,
+            force=None):
     """Shared validation and integration of :func:`simulate` and :func:`simulate_6dof`."""
-    tensor, moments, axes, mass = resolve_body(body)
+    tensor, moments, axes, mass = resolve_body(body, allow_unphysical)
     t = _check_times(t)
     method, dt = _check_method(method, dt, t)
     rtol = _check_rtol(rtol)
@@ -314,7 +322,8 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, translation=Non
     return tensor, mass, t, omega, q, y, meta
 
 
-def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None):
+def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
+             allow_unphysical=False):
     """Integrate Euler's dynamic equations with quaternion attitude (seed 四.4–5).
 
     Parameters
@@ -344,6 +353,9 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     rtol, atol : float
         Tolerances of the adaptive methods. ``atol=None`` uses ``rtol·|ω0|``
         for ω′ and ``rtol`` for q, so accuracy does not depend on units.
+    allow_unphysical : bool
+        Accept positive moments that violate the triangle inequality
+        I_i <= I_j + I_k (textbook test problems); refused by default.
 
     Returns
     -------
@@ -368,7 +380,8 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     >>> tr.q.shape, tr.omega.shape
     ((5, 4), (5, 3))
     """
-    tensor, _, t, omega, q, _, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol)
+    tensor, _, t, omega, q, _, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
+                                            allow_unphysical)
     return Trajectory(t, q, omega, tensor, meta=meta)
 
 
@@ -399,7 +412,8 @@ def _force_rows(force, axes, t0, q_body, w_body, translation, keys):
 
 
 def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),
-                  force=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None):
+                  force=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
+                  allow_unphysical=False):
     """A free rigid body in six degrees of freedom: centre of mass and attitude (seed 四.4, 四.7).
 
     The centre of mass obeys m r̈ = F (space frame, seed 四.7 with r_C the
@@ -412,7 +426,7 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     ----------
     body : RigidBody or (3,) / (3, 3) array_like
         Inertia about the centre of mass; a plain array means mass 1 kg.
-    t, omega0, q0, torque, method, dt, rtol, atol
+    t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical
         As in :func:`simulate`.
     position0, velocity0 : (3,) array_like
         Centre-of-mass position (m) and velocity (m/s) in space.
@@ -440,14 +454,14 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     if r0.ndim != 1 or v0.ndim != 1:
         raise ValueError("position0 and velocity0 must have shape (3,)")
     tensor, mass, t, omega, q, y, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
-                                                 translation=(r0, v0), force=force)
+                                                 allow_unphysical, translation=(r0, v0), force=force)
     meta["mass"] = mass
     meta["force"] = repr(force) if force is not None else "none"
     return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10].copy(), velocity=y[:, 10:13].copy())
 
 
 def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None, reduce=None,
-                   rtol=DEFAULT_RTOL, atol=None, chunk_size=None):
+                   rtol=DEFAULT_RTOL, atol=None, chunk_size=None, allow_unphysical=False):
     """Many rigid bodies in one compiled, parallel call (numba ``prange``).
 
     Parameters
@@ -463,7 +477,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     torque : TorqueModel, optional
         One built-in model shared by every body (Python callables are not
         accepted here: they would serialise the parallel loop).
-    method, dt, rtol, atol
+    method, dt, rtol, atol, allow_unphysical
         As in :func:`simulate`; results agree with :func:`simulate` body by body
         to round-off (the same compiled code runs for each body).
     reduce : callable, optional
@@ -493,7 +507,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     >>> flip.shape
     (2,)
     """
-    moments = check_principal_moments(bodies, "bodies")
+    moments = check_principal_moments(bodies, "bodies", allow_unphysical)
     t = _check_times(t)
     method, dt = _check_method(method, dt, t)
     if method == "scipy":
