@@ -56,6 +56,16 @@ def test_increment_log_matches_coning_truth(tmp_path, quat):
     with pytest.raises(ValueError, match=r"100 increment rows are not divisible by samples_per_update=3; "
                                          r"trim 1 row"):
         log.attitude(samples_per_update=3)
+    with pytest.raises(ValueError, match="method applies to rate logs"):
+        log.attitude(method="quaternion")
+
+
+def test_rate_log_refuses_increment_options(tmp_path):
+    log = read_good(write_csv(tmp_path / "imu.csv", GOOD))
+    with pytest.raises(ValueError, match="samples_per_update applies to increment logs"):
+        log.attitude(samples_per_update=2)
+    t, q = log.attitude(method="quaternion")
+    assert q.shape == (4, 4)
 
 
 DEFECTS = [

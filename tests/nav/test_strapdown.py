@@ -2,6 +2,9 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
@@ -30,6 +33,25 @@ def test_fixed_axis_rotation_is_exact(n):
     expected = (Rotation.from_quat(q0, scalar_first=True) * Rotation.from_rotvec(total[:, None] * axis))
     np.testing.assert_allclose(Rotation.from_quat(q[1:], scalar_first=True).inv().__mul__(expected).magnitude(),
                                0.0, atol=1e-13)
+
+
+@settings(max_examples=50, deadline=None)
+@given(arrays(np.float64, (12, 3), elements=st.floats(-0.5, 0.5)), st.sampled_from([1, 2, 3, 4]))
+def test_updates_compose_like_scipy(d, n):
+    # property: the state after each update is q0 ⊗ exp(φ_1/2) ⊗ exp(φ_2/2) ⊗ … (scipy composes)
+    k = nav.coning_coefficients(n)
+    blocks = d.reshape(-1, n, 3)
+    phi = blocks.sum(axis=1)
+    if n > 1:
+        phi += np.cross(np.tensordot(k, blocks[:, :-1], axes=(0, 1)), blocks[:, -1])
+    r = Rotation.identity()
+    expected = [r]
+    for p in phi:
+        r = r * Rotation.from_rotvec(p)
+        expected.append(r)
+    q = nav.attitude_from_increments([1.0, 0, 0, 0], d, n)
+    gap = (Rotation.concatenate(expected).inv() * Rotation.from_quat(q, scalar_first=True)).magnitude()
+    assert gap.max() < 1e-14
 
 
 @pytest.mark.parametrize("n", [2, 3, 4])

@@ -168,7 +168,8 @@ def coning_drift(half_angle, rate, sample_time, samples_per_update):
 
     ε_N = α² Ω λ^(2N) N! / (2^(N+1) (2N+1)!!), λ = Ω T_s: N = 1 gives
     α²Ωλ²/12, N = 2 α²Ωλ⁴/60, N = 3 α²Ωλ⁶/280, N = 4 α²Ωλ⁸/1260. The
-    computed attitude drifts at this rate about −x of the body. It is the
+    computed attitude drifts at this rate about −x of the body (precisely
+    about the cone axis, which the body sees at angle α from its x axis). It is the
     leading term in α²: the next terms grow like α⁴ and take over for
     higher N at larger cones (at α = 1° the N = 4 drift is dominated by
     them; compare N = 4 at α ≤ 0.1°).

@@ -72,12 +72,13 @@ class ImuLog:
         return (f"ImuLog({self.source!r}, n={self.t.size}, kind={self.kind!r}, frame={self.frame!r}, "
                 f"t=[{self.t[0]!r}, {self.t[-1]!r}])")
 
-    def attitude(self, q0=(1.0, 0.0, 0.0, 0.0), samples_per_update=1, method="bortz"):
+    def attitude(self, q0=(1.0, 0.0, 0.0, 0.0), samples_per_update=None, method=None):
         """Integrate the log into attitude (body → ``self.frame``).
 
-        Rate logs use :func:`attitude_from_rates` (``method``) and return the
-        attitude at every time stamp. Increment logs use
-        :func:`attitude_from_increments` with ``samples_per_update`` = N; q0
+        Rate logs use :func:`attitude_from_rates` (``method``, default
+        ``"bortz"``) and return the attitude at every time stamp. Increment logs use
+        :func:`attitude_from_increments` with ``samples_per_update`` = N
+        (default 1); q0
         is the attitude at the start of the first increment, taken as
         t_0 − (t_1 − t_0), and the result holds that instant followed by the
         time stamp closing each update.
@@ -90,7 +91,14 @@ class ImuLog:
             Attitude quaternions, body → navigation frame.
         """
         if self.kind == "rate":
-            return self.t, attitude_from_rates(q0, self.t, self.gyro, method=method)
+            if samples_per_update is not None:
+                raise ValueError("samples_per_update applies to increment logs; this log holds rates "
+                                 "(coning algorithms need increment-output gyros)")
+            return self.t, attitude_from_rates(q0, self.t, self.gyro, method=method or "bortz")
+        if method is not None:
+            raise ValueError("method applies to rate logs; increment logs use the coning algorithm "
+                             "(choose samples_per_update)")
+        samples_per_update = 1 if samples_per_update is None else samples_per_update
         n = self.t.size
         if isinstance(samples_per_update, (int, np.integer)) and samples_per_update > 0 and n % samples_per_update:
             raise ValueError(f"{self.source}: {n} increment rows are not divisible by samples_per_update="
