@@ -234,8 +234,8 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
 
     Examples
     --------
-    >>> euler_rates("ZXZ", [0.3, 0.4, 0.5], [0.0, 0.0, 2.0], frame="body")
-    array([0., 0., 2.])
+    >>> euler_rates("ZXZ", [0.3, 0.4, 0.5], [1.0, 0.0, 2.0], frame="body")
+    array([1.2311324 , 0.87758256, 0.86605197])
     >>> import warnings
     >>> with warnings.catch_warnings():
     ...     warnings.simplefilter("ignore")

@@ -79,14 +79,14 @@ def screw_axis(omega, velocity, point=0.0, rtol=1e-12, omega_atol=0.0):
         axis_point = point + np.cross(omega, velocity) * inv_w2[..., None]
         along_v = velocity / vn[..., None]
         direction = np.where(translation[..., None], along_v, omega / wn[..., None])
-    axial = np.where(translation[..., None], velocity, pitch[..., None] * omega)
+        axial = np.where(translation[..., None], velocity, pitch[..., None] * omega)
     rotation = rotating & (np.abs(wv) <= rtol * wn * vn)
     pitch = np.where(rotation, 0.0, pitch)
     axial = np.where(rotation[..., None], 0.0, axial)
     kind = np.where(translation, "translation", np.where(rotation, "rotation", "screw"))
     if kind.ndim == 0:
         kind = str(kind)
-    return ScrewAxis(kind, axis_point + 0.0 * point, direction, pitch, axial)
+    return ScrewAxis(kind, axis_point, direction, pitch, axial)
 
 
 def _planar(x, name, shape_tail):

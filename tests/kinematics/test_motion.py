@@ -1,0 +1,108 @@
+"""Point velocity and acceleration, relative derivative, five-term acceleration (seed 三.7, 三.9, 四.6–7)."""
+
+import numpy as np
+import pytest
+
+from kreisel.kinematics import (
+    five_term_acceleration,
+    point_acceleration,
+    point_velocity,
+    relative_derivative,
+    three_term_velocity,
+)
+
+
+def _reference_point(t):
+    return np.array([np.cos(t), 0.5 * t * t, np.sin(2 * t)])
+
+
+def _body_point(t):
+    """r′_CP(t): a point moving on the body (constant for a body-fixed point)."""
+    return np.array([0.3 + 0.2 * t, -0.4 * t * t, 0.1 + np.sin(t)])
+
+
+def test_body_fixed_point(path, ref):
+    r_body = np.array([0.3, -0.7, 0.5])
+
+    def position(t):
+        return _reference_point(t) + path.R(t) @ r_body
+
+    for t in [0.2, 0.7]:
+        r = path.R(t) @ r_body
+        v_c = ref.derivative(_reference_point, t)
+        a_c = ref.second_derivative(_reference_point, t)
+        np.testing.assert_allclose(point_velocity(path.omega(t), r, v_c), ref.derivative(position, t), atol=1e-12)
+        np.testing.assert_allclose(
+            point_acceleration(path.omega(t), path.epsilon(t), r, a_c), ref.second_derivative(position, t), atol=1e-10
+        )
+        # the same formulas hold with all vectors in body components
+        Rt = path.R(t).T
+        np.testing.assert_allclose(
+            point_velocity(path.omega_body(t), r_body, Rt @ v_c), Rt @ ref.derivative(position, t), atol=1e-12
+        )
+
+
+def test_relative_derivative(path, ref):
+    """B′ = dA′/dt + ω′ × A′ for A = R A′ (seed 四.6)."""
+
+    def A_space(t):
+        return path.R(t) @ _body_point(t)
+
+    t = 0.6
+    got = relative_derivative(path.omega_body(t), _body_point(t), ref.derivative(_body_point, t))
+    np.testing.assert_allclose(got, path.R(t).T @ ref.derivative(A_space, t), atol=1e-12)
+
+
+def test_moving_point_velocity_and_five_terms(path, ref):
+    """A point moving on a moving body: the named terms against the definitions and differences of r_P(t)."""
+
+    def position(t):
+        return _reference_point(t) + path.R(t) @ _body_point(t)
+
+    t = 0.45
+    R = path.R(t)
+    r = R @ _body_point(t)
+    v_rel = R @ ref.derivative(_body_point, t)  # v_CP = R dr′/dt, not dr_CP/dt
+    a_rel = R @ ref.second_derivative(_body_point, t)
+    omega, eps = path.omega(t), path.epsilon(t)
+    v = three_term_velocity(omega, r, v_rel, ref.derivative(_reference_point, t))
+    np.testing.assert_allclose(v.total, ref.derivative(position, t), atol=1e-12)
+    np.testing.assert_allclose(v.rotational, np.cross(omega, r), atol=1e-15)
+    np.testing.assert_allclose(v.relative, v_rel, atol=0)
+
+    a_c = ref.second_derivative(_reference_point, t)
+    terms = five_term_acceleration(omega, eps, r, v_rel, a_rel, a_c)
+    assert terms._fields == ("translational", "tangential", "centripetal", "relative", "coriolis")
+    np.testing.assert_allclose(terms.total, ref.second_derivative(position, t), atol=1e-10)
+    np.testing.assert_allclose(terms.coriolis, 2 * np.cross(omega, v_rel), atol=1e-15)
+    np.testing.assert_allclose(terms.centripetal, np.cross(omega, np.cross(omega, r)), atol=1e-15)
+    np.testing.assert_allclose(terms.tangential, np.cross(eps, r), atol=1e-15)
+    # body components: seed 四.7 derives the same five terms with primes
+    Rt = R.T
+    body = five_term_acceleration(
+        path.omega_body(t), path.epsilon_body(t), _body_point(t), Rt @ v_rel, Rt @ a_rel, Rt @ a_c
+    )
+    for got, want in zip(body, terms):
+        np.testing.assert_allclose(got, Rt @ want, atol=1e-13)
+
+
+def test_coriolis_bead_on_a_turntable():
+    """A bead sliding radially at speed u on a disc turning at Ω: Coriolis 2Ωu sideways, centripetal Ω² r inwards."""
+    omega, u, r = 3.0, 0.5, 0.2
+    terms = five_term_acceleration([0, 0, omega], [0, 0, 0], [r, 0, 0], [u, 0, 0], [0, 0, 0])
+    np.testing.assert_allclose(terms.coriolis, [0, 2 * omega * u, 0])
+    np.testing.assert_allclose(terms.centripetal, [-(omega**2) * r, 0, 0])
+    np.testing.assert_allclose(terms.total, [-(omega**2) * r, 2 * omega * u, 0])
+
+
+def test_batches_and_bad_input():
+    omega = np.random.default_rng(0).normal(size=(4, 1, 3))
+    r = np.random.default_rng(1).normal(size=(5, 3))
+    assert point_velocity(omega, r).shape == (4, 5, 3)
+    terms = five_term_acceleration(omega, 0 * omega, r, 0.0, 0.0)
+    assert all(x.shape == (4, 5, 3) for x in terms)
+    terms.coriolis[0, 0, 0] = 1.0  # results are writable arrays, not broadcast views
+    with pytest.raises(ValueError, match="omega and r"):
+        point_velocity(np.ones((2, 3)), np.ones((3, 3)))
+    with pytest.raises(ValueError, match="relative_rate"):
+        relative_derivative([0, 0, 1.0], [1.0, 0, 0], [1.0, 0])
