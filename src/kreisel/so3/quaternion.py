@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from numba import njit
+
 from . import _kernels as k
 from ._gufunc import gufunc, quaternion_array, vector_array
 
@@ -51,6 +53,20 @@ def _apply(q, v, out):
     out[2] = (s * v[2] + 2.0 * (d * q3 + q0 * c2)) / n2
 
 
+@njit(cache=True, nogil=True)
+def _multiply_one(p, q):
+    out = np.empty(4)
+    k.qmul(p, q, out)
+    finite = True
+    for i in range(4):
+        finite = finite and abs(out[i]) <= 1.7976931348623157e308
+    return out, finite
+
+
+def _is_single(x):
+    return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64
+
+
 def quat_multiply(p, q):
     """Hamilton product ``p q`` (seed 二.4), broadcasting over leading axes.
 
@@ -71,6 +87,14 @@ def quat_multiply(p, q):
     >>> quat_multiply([0, 1, 0, 0], [0, 0, 1, 0])      # i1 i2 = i3
     array([0., 0., 0., 1.])
     """
+    if _is_single(p) and _is_single(q):
+        # One-rotation fast path (the gufunc dispatch plus two validation
+        # calls cost several µs). Any NaN/inf in p or q makes some product
+        # component non-finite, so a finite result proves finite inputs;
+        # otherwise the checked path below raises the proper error.
+        out, finite = _multiply_one(p, q)
+        if finite:
+            return out
     p = quaternion_array(p, "p", nonzero=False)
     q = quaternion_array(q, "q", nonzero=False)
     return _multiply(p, q)
