@@ -8,6 +8,8 @@ quaternion algebra comes from :mod:`kreisel.so3._kernels`.
 
 from __future__ import annotations
 
+import math
+
 from ..so3 import _kernels as k
 from ..so3._gufunc import gufunc
 
@@ -76,3 +78,45 @@ def apply_inverse(q, t, p, out):
     out[1] = d1
     out[2] = d2
     k.qrotate_inverse(q, out, out)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(4,4)")
+def as_matrix(q, t, out):
+    """Homogeneous matrix [[R(q), t], [0, 0, 0, 1]]."""
+    k.write_matrix(q[0], q[1], q[2], q[3], out)
+    for i in range(3):
+        out[i, 3] = t[i]
+        out[3, i] = 0.0
+    out[3, 3] = 1.0
+
+
+@gufunc(["void(f8[:, :], f8[:], f8[:])"], "(4,4),(8)->(8)")
+def from_matrix(m, carrier, out):
+    """Packed [q, t, defect] of a homogeneous matrix.
+
+    ``defect`` is the largest of |bottom row - (0, 0, 0, 1)| and
+    |RᵀR - 1| (inf when det R <= 0) for finite input, so one pass both
+    converts and lets the caller refuse non-rigid matrices.
+    """
+    q0, q1, q2, q3 = k.matrix_quat(m)
+    out[0] = q0
+    out[1] = q1
+    out[2] = q2
+    out[3] = q3
+    defect = abs(m[3, 3] - 1.0)
+    for i in range(3):
+        out[4 + i] = m[i, 3]
+        defect = max(defect, abs(m[3, i]))
+        for j in range(i, 3):
+            d = m[0, i] * m[0, j] + m[1, i] * m[1, j] + m[2, i] * m[2, j]
+            if i == j:
+                d -= 1.0
+            defect = max(defect, abs(d))
+    det = (
+        m[0, 0] * (m[1, 1] * m[2, 2] - m[1, 2] * m[2, 1])
+        - m[0, 1] * (m[1, 0] * m[2, 2] - m[1, 2] * m[2, 0])
+        + m[0, 2] * (m[1, 0] * m[2, 1] - m[1, 1] * m[2, 0])
+    )
+    if not det > 0.0:
+        defect = math.inf
+    out[7] = defect

@@ -27,6 +27,7 @@ from math import factorial
 import numpy as np
 
 from .._validation import as_float_array
+from ..kinematics import angular_velocity_from_rotvec_rate, rotvec_rate
 from ..kinematics import left_jacobian as so3_left_jacobian
 from ..kinematics import left_jacobian_inverse as so3_left_jacobian_inverse
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
@@ -113,13 +114,15 @@ def se3_vee(matrix):
 def exp(xi):
     """``(q, r_C)`` of ``exp(ξ^)`` for validated twists ``(..., 6)``."""
     omega, v = _split(xi)
-    return rotvec_to_quat(omega), np.einsum("...ij,...j->...i", so3_left_jacobian(omega), v)
+    # r_C = J_l(ω) v is the dexp map ψ̇ -> ω (space) of seed 三.4, applied to v
+    return rotvec_to_quat(omega), angular_velocity_from_rotvec_rate(omega, v, frame="space")
 
 
 def log(quat, translation):
     """Twists ``(ω, v)`` with ``|ω| <= π`` of poses given as unit quaternions and translations."""
     omega = quat_to_rotvec(quat)
-    v = np.einsum("...ij,...j->...i", so3_left_jacobian_inverse(omega), translation)
+    # v = J_l(ω)⁻¹ r_C: the inverse dexp map of seed 三.5 (no pole for |ω| <= π)
+    v = rotvec_rate(omega, translation, frame="space")
     return np.concatenate([omega, v], axis=-1)
 
 

@@ -19,7 +19,7 @@ from ..so3 import (
     quat_normalize,
     quat_to_matrix,
 )
-from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array, vector_array
+from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, finite_array, matrix_array, quaternion_array, vector_array
 from . import _kernels, lie
 from .screw import change_base_point, screw_parameters, screw_pose
 
@@ -192,12 +192,13 @@ class RigidTransform:
         Raises ``ValueError`` when the bottom row is not (0, 0, 0, 1) or the
         upper-left block is not a rotation (tolerance ``RIGIDITY_TOLERANCE``).
         """
-        m = as_float_array(matrix, "matrix", (4, 4))
-        bottom = m[..., 3, :] - np.array([0.0, 0.0, 0.0, 1.0])
-        if m.size and not np.max(np.abs(bottom)) <= RIGIDITY_TOLERANCE:
-            raise ValueError("matrix must be rigid: its bottom row must be (0, 0, 0, 1)")
-        quat = matrix_to_quat(matrix_array(m[..., :3, :3], "matrix[..., :3, :3]"))
-        return cls._from_arrays(quat, np.ascontiguousarray(m[..., :3, 3]))
+        packed = _kernels.from_matrix(finite_array(matrix, "matrix", (4, 4)))
+        if packed.size and not np.max(packed[..., 7]) <= RIGIDITY_TOLERANCE:
+            raise ValueError(
+                "matrix must be rigid: bottom row (0, 0, 0, 1) and a rotation block "
+                f"(max |R^T R - 1| or bottom-row error <= {RIGIDITY_TOLERANCE:g}, det R > 0)"
+            )
+        return cls._from_arrays(packed[..., :4], packed[..., 4:7])
 
     @classmethod
     def from_dual_quat(cls, dual_quat):
@@ -297,11 +298,7 @@ class RigidTransform:
 
     def as_matrix(self):
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``."""
-        m = np.zeros(self.shape + (4, 4))
-        m[..., :3, :3] = quat_to_matrix(self._quat)
-        m[..., :3, 3] = self._translation
-        m[..., 3, 3] = 1.0
-        return m
+        return _kernels.as_matrix(self._quat, self._translation)
 
     def as_dual_quat(self):
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``."""

@@ -1,0 +1,94 @@
+"""kreisel.se3.RigidTransform against scipy.spatial.transform.RigidTransform on 10^6 poses.
+
+For each batch operation of the object layer: median wall time of kreisel
+and scipy (same process, same poses), the speed-up, and the ratio to a
+"streaming copy" bound — ``np.copyto`` of buffers as large as kreisel's
+input plus output (7 doubles per pose: quaternion and translation), the
+least memory traffic any implementation with that storage needs. Writes
+``bench/results/se3.md``.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import time
+
+import numpy as np
+from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
+
+import kreisel as kr
+
+N = 1_000_000
+REPEATS = 5
+
+
+def median_time(fn, repeats=REPEATS):
+    fn()  # compile / warm caches
+    times = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return float(np.median(times))
+
+
+def copy_bound(n_in, n_out):
+    """Time to stream ``n_in`` doubles in and ``n_out`` doubles out (two copies)."""
+    src_in, dst_in = np.random.rand(n_in), np.empty(n_in)
+    src_out, dst_out = np.random.rand(n_out), np.empty(n_out)
+
+    def run():
+        np.copyto(dst_in, src_in)
+        np.copyto(dst_out, src_out)
+
+    return median_time(run)
+
+
+def main():
+    a = kr.RigidTransform.random(N, rng=1, translation_scale=2.0)
+    b = kr.RigidTransform.random(N, rng=2, translation_scale=2.0)
+    one = a[0]
+    sa, sb, sone = a.to_scipy(), b.to_scipy(), one.to_scipy()
+    points = np.random.default_rng(3).normal(size=(N, 3))
+    matrices = a.as_matrix()
+    twists = a.as_exp_coords()
+
+    # name, kreisel, scipy, doubles in, doubles out per pose (kreisel's storage)
+    cases = [
+        ("composition a * b", lambda: a * b, lambda: sa * sb, 14, 7),
+        ("apply to points", lambda: a.apply(points), lambda: sa.apply(points), 10, 3),
+        ("one pose, 10^6 points", lambda: one.apply(points), lambda: sone.apply(points), 3, 3),
+        ("inverse", lambda: a.inv(), lambda: sa.inv(), 7, 7),
+        ("from 4x4 matrix", lambda: kr.RigidTransform.from_matrix(matrices), lambda: ScipyRigidTransform.from_matrix(matrices), 16, 7),
+        ("as 4x4 matrix", lambda: a.as_matrix(), lambda: sa.as_matrix(), 7, 16),
+        ("exp (from twist)", lambda: kr.RigidTransform.from_exp_coords(twists), lambda: ScipyRigidTransform.from_exp_coords(twists), 6, 7),
+        ("log (as twist)", lambda: a.as_exp_coords(), lambda: sa.as_exp_coords(), 7, 6),
+    ]
+    rows = []
+    for name, ours, theirs, n_in, n_out in cases:
+        t_ours = median_time(ours)
+        t_scipy = median_time(theirs, repeats=3)
+        t_copy = copy_bound(n_in * N, n_out * N)
+        rows.append((name, t_ours, t_scipy, t_copy))
+        print(f"{name:24s} kreisel {t_ours * 1e3:8.2f} ms  scipy {t_scipy * 1e3:8.1f} ms  copy {t_copy * 1e3:6.2f} ms", flush=True)
+
+    lines = [
+        "# kreisel.se3 vs scipy RigidTransform (10^6 poses)",
+        "",
+        f"Median of {REPEATS} runs (scipy: 3), same process, one thread; shared noisy machine.",
+        "'copy bound' = np.copyto of kreisel's input + output bytes (7 doubles per pose).",
+        "",
+        "| operation | kreisel (ms) | scipy (ms) | speed-up | kreisel / copy bound |",
+        "|---|---:|---:|---:|---:|",
+    ]
+    for name, t_ours, t_scipy, t_copy in rows:
+        lines.append(f"| {name} | {t_ours * 1e3:.2f} | {t_scipy * 1e3:.1f} | {t_scipy / t_ours:.1f}x | {t_ours / t_copy:.1f} |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    out = pathlib.Path(__file__).parent / "results" / "se3.md"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
