@@ -80,7 +80,8 @@ DRIFT_CASES = [(1.0, 1, 60, 20), (1.0, 2, 60, 20), (1.0, 3, 24, 40), (0.1, 4, 16
 
 def drift_table():
     """Measured drift rate (body frame, whole cone periods) against the classical coefficient."""
-    lines = ["", "## Coning drift (1 Hz cone): measured rate of the body-frame error vs α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)",
+    lines = ["", "## Coning drift (1 Hz cone): measured rate of the body-frame error vs "
+             "α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)",
              "", "| α | N | λ = ΩT_s | formula (rad/s) | measured −x (rad/s) | ratio | angle to −x / α |",
              "|---:|---:|---:|---:|---:|---:|---:|"]
     for alpha_deg, n, per_period, periods in DRIFT_CASES:

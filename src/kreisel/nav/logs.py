@@ -27,6 +27,7 @@ import numpy as np
 
 from .._fileio import atomic_output
 from .._validation import as_float_array
+from .coning import coning_coefficients
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = ["ImuLog", "read_imu_log", "write_attitude", "convert_attitude_frame"]
@@ -76,12 +77,11 @@ class ImuLog:
         """Integrate the log into attitude (body → ``self.frame``).
 
         Rate logs use :func:`attitude_from_rates` (``method``, default
-        ``"bortz"``) and return the attitude at every time stamp. Increment logs use
-        :func:`attitude_from_increments` with ``samples_per_update`` = N
-        (default 1); q0
-        is the attitude at the start of the first increment, taken as
-        t_0 − (t_1 − t_0), and the result holds that instant followed by the
-        time stamp closing each update.
+        ``"bortz"``) and return the attitude at every time stamp. Increment
+        logs use :func:`attitude_from_increments` with ``samples_per_update``
+        = N (default 1); q0 is the attitude at the start of the first
+        increment, taken as t_0 − (t_1 − t_0), and the result holds that
+        instant followed by the time stamp closing each update.
 
         Returns
         -------
@@ -99,8 +99,9 @@ class ImuLog:
             raise ValueError("method applies to rate logs; increment logs use the coning algorithm "
                              "(choose samples_per_update)")
         samples_per_update = 1 if samples_per_update is None else samples_per_update
+        coning_coefficients(samples_per_update)  # validates N before the row count is judged
         n = self.t.size
-        if isinstance(samples_per_update, (int, np.integer)) and samples_per_update > 0 and n % samples_per_update:
+        if n % samples_per_update:
             raise ValueError(f"{self.source}: {n} increment rows are not divisible by samples_per_update="
                              f"{samples_per_update}; trim {n % samples_per_update} row(s) at the end")
         q = attitude_from_increments(q0, self.gyro, samples_per_update)
@@ -121,6 +122,10 @@ def _show(value):
     return repr(value) if isinstance(value, str) else str(value)
 
 
+def _where(row, line_offset):
+    return f"row {row}" + (f" (line {row + line_offset} of the file)" if line_offset else "")
+
+
 def _numeric_column(frame, column, line_offset):
     pd = _pandas()
     raw = frame[column]
@@ -128,12 +133,12 @@ def _numeric_column(frame, column, line_offset):
     bad = ~np.isfinite(values)
     if bad.any():
         i = int(np.argmax(bad))
-        where = f"row {i}" + (f" (line {i + line_offset} of the file)" if line_offset else "")
         if pd.isna(raw.iloc[i]) or isinstance(raw.iloc[i], (float, np.floating)):
             what = f"missing or non-finite value {_show(raw.iloc[i])}"
         else:
             what = f"non-numeric value {_show(raw.iloc[i])}"
-        raise ValueError(f"column {column!r}: {what} at {where}; {int(bad.sum())} bad value(s) in total")
+        raise ValueError(f"column {column!r}: {what} at {_where(i, line_offset)}; "
+                         f"{int(bad.sum())} bad value(s) in total")
     return values
 
 
@@ -225,8 +230,7 @@ def read_imu_log(source, time="t", gyro=("gx", "gy", "gz"), kind="rate", units=N
     step = np.diff(t)
     if np.any(step <= 0):
         i = int(np.argmax(step <= 0)) + 1
-        where = f"row {i}" + (f" (line {i + line_offset} of the file)" if line_offset else "")
-        raise ValueError(f"{name}: time column {time!r} must strictly increase; at {where} "
+        raise ValueError(f"{name}: time column {time!r} must strictly increase; at {_where(i, line_offset)} "
                          f"{_show(frame_data[time].iloc[i])} follows {_show(frame_data[time].iloc[i - 1])}")
     return ImuLog(t, data * _UNITS[kind][units], kind, frame, name)
 
