@@ -21,7 +21,7 @@ $(VENV)/.installed-dev: pyproject.toml $(VENV)/.created
 	touch $@
 
 demo: $(VENV)/.installed-run
-	$(PY) -m kreisel.demo
+	$(PY) -m kreisel tour --out tour
 
 test: $(VENV)/.installed-dev
 	$(PY) -m pytest -n 2 --dist loadfile -q

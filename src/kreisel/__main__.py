@@ -1,0 +1,5 @@
+"""``python -m kreisel`` runs the command line."""
+
+from .cli import run
+
+run()

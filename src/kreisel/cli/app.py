@@ -1,0 +1,182 @@
+"""The ``kreisel`` command line (typer).
+
+Usage errors (bad options, unreadable or invalid input files) print one line
+on standard error and exit with status 2; they never show a traceback.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import sys
+from typing import List, Optional
+
+import typer
+from rich.console import Console
+
+from .. import __version__
+
+app = typer.Typer(
+    name="kreisel",
+    help="Rigid-body mechanics: rotations, tops, rotating frames, strapdown attitude.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+err = Console(stderr=True, highlight=False)
+out = Console(highlight=False)
+
+
+def usage_error(message):
+    """Print ``message`` as one line and exit with status 2."""
+    err.print(f"[bold red]error:[/] {message}", soft_wrap=True)
+    raise typer.Exit(2)
+
+
+def _version(value: bool):
+    if value:
+        out.print(f"kreisel {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                 help="Print the version and exit."),
+):
+    """kreisel: the rigid-body chapter as software."""
+
+
+@app.command()
+def convert(
+    values: Optional[List[float]] = typer.Argument(None, help="Numbers of one rotation; none: read rows from stdin."),
+    source: str = typer.Option(..., "--from", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
+    target: str = typer.Option(..., "--to", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
+    degrees: bool = typer.Option(False, "--degrees", help="Angles in degrees (euler, axis_angle, rotvec)."),
+    input_file: Optional[pathlib.Path] = typer.Option(None, "--input", "-i", help="CSV or whitespace file, one rotation a row."),
+):
+    """Convert rotations between representations, e.g. --from euler:ZXZ --to quat 30 45 60 --degrees."""
+    from .convert import ConversionError, format_rows, read_rows
+    from .convert import convert as run
+
+    try:
+        if values:
+            rows = [list(values)]
+        elif input_file is not None:
+            try:
+                rows = read_rows(input_file.read_text(encoding="utf-8"))
+            except OSError as exc:
+                usage_error(f"--input: cannot read {input_file} ({exc.strerror})")
+        else:
+            rows = read_rows(sys.stdin.read())
+        if not rows:
+            usage_error("no rotation given (pass numbers or rows on stdin)")
+        result = run(source, target, rows, degrees=degrees)
+    except ConversionError as exc:
+        usage_error(str(exc))
+    except ValueError as exc:
+        usage_error(f"invalid rotation: {exc}")
+    for line in format_rows(result):
+        typer.echo(line)
+
+
+@app.command()
+def simulate(
+    scenario: pathlib.Path = typer.Argument(..., help="Scenario TOML file (see `kreisel examples`)."),
+    output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="traj.nc | .csv | .parquet"),
+):
+    """Run a scenario file and report its first integrals."""
+    from ..io.results import SUFFIXES, save_result
+    from ..io.run import run_scenario, summary
+    from ..io.scenario import ScenarioError, load_scenario
+
+    if output is not None and output.suffix not in SUFFIXES:
+        usage_error(f"-o: unsupported output {output.name!r} (expected {', '.join(SUFFIXES)})")
+    try:
+        spec = load_scenario(scenario)
+    except ScenarioError as exc:
+        usage_error(str(exc))
+    with err.status(f"simulating {spec.title} ..."):
+        result = run_scenario(spec)
+    for line in summary(result):
+        out.print(line)
+    if output is not None:
+        save_result(result, output)
+        out.print(f"wrote {output}")
+
+
+@app.command()
+def plot(
+    trajectory: pathlib.Path = typer.Argument(..., help="Trajectory file written by `kreisel simulate`."),
+    kind: str = typer.Option("omega", "--kind", "-k", help="omega | energy | euler | polhode | herpolhode | apex"),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="fig.png | .svg | .pdf"),
+):
+    """Plot a saved trajectory."""
+    from .. import plot as plots
+    from ..io.results import ResultError, load_trajectory
+
+    if kind not in plots.KINDS:
+        usage_error(f"--kind: unknown plot kind {kind!r} (expected one of {', '.join(plots.KINDS)})")
+    try:
+        traj = load_trajectory(trajectory)
+        fig = plots.KINDS[kind](traj)
+        plots.save(fig, output)
+    except (ResultError, ValueError) as exc:
+        usage_error(str(exc))
+    out.print(f"wrote {output}")
+
+
+@app.command()
+def animate(
+    trajectory: pathlib.Path = typer.Argument(..., help="Trajectory file written by `kreisel simulate`."),
+    output: pathlib.Path = typer.Option(..., "-o", "--output", help="anim.gif | .mp4"),
+    frames: int = typer.Option(120, "--frames", min=2, max=2000, help="Number of frames."),
+    fps: int = typer.Option(24, "--fps", min=1, max=120),
+):
+    """Animate a saved trajectory: the body with its axes, ω and J."""
+    from ..io.results import ResultError, load_trajectory
+    from ..plot.animation import animate as run
+
+    try:
+        traj = load_trajectory(trajectory)
+        run(traj, output, frames=frames, fps=fps)
+    except (ResultError, ValueError) as exc:
+        usage_error(str(exc))
+    out.print(f"wrote {output}")
+
+
+@app.command()
+def examples(
+    name: Optional[str] = typer.Argument(None, help="Example to copy out; none: list them."),
+    directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
+):
+    """List the bundled scenario files, or copy one out to edit."""
+    from ..io.bundled import EXAMPLES, copy_example, describe
+
+    if name is None:
+        for example, text in describe().items():
+            out.print(f"[bold]{example:<16}[/] {text}")
+        return
+    if name not in EXAMPLES:
+        usage_error(f"unknown example {name!r} (expected one of {', '.join(EXAMPLES)})")
+    try:
+        path = copy_example(name, directory)
+    except (FileExistsError, ValueError) as exc:
+        usage_error(str(exc))
+    out.print(f"wrote {path}")
+
+
+@app.command()
+def tour(
+    out_dir: pathlib.Path = typer.Option(pathlib.Path("tour"), "--out", help="Directory for index.html and figures."),
+    quick: bool = typer.Option(False, "--quick", help="Smaller, faster demonstrations."),
+):
+    """Run every demonstration of the chapter and write DIR/index.html."""
+    from ..tour import run_tour
+
+    ok = run_tour(out_dir, quick=quick, console=out)
+    raise typer.Exit(0 if ok else 1)
+
+
+def run():
+    """Console-script entry point."""
+    app()

@@ -1,0 +1,9 @@
+"""Files in and out: scenario TOML files, result files, bundled examples."""
+
+from .bundled import EXAMPLES, copy_example, example_path
+from .results import ResultError, load_trajectory, save_result
+from .run import run_scenario, summary
+from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
+
+__all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_trajectory", "save_result",
+           "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario"]

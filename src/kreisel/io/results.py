@@ -1,0 +1,69 @@
+"""Result files: trajectories and datasets as NetCDF, CSV or Parquet, written atomically."""
+
+from __future__ import annotations
+
+import json
+import pathlib
+
+from .._fileio import atomic_output
+from ..dynamics.trajectory import Trajectory
+
+SUFFIXES = (".nc", ".csv", ".parquet")
+
+
+class ResultError(ValueError):
+    """A result file that cannot be read back (one-line message for the CLI)."""
+
+
+def save_result(result, path):
+    """Write a Trajectory or an ``xarray.Dataset`` to ``path`` (format from the suffix).
+
+    NetCDF keeps everything; CSV and Parquet hold one body, with the
+    trajectory's inertia and metadata in the file (CSV header / Parquet
+    key-value metadata) so :func:`load_trajectory` restores it.
+    """
+    path = pathlib.Path(path)
+    if path.suffix not in SUFFIXES:
+        raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}, got {path.name!r}")
+    with atomic_output(path) as tmp:
+        if isinstance(result, Trajectory):
+            if path.suffix == ".parquet":
+                frame = result.to_pandas()
+                frame.attrs["kreisel"] = _trajectory_header(result)
+                frame.to_parquet(tmp)
+            else:
+                result.save(tmp)
+        elif path.suffix == ".nc":
+            result.to_netcdf(tmp, engine="scipy")
+        elif path.suffix == ".csv":
+            result.to_dataframe().to_csv(tmp, float_format="%.17g")
+        else:
+            frame = result.to_dataframe()
+            frame.attrs["kreisel"] = json.dumps(dict(result.attrs), default=str)
+            frame.to_parquet(tmp)
+    return path
+
+
+def _trajectory_header(traj):
+    return json.dumps({"inertia": traj.inertia.tolist(), "meta": traj.meta}, default=str)
+
+
+def load_trajectory(path):
+    """Read a trajectory written by :func:`save_result` or :meth:`Trajectory.save`."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise ResultError(f"{path}: no such file")
+    if path.suffix not in SUFFIXES:
+        raise ResultError(f"{path}: unknown trajectory format (expected {', '.join(SUFFIXES)})")
+    try:
+        if path.suffix == ".parquet":
+            import pandas as pd
+
+            frame = pd.read_parquet(path)
+            header = json.loads(frame.attrs["kreisel"])
+            return Trajectory(frame.index.to_numpy(), frame[[f"q{k}" for k in range(4)]].to_numpy(),
+                              frame[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
+                              meta=header["meta"])
+        return Trajectory.load(path)
+    except (OSError, KeyError, ValueError, TypeError) as exc:
+        raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {exc})") from None

@@ -1,0 +1,36 @@
+"""Figures for every part of kreisel, as matplotlib ``Figure`` objects.
+
+The functions use matplotlib's object-oriented API only, so importing this
+module never opens a window and needs no display.
+"""
+
+from __future__ import annotations
+
+import pathlib
+
+from .._fileio import atomic_output
+from .trajectory import KINDS, apex, energy, euler, herpolhode, omega, polhode
+
+__all__ = ["KINDS", "apex", "energy", "euler", "herpolhode", "omega", "polhode", "save"]
+
+_FORMATS = {".png", ".svg", ".pdf"}
+
+
+def save(fig, path, dpi=120):
+    """Write ``fig`` to ``path`` (.png, .svg or .pdf) atomically.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure(); _ = fig.add_subplot().plot([0, 1])
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "line.png"
+    >>> save(fig, out).stat().st_size > 0
+    True
+    """
+    path = pathlib.Path(path)
+    if path.suffix.lower() not in _FORMATS:
+        raise ValueError(f"path must end in one of {sorted(_FORMATS)}, got {path.name!r}")
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp, dpi=dpi, format=path.suffix.lower()[1:])
+    return path

@@ -1,0 +1,131 @@
+"""Figures of a :class:`~kreisel.dynamics.trajectory.Trajectory`.
+
+Every function returns a :class:`matplotlib.figure.Figure` built with the
+object-oriented API (no pyplot state), so it works in scripts, notebooks and
+the command line alike.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..so3 import quat_apply
+
+
+def omega(traj, frame="body"):
+    """Components of the angular velocity against time (seed 三.1).
+
+    Examples
+    --------
+    >>> import kreisel as kr, numpy as np
+    >>> tr = kr.EulerTop(1, 2, 3).solve(np.linspace(0, 20, 200), [0.01, 1, 0.01])
+    >>> fig = omega(tr)
+    >>> fig.axes[0].get_ylabel()
+    'ω (rad/s)'
+    """
+    values = traj.omega if frame == "body" else traj.omega_space
+    prime = "′" if frame == "body" else ""
+    fig = Figure(figsize=(7, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    for i in range(3):
+        ax.plot(traj.t, values[..., i], label=f"ω{prime}{i + 1}")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("ω (rad/s)")
+    ax.set_title(f"angular velocity, {frame} components")
+    ax.legend(loc="upper right")
+    return fig
+
+
+def energy(traj):
+    """Relative drift of the energy T and of |J| (first integrals, seed 五.2)."""
+    fig = Figure(figsize=(7, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    for label, series in (("T", traj.energy), ("|J|", np.linalg.norm(traj.angular_momentum_body, axis=-1))):
+        ref = series[..., :1]
+        ax.plot(traj.t, (series - ref) / np.where(ref == 0, 1.0, ref), label=f"{label}(t)/{label}(0) − 1")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("relative drift")
+    ax.set_title("first integrals")
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
+    ax.legend(loc="best")
+    return fig
+
+
+def euler(traj, seq="ZXZ", degrees=True):
+    """Euler angles in sequence ``seq`` against time (seed 二.3)."""
+    angles = traj.euler(seq, degrees=degrees)
+    fig = Figure(figsize=(7, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    names = ("φ", "θ", "ψ") if seq == "ZXZ" else tuple(f"angle {i + 1}" for i in range(3))
+    for i in range(3):
+        ax.plot(traj.t, angles[..., i], label=names[i])
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("angle (°)" if degrees else "angle (rad)")
+    ax.set_title(f"Euler angles ({seq})")
+    ax.legend(loc="best")
+    return fig
+
+
+def polhode(traj):
+    """Path of ω′ in the body frame on the energy ellipsoid (seed 五.6)."""
+    fig = Figure(figsize=(5.5, 5), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    w = traj.omega.reshape(-1, traj.t.size, 3)
+    moments = np.diagonal(traj.inertia.reshape(-1, 3, 3)[0])
+    t2 = float(np.einsum("i,i,i->", moments, w[0, 0], w[0, 0]))
+    semi = np.sqrt(t2 / moments)
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 40), np.linspace(0, np.pi, 20))
+    ax.plot_wireframe(semi[0] * np.cos(u) * np.sin(v), semi[1] * np.sin(u) * np.sin(v), semi[2] * np.cos(v),
+                      color="0.8", linewidth=0.4)
+    for path in w:
+        ax.plot(path[:, 0], path[:, 1], path[:, 2], color="C3", linewidth=1.5)
+    ax.set_xlabel("ω′1")
+    ax.set_ylabel("ω′2")
+    ax.set_zlabel("ω′3")
+    ax.set_title("polhode on the energy ellipsoid")
+    ax.set_box_aspect(semi)
+    return fig
+
+
+def herpolhode(traj):
+    """Path of ω (space) projected on the invariable plane ⟂ J (seed 五.5)."""
+    j = traj.angular_momentum_space if hasattr(traj, "angular_momentum_space") else None
+    if j is None:
+        j = quat_apply(traj.q, traj.angular_momentum_body)
+    n = j[..., 0, :] / np.linalg.norm(j[..., 0, :], axis=-1, keepdims=True)
+    w = traj.omega_space
+    e1 = np.cross(n, [1.0, 0.0, 0.0])
+    if np.linalg.norm(e1) < 1e-6:
+        e1 = np.cross(n, [0.0, 1.0, 0.0])
+    e1 = e1 / np.linalg.norm(e1, axis=-1, keepdims=True)
+    e2 = np.cross(n, e1)
+    fig = Figure(figsize=(5, 5), layout="constrained")
+    ax = fig.add_subplot()
+    x = np.einsum("...i,...i->...", w, e1[..., None, :])
+    y = np.einsum("...i,...i->...", w, e2[..., None, :])
+    ax.plot(x.T if x.ndim > 1 else x, y.T if y.ndim > 1 else y, color="C0", linewidth=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("ω · e1 (rad/s)")
+    ax.set_ylabel("ω · e2 (rad/s)")
+    ax.set_title("herpolhode on the invariable plane")
+    return fig
+
+
+def apex(traj, axis=2):
+    """Locus of the body's symmetry axis on the unit sphere (seed 六.5)."""
+    e = np.zeros(3)
+    e[axis] = 1.0
+    tip = quat_apply(traj.q, e)
+    fig = Figure(figsize=(5.5, 5), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 36), np.linspace(0, np.pi, 18))
+    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.4)
+    ax.plot(tip[..., 0], tip[..., 1], tip[..., 2], color="C3", linewidth=1.2)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_title(f"apex locus of body axis {axis + 1}")
+    return fig
+
+
+KINDS = {"omega": omega, "energy": energy, "euler": euler, "polhode": polhode,
+         "herpolhode": herpolhode, "apex": apex}

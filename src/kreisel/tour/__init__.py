@@ -1,0 +1,12 @@
+"""The executable chapter: every demonstration of the seed, checked and reported.
+
+:func:`run_tour` runs one section per seed section, each computing the
+seed's numbers with kreisel, comparing them with the seed's (or an
+independent reference) and drawing its figures, then writes a
+self-contained ``index.html``.
+"""
+
+from .report import Check, Section, render_html
+from .runner import SECTIONS, run_tour
+
+__all__ = ["Check", "Section", "render_html", "SECTIONS", "run_tour"]
