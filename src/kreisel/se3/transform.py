@@ -104,7 +104,7 @@ class RigidTransform:
     """
 
     __slots__ = ("_quat", "_translation")
-    __array_priority__ = 20.0  # ndarray * RigidTransform must not broadcast elementwise
+    __array_ufunc__ = None  # ndarray * RigidTransform raises instead of looping elementwise
 
     def __init__(self, rotation, translation):
         quat = rotation_to_quat(rotation, "rotation")
@@ -145,17 +145,35 @@ class RigidTransform:
 
     @classmethod
     def from_rotation(cls, rotation):
-        """Pure rotation about the origin (zero translation)."""
+        """Pure rotation about the origin (zero translation).
+
+        Examples
+        --------
+        >>> RigidTransform.from_rotation([0.0, 0.0, 0.0, 1.0]).apply([1.0, 0.0, 0.0]) + 0.0
+        array([-1.,  0.,  0.])
+        """
         return cls._from_arrays(rotation_to_quat(rotation, "rotation"), np.zeros(3))
 
     @classmethod
     def from_translation(cls, translation):
-        """Pure translation (identity rotation)."""
+        """Pure translation (identity rotation).
+
+        Examples
+        --------
+        >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).apply([1.0, 1.0, 1.0])
+        array([2., 3., 4.])
+        """
         return cls._from_arrays(np.array([1.0, 0.0, 0.0, 0.0]), vector_array(translation, "translation"))
 
     @classmethod
     def identity(cls, shape=None):
-        """Identity transforms of batch shape ``shape`` (``None`` or ``()``: a single one)."""
+        """Identity transforms of batch shape ``shape`` (``None`` or ``()``: a single one).
+
+        Examples
+        --------
+        >>> RigidTransform.identity(3).shape
+        (3,)
+        """
         shape = _batch_shape(shape)
         quat = np.zeros(shape + (4,))
         quat[..., 0] = 1.0
@@ -190,7 +208,14 @@ class RigidTransform:
         """Poses from homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]`` of shape ``(..., 4, 4)``.
 
         Raises ``ValueError`` when the bottom row is not (0, 0, 0, 1) or the
-        upper-left block is not a rotation (tolerance ``RIGIDITY_TOLERANCE``).
+        upper-left block is not a rotation (tolerance ``RIGIDITY_TOLERANCE``);
+        matrices within it are projected onto the nearest pose.
+
+        Examples
+        --------
+        >>> m = [[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]
+        >>> RigidTransform.from_matrix(m).translation
+        array([1., 2., 3.])
         """
         packed = _kernels.from_matrix(finite_array(matrix, "matrix", (4, 4)))
         if packed.size and not np.max(packed[..., 7]) <= RIGIDITY_TOLERANCE:
@@ -208,6 +233,11 @@ class RigidTransform:
         ``q_d = ½ (0, r_C) q_r``, hence ``r_C = 2 vec(q_d q_r*)``. Unit means
         ``|q_r| = 1`` and ``q_r·q_d = 0``; inputs off by more than
         ``RIGIDITY_TOLERANCE`` raise ``ValueError``, closer ones are projected.
+
+        Examples
+        --------
+        >>> RigidTransform.from_dual_quat([1, 0, 0, 0, 0, 0.5, 1.0, 1.5]).translation
+        array([1., 2., 3.])
         """
         d = as_float_array(dual_quat, "dual_quat", (8,))
         real, dual = d[..., :4], d[..., 4:]
@@ -230,6 +260,14 @@ class RigidTransform:
 
         ``T = exp([[hat ω, v], [0, 0]])``: ``R = exp(hat ω)`` and
         ``r_C = J_l(ω) v`` with the SO(3) left Jacobian (see :mod:`kreisel.se3.lie`).
+        Agrees with scipy's ``RigidTransform.from_exp_coords``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> T = RigidTransform.from_exp_coords([0, 0, np.pi / 2, 1.0, 0, 0])   # quarter screw turn
+        >>> T.translation.round(6) + 0.0                   # (2/π)(1, 1, 0)
+        array([0.63662, 0.63662, 0.     ])
         """
         xi = vector_array(exp_coords, "exp_coords", 6)
         return cls._from_arrays(*lie.exp(xi))
@@ -260,7 +298,14 @@ class RigidTransform:
 
     @classmethod
     def from_scipy(cls, transform):
-        """Convert a ``scipy.spatial.transform.RigidTransform`` (scipy >= 1.16)."""
+        """Convert a ``scipy.spatial.transform.RigidTransform`` (scipy >= 1.16).
+
+        Examples
+        --------
+        >>> from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
+        >>> RigidTransform.from_scipy(ScipyRigidTransform.from_translation([1.0, 0.0, 0.0]))
+        RigidTransform(quat=[1.0, 0.0, 0.0, 0.0], translation=[1.0, 0.0, 0.0])
+        """
         if not hasattr(transform, "as_components"):
             raise TypeError(f"transform must be a scipy RigidTransform, got {type(transform).__name__}")
         translation, rotation = transform.as_components()
@@ -301,13 +346,30 @@ class RigidTransform:
         return _kernels.as_matrix(self._quat, self._translation)
 
     def as_dual_quat(self):
-        """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``."""
+        """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
+
+        Both parts scalar first; ``q_r`` is the stored rotation quaternion
+        (either sign of the double cover may appear).
+
+        Examples
+        --------
+        >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_dual_quat()
+        array([1. , 0. , 0. , 0. , 0. , 0.5, 1. , 1.5])
+        """
         pure = np.zeros(self.shape + (4,))
         pure[..., 1:] = self._translation
         return np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1)
 
     def as_exp_coords(self):
-        """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``."""
+        """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
+
+        Accurate to a few ulp at all angles, including tiny ones and near π.
+
+        Examples
+        --------
+        >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_exp_coords()
+        array([0., 0., 0., 1., 2., 3.])
+        """
         return lie.log(self._quat, self._translation)
 
     def as_screw(self):
@@ -347,7 +409,13 @@ class RigidTransform:
         return RigidTransform._from_arrays(*_kernels.compose(self._quat, self._translation, other._quat, other._translation))
 
     def inv(self):
-        """Inverse displacements ``(Rᵀ, -Rᵀ r_C)``."""
+        """Inverse displacements ``(Rᵀ, -Rᵀ r_C)``.
+
+        Examples
+        --------
+        >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).inv().translation
+        array([-1., -2., -3.])
+        """
         return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
 
     def apply(self, points, inverse=False):
@@ -359,13 +427,30 @@ class RigidTransform:
             Broadcast against the batch shape.
         inverse : bool
             Apply the inverse displacement.
+
+        Returns
+        -------
+        ndarray, shape (..., 3)
+
+        Examples
+        --------
+        >>> T = RigidTransform.from_translation([0.0, 0.0, 1.0])
+        >>> T.apply([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+        array([[1., 0., 1.],
+               [0., 1., 1.]])
         """
         points = vector_array(points, "points")
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
         return kernel(self._quat, self._translation, points)
 
     def apply_vector(self, vectors, inverse=False):
-        """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``."""
+        """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
+
+        Examples
+        --------
+        >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
+        array([1., 0., 0.])
+        """
         return quat_apply(self._quat, vector_array(vectors, "vectors"), inverse=inverse)
 
     def change_base_point(self, offset):
