@@ -110,3 +110,21 @@ def test_from_screw_refuses_zero_axis_and_bad_shapes():
         RigidTransform.from_screw([0, 0, 1], [0, 0], 1.0)
     with pytest.raises(ValueError, match="angle"):
         RigidTransform.from_screw([0, 0, 1], [0, 0, 0], np.nan)
+
+
+def test_finite_screw_is_the_instantaneous_screw_of_the_uniform_motion():
+    # T(s) = exp(s ξ) has the constant space twist ξ = (ω, v): v is the velocity of the
+    # space point at the origin (seed 三.8). Its instantaneous axis, found independently
+    # by kreisel.kinematics.screw_axis, is the screw of the finite displacement T(1).
+    from kreisel.kinematics import screw_axis
+
+    rng = np.random.default_rng(9)
+    omega = rng.normal(size=(10, 3))
+    omega *= (np.linspace(0.1, 3.1, 10) / np.linalg.norm(omega, axis=-1))[:, None]
+    v = rng.normal(size=(10, 3))
+    finite = RigidTransform.from_exp_coords(np.concatenate([omega, v], axis=-1)).as_screw()
+    instantaneous = screw_axis(omega, v)
+    np.testing.assert_allclose(finite.axis, instantaneous.direction, atol=1e-15)
+    np.testing.assert_allclose(finite.point, instantaneous.point, atol=1e-14)
+    np.testing.assert_allclose(finite.pitch, instantaneous.pitch, rtol=1e-13)
+    np.testing.assert_allclose(finite.angle, np.linalg.norm(omega, axis=-1), rtol=1e-15)

@@ -4,19 +4,21 @@ Twists (exponential coordinates) are ``ξ = (ω, v)``, **rotation part
 first**, with ``ξ^ = [[hat ω, v], [0, 0]]`` and ``T = exp(ξ^)``. This is the
 order of scipy's ``RigidTransform.as_exp_coords``. The rotation part is the
 rotation vector ψ = ω of seed 二.2; the translation part ``v`` is the
-velocity of the origin of a uniform screw motion that reaches ``T`` in unit
-time (seed 三.8), so ``r_C = J_l(ω) v`` with the SO(3) left Jacobian.
+velocity of the body point passing through the origin during the uniform
+screw motion ``exp(s ξ^)`` that reaches ``T`` at ``s = 1`` (seed 三.8), so
+``r_C = J_l(ω) v`` with the SO(3) left Jacobian.
 
 Jacobians follow the left/right perturbation convention:
 ``exp(ξ + δ) ≈ exp(J_l(ξ) δ) exp(ξ) ≈ exp(ξ) exp(J_r(ξ) δ)``. With twists
 ordered (ω, v) they are block lower-triangular,
-``J_l = [[J, 0], [Q(ω, v), J]]``, ``J`` the SO(3) left Jacobian and ``Q``
-Barfoot's coupling matrix (Barfoot, *State Estimation for Robotics*, 2017,
-eq. 7.86, with the blocks swapped for the (ω, v) order). Every coefficient
-function of the angle is summed from its Maclaurin series below angle 2,
-where the closed forms lose digits, so the Jacobians keep full relative
-accuracy at small angles and have no singularity below 2π (near π in
-particular).
+``J_l = [[J, 0], [Q(ω, v), J]]``, ``J`` the SO(3) left Jacobian (from
+:mod:`kreisel.kinematics`) and ``Q`` the coupling matrix given by Barfoot
+(*State Estimation for Robotics*, 2017, section on SE(3) Jacobians; blocks
+swapped here for the (ω, v) order). The three coefficient functions of
+``Q`` are summed from their Maclaurin series below angle 2, where the
+closed forms lose digits, so the Jacobians keep full accuracy at small
+angles and have no singularity below 2π (near π in particular). Tested
+against the series ``Σ ad_ξⁿ/(n+1)!`` and finite differences.
 """
 
 from __future__ import annotations
