@@ -20,7 +20,7 @@ from numba import njit, prange
 
 from ..so3._kernels import qnormalize
 from .forces import evaluate_force
-from .torques import evaluate_torque
+from .torques import CALLBACK, DAMPING, evaluate_torque
 
 _jit = njit(cache=True, nogil=True)
 
@@ -256,10 +256,47 @@ def _strang_free(h, inertia, y, m):
 
 @_jit
 def _kick(t, h, inertia, rows, y, scratch):
+    """Explicit kick ω′ += h I⁻¹ M′(t, q, ω′): the exact flow when M′ does not depend on ω′."""
     m = scratch[7:10]
     evaluate_torque(rows, t, y[3:7], y[0:3], m, scratch[0:7])
     for a in range(3):
         y[a] += h * m[a] / inertia[a]
+
+
+@_jit
+def _depends_on_omega(rows):
+    for i in range(rows.shape[0]):
+        kind = int(rows[i, 0])
+        if kind == DAMPING or kind == CALLBACK:
+            return True
+    return False
+
+
+@_jit
+def _closing_kick(t, h, inertia, rows, y, scratch):
+    """Implicit kick ω′_new = ω′ + h I⁻¹ M′(t, q, ω′_new), the adjoint of :func:`_kick`.
+
+    Closing the step with the adjoint keeps kick–drift–kick symmetric, hence
+    second order, also for torques that depend on ω′ (damping, callables).
+    """
+    if not _depends_on_omega(rows):
+        _kick(t, h, inertia, rows, y, scratch)
+        return OK
+    m = scratch[7:10]
+    w0, w1, w2 = y[0], y[1], y[2]
+    size = abs(w0) + abs(w1) + abs(w2) + 1e-300
+    previous = np.inf
+    for _ in range(_MAX_ITER):
+        evaluate_torque(rows, t, y[3:7], y[0:3], m, scratch[0:7])
+        n0 = w0 + h * m[0] / inertia[0]
+        n1 = w1 + h * m[1] / inertia[1]
+        n2 = w2 + h * m[2] / inertia[2]
+        change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
+        y[0], y[1], y[2] = n0, n1, n2
+        if change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size):
+            return OK
+        previous = change
+    return NO_CONVERGENCE
 
 
 @_jit
@@ -318,8 +355,8 @@ def _kick_drift_kick(method, t, h, inertia, rows, y, scratch):
         status = _dmv_free(h, inertia, y)
     else:
         _strang_free(h, inertia, y, scratch[10:13])
-    if torqued:
-        _kick(t + h, 0.5 * h, inertia, rows, y, scratch)
+    if torqued and status == OK:
+        status = _closing_kick(t + h, 0.5 * h, inertia, rows, y, scratch)
     return status
 
 

@@ -550,7 +550,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
         y = integrate(0, count)
         omega = y[..., 0:3].reshape(batch + (t.size, 3))
         q = _normalized(y[..., 3:7]).reshape(batch + (t.size, 4))
-        return Trajectory(t, q, omega, moments.reshape(batch + (3,)), meta=meta)
+        return Trajectory(t, q, omega, moments.reshape(batch + (3,))[..., None] * np.eye(3), meta=meta)
     chunk = 4096 if chunk_size is None else operator.index(chunk_size)
     if chunk < 1:
         raise ValueError(f"chunk_size must be a positive integer, got {chunk}")
@@ -558,7 +558,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     for lo in range(0, count, chunk):
         hi = min(count, lo + chunk)
         y = integrate(lo, hi)
-        tr = Trajectory(t, _normalized(y[..., 3:7]), y[..., 0:3], moments[lo:hi], meta=meta)
+        tr = Trajectory(t, _normalized(y[..., 3:7]), y[..., 0:3], moments[lo:hi, :, None] * np.eye(3), meta=meta)
         piece = np.asarray(reduce(tr))
         if piece.ndim < 1 or piece.shape[0] != hi - lo:
             raise ValueError(f"reduce must return an array whose first axis is the {hi - lo} bodies "
