@@ -1,0 +1,534 @@
+"""Parameter sweeps in chunks on Dask, with retries, checkpoints and resumption.
+
+A sweep evaluates ``function(**chunk_parameters, **constants)`` over the outer
+product of 1-D parameter arrays (the grid). The grid is flattened in C order
+and cut into chunks of ``chunk_size`` points; each chunk is one task. The
+function receives, for every grid parameter, a 1-D array with the values of
+the chunk's points, and returns a mapping ``{variable: array}`` whose first
+axis runs over those points (trailing axes are allowed). The chunks are
+assembled into an :class:`xarray.Dataset` with one dimension per grid
+parameter, in the grid's order.
+
+Where the chunks run (``scheduler=``):
+
+``None``
+    A :class:`distributed.LocalCluster` of worker *processes* (one thread
+    each) started for the sweep and closed after it.
+``"tcp://host:8786"``
+    An existing Dask scheduler; the workers must be able to import kreisel
+    and the sweep function.
+a :class:`distributed.Client`
+    Used as is and left open.
+``"serial"``
+    In the calling process, no Dask (the reference the distributed run must
+    reproduce exactly, and the baseline for the Dask overhead).
+
+Robustness: a chunk whose task raises (or whose worker died too often,
+``KilledWorker``) is resubmitted up to ``retries`` times, each failure is
+reported to the progress callback; chunks still failing are listed in a
+:class:`SweepError` raised after every other chunk has finished. A worker that
+dies mid-task is replaced by the nanny and its task rerun by the scheduler.
+Finished chunks are written, as they arrive, to a checkpoint directory by
+the client process (so the workers need no shared file system); a sweep
+started again with the same function, grid, constants and chunk size loads
+them instead of computing them again.
+"""
+
+from __future__ import annotations
+
+import collections
+import collections.abc
+import dataclasses
+import functools
+import hashlib
+import json
+import math
+import os
+import pathlib
+import shutil
+import uuid
+
+import numpy as np
+
+from .._fileio import atomic_output
+
+SERIAL = "serial"
+_CHECKPOINT_META = "sweep.json"
+_OUTPUT_SUFFIXES = (".zarr", ".nc")
+
+
+class SweepError(RuntimeError):
+    """Chunks that still failed after their retries.
+
+    Attributes
+    ----------
+    failures : dict
+        ``{chunk index: exception}`` of the chunks that failed for good.
+    """
+
+    def __init__(self, message, failures):
+        super().__init__(message)
+        self.failures = failures
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepProgress:
+    """One event of a running sweep, passed to the ``progress`` callback.
+
+    ``event`` is ``"resumed"`` (chunk loaded from the checkpoint), ``"done"``,
+    ``"retry"`` (the chunk failed and was resubmitted) or ``"failed"`` (no
+    retries left); ``done`` counts the chunks finished so far (resumed ones
+    included) out of ``total``; ``message`` describes a failure.
+    """
+
+    event: str
+    chunk: int
+    done: int
+    total: int
+    message: str = ""
+
+
+# ---- grid ------------------------------------------------------------------------------
+def _check_grid(grid, constants):
+    if not isinstance(grid, collections.abc.Mapping) or not grid:
+        raise TypeError(f"grid must be a non-empty mapping {{name: 1-D values}}, got {type(grid).__name__}")
+    out = {}
+    for name, values in grid.items():
+        if not isinstance(name, str) or not name.isidentifier():
+            raise ValueError(f"grid: parameter names must be Python identifiers, got {name!r}")
+        array = np.asarray(values)
+        if array.ndim != 1 or array.size == 0 or array.dtype.kind not in "iuf":
+            raise ValueError(f"grid[{name!r}] must be a non-empty 1-D array of numbers, got {values!r}")
+        if not np.all(np.isfinite(array)):
+            raise ValueError(f"grid[{name!r}] must be finite")
+        out[name] = array
+    clash = sorted(set(out) & set(constants))
+    if clash:
+        raise ValueError(f"constants: {clash[0]!r} is also a grid parameter")
+    return out
+
+
+def _chunk_parameters(grid, shape, lo, hi):
+    """Values of every grid parameter at the flat (C-order) points lo..hi-1."""
+    index = np.unravel_index(np.arange(lo, hi), shape)
+    return {name: values[i] for (name, values), i in zip(grid.items(), index)}
+
+
+def _run_chunk(function, parameters, constants):
+    """Evaluate one chunk (runs on a worker) and check the shape of what came back."""
+    result = function(**parameters, **constants)
+    count = len(next(iter(parameters.values())))
+    if not isinstance(result, collections.abc.Mapping) or not result:
+        raise TypeError(f"the sweep function must return a non-empty mapping {{name: array}}, "
+                        f"got {type(result).__name__}")
+    out = {}
+    for name, value in result.items():
+        array = np.asarray(value)
+        if array.ndim < 1 or array.shape[0] != count:
+            raise ValueError(f"sweep function result {name!r}: first axis must be the {count} points of the "
+                             f"chunk, got shape {array.shape}")
+        out[str(name)] = array
+    return out
+
+
+# ---- identity and checkpoint ------------------------------------------------------------
+def _describe_function(function):
+    if isinstance(function, functools.partial):
+        return f"{_describe_function(function.func)}(*{function.args!r}, **{sorted(function.keywords.items())!r})"
+    owner = function if hasattr(function, "__qualname__") else type(function)
+    return f"{owner.__module__}.{owner.__qualname__}"
+
+
+def _sweep_key(function, grid, constants, chunk_size):
+    digest = hashlib.sha256()
+    digest.update(_describe_function(function).encode())
+    for name, values in grid.items():
+        digest.update(name.encode())
+        digest.update(str(values.dtype).encode())
+        digest.update(np.ascontiguousarray(values).tobytes())
+    digest.update(repr(sorted(constants.items())).encode())
+    digest.update(str(chunk_size).encode())
+    return digest.hexdigest()
+
+
+class _Checkpoint:
+    """Finished chunks as ``chunk-NNNNNN.npz`` files next to a ``sweep.json`` naming the sweep."""
+
+    def __init__(self, directory, key, description):
+        self.directory = pathlib.Path(directory)
+        meta = self.directory / _CHECKPOINT_META
+        if meta.exists():
+            stored = json.loads(meta.read_text(encoding="utf-8"))
+            if stored.get("key") != key:
+                raise ValueError(f"checkpoint: {str(self.directory)!r} holds chunks of a different sweep "
+                                 f"({stored.get('description', '?')}); remove it or choose another directory")
+        else:
+            if not self.directory.parent.is_dir():
+                raise ValueError(f"checkpoint: directory {str(self.directory.parent)!r} does not exist")
+            self.directory.mkdir(exist_ok=True)
+            with atomic_output(meta) as tmp:
+                tmp.write_text(json.dumps({"key": key, "description": description}), encoding="utf-8")
+
+    def _path(self, chunk):
+        return self.directory / f"chunk-{chunk:06d}.npz"
+
+    def load(self, n_chunks):
+        found = {}
+        for chunk in range(n_chunks):
+            path = self._path(chunk)
+            if path.exists():
+                with np.load(path, allow_pickle=False) as data:
+                    found[chunk] = {name: data[name] for name in data.files}
+        return found
+
+    def save(self, chunk, result):
+        with atomic_output(self._path(chunk)) as tmp:
+            with open(tmp, "wb") as fh:  # a file object: np.savez would append ".npz" to a name
+                np.savez(fh, **result)
+
+    def remove(self):
+        shutil.rmtree(self.directory, ignore_errors=True)
+
+
+# ---- executors ---------------------------------------------------------------------------
+class _SerialExecutor:
+    """Runs chunks one after another in this process, in submission order."""
+
+    def __init__(self):
+        self.queue = collections.deque()
+
+    def submit(self, chunk, function, parameters, constants):
+        self.queue.append((chunk, function, parameters, constants))
+
+    def completed(self):
+        while self.queue:
+            chunk, function, parameters, constants = self.queue.popleft()
+            try:
+                yield chunk, _run_chunk(function, parameters, constants), None
+            except Exception as exc:  # noqa: BLE001 -- any failure of user code is retried and reported
+                yield chunk, None, exc
+
+
+class _DaskExecutor:
+    """Submits chunks to a distributed client and yields them as they complete."""
+
+    def __init__(self, client, key):
+        from distributed import as_completed
+
+        self.client = client
+        self.key = key[:12]
+        self.futures = {}
+        self.attempt = collections.Counter()
+        self.pending = as_completed()
+
+    def submit(self, chunk, function, parameters, constants):
+        self.attempt[chunk] += 1
+        future = self.client.submit(_run_chunk, function, parameters, constants, pure=False,
+                                    key=f"kreisel-sweep-{self.key}-{chunk}-{self.attempt[chunk]}")
+        self.futures[future.key] = chunk
+        self.pending.add(future)
+
+    def completed(self):
+        for future in self.pending:
+            chunk = self.futures.pop(future.key)
+            if future.status == "finished":
+                result, error = future.result(), None
+            else:
+                result, error = None, future.exception()
+            future.release()
+            yield chunk, result, error
+
+
+@dataclasses.dataclass
+class _Session:
+    executor: object
+    close: object
+
+
+def _open_session(scheduler, n_workers, threads_per_worker, key):
+    if scheduler == SERIAL:
+        return _Session(_SerialExecutor(), lambda: None)
+    from distributed import Client, LocalCluster
+
+    if isinstance(scheduler, Client):
+        return _Session(_DaskExecutor(scheduler, key), lambda: None)
+    if scheduler is None:
+        workers = n_workers if n_workers is not None else min(2, os.cpu_count() or 1)
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker, processes=True,
+                               dashboard_address=None)
+        client = Client(cluster)
+
+        def close():
+            client.close()
+            cluster.close()
+        return _Session(_DaskExecutor(client, key), close)
+    client = Client(scheduler)
+    return _Session(_DaskExecutor(client, key), client.close)
+
+
+def _check_scheduler(scheduler, n_workers, threads_per_worker):
+    if scheduler is not None and scheduler != SERIAL and not isinstance(scheduler, str):
+        from distributed import Client
+
+        if not isinstance(scheduler, Client):
+            raise TypeError(f"scheduler must be None, 'serial', an address string or a distributed.Client, "
+                            f"got {type(scheduler).__name__}")
+    for name, value in (("n_workers", n_workers), ("threads_per_worker", threads_per_worker)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 1):
+            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    if n_workers is not None and scheduler is not None:
+        raise ValueError("n_workers applies to the LocalCluster started when scheduler is None")
+
+
+# ---- progress ------------------------------------------------------------------------------
+class _Reporter:
+    """Forwards events to the user's callback and to a rich progress bar."""
+
+    def __init__(self, callback, console, total, title):
+        self.callback, self.console, self.total, self.done = callback, console, total, 0
+        self.bar = None
+        if console is not None:
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+            self.bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                                TimeRemainingColumn(), console=console)
+            self.task = self.bar.add_task(title, total=total)
+            self.bar.start()
+
+    def __call__(self, event, chunk, message=""):
+        if event in ("done", "resumed"):
+            self.done += 1
+            if self.bar is not None:
+                self.bar.update(self.task, completed=self.done)
+        elif self.bar is not None:
+            self.bar.console.print(f"[yellow]chunk {chunk}: {event}[/yellow] {message}")
+        if self.callback is not None:
+            self.callback(SweepProgress(event, chunk, self.done, self.total, message))
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.stop()
+
+
+# ---- assembly and output --------------------------------------------------------------------
+def _assemble(grid, shape, chunk_size, results, variable_attrs, attrs):
+    import xarray as xr
+
+    first = results[0]
+    total = math.prod(shape)
+    data = {}
+    for name, array in first.items():
+        data[name] = np.empty((total,) + array.shape[1:], dtype=array.dtype)
+    for chunk, result in results.items():
+        if set(result) != set(first):
+            raise ValueError(f"sweep function returned variables {sorted(result)} for chunk {chunk} but "
+                             f"{sorted(first)} for chunk 0")
+        lo = chunk * chunk_size
+        for name, array in result.items():
+            if array.shape[1:] != first[name].shape[1:]:
+                raise ValueError(f"sweep function result {name!r}: trailing shape {array.shape[1:]} in chunk "
+                                 f"{chunk} differs from {first[name].shape[1:]} in chunk 0")
+            data[name][lo:lo + array.shape[0]] = array
+    dims = tuple(grid)
+    variables = {}
+    for name, flat in data.items():
+        extra = tuple(f"{name}_dim_{i}" for i in range(flat.ndim - 1))
+        variables[name] = xr.Variable(dims + extra, flat.reshape(shape + flat.shape[1:]),
+                                      attrs=dict(variable_attrs.get(name, {})))
+    return xr.Dataset(variables, coords={name: values for name, values in grid.items()}, attrs=attrs)
+
+
+def _check_output(output):
+    if output is None:
+        return None
+    output = pathlib.Path(output)
+    if output.suffix not in _OUTPUT_SUFFIXES:
+        raise ValueError(f"output must end in .zarr or .nc, got {str(output)!r}")
+    if not output.parent.is_dir():
+        raise ValueError(f"output: directory {str(output.parent)!r} does not exist")
+    return output
+
+
+def write_dataset(dataset, output):
+    """Write ``dataset`` to ``output`` (``.zarr`` directory or ``.nc`` file), replacing it atomically.
+
+    NetCDF goes through a temporary file renamed onto the target. A Zarr store
+    is a directory: it is written next to the target, then swapped in by two
+    renames (the old store, if any, is moved aside first and deleted after),
+    so readers never see a half-written store.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, xarray as xr
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.nc"
+    >>> write_dataset(xr.Dataset({"x": ("i", [1.0, 2.0])}), path)
+    >>> float(xr.open_dataset(path).x.sum())
+    3.0
+    """
+    output = _check_output(output)
+    if output.suffix == ".nc":
+        with atomic_output(output) as tmp:
+            dataset.to_netcdf(tmp)
+        return
+    tag = uuid.uuid4().hex[:8]
+    tmp = output.with_name(f".{output.name}.{tag}.tmp")
+    old = output.with_name(f".{output.name}.{tag}.old")
+    try:
+        dataset.to_zarr(tmp, mode="w", zarr_format=2, consolidated=True)  # v2 + consolidated: widest reader support
+        if output.exists():
+            os.replace(output, old)
+        os.replace(tmp, output)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _default_checkpoint(output):
+    return None if output is None else output.with_name(output.name + ".chunks")
+
+
+def _chunk_label(parameters):
+    return ", ".join(f"{name} {values.min():g}..{values.max():g}" for name, values in parameters.items())
+
+
+# ---- the sweep ---------------------------------------------------------------------------------
+def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_workers=None,
+          threads_per_worker=1, output=None, checkpoint=None, keep_checkpoint=False, retries=2,
+          progress=None, console=None, variable_attrs=None, attrs=None):
+    """Evaluate ``function`` over a parameter grid in chunks, on Dask by default.
+
+    Parameters
+    ----------
+    function : callable
+        ``function(**parameters, **constants) -> {name: array}``; each grid
+        parameter arrives as a 1-D array of the chunk's points, each result's
+        first axis runs over those points. Must be picklable (a module-level
+        function or a :func:`functools.partial` of one) unless ``scheduler``
+        is ``"serial"``.
+    grid : mapping of str to 1-D array_like
+        Parameter values; the sweep covers their outer product, and the
+        dataset's dimensions follow this order.
+    constants : mapping, optional
+        Keyword arguments passed unchanged to every call.
+    chunk_size : int
+        Grid points per task (default 256).
+    scheduler : None, str or distributed.Client
+        Where to run (see the module docstring): a new ``LocalCluster`` of
+        worker processes (default), a scheduler address, a client, or
+        ``"serial"``.
+    n_workers : int, optional
+        Worker processes of the default ``LocalCluster`` (default
+        ``min(2, cpu count)``).
+    threads_per_worker : int
+        Threads per worker of the default ``LocalCluster`` (default 1).
+    output : str or path, optional
+        ``.zarr`` or ``.nc`` file written atomically when the sweep succeeds.
+    checkpoint : str or path, optional
+        Directory keeping finished chunks (default ``<output>.chunks`` when
+        ``output`` is given, otherwise none). An existing checkpoint of the
+        same sweep is resumed; one of another sweep is refused.
+    keep_checkpoint : bool
+        Keep the checkpoint directory after success (default: remove it).
+    retries : int
+        Resubmissions of a failing chunk before it is given up (default 2).
+    progress : callable, optional
+        Called with a :class:`SweepProgress` after every chunk event.
+    console : rich.console.Console, optional
+        Show a progress bar and failure messages on this console.
+    variable_attrs : mapping, optional
+        ``{variable: {attribute: value}}`` (units, long names) for the dataset.
+    attrs : mapping, optional
+        Global attributes of the dataset (strings or numbers).
+
+    Returns
+    -------
+    xarray.Dataset
+        One variable per result name, dimensions = grid parameters (+ trailing
+        ``<name>_dim_<i>`` axes), coordinates = the grid values.
+
+    Raises
+    ------
+    SweepError
+        Chunks that failed after their retries (the finished ones stay in
+        the checkpoint).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def product(x, y, scale):
+    ...     return {"z": scale * x * y}
+    >>> ds = sweep(product, {"x": [1.0, 2.0], "y": [1.0, 10.0, 100.0]}, constants={"scale": 2.0},
+    ...            chunk_size=4, scheduler="serial")
+    >>> ds.z.dims, ds.z.values.tolist()
+    (('x', 'y'), [[2.0, 20.0, 200.0], [4.0, 40.0, 400.0]])
+    """
+    if not callable(function):
+        raise TypeError(f"function must be callable, got {type(function).__name__}")
+    constants = dict(constants or {})
+    grid = _check_grid(grid, constants)
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+        raise ValueError(f"chunk_size must be a positive integer, got {chunk_size!r}")
+    if isinstance(retries, bool) or not isinstance(retries, (int, np.integer)) or retries < 0:
+        raise ValueError(f"retries must be a non-negative integer, got {retries!r}")
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable, got {type(progress).__name__}")
+    _check_scheduler(scheduler, n_workers, threads_per_worker)
+    output = _check_output(output)
+    chunk_size = int(chunk_size)
+    shape = tuple(values.size for values in grid.values())
+    total = math.prod(shape)
+    n_chunks = -(-total // chunk_size)
+    key = _sweep_key(function, grid, constants, chunk_size)
+    description = f"{_describe_function(function)} over {' x '.join(f'{n}[{v.size}]' for n, v in grid.items())}"
+    directory = checkpoint if checkpoint is not None else _default_checkpoint(output)
+    store = _Checkpoint(directory, key, description) if directory is not None else None
+
+    results = store.load(n_chunks) if store is not None else {}
+    report = _Reporter(progress, console, n_chunks, description)
+    failures = {}
+    try:
+        for chunk in sorted(results):
+            report("resumed", chunk)
+        todo = [chunk for chunk in range(n_chunks) if chunk not in results]
+        if todo:
+            session = _open_session(scheduler, n_workers, threads_per_worker, key)
+            try:
+                parameters = {chunk: _chunk_parameters(grid, shape, chunk * chunk_size,
+                                                       min(total, (chunk + 1) * chunk_size)) for chunk in todo}
+                for chunk in todo:
+                    session.executor.submit(chunk, function, parameters[chunk], constants)
+                failed_attempts = collections.Counter()
+                for chunk, result, error in session.executor.completed():
+                    if error is None:
+                        results[chunk] = result
+                        if store is not None:
+                            store.save(chunk, result)
+                        report("done", chunk)
+                        continue
+                    failed_attempts[chunk] += 1
+                    message = (f"({_chunk_label(parameters[chunk])}) attempt {failed_attempts[chunk]}: "
+                               f"{type(error).__name__}: {error}")
+                    if failed_attempts[chunk] <= retries:
+                        report("retry", chunk, message)
+                        session.executor.submit(chunk, function, parameters[chunk], constants)
+                    else:
+                        failures[chunk] = error
+                        report("failed", chunk, message)
+            finally:
+                session.close()
+    finally:
+        report.close()
+    if failures:
+        first = min(failures)
+        raise SweepError(f"{len(failures)} of {n_chunks} chunks failed after {retries} retries "
+                         f"(first: chunk {first}, {type(failures[first]).__name__}: {failures[first]}); "
+                         + ("finished chunks are kept in " + str(store.directory) if store is not None
+                            else "pass checkpoint= to keep finished chunks"), failures)
+    meta = {"sweep_function": _describe_function(function), "sweep_constants": json.dumps(constants, default=repr),
+            "sweep_chunk_size": chunk_size, "sweep_chunks": n_chunks, **(attrs or {})}
+    dataset = _assemble(grid, shape, chunk_size, results, variable_attrs or {}, meta)
+    if output is not None:
+        write_dataset(dataset, output)
+    if store is not None and not keep_checkpoint:
+        store.remove()
+    return dataset

@@ -1,0 +1,1 @@
+"""The sweep files shipped with kreisel (package data, see :func:`kreisel.sweep.example_path`)."""
