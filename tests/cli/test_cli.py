@@ -1,0 +1,144 @@
+"""Every ``kreisel`` command through typer's runner, including the error paths (exit status 2)."""
+
+import numpy as np
+import pytest
+from PIL import Image
+from typer.testing import CliRunner
+
+import kreisel as kr
+from kreisel.cli import app
+
+runner = CliRunner()
+
+SHORT = """
+title = "short tennis racket"
+[body]
+moments = [1.0, 2.0, 3.0]
+[initial]
+omega = [0.01, 1.0, 0.01]
+[integration]
+t_end = 10.0
+n_samples = 101
+"""
+
+
+def run(*args, input=None):
+    return runner.invoke(app, list(args), input=input)
+
+
+def numbers(text):
+    return np.array([[float(x) for x in line.split()] for line in text.strip().splitlines()])
+
+
+def test_version():
+    result = run("--version")
+    assert result.exit_code == 0 and kr.__version__ in result.stdout
+
+
+def test_convert_the_contract_example():
+    result = run("convert", "--from", "euler:ZXZ", "--to", "quat", "30", "45", "60", "--degrees")
+    assert result.exit_code == 0, result.output
+    expected = kr.euler_to_quat("ZXZ", [30, 45, 60], degrees=True)
+    np.testing.assert_allclose(numbers(result.stdout)[0], expected, atol=1e-10)
+
+
+@pytest.mark.parametrize("target", ["matrix", "rotvec", "euler:zyx", "axis_angle", "gibbs", "mrp",
+                                    "euler_parameters", "quat"])
+def test_convert_round_trips_through_every_representation(target):
+    q = kr.euler_to_quat("ZXZ", [0.3, 0.7, -1.2])
+    there = run("convert", "--from", "quat", "--to", target, "--", *map(str, q))
+    assert there.exit_code == 0, there.output
+    back = run("convert", "--from", target, "--to", "quat", "--", *there.stdout.split())
+    assert back.exit_code == 0, back.output
+    np.testing.assert_allclose(numbers(back.stdout)[0], q, atol=1e-9)
+
+
+def test_convert_reads_rows_from_stdin_and_prints_complex_su2():
+    result = run("convert", "--from", "rotvec", "--to", "su2", input="0 0 0\n# comment\n0, 0, 3.141592653589793\n")
+    assert result.exit_code == 0, result.output
+    rows = result.stdout.strip().splitlines()
+    assert len(rows) == 2 and "j" in rows[1]
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--from", "euler", "--to", "quat", "1", "2", "3"), "euler:SEQ"),
+    (("--from", "spinor", "--to", "quat", "1", "2", "3"), "unknown representation"),
+    (("--from", "quat", "--to", "matrix", "1", "2", "3"), "takes 4 numbers"),
+    (("--from", "quat", "--to", "matrix", "0", "0", "0", "0"), "invalid rotation"),
+    (("--from", "euler:XYX", "--to", "quat", "--degrees", "1", "2", "3"), None),
+    (("--from", "euler:xYz", "--to", "quat", "1", "2", "3"), "invalid rotation"),
+])
+def test_convert_usage_errors_exit_2(args, message):
+    result = run("convert", *args)
+    if message is None:
+        assert result.exit_code == 0
+        return
+    assert result.exit_code == 2
+    assert message in result.output
+    assert "Traceback" not in result.output
+
+
+def test_simulate_plot_animate(tmp_path):
+    scenario = tmp_path / "short.toml"
+    scenario.write_text(SHORT)
+    out = tmp_path / "traj.nc"
+    result = run("simulate", str(scenario), "-o", str(out))
+    assert result.exit_code == 0, result.output
+    assert "relative drift" in result.stdout and out.is_file()
+    for kind in ("omega", "energy", "euler", "polhode", "herpolhode", "apex"):
+        png = tmp_path / f"{kind}.png"
+        result = run("plot", str(out), "--kind", kind, "-o", str(png))
+        assert result.exit_code == 0, result.output
+        with Image.open(png) as image:
+            assert image.size[0] >= 400 and image.size[1] >= 300
+            assert np.asarray(image.convert("L")).std() > 5  # not a blank canvas
+    gif = tmp_path / "anim.gif"
+    result = run("animate", str(out), "-o", str(gif), "--frames", "6")
+    assert result.exit_code == 0, result.output
+    with Image.open(gif) as image:
+        assert image.n_frames == 6
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_simulate_writes_other_formats(tmp_path, suffix):
+    scenario = tmp_path / "short.toml"
+    scenario.write_text(SHORT)
+    out = tmp_path / f"traj{suffix}"
+    assert run("simulate", str(scenario), "-o", str(out)).exit_code == 0
+    assert run("plot", str(out), "-o", str(tmp_path / "w.svg")).exit_code == 0
+
+
+def test_simulate_and_plot_errors(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(SHORT.replace("t_end = 10.0", "t_end = 10.0\nspeed = 3"))
+    result = run("simulate", str(bad))
+    assert result.exit_code == 2 and "integration.speed: unknown key" in result.output
+    result = run("simulate", str(tmp_path / "absent.toml"))
+    assert result.exit_code == 2 and "cannot read" in result.output
+    result = run("simulate", str(bad), "-o", str(tmp_path / "x.json"))
+    assert result.exit_code == 2 and "unsupported output" in result.output
+    junk = tmp_path / "junk.nc"
+    junk.write_bytes(b"not netcdf")
+    result = run("plot", str(junk), "-o", str(tmp_path / "p.png"))
+    assert result.exit_code == 2 and "not a readable kreisel trajectory" in result.output
+    result = run("plot", str(junk), "--kind", "spectrum", "-o", str(tmp_path / "p.png"))
+    assert result.exit_code == 2 and "unknown plot kind" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_examples_list_and_copy(tmp_path):
+    result = run("examples")
+    assert result.exit_code == 0
+    for name in kr.io.EXAMPLES:
+        assert name in result.stdout
+    assert run("examples", "tennis_racket", "--to", str(tmp_path)).exit_code == 0
+    copied = tmp_path / "tennis_racket.toml"
+    assert kr.io.load_scenario(copied).title
+    copied.write_text("# my edits")
+    result = run("examples", "tennis_racket", "--to", str(tmp_path))
+    assert result.exit_code == 2 and copied.read_text() == "# my edits"  # never clobbered
+    assert run("examples", "spinning_plate").exit_code == 2
+
+
+def test_unknown_command_is_a_usage_error():
+    assert run("spin").exit_code == 2
