@@ -1,0 +1,52 @@
+"""Run every ``bench/bench_*.py`` and assemble ``bench/RESULTS.md``.
+
+Each benchmark compares kreisel with its peer (scipy, solve_ivp, a numpy
+expression, Dask vs in-process) in one process and writes its own table to
+``bench/results/<topic>.md``; this script runs them one after another (so
+they do not compete for the two cores) and concatenates the tables under a
+header naming the machine and its load.
+
+Usage: ``python bench/run_all.py [topic ...]`` (default: all).
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+import pathlib
+import platform
+import subprocess
+import sys
+
+HERE = pathlib.Path(__file__).resolve().parent
+ORDER = ("so3", "kinematics", "se3", "dynamics", "tops", "earth", "nav", "sweep")
+
+
+def topics():
+    found = {p.stem.removeprefix("bench_") for p in HERE.glob("bench_*.py")}
+    return [t for t in ORDER if t in found] + sorted(found - set(ORDER))
+
+
+def main(selected):
+    for topic in selected:
+        print(f"== bench_{topic}.py", flush=True)
+        subprocess.run([sys.executable, str(HERE / f"bench_{topic}.py")], check=True)
+    load = " / ".join(f"{x:.2f}" for x in os.getloadavg())
+    header = [
+        "# Benchmark results",
+        "",
+        f"Assembled {datetime.date.today().isoformat()} by `bench/run_all.py` (`make bench`) on "
+        f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}; "
+        f"load average after the runs {load}. Each table is written by its own script; times are "
+        "medians of several runs, peers measured in the same process. The machine is shared, so "
+        "absolute times are noisy: the ratios are what to compare.",
+        "",
+    ]
+    parts = [(HERE / "results" / f"{t}.md").read_text(encoding="utf-8").strip() for t in topics()
+             if (HERE / "results" / f"{t}.md").is_file()]
+    (HERE / "RESULTS.md").write_text("\n".join(header) + "\n\n" + "\n\n".join(parts) + "\n", encoding="utf-8")
+    print(f"wrote {HERE / 'RESULTS.md'}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:] or topics())
