@@ -447,7 +447,7 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     >>> tr = kr.simulate_6dof(body, [0.0, 1.0], [0, 0, 1.0], velocity0=[1.0, 0, 0],
     ...                       force=ConstantForce([0, 0, -19.6]))
     >>> np.round(tr.position[-1], 10)
-    array([ 1.  ,  0.  , -4.9])
+    array([ 1. ,  0. , -4.9])
     """
     r0 = as_float_array(position0, "position0", tail=(3,))
     v0 = as_float_array(velocity0, "velocity0", tail=(3,))

@@ -157,7 +157,7 @@ class ConstantTorque(TorqueModel):
     >>> c = ConstantTorque([0.0, 0.0, 1.0], frame="space")
     >>> q = [np.cos(np.pi / 4), np.sin(np.pi / 4), 0.0, 0.0]   # body x-axis turned 90°
     >>> np.round(c(0.0, q, [0, 0, 0]), 12) + 0.0
-    array([ 0.,  1.,  0.])
+    array([0., 1., 0.])
     """
 
     def __init__(self, torque, frame="body"):
@@ -184,7 +184,7 @@ class LinearDamping(TorqueModel):
     Examples
     --------
     >>> LinearDamping(0.5)(0.0, [1, 0, 0, 0], [2.0, 0.0, -4.0])
-    array([-1., -0.,  2.])
+    array([-1.,  0.,  2.])
     """
 
     def __init__(self, coefficient):

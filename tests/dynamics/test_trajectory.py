@@ -1,0 +1,88 @@
+"""Trajectory: derived quantities, Euler angles, drift report, export and save/load round trips."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+import kreisel as kr
+from kreisel.dynamics import ConstantForce, GravityTorque
+
+
+@pytest.fixture(scope="module")
+def trajectory():
+    q0 = np.array([0.9, 0.1, -0.3, 0.3])
+    return kr.simulate([1.0, 2.0, 3.0], np.linspace(0, 10, 21), [0.1, 1.0, 0.1], q0 / np.linalg.norm(q0))
+
+
+def test_space_quantities(trajectory):
+    R = Rotation.from_quat(trajectory.q, scalar_first=True)
+    np.testing.assert_allclose(trajectory.omega_space, R.apply(trajectory.omega), atol=1e-15)
+    j_body = trajectory.omega * [1.0, 2.0, 3.0]
+    np.testing.assert_allclose(trajectory.angular_momentum(frame="body"), j_body, atol=1e-15)
+    np.testing.assert_allclose(trajectory.angular_momentum(frame="space"), R.apply(j_body), atol=1e-15)
+    np.testing.assert_allclose(trajectory.energy, 0.5 * np.sum(trajectory.omega * j_body, axis=-1))
+    with pytest.raises(ValueError, match="frame"):
+        trajectory.angular_momentum(frame="lab")
+
+
+def test_euler_angles_match_scipy(trajectory):
+    R = Rotation.from_quat(trajectory.q, scalar_first=True)
+    for seq in ("ZXZ", "xyz"):
+        ours = trajectory.euler(seq)
+        np.testing.assert_allclose(Rotation.from_euler(seq, ours).as_matrix(), R.as_matrix(), atol=1e-12)
+    np.testing.assert_allclose(trajectory.euler("ZXZ", degrees=True), np.degrees(trajectory.euler("ZXZ")))
+
+
+def test_drift_report(trajectory):
+    drift = trajectory.drift()
+    assert set(drift) == {"energy", "angular_momentum", "direction", "quaternion_norm"}
+    assert drift["energy"] < 1e-11 and drift["angular_momentum"] < 1e-11
+    assert drift["direction"] < 1e-11 and drift["quaternion_norm"] < 1e-15
+    # under a torque the report measures what the torque did
+    top = kr.simulate([1.0, 1.0, 0.5], np.linspace(0, 2, 5), [0, 0, 10.0], [np.cos(0.2), np.sin(0.2), 0, 0],
+                      torque=GravityTorque(5.0, [0, 0, 0.3]))
+    assert top.drift()["direction"] > 1e-3
+
+
+def test_xarray_and_pandas(trajectory):
+    ds = trajectory.to_xarray()
+    assert ds["q"].dims == ("time", "quaternion")
+    np.testing.assert_array_equal(ds["omega"].values, trajectory.omega)
+    np.testing.assert_array_equal(ds["time"].values, trajectory.t)
+    df = trajectory.to_pandas()
+    assert df.shape == (21, 14)
+    np.testing.assert_array_equal(df["omega_2"].to_numpy(), trajectory.omega[:, 1])
+    np.testing.assert_array_equal(df.index.to_numpy(), trajectory.t)
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".csv"])
+def test_save_load_round_trip(trajectory, tmp_path, suffix):
+    path = tmp_path / f"traj{suffix}"
+    trajectory.save(path)
+    back = kr.Trajectory.load(path)
+    np.testing.assert_array_equal(back.t, trajectory.t)
+    np.testing.assert_array_equal(back.q, trajectory.q)
+    np.testing.assert_array_equal(back.omega, trajectory.omega)
+    np.testing.assert_array_equal(back.inertia, trajectory.inertia)
+    assert back.meta == trajectory.meta
+
+
+def test_six_dof_and_batch_round_trips(tmp_path):
+    body = kr.RigidBody([1.0, 2.0, 3.0], mass=2.0)
+    tr = kr.simulate_6dof(body, np.linspace(0, 1, 5), [0.1, 1.0, 0.1], velocity0=[1, 0, 0],
+                          force=ConstantForce([0, 0, -19.62]))
+    for suffix in (".nc", ".csv"):
+        tr.save(tmp_path / f"six{suffix}")
+        back = kr.Trajectory.load(tmp_path / f"six{suffix}")
+        np.testing.assert_array_equal(back.position, tr.position)
+        np.testing.assert_array_equal(back.velocity, tr.velocity)
+    batch = kr.simulate_batch(np.array([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]]), np.linspace(0, 1, 4), [0.1, 1.0, 0.1])
+    batch.save(tmp_path / "batch.nc")
+    back = kr.Trajectory.load(tmp_path / "batch.nc")
+    np.testing.assert_array_equal(back.omega, batch.omega)
+    np.testing.assert_array_equal(back.inertia, batch.inertia)
+    assert batch.to_pandas().index.names == ["body", "t"]
+    with pytest.raises(ValueError, match="CSV holds one body"):
+        batch.save(tmp_path / "batch.csv")
+    with pytest.raises(ValueError, match=".nc or .csv"):
+        batch.save(tmp_path / "batch.h5")
