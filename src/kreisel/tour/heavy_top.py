@@ -25,12 +25,13 @@ def lagrange_top(quick):
     t = np.linspace(0.0, 12.0, 1200 if quick else 6000)
     fig = Figure(figsize=(11, 4), layout="constrained")
     ax0 = fig.add_subplot(1, 4, 1)
-    theta = np.linspace(0.05, np.pi - 0.05, 400)
-    checks = []
+    theta = np.linspace(0.3, 1.1, 400)
+    checks, levels = [], []
     for k, (kind, rates) in enumerate(_LOCI.items()):
         consts = _TOP.constants(euler0, rates)
-        v_eff = _TOP.effective_potential(theta, consts.J3, consts.Jz)
-        ax0.plot(theta, v_eff, label=kind)
+        ax0.plot(theta, _TOP.effective_potential(theta, consts.J3, consts.Jz), color=f"C{k}", label=kind)
+        ax0.axhline(consts.E, color=f"C{k}", linestyle=":", linewidth=0.8)
+        levels.append(consts.E)
         exact = _TOP.solve(t, euler0, rates)
         simulated = _TOP.simulate(t, euler0, rates)
         dq = np.minimum(np.linalg.norm(exact.q - simulated.q, axis=-1), np.linalg.norm(exact.q + simulated.q, axis=-1))
@@ -38,9 +39,11 @@ def lagrange_top(quick):
         theta_path = np.arccos(np.clip(tips[:, 2], -1, 1))
         low, high = _TOP.turning_points(euler0, rates)
         ax = fig.add_subplot(1, 4, k + 2)
-        ax.plot(np.degrees(np.arctan2(tips[:, 1], tips[:, 0])) % 360, np.degrees(theta_path), linewidth=1)
+        ax.plot(np.degrees(np.unwrap(np.arctan2(tips[:, 1], tips[:, 0]))), np.degrees(theta_path), linewidth=1)
+        ax.axhline(np.degrees(low), color="0.6", linestyle=":")
+        ax.axhline(np.degrees(high), color="0.6", linestyle=":")
         ax.invert_yaxis()
-        ax.set_title(kind)
+        ax.set_title(f"apex locus: {kind}")
         ax.set_xlabel("φ (°)")
         ax.set_ylabel("θ (°)")
         checks += [
@@ -49,9 +52,10 @@ def lagrange_top(quick):
                         rtol=1e-4, source="turning point"),
             Check.below(f"{kind}: exact (elliptic) vs simulated attitude, max |Δq|", float(dq.max()), 1e-9),
         ]
-    ax0.set_ylim(top=ax0.get_ylim()[0] + 3 * (np.ptp(v_eff[(theta > 0.3) & (theta < 1.2)]) + 1e-3))
+    span = max(levels) - min(levels)
+    ax0.set_ylim(min(levels) - 2 * span, max(levels) + 2 * span)
     ax0.set_xlabel("θ (rad)")
-    ax0.set_title("V_eff(θ)")
+    ax0.set_title("V_eff(θ) and energy E (dotted)")
     ax0.legend(fontsize=8)
     return Section(
         "Lagrange top: effective potential and apex loci", "六.2–5",
@@ -61,8 +65,8 @@ def lagrange_top(quick):
         "(loops). The exact solution u = u1 + (u2 − u1) sn² with φ, ψ from elliptic integrals of the third "
         "kind is compared with kreisel.simulate under a gravity torque.",
         checks,
-        [(fig, "Effective potentials and the apex paths (θ against φ) of a top released at θ0 = 0.6 rad "
-               "with three precession rates.")],
+        [(fig, "Effective potentials and the apex paths (θ against φ, between the turning points) of a top "
+               "released at θ0 = 0.6 rad with three initial precession rates.")],
     )
 
 

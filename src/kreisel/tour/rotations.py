@@ -51,8 +51,9 @@ def euler_angles_and_nodal_line(quick):
     node = _axis_rotation(2, phi)[:, 0]
     ax.plot(*np.c_[-node, node], "k--", linewidth=1.2)
     ax.text(*(1.1 * node), "nodal line N", color="k")
+    ax.set(xlim=(-1.1, 1.1), ylim=(-1.1, 1.1), zlim=(-1.1, 1.1))
     ax.set_box_aspect((1, 1, 1))
-    ax.set_title("space axes (grey), body axes (colour), ZXZ (φ, θ, ψ) = (40°, 35°, 25°)")
+    ax.set_title("ZXZ (φ, θ, ψ) = (40°, 35°, 25°)")
 
     return Section(
         "Euler angles and the nodal line", "二.3",
@@ -62,7 +63,7 @@ def euler_angles_and_nodal_line(quick):
         [Check.below("|R − Rz(φ)Rx(θ)Rz(ψ)| (seed's product)", np.max(np.abs(R - seed_R)), 1e-15),
          Check.below("angles recovered from R (rad)", np.max(np.abs(back - [phi, theta, psi])), 1e-14),
          Check.below("max |R − scipy R| over 24 conventions", worst, 1e-14)],
-        [(fig, "Space and body frames for ZXZ angles; the dashed line is the line of nodes.")],
+        [(fig, "Space axes (grey) and body axes (colour) for ZXZ angles; the dashed line is the line of nodes.")],
     )
 
 
@@ -87,7 +88,7 @@ def gimbal_lock(quick):
     fig = Figure(figsize=(7, 3.8), layout="constrained")
     ax = fig.add_subplot()
     ax.loglog(theta, np.abs(rates[:, 0]), label="|φ̇|")
-    ax.loglog(theta, np.abs(rates[:, 2]), label="|ψ̇|")
+    ax.loglog(theta, np.abs(rates[:, 2]), "--", label="|ψ̇|")
     ax.loglog(theta, np.linalg.norm(qdot, axis=-1), label="|q̇| = |ω|/2")
     ax.set_xlabel("θ (rad)")
     ax.set_ylabel("rate")
