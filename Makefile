@@ -20,10 +20,10 @@ $(VENV)/.installed-dev: pyproject.toml $(VENV)/.created
 	$(PY) -m pip install --quiet -e ".[dev]"
 	touch $@
 
-demo: $(VENV)/.installed-run
+demo: $(VENV)/.installed-run web
 	$(PY) -m kreisel tour --out tour
 
-test: $(VENV)/.installed-dev
+test: $(VENV)/.installed-dev web
 	$(PY) -m pytest -n 2 --dist loadfile -q
 
 bench: $(VENV)/.installed-dev
@@ -31,3 +31,16 @@ bench: $(VENV)/.installed-dev
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info
+
+# The viewer's front end (kreisel serve): three.js bundled by esbuild into the package.
+.PHONY: web
+WEB_BUNDLE := src/kreisel/web/static/viewer.js
+
+web/node_modules/.installed: web/package.json web/package-lock.json
+	cd web && npm ci --no-audit --no-fund
+	touch $@
+
+$(WEB_BUNDLE): web/node_modules/.installed web/build.mjs web/index.html $(wildcard web/src/*.js)
+	cd web && npm run build
+
+web: $(WEB_BUNDLE)

@@ -1,0 +1,151 @@
+"""The ASGI app of ``kreisel serve``: the built front end and a JSON API that runs kreisel.
+
+Endpoints (all JSON unless noted):
+
+``GET /api/presets``                 name, title and description of every preset
+``GET /api/presets/{name}``          its scenario TOML
+``GET /api/initial``                 the scenario given to :func:`serve` (TOML or null)
+``POST /api/scenario``               ``{"form": {...}}`` -> ``{"toml": ...}``
+``POST /api/run``                    ``{"preset": name}`` | ``{"toml": text}`` | ``{"form": {...}}`` -> the run
+``POST /api/export?format=nc|csv``   same body -> the trajectory file (attachment)
+
+Invalid scenarios answer 400 and work over the limits answers 422, with the reason in ``detail``.
+Nothing reads or writes the user's files except the export, which writes to a private temporary folder.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import tempfile
+import tomllib
+
+from fastapi import FastAPI, HTTPException, Query
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
+from pydantic import BaseModel, Field
+from starlette.background import BackgroundTask
+
+from . import session
+from .presets import PRESETS, preset_text
+
+STATIC = pathlib.Path(__file__).parent / "static"
+MAX_TOML_CHARS = 100_000
+
+_MISSING_BUNDLE = """<!doctype html><meta charset="utf-8"><title>kreisel viewer</title>
+<p>The viewer's front end has not been built. From the repository, run <code>make web</code>
+(needs Node.js and npm), then start <code>kreisel serve</code> again.</p>"""
+
+
+class Form(BaseModel):
+    """The viewer's form: a rigid body with principal moments, optionally a heavy top."""
+
+    title: str | None = Field(None, max_length=200)
+    moments: list[float] = Field(min_length=3, max_length=3)
+    omega: list[float] = Field(min_length=3, max_length=3)
+    euler_deg: list[float] | None = Field(None, min_length=3, max_length=3)
+    mgl: float = 0.0
+    lever_axis: int = Field(2, ge=0, le=2)
+    method: str | None = None
+    t_end: float = 30.0
+    n_samples: int = 1501
+    dt: float | None = None
+
+
+class RunRequest(BaseModel):
+    """Exactly one of a preset name, scenario TOML text or form fields."""
+
+    preset: str | None = None
+    toml: str | None = Field(None, max_length=MAX_TOML_CHARS)
+    form: Form | None = None
+
+
+def _scenario_text(request):
+    given = [name for name in ("preset", "toml", "form") if getattr(request, name) is not None]
+    if len(given) != 1:
+        raise HTTPException(400, f"give exactly one of preset, toml, form (got {', '.join(given) or 'none'})")
+    if request.preset is not None:
+        try:
+            return preset_text(request.preset)
+        except ValueError as exc:
+            raise HTTPException(404, str(exc)) from None
+    if request.form is not None:
+        if request.form.method is not None and request.form.method not in session.METHODS:
+            raise HTTPException(400, f"form.method must be one of {', '.join(session.METHODS)}, "
+                                     f"got {request.form.method!r}")
+        return session.scenario_toml(request.form.model_dump())
+    return request.toml
+
+
+def _checked(call, *args):
+    try:
+        return call(*args)
+    except session.RunRefused as exc:
+        raise HTTPException(422, str(exc)) from None
+    except session.ScenarioError as exc:
+        raise HTTPException(400, str(exc)) from None
+
+
+def create_app(scenario_text=None):
+    """The viewer's FastAPI app; ``scenario_text`` (TOML) is offered as the initial scenario.
+
+    Examples
+    --------
+    >>> from fastapi.testclient import TestClient
+    >>> client = TestClient(create_app())
+    >>> client.get("/api/presets").json()[0]["name"]
+    'tennis_racket'
+    """
+    app = FastAPI(title="kreisel viewer", docs_url=None, redoc_url=None, openapi_url=None)
+
+    @app.get("/", response_class=HTMLResponse)
+    def index():
+        page = STATIC / "index.html"
+        if not page.is_file():
+            return HTMLResponse(_MISSING_BUNDLE, status_code=503)
+        return HTMLResponse(page.read_text(encoding="utf-8"))
+
+    @app.get("/api/presets")
+    def presets():
+        out = []
+        for name in PRESETS:
+            data = tomllib.loads(preset_text(name))
+            out.append({"name": name, "title": data.get("title", name), "description": data.get("description", "")})
+        return out
+
+    @app.get("/api/presets/{name}")
+    def preset(name: str):
+        try:
+            return {"name": name, "toml": preset_text(name)}
+        except ValueError as exc:
+            raise HTTPException(404, str(exc)) from None
+
+    @app.get("/api/initial")
+    def initial():
+        return {"toml": scenario_text}
+
+    @app.post("/api/scenario")
+    def scenario(request: RunRequest):
+        text = _scenario_text(request)
+        _checked(session.load, text)
+        return {"toml": text}
+
+    @app.post("/api/run")
+    def run(request: RunRequest):
+        return JSONResponse(_checked(session.run, _scenario_text(request)))
+
+    @app.post("/api/export")
+    def export(request: RunRequest, format: str = Query("nc", pattern="^(nc|csv)$")):
+        text = _scenario_text(request)
+        scenario = _checked(session.load, text)
+        if scenario.kind != "rigid_body":
+            raise HTTPException(400, "only rigid-body runs export as a trajectory file")
+        from ..io import run_scenario, save_result
+
+        folder = tempfile.TemporaryDirectory(prefix="kreisel-export-")
+        name = "".join(c if c.isalnum() else "_" for c in scenario.title.lower()).strip("_") or "trajectory"
+        path = save_result(run_scenario(scenario), pathlib.Path(folder.name) / f"{name}.{format}")
+        return FileResponse(path, filename=path.name, background=BackgroundTask(folder.cleanup))
+
+    if STATIC.is_dir():
+        app.mount("/static", StaticFiles(directory=STATIC), name="static")
+    return app

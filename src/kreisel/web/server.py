@@ -1,0 +1,73 @@
+"""Run the viewer with uvicorn: a socket bound first so that port 0 can pick a free port."""
+
+from __future__ import annotations
+
+import pathlib
+import socket
+import threading
+import webbrowser
+
+
+def bind(host="127.0.0.1", port=0):
+    """A listening TCP socket on ``host:port`` (port 0: a free port chosen by the system)."""
+    if not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ValueError(f"port must be an integer in 0..65535, got {port!r}")
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    sock = socket.socket(family, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((host, port))
+    except OSError as exc:
+        sock.close()
+        raise ValueError(f"cannot listen on {host}:{port} ({exc.strerror})") from None
+    sock.listen(128)
+    return sock
+
+
+def make_server(app):
+    """A uvicorn server for ``app``; run it with ``.run(sockets=[sock])`` on a socket from :func:`bind`."""
+    import uvicorn
+
+    return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
+
+
+def url_of(sock):
+    host, port = sock.getsockname()[:2]
+    return f"http://{'[' + host + ']' if ':' in host else host}:{port}/"
+
+
+def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
+    """Serve the viewer until interrupted; prints its URL and optionally opens a browser.
+
+    Parameters
+    ----------
+    scenario : str or path-like, optional
+        A scenario TOML file shown first (checked before the server starts).
+    host : str
+        Interface to listen on; the default keeps the viewer private to this machine.
+    port : int
+        TCP port; 0 picks a free one.
+    open_browser : bool
+        Open the default web browser at the URL once the server listens.
+    """
+    from .app import create_app
+    from .session import load
+
+    text = None
+    if scenario is not None:
+        path = pathlib.Path(scenario)
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise ValueError(f"scenario: cannot read {path} ({exc.strerror})") from None
+        load(text)
+    sock = bind(host, port)
+    url = url_of(sock)
+    server = make_server(create_app(text))
+    print(f"kreisel viewer at {url}  (Ctrl+C to stop)", flush=True)
+    if open_browser:
+        threading.Timer(0.5, webbrowser.open, args=(url,)).start()
+    try:
+        server.run(sockets=[sock])
+    finally:
+        sock.close()

@@ -1,0 +1,140 @@
+"""The viewer's JSON API through FastAPI's test client (no browser, no network)."""
+
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from kreisel.io import parse_scenario
+from kreisel.web import create_app
+from kreisel.web.presets import PRESETS
+from kreisel.web.session import MAX_SAMPLES, form_fields, scenario_toml
+
+TENNIS = {"moments": [1.0, 2.0, 3.0], "omega": [0.01, 1.0, 0.01], "t_end": 20.0, "n_samples": 201,
+          "method": "dop853"}
+LAGRANGE = {"moments": [1.0, 1.0, 0.5], "omega": [0.0, 0.0, 6.0], "euler_deg": [0.0, 30.0, 0.0], "mgl": 1.0,
+            "t_end": 5.0, "n_samples": 101}
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app())
+
+
+def test_presets_list_and_text(client):
+    listed = client.get("/api/presets").json()
+    assert [p["name"] for p in listed] == list(PRESETS)
+    assert all(p["title"] and p["description"] for p in listed)
+    assert "[body]" in client.get("/api/presets/tennis_racket").json()["toml"]
+    assert client.get("/api/presets/nope").status_code == 404
+
+
+def test_free_body_run_conserves_and_reports_seed_quantities(client):
+    data = client.post("/api/run", json={"form": TENNIS}).json()
+    t, q, omega = (np.array(data[k]) for k in ("t", "q", "omega"))
+    assert t.shape == (201,) and q.shape == (201, 4) and omega.shape == (201, 3)
+    np.testing.assert_allclose(np.linalg.norm(q, axis=1), 1.0, atol=1e-12)
+    assert data["energy"][0] == pytest.approx(0.5 * (1e-4 + 2.0 + 3e-4), rel=1e-14)
+    assert data["drift"]["energy"] < 1e-9 and data["drift"]["J_norm"] < 1e-9
+    # omega_space = R omega_body: |omega| is frame independent
+    np.testing.assert_allclose(np.linalg.norm(data["omega_space"], axis=1), np.linalg.norm(omega, axis=1), rtol=1e-12)
+    seed = data["seed"]
+    assert seed["J_norm"] == pytest.approx(np.sqrt(1e-4 + 4.0 + 9e-4), rel=1e-14)
+    assert [s["kind"] for s in seed["stability"]] == ["stable", "unstable", "stable"]
+    # middle-axis growth rate sqrt((I2 - I1)(I3 - I2) / (I1 I3)) |omega| (seed 五.4)
+    assert seed["stability"][1]["growth_rate"] == pytest.approx(np.sqrt(1 / 3) * np.linalg.norm(omega[0]), rel=1e-12)
+    assert seed["lagrange"] is None
+    assert data["form"]["moments"] == TENNIS["moments"]
+
+
+def test_heavy_top_energy_includes_gravity_and_turning_points(client):
+    data = client.post("/api/run", json={"form": LAGRANGE}).json()
+    # released at theta = 30 degrees with pure spin: E = ½ I3 ω3² + mgl cos θ, and theta_min is the start
+    assert data["energy"][0] == pytest.approx(0.5 * 0.5 * 36 + np.cos(np.pi / 6), rel=1e-14)
+    assert data["drift"]["energy"] < 1e-8
+    lagrange = data["seed"]["lagrange"]
+    assert lagrange["apex_locus"] == "cusp"
+    assert lagrange["theta_min_deg"] == pytest.approx(30.0, abs=1e-9)
+    assert lagrange["theta_max_deg"] > 30.0
+    assert lagrange["sleeping_threshold_omega3"] == pytest.approx(4.0)  # omega3 > 2 sqrt(I1 mgl) / I3 (seed 六.6)
+    tilt = np.degrees(np.arccos(np.clip([2 * (q[0] ** 2 + q[3] ** 2) - 1 for q in data["q"]], -1, 1)))
+    assert tilt.min() >= 30.0 - 1e-6 and tilt.max() <= lagrange["theta_max_deg"] + 1e-6
+
+
+def test_every_preset_runs(client):
+    for name in ("symmetric_top", "lagrange_loops", "kovalevskaya", "foucault"):
+        data = client.post("/api/run", json={"preset": name}).json()
+        assert len(data["t"]) > 10, name
+    loops = client.post("/api/run", json={"preset": "lagrange_loops"}).json()
+    assert loops["seed"]["lagrange"]["apex_locus"] == "loop"
+    foucault = client.post("/api/run", json={"preset": "foucault"}).json()
+    seed = foucault["seed"]
+    assert seed["precession_rate_measured"] == pytest.approx(seed["precession_rate_theory"], rel=2e-3)
+
+
+@pytest.mark.parametrize(("body", "status", "words"), [
+    ({"form": dict(TENNIS, n_samples=MAX_SAMPLES + 1)}, 422, "at most"),
+    ({"form": dict(TENNIS, method="rk4", dt=1e-9)}, 422, "steps is too many"),
+    ({"form": dict(TENNIS, t_end=1e9)}, 422, "turns"),
+    ({"form": dict(TENNIS, moments=[1.0, 1.0, 3.0])}, 400, "not a physical rigid body"),
+    ({"form": dict(TENNIS, method="euler")}, 400, "form.method"),
+    ({"toml": "[body]\nmesh = '/etc/passwd'\ndensity = 1.0\n[initial]\nomega = [0, 0, 1]\n"
+              "[integration]\nt_end = 1.0\n"}, 422, "mesh"),
+    ({"toml": "not toml ["}, 400, "<scenario>"),
+    ({"preset": "tennis_racket", "toml": "x"}, 400, "exactly one"),
+])
+def test_bad_requests_are_refused_with_a_reason(client, body, status, words):
+    response = client.post("/api/run", json=body)
+    assert response.status_code == status
+    assert words in response.json()["detail"]
+
+
+def test_form_toml_round_trip():
+    form = dict(LAGRANGE, method="rk4", dt=0.001, lever_axis=2, title="My top")
+    scenario = parse_scenario(scenario_toml(form))
+    back = form_fields(scenario)
+    for key in ("moments", "omega", "mgl", "method", "t_end", "n_samples", "dt", "title"):
+        assert back[key] == pytest.approx(form[key]) if isinstance(form[key], (float, list)) else back[key] == form[key]
+    np.testing.assert_allclose(back["euler_deg"], form["euler_deg"], atol=1e-12)
+
+
+def test_export_trajectory_and_scenario(client, tmp_path):
+    from kreisel.io import load_trajectory
+
+    response = client.post("/api/export?format=nc", json={"form": TENNIS})
+    assert response.status_code == 200
+    assert response.headers["content-disposition"].endswith('.nc"')
+    path = tmp_path / "run.nc"
+    path.write_bytes(response.content)
+    traj = load_trajectory(path)
+    ran = client.post("/api/run", json={"form": TENNIS}).json()
+    np.testing.assert_allclose(traj.q, ran["q"], rtol=0, atol=1e-15)
+    csv = client.post("/api/export?format=csv", json={"preset": "symmetric_top"})
+    assert csv.status_code == 200 and csv.text.startswith("# kreisel-trajectory")
+    assert client.post("/api/export?format=exe", json={"form": TENNIS}).status_code == 422
+    assert client.post("/api/export", json={"preset": "foucault"}).status_code == 400
+    toml = client.post("/api/scenario", json={"form": TENNIS}).json()["toml"]
+    assert parse_scenario(toml).data["body"]["moments"].tolist() == TENNIS["moments"]
+
+
+def test_initial_scenario_and_index(tmp_path):
+    from kreisel.web.presets import preset_text
+
+    client = TestClient(create_app(preset_text("sleeping_top")))
+    assert "Sleeping top" in client.get("/api/initial").json()["toml"]
+    page = client.get("/")
+    assert page.status_code in (200, 503)
+    assert "kreisel viewer" in page.text
+
+
+def test_serve_checks_its_arguments(tmp_path):
+    from kreisel.web import serve
+
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[body]\nmoments = [1, 2]\n")
+    with pytest.raises(ValueError, match="body.moments"):
+        serve(bad, open_browser=False)
+    with pytest.raises(ValueError, match="cannot read"):
+        serve(tmp_path / "missing.toml", open_browser=False)
+    with pytest.raises(ValueError, match="port"):
+        serve(port=70000, open_browser=False)

@@ -1,0 +1,70 @@
+"""End to end: the page in Debian's headless chromium (software WebGL) driven by Playwright."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+from kreisel.web.app import STATIC
+
+CHROMIUM = pathlib.Path("/usr/bin/chromium")
+ARTIFACTS = pathlib.Path(__file__).resolve().parents[2] / "test-artifacts"
+DOCS = pathlib.Path(__file__).resolve().parents[2] / "docs"
+ARGS = ["--no-sandbox", "--headless=new", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync", "--no-first-run"]
+
+pytestmark = [
+    pytest.mark.skipif(not CHROMIUM.exists(), reason="needs Debian's chromium at /usr/bin/chromium "
+                                                     "(.ci/run installs it with apt-get)"),
+    pytest.mark.skipif(not (STATIC / "viewer.js").exists(), reason="front end not built: run `make web`"),
+]
+
+
+@pytest.fixture(scope="module")
+def page(live_url):
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=str(CHROMIUM), args=ARGS, timeout=120_000)
+        page = browser.new_page(viewport={"width": 1400, "height": 820})
+        errors = []
+        page.on("pageerror", lambda exc: errors.append(str(exc)))
+        page.set_default_timeout(180_000)
+        page.goto(live_url, wait_until="load")
+        page.errors = errors
+        yield page
+        browser.close()
+
+
+def test_tennis_racket_preset_plays_with_constant_energy(page):
+    # the first run may compile the integrator (numba), hence the long timeout
+    page.wait_for_function("window.kreisel && window.kreisel.ready && window.kreisel.data.kind === 'rigid_body'",
+                           timeout=240_000)
+    assert page.evaluate("document.getElementById('preset').value") == "tennis_racket"
+    assert page.evaluate("window.kreisel.webgl"), "WebGL (SwiftShader) was not available"
+    page.evaluate("document.getElementById('speed').value = 1; document.getElementById('speed').oninput()")
+    page.wait_for_function("window.kreisel.plotted.energy.length > 200", timeout=120_000)
+    energy = np.array(page.evaluate("window.kreisel.plotted.energy"))
+    omega = np.array(page.evaluate("window.kreisel.plotted.omega"))
+    assert energy[0] == pytest.approx(1.0002, rel=1e-12)  # T = ½ Σ I ω² = ½ (1e-4 + 2 + 3e-4)
+    assert np.ptp(energy) / energy[0] < 1e-9
+    assert np.ptp(omega[1]) > 0.1, "omega_2 should move when the racket starts to flip"
+    ARTIFACTS.mkdir(exist_ok=True)
+    shot = page.locator("#scene").screenshot(path=str(ARTIFACTS / "viewer.png"))
+    from io import BytesIO
+
+    from matplotlib.image import imread
+
+    pixels = imread(BytesIO(shot), format="png")[..., :3]
+    assert pixels.std() > 0.02, "the 3D canvas is blank"
+    assert len({tuple(c) for c in (pixels[::8, ::8].reshape(-1, 3) * 255).astype(int)}) > 20
+    DOCS.mkdir(exist_ok=True)
+    page.screenshot(path=str(DOCS / "viewer.png"))
+    assert page.errors == []
+
+
+def test_refused_run_shows_the_reason(page):
+    page.wait_for_function("window.kreisel && window.kreisel.ready", timeout=240_000)
+    page.fill("#nsamp", "50000000")
+    page.click("#run")
+    page.wait_for_function("window.kreisel.error !== null", timeout=60_000)
+    assert "at most" in page.inner_text("#status")

@@ -1,0 +1,202 @@
+// The viewer's page logic: form <-> API, playback clock, plots and readouts.
+import { drawPlot } from "./plots.js";
+import { Viewer, webglAvailable } from "./scene.js";
+
+const $ = (id) => document.getElementById(id);
+// window.kreisel is read by the end-to-end tests: the data, the playback position and what is plotted
+const state = (window.kreisel = { data: null, index: 0, time: 0, playing: true, ready: false, error: null,
+  plotted: { omega: [], energy: [], J: [] } });
+let viewer = null;
+
+function status(message, error = false) {
+  $("status").textContent = message;
+  $("status").className = error ? "error" : "";
+  state.error = error ? message : null;
+}
+
+async function api(path, body) {
+  const response = await fetch(path, body === undefined ? {} : {
+    method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+  if (!response.ok) {
+    let detail = response.statusText;
+    try { detail = (await response.json()).detail; } catch (e) { /* not JSON */ }
+    throw new Error(typeof detail === "string" ? detail : JSON.stringify(detail));
+  }
+  return response;
+}
+
+const num = (id) => parseFloat($(id).value);
+
+function readForm() {
+  const form = {
+    moments: ["I1", "I2", "I3"].map(num), omega: ["w1", "w2", "w3"].map(num), euler_deg: ["e1", "e2", "e3"].map(num),
+    mgl: num("mgl") || 0, lever_axis: parseInt($("lever").value, 10), t_end: num("tend"),
+    n_samples: parseInt($("nsamp").value, 10),
+  };
+  if ($("method").value) form.method = $("method").value;
+  return form;
+}
+
+function fillForm(form) {
+  const set = (ids, values) => ids.forEach((id, k) => ($(id).value = +values[k].toPrecision(10)));
+  set(["I1", "I2", "I3"], form.moments);
+  set(["w1", "w2", "w3"], form.omega);
+  set(["e1", "e2", "e3"], form.euler_deg);
+  $("mgl").value = form.mgl;
+  $("lever").value = String(form.lever_axis);
+  $("method").value = form.method || "";
+  $("tend").value = form.t_end;
+  $("nsamp").value = form.n_samples;
+}
+
+const fmt = (v, digits = 6) => (v === null || v === undefined ? "–" : Number(v).toPrecision(digits));
+
+function readout(d) {
+  const lines = [`${d.title}`];
+  if (d.kind === "foucault") {
+    const s = d.seed;
+    lines.push(`swing plane rate  ${fmt(s.precession_rate_measured)} rad/s`,
+      `theory −Ω sin λ    ${fmt(s.precession_rate_theory)} rad/s`,
+      `one turn in       ${fmt(s.period_hours, 5)} h`, `Jacobi drift      ${fmt(d.drift.jacobi, 3)}`);
+  } else {
+    const s = d.seed;
+    lines.push(`method ${d.method}`, `T   = ${fmt(s.T, 10)} J`, `J   = [${s.J.map((v) => fmt(v, 5)).join(", ")}]`,
+      `|J| = ${fmt(s.J_norm, 10)}`, `energy drift ${fmt(d.drift.energy, 3)}, |J| drift ${fmt(d.drift.J_norm, 3)}`);
+    if (s.regime) lines.push(`free-top regime: ${s.regime}`);
+    lines.push("steady rotation about principal axes:");
+    for (const a of s.stability) {
+      const extra = a.kind === "unstable" ? `growth ${fmt(a.growth_rate, 4)}/s` : a.kind === "stable" ? `wobble ${fmt(a.wobble_frequency, 4)} rad/s` : "";
+      lines.push(`  I${a.axis} = ${fmt(a.moment, 4)}: ${a.kind} ${extra}`);
+    }
+    const lg = s.lagrange;
+    if (lg) {
+      lines.push("Lagrange top:");
+      if (lg.theta_min_deg !== undefined) lines.push(`  θ between ${fmt(lg.theta_min_deg, 5)}° and ${fmt(lg.theta_max_deg, 5)}°`, `  apex locus: ${lg.apex_locus}`);
+      if (lg.note) lines.push(`  ${lg.note}`);
+      lines.push(`  sleeping top ${lg.sleeping_stable ? "stable" : "unstable"} (needs ω3 > ${fmt(lg.sleeping_threshold_omega3, 4)})`);
+    }
+  }
+  $("readout").textContent = lines.join("\n");
+}
+
+function show(d) {
+  state.data = d;
+  state.index = 0;
+  state.time = d.t[0];
+  state.ready = true;
+  if (d.form) fillForm(d.form);
+  if (viewer) viewer.load(d);
+  readout(d);
+  const heavyOrFoucault = d.kind === "foucault" ? "swing-plane azimuth (rad)" : "Energy (J)";
+  document.querySelectorAll("#side h2")[1].textContent = heavyOrFoucault;
+  status(`${d.title}: ${d.t.length} samples`);
+}
+
+async function run(body) {
+  status("computing…");
+  state.ready = false;
+  try {
+    show(await (await api("/api/run", body)).json());
+  } catch (e) {
+    status(e.message, true);
+  }
+}
+
+function series(d) {
+  if (d.kind === "foucault") return { omega: [[], [], []], energy: [d.swing_azimuth], J: [[]] };
+  const col = (k) => d.omega.map((w) => w[k]);
+  return { omega: [col(0), col(1), col(2)], energy: [d.energy], J: [d.J_norm] };
+}
+
+function drawPlots() {
+  const d = state.data;
+  if (!d) return;
+  if (!d._series) d._series = series(d);
+  const s = d._series, i = state.index;
+  state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, ["#d33", "#393", "#33d"], i);
+  state.plotted.energy = drawPlot($("plot-energy"), d.t, s.energy, ["#b60"], i)[0];
+  state.plotted.J = drawPlot($("plot-J"), d.t, s.J, ["#088"], i)[0];
+}
+
+function download(blob, name) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
+function indexAt(t, times) {
+  let lo = 0, hi = times.length - 1;
+  while (lo < hi) { const mid = (lo + hi + 1) >> 1; if (times[mid] <= t) lo = mid; else hi = mid - 1; }
+  return lo;
+}
+
+let last = performance.now();
+function frame(now) {
+  const d = state.data;
+  const dt = Math.min(0.1, (now - last) / 1000);
+  last = now;
+  if (d && state.ready) {
+    const span = d.t[d.t.length - 1] - d.t[0];
+    if (state.playing) {
+      // the whole run plays in about 40 s at speed 1
+      state.time += dt * Math.pow(10, num("speed")) * (span / 40);
+      if (state.time > d.t[d.t.length - 1]) { state.time = d.t[d.t.length - 1]; state.playing = false; $("play").textContent = "Play"; }
+      state.index = indexAt(state.time, d.t);
+    }
+    if (viewer) { viewer.frame = $("camera").value; viewer.show(state.index); }
+    drawPlots();
+    $("hud").textContent = `t = ${d.t[state.index].toFixed(3)} s   (${state.index + 1}/${d.t.length})`;
+  }
+  if (viewer) viewer.render();
+  requestAnimationFrame(frame);
+}
+
+async function init() {
+  if (webglAvailable()) {
+    try { viewer = new Viewer($("scene")); } catch (e) { viewer = null; }
+  }
+  if (!viewer) { $("nowebgl").style.display = "block"; $("scene").style.display = "none"; }
+  state.webgl = !!viewer;
+  const presets = await (await api("/api/presets")).json();
+  for (const p of presets) $("preset").add(new Option(p.title, p.name));
+  const describe = () => ($("description").textContent = presets.find((p) => p.name === $("preset").value)?.description || "");
+  $("preset").onchange = () => { describe(); run({ preset: $("preset").value }); };
+  $("run").onclick = () => run({ form: readForm() });
+  $("play").onclick = () => {
+    if (!state.data) return;
+    if (!state.playing && state.index >= state.data.t.length - 1) state.time = state.data.t[0];
+    state.playing = !state.playing;
+    $("play").textContent = state.playing ? "Pause" : "Play";
+  };
+  $("step").onclick = () => {
+    if (!state.data) return;
+    state.playing = false; $("play").textContent = "Play";
+    state.index = Math.min(state.index + 1, state.data.t.length - 1);
+    state.time = state.data.t[state.index];
+  };
+  $("restart").onclick = () => { if (state.data) { state.time = state.data.t[0]; state.index = 0; } };
+  $("speed").oninput = () => ($("speedval").textContent = `${Math.pow(10, num("speed")).toPrecision(2)}×`);
+  const exportAs = async (format) => {
+    if (!state.data) return;
+    try {
+      const response = await api(`/api/export?format=${format}`, { toml: state.data.toml });
+      const name = /filename="([^"]+)"/.exec(response.headers.get("content-disposition") || "")?.[1] || `trajectory.${format}`;
+      download(await response.blob(), name);
+    } catch (e) { status(e.message, true); }
+  };
+  $("export-nc").onclick = () => exportAs("nc");
+  $("export-csv").onclick = () => exportAs("csv");
+  $("export-toml").onclick = () => state.data && download(new Blob([state.data.toml], { type: "application/toml" }), "scenario.toml");
+  $("load").onchange = async () => {
+    const file = $("load").files[0];
+    if (file) run({ toml: await file.text() });
+  };
+  requestAnimationFrame(frame);
+  const initial = (await (await api("/api/initial")).json()).toml;
+  if (initial) run({ toml: initial });
+  else { $("preset").value = "tennis_racket"; describe(); run({ preset: "tennis_racket" }); }
+}
+
+init().catch((e) => status(`viewer failed to start: ${e.message}`, true));

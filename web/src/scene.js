@@ -1,0 +1,200 @@
+// The three.js scene: body, principal axes, omega and J arrows, Poinsot construction, trails, heavy top.
+// Coordinates are kreisel's space frame (z up); the body group carries the attitude q (body -> space).
+import * as THREE from "three";
+
+const AXIS_COLORS = [0xd03030, 0x30a030, 0x3050d0];
+
+export function webglAvailable() {
+  try {
+    const c = document.createElement("canvas");
+    return !!(window.WebGLRenderingContext && (c.getContext("webgl2") || c.getContext("webgl")));
+  } catch (e) {
+    return false;
+  }
+}
+
+const quat = (q) => new THREE.Quaternion(q[1], q[2], q[3], q[0]);
+const vec = (v, s = 1) => new THREE.Vector3(v[0] * s, v[1] * s, v[2] * s);
+
+function trail(points, color) {
+  const geometry = new THREE.BufferGeometry().setFromPoints(points);
+  geometry.setDrawRange(0, 1);
+  return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+}
+
+function arrow(color) {
+  const a = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, color, 0.12, 0.07);
+  a.visible = false;
+  return a;
+}
+
+function setArrow(a, v) {
+  const length = v.length();
+  a.visible = length > 1e-9;
+  if (a.visible) { a.setDirection(v.clone().divideScalar(length)); a.setLength(length, Math.min(0.15, 0.3 * length), Math.min(0.08, 0.15 * length)); }
+}
+
+// Edge lengths of the uniform box with these principal moments: a_i^2 ∝ I_j + I_k - I_i.
+function boxSize(moments) {
+  const [a, b, c] = moments;
+  const edges = [b + c - a, a + c - b, a + b - c].map((v) => Math.sqrt(Math.max(v, 1e-3 * (a + b + c))));
+  const top = Math.max(...edges);
+  return edges.map((e) => e / top);
+}
+
+export class Viewer {
+  constructor(canvas) {
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    this.renderer.setClearColor(0xf7f7f5);
+    this.scene = new THREE.Scene();
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 100);
+    this.camera.up.set(0, 0, 1);
+    this.camera.position.set(4.2, -5.2, 3.2);
+    this.camera.lookAt(0, 0, 0.3);
+    this.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(3, -2, 5);
+    this.scene.add(sun);
+    this.world = new THREE.Group();
+    this.scene.add(this.world);
+    this.frame = "space";
+  }
+
+  resize() {
+    const c = this.renderer.domElement;
+    const w = c.clientWidth, h = c.clientHeight;
+    if (w && h && (c.width !== Math.round(w * this.renderer.getPixelRatio()) || this.camera.aspect !== w / h)) {
+      this.renderer.setSize(w, h, false);
+      this.camera.aspect = w / h;
+      this.camera.updateProjectionMatrix();
+    }
+  }
+
+  clear() {
+    for (const child of [...this.world.children]) {
+      this.world.remove(child);
+      child.traverse((o) => { o.geometry?.dispose(); o.material?.dispose?.(); });
+    }
+  }
+
+  load(data) {
+    this.clear();
+    this.data = data;
+    const space = new THREE.AxesHelper(0.6);
+    this.world.add(space);
+    if (data.kind === "foucault") return this.loadFoucault(data);
+    const heavy = !!data.gravity;
+    const seed = data.seed;
+    const P = seed.principal_axes; // columns: principal axes in body components
+    const principal = new THREE.Matrix4().set(P[0][0], P[0][1], P[0][2], 0, P[1][0], P[1][1], P[1][2], 0,
+      P[2][0], P[2][1], P[2][2], 0, 0, 0, 0, 1);
+    this.body = new THREE.Group();
+    this.world.add(this.body);
+    const size = boxSize(seed.principal_moments).map((e) => e * (heavy ? 1.0 : 1.3));
+    const box = new THREE.Mesh(new THREE.BoxGeometry(...size),
+      new THREE.MeshStandardMaterial({ color: 0xe0b060, transparent: true, opacity: heavy ? 0.9 : 0.55, roughness: 0.6 }));
+    box.applyMatrix4(principal);
+    this.body.add(box);
+    const axes = new THREE.Group();
+    for (let k = 0; k < 3; k++) {
+      const dir = new THREE.Vector3(P[0][k], P[1][k], P[2][k]);
+      const g = new THREE.BufferGeometry().setFromPoints([dir.clone().multiplyScalar(-1.1), dir.clone().multiplyScalar(1.1)]);
+      axes.add(new THREE.Line(g, new THREE.LineBasicMaterial({ color: AXIS_COLORS[k] })));
+    }
+    this.body.add(axes);
+    // one scale for omega, the ellipsoid, the invariable plane and both trails (Poinsot construction)
+    const T = seed.T;
+    const semi = seed.principal_moments.map((I) => Math.sqrt((2 * Math.abs(T)) / I));
+    this.s = T > 0 ? 1.5 / Math.max(...semi) : 1;
+    this.omegaArrow = arrow(0xcc00cc);
+    this.JArrow = arrow(0x008888);
+    this.world.add(this.omegaArrow, this.JArrow);
+    this.J0 = Math.max(1e-300, seed.J_norm);
+    const n = data.t.length;
+    if (heavy) {
+      const lever = vec(data.gravity.lever);
+      const lhat = lever.clone().normalize();
+      const k = lhat.x ? 0 : lhat.y ? 1 : 2;
+      box.position.copy(lhat.clone().multiplyScalar(0.5 * size[k]));
+      const pivot = new THREE.Mesh(new THREE.SphereGeometry(0.05, 16, 12), new THREE.MeshStandardMaterial({ color: 0x333333 }));
+      this.world.add(pivot);
+      const g = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(-1.6, 1.6, 1.2), 0.8, 0x444444, 0.15, 0.08);
+      this.world.add(g);
+      const apex = data.q.map((q) => lhat.clone().multiplyScalar(size[k] * 1.05).applyQuaternion(quat(q)));
+      this.trails = [trail(apex, 0x0077cc)];
+      const sphere = new THREE.Mesh(new THREE.SphereGeometry(size[k] * 1.05, 32, 16),
+        new THREE.MeshBasicMaterial({ color: 0x8899aa, wireframe: true, transparent: true, opacity: 0.12 }));
+      this.world.add(sphere, ...this.trails);
+      this.bodyTrails = [];
+    } else {
+      const ellipsoid = new THREE.Mesh(new THREE.SphereGeometry(1, 32, 20),
+        new THREE.MeshBasicMaterial({ color: 0x6677aa, wireframe: true, transparent: true, opacity: 0.25 }));
+      ellipsoid.scale.set(...semi.map((a) => a * this.s));
+      ellipsoid.applyMatrix4(principal);
+      this.body.add(ellipsoid);
+      const Jhat = vec(seed.J).normalize();
+      const plane = new THREE.Mesh(new THREE.CircleGeometry(2.2, 48),
+        new THREE.MeshBasicMaterial({ color: 0x88bb88, transparent: true, opacity: 0.22, side: THREE.DoubleSide }));
+      plane.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), Jhat);
+      plane.position.copy(Jhat.clone().multiplyScalar((2 * T / seed.J_norm) * this.s));
+      this.world.add(plane);
+      this.trails = [trail(data.omega_space.map((w) => vec(w, this.s)), 0x228822)]; // herpolhode
+      this.bodyTrails = [trail(data.omega.map((w) => vec(w, this.s)), 0xaa2288)]; // polhode
+      this.world.add(...this.trails);
+      this.body.add(...this.bodyTrails);
+    }
+    this.n = n;
+  }
+
+  loadFoucault(data) {
+    const L = 2.0;
+    this.body = null;
+    const ground = new THREE.Mesh(new THREE.CircleGeometry(1.2, 64),
+      new THREE.MeshBasicMaterial({ color: 0xccccbb, side: THREE.DoubleSide }));
+    this.world.add(ground);
+    this.bob = new THREE.Mesh(new THREE.SphereGeometry(0.08, 16, 12), new THREE.MeshStandardMaterial({ color: 0xaa3322 }));
+    this.string = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(0, 0, L), new THREE.Vector3()]),
+      new THREE.LineBasicMaterial({ color: 0x333333 }));
+    this.swingPlane = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(-1.2, 0, 0.01), new THREE.Vector3(1.2, 0, 0.01)]),
+      new THREE.LineBasicMaterial({ color: 0x3050d0 }));
+    // turning points on the floor, exaggerated: the rosette of the swing plane's slow turn
+    const gain = 1.0 / Math.max(...data.tilt.map(Math.abs));
+    this.footprints = data.t.map((_, i) => {
+      const sign = i % 2 ? -1 : 1, r = sign * Math.abs(data.tilt[i]) * gain;
+      return new THREE.Vector3(r * Math.cos(data.swing_azimuth[i]), r * Math.sin(data.swing_azimuth[i]), 0.02);
+    });
+    this.trails = [trail(this.footprints, 0x3050d0)];
+    this.bodyTrails = [];
+    this.world.add(this.bob, this.string, this.swingPlane, ...this.trails);
+    this.L = L;
+    this.n = data.t.length;
+  }
+
+  show(i) {
+    const d = this.data;
+    if (!d) return;
+    for (const tr of this.trails.concat(this.bodyTrails)) tr.geometry.setDrawRange(0, i + 1);
+    if (d.kind === "foucault") {
+      const p = this.footprints[i];
+      const bob = new THREE.Vector3(p.x * 0.5, p.y * 0.5, 0.3);
+      this.bob.position.copy(bob);
+      this.string.geometry.setFromPoints([new THREE.Vector3(0, 0, this.L), bob]);
+      this.swingPlane.rotation.z = d.swing_azimuth[i];
+      this.world.quaternion.identity();
+      return;
+    }
+    const q = quat(d.q[i]);
+    this.body.quaternion.copy(q);
+    setArrow(this.omegaArrow, vec(d.omega_space[i], this.s));
+    setArrow(this.JArrow, vec(d.J[i], 1.8 / this.J0));
+    // body-frame camera: undo the attitude so the body stands still and space turns around it
+    if (this.frame === "body") this.world.quaternion.copy(q.clone().invert());
+    else this.world.quaternion.identity();
+  }
+
+  render() {
+    this.resize();
+    this.renderer.render(this.scene, this.camera);
+  }
+}
