@@ -108,9 +108,10 @@ def unit(k):
 
 
 @_jit
-def euler_columns(angles, code):
+def euler_columns(x0, x1, x2, code):
     """Columns of the Euler-rate matrix M (ω = M · rates) and det M.
 
+    ``(x0, x1, x2)`` are the angles in the user's order and
     ``code = (a, b, c, extrinsic, body)`` with (a, b, c) the axes of the
     intrinsic sequence equivalent to the user's one (an extrinsic "abc"
     with angles (α, β, γ) is the intrinsic "CBA" with (γ, β, α)); columns
@@ -122,9 +123,9 @@ def euler_columns(angles, code):
     """
     a, b, c = code[0], code[1], code[2]
     if code[3]:
-        first, middle, last = angles[2], angles[1], angles[0]
+        first, middle, last = x2, x1, x0
     else:
-        first, middle, last = angles[0], angles[1], angles[2]
+        first, middle, last = x0, x1, x2
     cb = math.cos(middle)
     sb = math.sin(middle)
     if code[4]:

@@ -25,12 +25,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import prange
 
 from .._validation import check_frame
 from ..so3.euler import parse_sequence
 from . import _kernels as k
 from ._checks import batch_shape, tolerance, vectors
-from ._compiled import kernel
+from ._compiled import kernel, row_loop
 from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
 
 __all__ = [
@@ -53,7 +54,7 @@ def _code(seq, frame):
 
 @kernel(["void(f8[:], f8[:], i8[:], f8[:])"], "(n),(n),(m)->(n)")
 def _omega_from_rates(angles, rates, code, out):
-    c0, c1, c2, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
     if code[3]:
         r0, r1, r2 = rates[2], rates[1], rates[0]
     else:
@@ -63,26 +64,33 @@ def _omega_from_rates(angles, rates, code, out):
     out[2] = r0 * c0[2] + r1 * c1[2] + r2 * c2[2]
 
 
-@kernel(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(n),(n),(m),()->(n)")
-def _rates_from_omega(angles, w, code, tol, out):
-    c0, c1, c2, det = k.euler_columns(angles, code)
-    out[1] = c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2]
+@k._jit
+def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
+    """Rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2)."""
+    c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
+    middle = c1[0] * w0 + c1[1] * w1 + c1[2] * w2
     if abs(det) <= tol:
-        out[0] = out[2] = math.nan
-        return
+        return math.nan, middle, math.nan
     a0, a1, a2 = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
     b0, b1, b2 = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
-    r0 = (a0 * w[0] + a1 * w[1] + a2 * w[2]) / det
-    r2 = (b0 * w[0] + b1 * w[1] + b2 * w[2]) / det
+    r0 = (a0 * w0 + a1 * w1 + a2 * w2) / det
+    r2 = (b0 * w0 + b1 * w1 + b2 * w2) / det
     if code[3]:
-        out[0], out[2] = r2, r0
-    else:
-        out[0], out[2] = r0, r2
+        return r2, middle, r0
+    return r0, middle, r2
+
+
+@row_loop(3)
+def _rates_from_omega(angles, w, code, tol, out):
+    for i in prange(out.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _rates_element(
+            angles[i, 0], angles[i, 1], angles[i, 2], w[i, 0], w[i, 1], w[i, 2], code, tol
+        )
 
 
 @kernel(["void(f8[:], i8[:], f8[:, :])"], "(n),(m)->(n,n)")
 def _matrix(angles, code, out):
-    c0, c1, c2, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
     if code[3]:
         c0, c2 = c2, c0
     for i in range(3):
@@ -93,7 +101,7 @@ def _matrix(angles, code, out):
 
 @kernel(["void(f8[:], i8[:], f8, f8[:, :])"], "(n),(m),()->(n,n)")
 def _matrix_inverse(angles, code, tol, out):
-    c0, c1, c2, det = k.euler_columns(angles, code)
+    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
     first, last = (2, 0) if code[3] else (0, 2)
     inv = math.nan if abs(det) <= tol else 1.0 / det
     a = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
@@ -247,7 +255,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     angles = _angles(angles, degrees)
     omega = vectors(omega, "omega")
     batch_shape(("angles", angles, 1), ("omega", omega, 1))
-    out = _rates_from_omega(angles, omega, code, tol)
+    out = _rates_from_omega((angles, omega), (code, tol))
     warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out
 

@@ -22,11 +22,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import prange
 
 from .._validation import check_frame
 from . import _kernels as k
 from ._checks import batch_shape, tolerance, vectors
-from ._compiled import kernel
+from ._compiled import kernel, row_loop
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning, warn_if_any
 
 __all__ = [
@@ -66,20 +67,24 @@ def _dexp_apply(psi, v, sign, out):
 
 
 # J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w), NaN at the poles |ψ| = 2πk
-@kernel(["void(f8[:], f8[:], f8, f8, f8[:])"], "(n),(n),(),()->(n)")
-def _dexp_inverse_apply(psi, w, sign, tol, out):
-    x, y, z = psi[0], psi[1], psi[2]
+@k._jit
+def _dexp_inverse_element(x, y, z, w0, w1, w2, sign, tol):
     angle = math.sqrt(x * x + y * y + z * z)
     if k.rotvec_singular(angle, tol):
-        out[0] = out[1] = out[2] = math.nan
-        return
+        return math.nan, math.nan, math.nan
     f = k.bortz_coefficient(angle)
-    cx, cy, cz = k.cross(x, y, z, w[0], w[1], w[2])
+    cx, cy, cz = k.cross(x, y, z, w0, w1, w2)
     ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
     h = -0.5 * sign
-    out[0] = w[0] + h * cx + f * ccx
-    out[1] = w[1] + h * cy + f * ccy
-    out[2] = w[2] + h * cz + f * ccz
+    return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
+
+
+@row_loop(3)
+def _dexp_inverse_apply(psi, w, sign, tol, out):
+    for i in prange(out.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _dexp_inverse_element(
+            psi[i, 0], psi[i, 1], psi[i, 2], w[i, 0], w[i, 1], w[i, 2], sign, tol
+        )
 
 
 @k._jit
@@ -210,7 +215,7 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
     omega = vectors(omega, "omega")
     tol = tolerance(tol)
     batch_shape(("psi", psi, 1), ("omega", omega, 1))
-    out = _dexp_inverse_apply(psi, omega, sign, tol)
+    out = _dexp_inverse_apply((psi, omega), (sign, tol))
     warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out
 
