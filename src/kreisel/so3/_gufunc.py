@@ -5,18 +5,31 @@ broadcast by :func:`numba.guvectorize`. Building a gufunc with explicit
 signatures compiles (or loads from the on-disk cache) immediately, so the
 gufuncs are built on first call instead: ``import kreisel`` stays light and
 each operation pays its ~10 ms cache load only when it is used.
+
+Large batches (at least :data:`PARALLEL_THRESHOLD` elements) run on all
+cores instead: numba cannot cache ``guvectorize(target="parallel")`` (every
+process would recompile, ~0.5 s), but it does cache ``njit(parallel=True)``
+loops, so each gufunc may carry a ``prange`` loop over flattened
+``(n, *core)`` views that calls the same per-element kernel. The batch
+checks below are split into chunks the same way.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
-from numba import guvectorize, njit
+from numba import guvectorize, njit, prange
 
 from .._validation import as_float_array
 
 #: Nearly orthogonal matrices (max |RᵀR - 1| below this) are projected onto
 #: SO(3); farther ones are refused as "not a rotation".
 ORTHOGONALITY_TOLERANCE = 1e-6
+
+#: Batches with at least this many elements (rotations, vectors) use the
+#: multi-core loops; below it, waking the worker threads costs more than it saves.
+PARALLEL_THRESHOLD = 2**14
 
 
 def _parse_layout(layout):
@@ -47,12 +60,23 @@ class LazyGufunc:
         numba type signatures.
     layout : str
         Layout with literal sizes.
+    parallel : numba dispatcher, optional
+        ``njit(parallel=True, cache=True)`` loop ``g(in..., out)`` over
+        C-contiguous ``(n, *core)`` views of the inputs passed by the caller
+        (size carriers are not passed) and of the output, calling the same
+        per-element kernel as ``function``. Used when the batch has at least
+        :data:`PARALLEL_THRESHOLD` elements and every input either has the
+        full batch shape or, if its index is in ``shared``, no batch axes.
+    shared : tuple of int
+        Inputs the parallel loop takes whole (e.g. Euler axis indices).
     """
 
-    __slots__ = ("_function", "_signatures", "_layout", "_carriers", "_gufunc")
+    __slots__ = ("_function", "_signatures", "_layout", "_carriers", "_gufunc", "_cores", "_out", "_parallel", "_shared")
 
-    def __init__(self, function, signatures, layout):
+    def __init__(self, function, signatures, layout, parallel=None, shared=()):
         ins, out = _parse_layout(layout)
+        self._cores, self._out = ins, out
+        self._parallel, self._shared = parallel, shared
         self._function = function
         self._signatures = signatures
         letters = {n: chr(ord("a") + i) for i, n in enumerate(sorted({d for s in (*ins, out) for d in s}))}
@@ -62,6 +86,10 @@ class LazyGufunc:
         self._gufunc = None
 
     def __call__(self, *args):
+        if self._parallel is not None:
+            out = self._call_parallel(args)
+            if out is not None:
+                return out
         gufunc = self._gufunc
         if gufunc is None:
             gufunc = self._gufunc = guvectorize(
@@ -70,17 +98,40 @@ class LazyGufunc:
         return gufunc(*args, *self._carriers[len(args):])
 
 
-def gufunc(signatures, layout):
+    def _call_parallel(self, args):
+        """Result of the parallel loop, or None if the batch is small or broadcast."""
+        batch = None
+        for index, (a, core) in enumerate(zip(args, self._cores)):
+            shape = a.shape[: a.ndim - len(core)]
+            if shape == () and index in self._shared:
+                continue
+            if batch is None:
+                batch = shape
+            elif shape != batch:
+                return None
+        n = 0 if batch is None else math.prod(batch)
+        if n < PARALLEL_THRESHOLD:
+            return None
+        flat = [
+            a if a.shape == core else np.ascontiguousarray(a).reshape(n, *core)
+            for a, core in zip(args, self._cores)
+        ]
+        out = np.empty((*batch, *self._out))
+        self._parallel(*flat, out.reshape(n, *self._out))
+        return out
+
+
+def gufunc(signatures, layout, parallel=None, shared=()):
     """Decorator form of :class:`LazyGufunc`."""
-    return lambda function: LazyGufunc(function, signatures, layout)
+    return lambda function: LazyGufunc(function, signatures, layout, parallel, shared)
 
 
 @njit(cache=True, nogil=True)
-def _smallest_quat_norm2(flat):
+def _smallest_quat_norm2(flat, start, stop):
     # One pass, no temporaries: the batch checks must stay cheap next to the
     # memory-bound kernels they guard. NaN compares false, so it is mapped to -1.
     smallest = np.inf
-    for i in range(0, flat.size, 4):
+    for i in range(start, stop, 4):
         n2 = flat[i] * flat[i] + flat[i + 1] * flat[i + 1] + flat[i + 2] * flat[i + 2] + flat[i + 3] * flat[i + 3]
         if not (n2 <= 1.7e308):
             return -1.0
@@ -90,18 +141,47 @@ def _smallest_quat_norm2(flat):
 
 
 @njit(cache=True, nogil=True)
-def _all_finite(flat):
-    for i in range(flat.size):
+def _all_finite(flat, start, stop):
+    for i in range(start, stop):
         x = flat[i]
         if not (abs(x) <= 1.7976931348623157e308):
             return False
     return True
 
 
+#: Length of the pieces the parallel batch checks split a flat array into
+#: (a multiple of 4 and of 9 entries, so no element straddles two pieces).
+_CHUNK = 36 * 4096
+
+
+@njit(parallel=True, cache=True)
+def _smallest_quat_norm2_parallel(flat):
+    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+    smallest = np.empty(pieces)
+    for c in prange(pieces):
+        smallest[c] = _smallest_quat_norm2(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+    return smallest.min()
+
+
+@njit(parallel=True, cache=True)
+def _all_finite_parallel(flat):
+    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+    finite = np.empty(pieces, dtype=np.bool_)
+    for c in prange(pieces):
+        finite[c] = _all_finite(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+    return finite.all()
+
+
+def _large(flat, width):
+    return flat.size >= PARALLEL_THRESHOLD * width
+
+
 def finite_array(x, name, tail):
     """Float64 array with trailing shape ``tail`` and only finite entries."""
     a = as_float_array(x, name, tail, finite=False)
-    if not _all_finite(a.reshape(-1)):
+    flat = a.reshape(-1)
+    width = math.prod(tail or ())
+    if not (_all_finite_parallel(flat) if _large(flat, width) else _all_finite(flat, 0, flat.size)):
         raise ValueError(f"{name} must be finite (no NaN or inf)")
     return a
 
@@ -115,7 +195,8 @@ def quaternion_array(q, name="q", nonzero=True):
     a = as_float_array(q, name, (4,), finite=False)
     if a.size == 0:
         return a
-    smallest = _smallest_quat_norm2(np.ascontiguousarray(a).reshape(-1))
+    flat = np.ascontiguousarray(a).reshape(-1)
+    smallest = _smallest_quat_norm2_parallel(flat) if _large(flat, 4) else _smallest_quat_norm2(flat, 0, flat.size)
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
     if nonzero and not smallest > 1e-300:
@@ -129,27 +210,41 @@ def vector_array(v, name, length=3):
 
 
 @njit(cache=True, nogil=True)
-def _orthogonality_defect(flat):
-    # Largest |RᵀR - 1| entry and smallest determinant over the batch.
+def _orthogonality_defect(flat, start, stop):
+    # Largest |RᵀR - 1| entry and smallest determinant over flat[start:stop].
+    # max() drops NaN, so the sum of the defects (NaN or inf for any
+    # non-finite entry) rides along and replaces the maximum if not finite.
     worst = 0.0
+    total = 0.0
     smallest_det = np.inf
-    for s in range(0, flat.size, 9):
-        for j in range(3):
-            for k in range(j, 3):
-                d = flat[s + j] * flat[s + k] + flat[s + 3 + j] * flat[s + 3 + k] + flat[s + 6 + j] * flat[s + 6 + k]
-                if j == k:
-                    d -= 1.0
-                d = abs(d)
-                if not (d <= worst):
-                    worst = d if d == d else np.inf
-        det = (
-            flat[s] * (flat[s + 4] * flat[s + 8] - flat[s + 5] * flat[s + 7])
-            - flat[s + 1] * (flat[s + 3] * flat[s + 8] - flat[s + 5] * flat[s + 6])
-            + flat[s + 2] * (flat[s + 3] * flat[s + 7] - flat[s + 4] * flat[s + 6])
-        )
-        if not (det >= smallest_det):
-            smallest_det = det if det == det else -np.inf
+    for s in range(start, stop, 9):
+        a, b, c = flat[s], flat[s + 1], flat[s + 2]
+        d, e, f = flat[s + 3], flat[s + 4], flat[s + 5]
+        g, h, i = flat[s + 6], flat[s + 7], flat[s + 8]
+        d00 = abs(a * a + d * d + g * g - 1.0)
+        d11 = abs(b * b + e * e + h * h - 1.0)
+        d22 = abs(c * c + f * f + i * i - 1.0)
+        d01 = abs(a * b + d * e + g * h)
+        d02 = abs(a * c + d * f + g * i)
+        d12 = abs(b * c + e * f + h * i)
+        defect = max(max(max(d00, d11), max(d22, d01)), max(d02, d12))
+        total += defect
+        worst = max(worst, defect)
+        det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+        smallest_det = min(smallest_det, det)
+    if not (abs(total) <= 1.7976931348623157e308):
+        return np.inf, -np.inf
     return worst, smallest_det
+
+
+@njit(parallel=True, cache=True)
+def _orthogonality_defect_parallel(flat):
+    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+    worst = np.empty(pieces)
+    smallest_det = np.empty(pieces)
+    for c in prange(pieces):
+        worst[c], smallest_det[c] = _orthogonality_defect(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+    return worst.max(), smallest_det.min()
 
 
 #: Defects below this are rounding noise of a rotation and pass untouched.
@@ -179,7 +274,11 @@ def matrix_array(R, name="R", tolerance=ORTHOGONALITY_TOLERANCE):
     a = as_float_array(R, name, (3, 3), finite=False)
     if a.size == 0:
         return a
-    worst, smallest_det = _orthogonality_defect(np.ascontiguousarray(a).reshape(-1))
+    flat = np.ascontiguousarray(a).reshape(-1)
+    if _large(flat, 9):
+        worst, smallest_det = _orthogonality_defect_parallel(flat)
+    else:
+        worst, smallest_det = _orthogonality_defect(flat, 0, flat.size)
     if not np.isfinite(worst) or not np.isfinite(smallest_det):
         raise ValueError(f"{name} must be finite rotation matrices (no NaN or inf)")
     if smallest_det <= 0.0:

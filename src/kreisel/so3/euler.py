@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit, prange
 
 from . import _kernels as k
 from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array
@@ -84,27 +85,73 @@ def _intrinsic_axes(seq):
     return np.array(axes[::-1], dtype=np.int64), True
 
 
-@gufunc(["void(f8[:], i8[:], f8[:], f8[:])"], "(3),(3),(4)->(4)")
-def _euler_to_quat(angles, axes, carrier4, out):
-    q0, q1, q2, q3 = _euler_quat(angles, axes)
-    out[0], out[1], out[2], out[3] = q0, q1, q2, q3
+@k._jit
+def _euler_to_quat_one(angles, axes, out):
+    out[0], out[1], out[2], out[3] = _euler_quat(angles, axes)
 
 
-@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(3)->(3,3)")
-def _euler_to_matrix(angles, axes, out):
+@k._jit
+def _euler_to_matrix_one(angles, axes, out):
     q0, q1, q2, q3 = _euler_quat(angles, axes)
     k.write_matrix(q0, q1, q2, q3, out)
 
 
-@gufunc(["void(f8[:], i8[:], f8[:])"], "(4),(3)->(3)")
-def _quat_to_euler(q, axes, out):
+@k._jit
+def _quat_to_euler_one(q, axes, out):
     _euler_angles(q[0], q[1], q[2], q[3], axes, out)
 
 
-@gufunc(["void(f8[:, :], i8[:], f8[:])"], "(3,3),(3)->(3)")
-def _matrix_to_euler(R, axes, out):
+@k._jit
+def _matrix_to_euler_one(R, axes, out):
     q0, q1, q2, q3 = k.matrix_quat(R)
     _euler_angles(q0, q1, q2, q3, axes, out)
+
+
+# The axis indices are shared by the whole batch (``shared=(1,)``).
+
+
+@njit(parallel=True, cache=True)
+def _euler_to_quat_parallel(angles, axes, out):
+    for i in prange(angles.shape[0]):
+        _euler_to_quat_one(angles[i], axes, out[i])
+
+
+@njit(parallel=True, cache=True)
+def _euler_to_matrix_parallel(angles, axes, out):
+    for i in prange(angles.shape[0]):
+        _euler_to_matrix_one(angles[i], axes, out[i])
+
+
+@njit(parallel=True, cache=True)
+def _quat_to_euler_parallel(q, axes, out):
+    for i in prange(q.shape[0]):
+        _quat_to_euler_one(q[i], axes, out[i])
+
+
+@njit(parallel=True, cache=True)
+def _matrix_to_euler_parallel(R, axes, out):
+    for i in prange(R.shape[0]):
+        _matrix_to_euler_one(R[i], axes, out[i])
+
+
+@gufunc(["void(f8[:], i8[:], f8[:], f8[:])"], "(3),(3),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1,))
+def _euler_to_quat(angles, axes, carrier4, out):
+    _euler_to_quat_one(angles, axes, out)
+
+
+@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(3)->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1,))
+def _euler_to_matrix(angles, axes, out):
+    _euler_to_matrix_one(angles, axes, out)
+
+
+@gufunc(["void(f8[:], i8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_euler_parallel, shared=(1,))
+def _quat_to_euler(q, axes, out):
+    _quat_to_euler_one(q, axes, out)
+
+
+@gufunc(["void(f8[:, :], i8[:], f8[:])"], "(3,3),(3)->(3)", parallel=_matrix_to_euler_parallel, shared=(1,))
+def _matrix_to_euler(R, axes, out):
+    _matrix_to_euler_one(R, axes, out)
 
 
 @k._jit

@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numba import njit, prange
 
 from . import _kernels as k
 from ._gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
@@ -14,14 +15,31 @@ from ._gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quate
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
-@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)")
+@k._jit
+def _matrix_to_quat_one(R, out):
+    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
+
+
+@njit(parallel=True, cache=True)
+def _quat_to_matrix_parallel(q, out):
+    for i in prange(q.shape[0]):
+        k.quat_to_matrix(q[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _matrix_to_quat_parallel(R, out):
+    for i in prange(R.shape[0]):
+        _matrix_to_quat_one(R[i], out[i])
+
+
+@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)
 def _quat_to_matrix(q, carrier3, out):
     k.quat_to_matrix(q, out)
 
 
-@gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)")
+@gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)", parallel=_matrix_to_quat_parallel)
 def _matrix_to_quat(R, carrier4, out):
-    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
+    _matrix_to_quat_one(R, out)
 
 
 def quat_to_matrix(q):

@@ -9,8 +9,7 @@ give the same rotation (double cover).
 from __future__ import annotations
 
 import numpy as np
-
-from numba import njit
+from numba import njit, prange
 
 from . import _kernels as k
 from ._gufunc import gufunc, quaternion_array, vector_array
@@ -26,20 +25,15 @@ __all__ = [
 ]
 
 
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)")
-def _multiply(p, q, out):
-    k.qmul(p, q, out)
-
-
-@gufunc(["void(f8[:], f8[:])"], "(4)->(4)")
-def _normalize(q, out):
+@k._jit
+def _normalized(q, out):
     for i in range(4):
         out[i] = q[i]
     k.qnormalize(out)
 
 
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)")
-def _apply(q, v, out):
+@k._jit
+def _applied(q, v, out):
     # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
@@ -51,6 +45,39 @@ def _apply(q, v, out):
     out[0] = (s * v[0] + 2.0 * (d * q1 + q0 * c0)) / n2
     out[1] = (s * v[1] + 2.0 * (d * q2 + q0 * c1)) / n2
     out[2] = (s * v[2] + 2.0 * (d * q3 + q0 * c2)) / n2
+
+
+@njit(parallel=True, cache=True)
+def _multiply_parallel(p, q, out):
+    for i in prange(p.shape[0]):
+        k.qmul(p[i], q[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _normalize_parallel(q, out):
+    for i in prange(q.shape[0]):
+        _normalized(q[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _apply_parallel(q, v, out):
+    for i in prange(q.shape[0]):
+        _applied(q[i], v[i], out[i])
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)
+def _multiply(p, q, out):
+    k.qmul(p, q, out)
+
+
+@gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_normalize_parallel)
+def _normalize(q, out):
+    _normalized(q, out)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_apply_parallel)
+def _apply(q, v, out):
+    _applied(q, v, out)
 
 
 @njit(cache=True, nogil=True)

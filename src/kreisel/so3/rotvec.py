@@ -11,6 +11,7 @@ import itertools
 import math
 
 import numpy as np
+from numba import njit, prange
 
 from . import _kernels as k
 from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
@@ -31,26 +32,65 @@ __all__ = [
 ]
 
 
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)")
-def _rotvec_to_quat(psi, carrier4, out):
-    k.rotvec_to_quat(psi, out)
-
-
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)")
-def _quat_to_rotvec(q, carrier3, out):
+@k._jit
+def _quat_to_rotvec_one(q, out):
     out[0], out[1], out[2] = k.quat_rotvec(q[0], q[1], q[2], q[3])
 
 
-@gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)")
-def _rotvec_to_matrix(psi, out):
+@k._jit
+def _rotvec_to_matrix_one(psi, out):
     q0, q1, q2, q3 = k.rotvec_quat(psi[0], psi[1], psi[2])
     k.write_matrix(q0, q1, q2, q3, out)
 
 
-@gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)")
-def _matrix_to_rotvec(R, out):
+@k._jit
+def _matrix_to_rotvec_one(R, out):
     q0, q1, q2, q3 = k.matrix_quat(R)
     out[0], out[1], out[2] = k.quat_rotvec(q0, q1, q2, q3)
+
+
+@njit(parallel=True, cache=True)
+def _rotvec_to_quat_parallel(psi, out):
+    for i in prange(psi.shape[0]):
+        k.rotvec_to_quat(psi[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _quat_to_rotvec_parallel(q, out):
+    for i in prange(q.shape[0]):
+        _quat_to_rotvec_one(q[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _rotvec_to_matrix_parallel(psi, out):
+    for i in prange(psi.shape[0]):
+        _rotvec_to_matrix_one(psi[i], out[i])
+
+
+@njit(parallel=True, cache=True)
+def _matrix_to_rotvec_parallel(R, out):
+    for i in prange(R.shape[0]):
+        _matrix_to_rotvec_one(R[i], out[i])
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
+def _rotvec_to_quat(psi, carrier4, out):
+    k.rotvec_to_quat(psi, out)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_rotvec_parallel)
+def _quat_to_rotvec(q, carrier3, out):
+    _quat_to_rotvec_one(q, out)
+
+
+@gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)", parallel=_rotvec_to_matrix_parallel)
+def _rotvec_to_matrix(psi, out):
+    _rotvec_to_matrix_one(psi, out)
+
+
+@gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)", parallel=_matrix_to_rotvec_parallel)
+def _matrix_to_rotvec(R, out):
+    _matrix_to_rotvec_one(R, out)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
