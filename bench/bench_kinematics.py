@@ -10,6 +10,7 @@ forces the serial gufunc; the default uses both cores for large batches.
 Run: python bench/bench_kinematics.py  (writes bench/results/kinematics.md)
 """
 
+import os
 import pathlib
 import time
 import warnings
@@ -104,6 +105,8 @@ def main():
     table = "\n".join(
         [
             f"Rate maps on {N:,} samples, medians of 7 runs (ms); ratio = numpy time / kreisel time.",
+            f"Load average during the run: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (shared machine;"
+            " the 2-core column needs a free second core).",
             "",
             "| operation | numpy | kreisel, one core | kreisel, default (2 cores) | ratio, one core | ratio, default | max rel. difference |",
             "|---|---|---|---|---|---|---|",

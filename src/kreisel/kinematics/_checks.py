@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array
+from ..so3._gufunc import finite_array
 
 
 def vectors(x, name, length=3):
-    """Finite float64 array of shape ``(..., length)``."""
-    return as_float_array(x, name, (length,))
+    """Finite float64 array of shape ``(..., length)`` (one compiled pass, no temporaries)."""
+    return finite_array(x, name, (length,))
 
 
 def batch_shape(*items):
