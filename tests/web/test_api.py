@@ -62,12 +62,15 @@ def test_heavy_top_energy_includes_gravity_and_turning_points(client):
 
 
 def test_every_preset_runs(client):
-    for name in ("symmetric_top", "lagrange_loops", "kovalevskaya", "foucault"):
+    for name in ("symmetric_top", "lagrange_loops", "kovalevskaya"):
         data = client.post("/api/run", json={"preset": name}).json()
         assert len(data["t"]) > 10, name
     loops = client.post("/api/run", json={"preset": "lagrange_loops"}).json()
     assert loops["seed"]["lagrange"]["apex_locus"] == "loop"
-    foucault = client.post("/api/run", json={"preset": "foucault"}).json()
+    from kreisel.web.presets import preset_text
+
+    short = preset_text("foucault").replace("duration = 3600.0", "duration = 600.0")
+    foucault = client.post("/api/run", json={"toml": short}).json()
     seed = foucault["seed"]
     assert seed["precession_rate_measured"] == pytest.approx(seed["precession_rate_theory"], rel=2e-3)
 

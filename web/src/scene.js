@@ -50,7 +50,7 @@ export class Viewer {
     this.scene = new THREE.Scene();
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 100);
     this.camera.up.set(0, 0, 1);
-    this.camera.position.set(4.2, -5.2, 3.2);
+    this.camera.position.set(5.6, -3.4, 2.6);
     this.camera.lookAt(0, 0, 0.3);
     this.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
     const sun = new THREE.DirectionalLight(0xffffff, 1.6);
