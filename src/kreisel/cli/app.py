@@ -177,6 +177,22 @@ def tour(
     raise typer.Exit(0 if ok else 1)
 
 
+@app.command()
+def serve(
+    scenario: Optional[pathlib.Path] = typer.Argument(None, help="Scenario TOML to open in the viewer."),
+    host: str = typer.Option("127.0.0.1", "--host", help="Interface to bind (loopback by default)."),
+    port: int = typer.Option(0, "--port", help="Port; 0 picks a free one."),
+    no_browser: bool = typer.Option(False, "--no-browser", help="Do not open a browser window."),
+):
+    """Start the interactive 3D viewer in the browser."""
+    from ..web import serve as run_server
+
+    try:
+        run_server(scenario, host=host, port=port, open_browser=not no_browser)
+    except ValueError as exc:
+        usage_error(str(exc))
+
+
 def run():
     """Console-script entry point."""
     app()
