@@ -142,3 +142,10 @@ def test_examples_list_and_copy(tmp_path):
 
 def test_unknown_command_is_a_usage_error():
     assert run("spin").exit_code == 2
+
+
+def test_serve_refuses_bad_input_before_starting(tmp_path):
+    result = run("serve", str(tmp_path / "absent.toml"), "--no-browser")
+    assert result.exit_code == 2 and "cannot read" in result.output
+    result = run("serve", "--port", "70000", "--no-browser")
+    assert result.exit_code == 2 and "port" in result.output
