@@ -19,17 +19,29 @@ from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
 import kreisel as kr
 
 N = 1_000_000
-REPEATS = 5
+REPEATS = 4
 
 
 def median_time(fn, repeats=REPEATS):
-    fn()  # compile / warm caches
+    fn()  # compile / load the numba cache
     times = []
     for _ in range(repeats):
         t = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t)
     return float(np.median(times))
+
+
+def paired_medians(ours, theirs, repeats=REPEATS):
+    """Medians of interleaved runs, so that the load of the shared machine hits both alike."""
+    ours()  # compile / load the numba cache
+    t_ours, t_theirs = [], []
+    for _ in range(repeats):
+        for fn, times in ((ours, t_ours), (theirs, t_theirs)):
+            t = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t)
+    return float(np.median(t_ours)), float(np.median(t_theirs))
 
 
 def copy_bound(n_in, n_out):
@@ -66,8 +78,7 @@ def main():
     ]
     rows = []
     for name, ours, theirs, n_in, n_out in cases:
-        t_ours = median_time(ours)
-        t_scipy = median_time(theirs, repeats=3)
+        t_ours, t_scipy = paired_medians(ours, theirs)
         t_copy = copy_bound(n_in * N, n_out * N)
         rows.append((name, t_ours, t_scipy, t_copy))
         print(f"{name:24s} kreisel {t_ours * 1e3:8.2f} ms  scipy {t_scipy * 1e3:8.1f} ms  copy {t_copy * 1e3:6.2f} ms", flush=True)
@@ -75,7 +86,7 @@ def main():
     lines = [
         "# kreisel.se3 vs scipy RigidTransform (10^6 poses)",
         "",
-        f"Median of {REPEATS} runs (scipy: 3), same process, one thread; shared noisy machine.",
+        f"Medians of {REPEATS} interleaved runs, same process, one thread; shared noisy machine.",
         "'copy bound' = np.copyto of kreisel's input + output bytes (7 doubles per pose).",
         "",
         "| operation | kreisel (ms) | scipy (ms) | speed-up | kreisel / copy bound |",

@@ -189,12 +189,20 @@ def test_refuses_non_unit_dual_quaternions():
         (lambda: RigidTransform.from_translation([np.nan, 0.0, 0.0]), "translation"),
         (lambda: RigidTransform.from_exp_coords(np.zeros(5)), "exp_coords"),
         (lambda: RigidTransform.identity().apply(np.zeros(2)), "points"),
+        (lambda: RigidTransform.identity().apply([[0.0, 0.0, 0.0], [np.nan, 0.0, 0.0]]), "points"),
+        (lambda: RigidTransform.identity().apply([np.inf, -np.inf, 0.0]), "points"),
+        (lambda: RigidTransform.from_matrix(np.full((4, 4), np.nan)), "matrix"),
         (lambda: RigidTransform.identity().apply_vector(np.zeros((3, 2))), "vectors"),
     ],
 )
 def test_refuses_wrong_shapes_and_values(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_accepts_huge_finite_points_whose_sum_overflows():
+    p = np.array([1e308, 1e308, 0.0])
+    np.testing.assert_array_equal(RigidTransform.identity().apply(p), p)
 
 
 def test_refuses_container_use_of_single_and_foreign_products():

@@ -33,7 +33,7 @@ from ..kinematics import angular_velocity_from_rotvec_rate, rotvec_rate
 from ..kinematics import left_jacobian as so3_left_jacobian
 from ..kinematics import left_jacobian_inverse as so3_left_jacobian_inverse
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
-from ..so3._gufunc import vector_array
+from ._checks import finite_array
 
 __all__ = [
     "se3_hat",
@@ -93,7 +93,7 @@ def se3_hat(xi):
            [ 0.,  0.,  0.,  3.],
            [ 0.,  0.,  0.,  0.]])
     """
-    xi = vector_array(xi, "xi", 6)
+    xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
     m = np.zeros(xi.shape[:-1] + (4, 4))
     m[..., :3, :3] = hat(omega)
@@ -175,7 +175,7 @@ def se3_left_jacobian(xi):
     >>> np.allclose(se3_left_jacobian(np.zeros(6)), np.eye(6))
     True
     """
-    xi = vector_array(xi, "xi", 6)
+    xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
     return _blocks(so3_left_jacobian(omega), _coupling(omega, v))
 
@@ -190,7 +190,7 @@ def se3_right_jacobian(xi):
     >>> np.allclose(se3_right_jacobian(xi), se3_left_jacobian(-xi))
     True
     """
-    xi = vector_array(xi, "xi", 6)
+    xi = finite_array(xi, "xi", (6,))
     return se3_left_jacobian(-xi)
 
 
@@ -206,7 +206,7 @@ def se3_left_jacobian_inverse(xi):
     >>> np.allclose(se3_left_jacobian_inverse(xi) @ se3_left_jacobian(xi), np.eye(6))
     True
     """
-    xi = vector_array(xi, "xi", 6)
+    xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
     inverse = so3_left_jacobian_inverse(omega)
     return _blocks(inverse, -inverse @ _coupling(omega, v) @ inverse)
@@ -222,5 +222,5 @@ def se3_right_jacobian_inverse(xi):
     >>> np.allclose(se3_right_jacobian_inverse(xi) @ se3_right_jacobian(xi), np.eye(6))
     True
     """
-    xi = vector_array(xi, "xi", 6)
+    xi = finite_array(xi, "xi", (6,))
     return se3_left_jacobian_inverse(-xi)

@@ -15,7 +15,7 @@ from ..kinematics import (
     point_velocity,
 )
 from ..so3 import quat_apply
-from ..so3._gufunc import vector_array
+from ._checks import finite_array
 from .transform import RigidTransform, rotation_to_quat
 
 __all__ = ["sclerp", "PointMotion", "point_trajectory"]
@@ -172,10 +172,10 @@ def point_trajectory(body_point, t=None, rotation=None, translation=None, trajec
         epsilon = _time_derivative(omega, t)
     if translation is None:
         translation = np.zeros(3)
-    translation = vector_array(translation, "translation")
+    translation = finite_array(translation, "translation")
     if translation.ndim > 1 and translation.shape[-2] not in (1, t.size):
         raise ValueError(f"translation must have {t.size} samples along axis -2, got shape {translation.shape}")
-    body_point = vector_array(body_point, "body_point")[..., None, :]
+    body_point = finite_array(body_point, "body_point")[..., None, :]
 
     arm = quat_apply(quat, body_point)
     r_c = np.broadcast_to(translation, np.broadcast_shapes(translation.shape, (t.size, 3)))

@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..so3._gufunc import vector_array
+from ._checks import finite_array
 from .._validation import as_float_array
 
 __all__ = ["Screw", "change_base_point"]
@@ -93,8 +93,8 @@ def screw_pose(axis, point, angle, translation=0.0):
     ``(1 - R) p = -2 q0 (s × p) - 2 s × (s × p)`` (no cancellation at
     small angles). ``point`` may be any point of the axis.
     """
-    axis = vector_array(axis, "axis")
-    point = vector_array(point, "point")
+    axis = finite_array(axis, "axis")
+    point = finite_array(point, "point")
     angle = as_float_array(angle, "angle")
     translation = as_float_array(translation, "translation")
     norm = np.sqrt(np.sum(axis * axis, axis=-1))
@@ -147,5 +147,5 @@ def change_base_point(transform, offset):
 
     if not isinstance(transform, RigidTransform):
         raise TypeError(f"transform must be a RigidTransform, got {type(transform).__name__}")
-    offset = vector_array(offset, "offset")
+    offset = finite_array(offset, "offset")
     return RigidTransform._from_arrays(transform._quat, transform.apply(offset))

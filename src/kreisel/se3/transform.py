@@ -19,7 +19,8 @@ from ..so3 import (
     quat_normalize,
     quat_to_matrix,
 )
-from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, finite_array, matrix_array, quaternion_array, vector_array
+from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
+from ._checks import finite_array
 from . import _kernels, lie
 from .screw import change_base_point, screw_parameters, screw_pose
 
@@ -108,7 +109,7 @@ class RigidTransform:
 
     def __init__(self, rotation, translation):
         quat = rotation_to_quat(rotation, "rotation")
-        translation = vector_array(translation, "translation")
+        translation = finite_array(translation, "translation")
         self._set(quat, translation)
 
     # -- construction ------------------------------------------------------------------------
@@ -163,7 +164,7 @@ class RigidTransform:
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).apply([1.0, 1.0, 1.0])
         array([2., 3., 4.])
         """
-        return cls._from_arrays(np.array([1.0, 0.0, 0.0, 0.0]), vector_array(translation, "translation"))
+        return cls._from_arrays(np.array([1.0, 0.0, 0.0, 0.0]), finite_array(translation, "translation"))
 
     @classmethod
     def identity(cls, shape=None):
@@ -269,7 +270,7 @@ class RigidTransform:
         >>> T.translation.round(6) + 0.0                   # (2/π)(1, 1, 0)
         array([0.63662, 0.63662, 0.     ])
         """
-        xi = vector_array(exp_coords, "exp_coords", 6)
+        xi = finite_array(exp_coords, "exp_coords", (6,))
         return cls._from_arrays(*lie.exp(xi))
 
     @classmethod
@@ -439,7 +440,7 @@ class RigidTransform:
         array([[1., 0., 1.],
                [0., 1., 1.]])
         """
-        points = vector_array(points, "points")
+        points = finite_array(points, "points")
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
         return kernel(self._quat, self._translation, points)
 
@@ -451,7 +452,7 @@ class RigidTransform:
         >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
         array([1., 0., 0.])
         """
-        return quat_apply(self._quat, vector_array(vectors, "vectors"), inverse=inverse)
+        return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse)
 
     def change_base_point(self, offset):
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`."""
