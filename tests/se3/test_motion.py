@@ -109,6 +109,8 @@ def test_point_trajectory_refusals():
         point_trajectory([0, 0, 1], t, q, trajectory=tr)
     with pytest.raises(ValueError, match="rotation"):
         point_trajectory([0, 0, 1], t)
+    with pytest.raises(TypeError, match="trajectory"):
+        point_trajectory([0, 0, 1], trajectory=q)
     with pytest.raises(ValueError, match="rotation"):
         point_trajectory([0, 0, 1], t, q[:4])
     with pytest.raises(ValueError, match="translation"):

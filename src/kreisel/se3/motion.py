@@ -151,6 +151,8 @@ def point_trajectory(body_point, t=None, rotation=None, translation=None, trajec
     if trajectory is not None:
         if rotation is not None or t is not None:
             raise ValueError("give either trajectory or (t, rotation), not both")
+        if not all(hasattr(trajectory, name) for name in ("t", "q", "omega")):
+            raise TypeError(f"trajectory must be a Trajectory (with t, q, omega), got {type(trajectory).__name__}")
         t = trajectory.t
         quat = trajectory.q
         omega = quat_apply(quat, trajectory.omega)
