@@ -109,7 +109,7 @@ class LazyGufunc:
                 batch = shape
             elif shape != batch:
                 return None
-        n = 0 if batch is None else math.prod(batch)
+        n = math.prod(batch) if batch else 0
         if n < PARALLEL_THRESHOLD:
             return None
         flat = [
@@ -155,20 +155,20 @@ _CHUNK = 36 * 4096
 
 
 @njit(parallel=True, cache=True)
-def _smallest_quat_norm2_parallel(flat):
-    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+def _smallest_quat_norm2_parallel(flat, chunk):
+    pieces = (flat.size + chunk - 1) // chunk
     smallest = np.empty(pieces)
     for c in prange(pieces):
-        smallest[c] = _smallest_quat_norm2(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+        smallest[c] = _smallest_quat_norm2(flat, c * chunk, min(flat.size, (c + 1) * chunk))
     return smallest.min()
 
 
 @njit(parallel=True, cache=True)
-def _all_finite_parallel(flat):
-    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+def _all_finite_parallel(flat, chunk):
+    pieces = (flat.size + chunk - 1) // chunk
     finite = np.empty(pieces, dtype=np.bool_)
     for c in prange(pieces):
-        finite[c] = _all_finite(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+        finite[c] = _all_finite(flat, c * chunk, min(flat.size, (c + 1) * chunk))
     return finite.all()
 
 
@@ -181,7 +181,7 @@ def finite_array(x, name, tail):
     a = as_float_array(x, name, tail, finite=False)
     flat = a.reshape(-1)
     width = math.prod(tail or ())
-    if not (_all_finite_parallel(flat) if _large(flat, width) else _all_finite(flat, 0, flat.size)):
+    if not (_all_finite_parallel(flat, _CHUNK) if _large(flat, width) else _all_finite(flat, 0, flat.size)):
         raise ValueError(f"{name} must be finite (no NaN or inf)")
     return a
 
@@ -196,7 +196,7 @@ def quaternion_array(q, name="q", nonzero=True):
     if a.size == 0:
         return a
     flat = np.ascontiguousarray(a).reshape(-1)
-    smallest = _smallest_quat_norm2_parallel(flat) if _large(flat, 4) else _smallest_quat_norm2(flat, 0, flat.size)
+    smallest = _smallest_quat_norm2_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_norm2(flat, 0, flat.size)
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
     if nonzero and not smallest > 1e-300:
@@ -212,8 +212,8 @@ def vector_array(v, name, length=3):
 @njit(cache=True, nogil=True)
 def _orthogonality_defect(flat, start, stop):
     # Largest |RᵀR - 1| entry and smallest determinant over flat[start:stop].
-    # max() drops NaN, so the sum of the defects (NaN or inf for any
-    # non-finite entry) rides along and replaces the maximum if not finite.
+    # max() and min() may drop NaN, so the sum of all defects (NaN or inf
+    # for any non-finite entry) rides along and flags the batch instead.
     worst = 0.0
     total = 0.0
     smallest_det = np.inf
@@ -227,9 +227,8 @@ def _orthogonality_defect(flat, start, stop):
         d01 = abs(a * b + d * e + g * h)
         d02 = abs(a * c + d * f + g * i)
         d12 = abs(b * c + e * f + h * i)
-        defect = max(max(max(d00, d11), max(d22, d01)), max(d02, d12))
-        total += defect
-        worst = max(worst, defect)
+        total += d00 + d11 + d22 + d01 + d02 + d12
+        worst = max(worst, max(max(max(d00, d11), max(d22, d01)), max(d02, d12)))
         det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
         smallest_det = min(smallest_det, det)
     if not (abs(total) <= 1.7976931348623157e308):
@@ -238,12 +237,12 @@ def _orthogonality_defect(flat, start, stop):
 
 
 @njit(parallel=True, cache=True)
-def _orthogonality_defect_parallel(flat):
-    pieces = (flat.size + _CHUNK - 1) // _CHUNK
+def _orthogonality_defect_parallel(flat, chunk):
+    pieces = (flat.size + chunk - 1) // chunk
     worst = np.empty(pieces)
     smallest_det = np.empty(pieces)
     for c in prange(pieces):
-        worst[c], smallest_det[c] = _orthogonality_defect(flat, c * _CHUNK, min(flat.size, (c + 1) * _CHUNK))
+        worst[c], smallest_det[c] = _orthogonality_defect(flat, c * chunk, min(flat.size, (c + 1) * chunk))
     return worst.max(), smallest_det.min()
 
 
@@ -276,7 +275,7 @@ def matrix_array(R, name="R", tolerance=ORTHOGONALITY_TOLERANCE):
         return a
     flat = np.ascontiguousarray(a).reshape(-1)
     if _large(flat, 9):
-        worst, smallest_det = _orthogonality_defect_parallel(flat)
+        worst, smallest_det = _orthogonality_defect_parallel(flat, _CHUNK)
     else:
         worst, smallest_det = _orthogonality_defect(flat, 0, flat.size)
     if not np.isfinite(worst) or not np.isfinite(smallest_det):
