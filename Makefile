@@ -5,7 +5,7 @@ PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench clean docs
 
 $(VENV)/.created:
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +20,10 @@ $(VENV)/.installed-dev: pyproject.toml $(VENV)/.created
 	$(PY) -m pip install --quiet -e ".[dev]"
 	touch $@
 
+$(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
+	$(PY) -m pip install --quiet -e ".[docs]"
+	touch $@
+
 demo: $(VENV)/.installed-run web
 	$(PY) -m kreisel tour --out tour
 
@@ -28,6 +32,9 @@ test: $(VENV)/.installed-dev web
 
 bench: $(VENV)/.installed-dev
 	$(PY) bench/run_all.py
+
+docs: $(VENV)/.installed-docs
+	MPLBACKEND=Agg $(PY) -m sphinx -b html -W --keep-going docs docs/_build/html
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info

@@ -1,0 +1,289 @@
+"""Sphinx configuration for the kreisel documentation.
+
+The build needs no network: no intersphinx, every figure is produced locally
+(sphinx-gallery runs ``examples/``), and the API pages are generated here from
+each subpackage's ``__all__`` so that modules still being written appear as
+soon as they export names.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+import pathlib
+import re
+import sys
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import kreisel  # noqa: E402
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+
+project = "kreisel"
+author = "the kreisel developers"
+copyright = "the kreisel developers"
+release = kreisel.__version__
+version = release
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",
+    "numpydoc",
+    "sphinx_gallery.gen_gallery",
+]
+
+templates_path = ["_templates"]
+exclude_patterns = ["_build", "_generated", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
+                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
+html_theme = "pydata_sphinx_theme"
+html_static_path = ["_static"]
+html_title = f"kreisel {release}"
+html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
+html_last_updated_fmt = None
+
+autosummary_generate = True
+autosummary_imported_members = True
+autodoc_default_options = {"members": False}
+autodoc_typehints = "none"
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = False
+
+# MathJax is loaded by the reader's browser (from its CDN) at view time; nothing is
+# fetched while building.  A copy shipped in _static/mathjax is preferred when present.
+_local_mathjax = HERE / "_static" / "mathjax" / "tex-chtml.js"
+if _local_mathjax.exists():
+    mathjax_path = "mathjax/tex-chtml.js"
+
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "examples"),
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"/plot_",
+    "ignore_pattern": r"(__init__|_quick)\.py",
+    "within_subsection_order": "FileNameSortKey",
+    "image_scrapers": ("matplotlib", "_gallery.figure_scraper"),
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "reset_modules": ("matplotlib",),
+    "min_reported_time": 1,
+    "plot_gallery": "True",
+}
+
+# --------------------------------------------------------------------------------------------
+# API pages: one page per public module, generated from its __all__.
+# --------------------------------------------------------------------------------------------
+API_MODULES = [
+    ("kreisel.so3", "Rotations: quaternions, matrices, rotation vectors, Euler angles, SU(2)"),
+    ("kreisel.kinematics", "Angular velocity, rate maps, point motion, screw axis, centrodes"),
+    ("kreisel.inertia", "Mass properties, primitive solids, meshes, rigid bodies"),
+    ("kreisel.dynamics", "Euler's equations, integrators, torques, trajectories"),
+    ("kreisel.tops", "Euler, symmetric, Lagrange and Kovalevskaya tops"),
+    ("kreisel.frames", "Particles in rotating frames"),
+    ("kreisel.earth", "The Earth frame: falling bodies, Foucault pendulum"),
+    ("kreisel.nav", "Strapdown attitude, coning, gyro errors, IMU logs"),
+    ("kreisel.se3", "Rigid transforms, screws, SE(3)"),
+    ("kreisel.io", "Scenario files, results, bundled examples"),
+    ("kreisel.plot", "Figures"),
+    ("kreisel.sweep", "Parameter sweeps"),
+    ("kreisel.web", "The local web viewer"),
+    ("kreisel.cli", "The command line (Python entry points)"),
+]
+
+
+def _public_names(module):
+    names = getattr(module, "__all__", None)
+    if names is None:
+        return None
+    return [n for n in names if not n.startswith("_")]
+
+
+def _api_page(modname, title):
+    import importlib
+
+    heading = f"``{modname}``"
+    lines = [heading, "=" * len(heading), "", title + ".", ""]
+    try:
+        module = importlib.import_module(modname)
+    except Exception as exc:  # a module still being written must not break the site
+        return "\n".join(lines + [f".. note:: ``{modname}`` could not be imported while building "
+                                  f"({type(exc).__name__}); it is still being written.", ""])
+    names = _public_names(module)
+    if module.__doc__:
+        lines += [f".. automodule:: {modname}", "   :no-members:", ""]
+    else:
+        lines += [f".. module:: {modname}", ""]
+    if not names:
+        return "\n".join(lines + [".. note:: This module does not export public names yet.", ""])
+    functions, classes, data = [], [], []
+    for name in names:
+        obj = getattr(module, name, None)
+        if inspect.isclass(obj):
+            classes.append(name)
+        elif inspect.isfunction(obj) or inspect.isbuiltin(obj) or hasattr(obj, "py_func"):
+            functions.append(name)
+        else:
+            data.append(name)
+    for label, group, template in (("Functions", functions, None), ("Classes", classes, "class.rst")):
+        if group:
+            lines += [label, "-" * len(label), "", f".. currentmodule:: {modname}", "",
+                      ".. autosummary::", "   :toctree: generated", "   :nosignatures:"]
+            if template:
+                lines.append(f"   :template: {template}")
+            lines += [""] + [f"   {n}" for n in group] + [""]
+    if data:
+        lines += ["Constants", "---------", ""]
+        for name in data:
+            value = getattr(module, name)
+            if isinstance(value, dict):
+                text = "{" + ", ".join(map(repr, value)) + "}"
+            elif isinstance(value, (int, float, str, tuple, frozenset)):
+                text = repr(value)
+            else:
+                text = f"{type(value).__module__}.{type(value).__qualname__} instance"
+            lines += [f".. data:: {name}", "", f"   ``{text}``", ""]
+    return "\n".join(lines)
+
+
+def _top_level_page():
+    """The ``kreisel`` namespace: where each re-exported name is documented."""
+    rows = []
+    for name in kreisel.__all__:
+        obj = getattr(kreisel, name)
+        if name == "__version__":
+            continue
+        home = getattr(obj, "__name__", "") if isinstance(obj, type(kreisel)) else getattr(obj, "__module__", "")
+        sub = next((m for m, _ in API_MODULES if home == m or home.startswith(m + ".")), None)
+        if isinstance(obj, type(kreisel)):
+            rows.append((name, f":doc:`{obj.__name__} <{obj.__name__}>`"))
+        elif sub is not None:
+            rows.append((name, f":py:obj:`{sub}.{name}`"))
+    lines = ["``kreisel`` (top level)", "=" * 25, "",
+             ".. module:: kreisel", "",
+             "``import kreisel as kr`` gives the names below directly (``kr.quat_multiply``, ``kr.simulate``, ...).",
+             "Each is documented once, in the subpackage that defines it.", "",
+             ".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "",
+             "   * - name", "     - documented as"]
+    for name, target in rows:
+        lines += [f"   * - ``kr.{name}``", f"     - {target}"]
+    return "\n".join(lines) + "\n"
+
+
+def _write_if_changed(path, text):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+
+
+def _generate_api():
+    import shutil
+
+    api = HERE / "api"
+    shutil.rmtree(api / "generated", ignore_errors=True)  # no stale pages of names since removed
+    for modname, title in API_MODULES:
+        _write_if_changed(api / f"{modname}.rst", _api_page(modname, title))
+    _write_if_changed(api / "kreisel.rst", _top_level_page())
+
+
+# --------------------------------------------------------------------------------------------
+# Benchmark tables: bench/results/*.md (pipe tables) -> reStructuredText for inclusion.
+# --------------------------------------------------------------------------------------------
+def markdown_tables_to_rst(text):
+    """Convert the simple markdown of bench/results (headings, paragraphs, pipe tables)."""
+    out, table = [], []
+
+    def flush():
+        if not table:
+            return
+        header, *body = [r for r in table if not re.fullmatch(r"\|?[\s:|-]+\|?", r)]
+        cells = lambda row: [c.strip().replace("`", "``") or "\\" for c in row.strip().strip("|").split("|")]
+        out.extend(["", ".. list-table::", "   :header-rows: 1", ""])
+        for row in [header, *body]:
+            for k, cell in enumerate(cells(row)):
+                out.append(("   * - " if k == 0 else "     - ") + cell)
+        out.append("")
+        table.clear()
+
+    for line in text.splitlines():
+        if line.lstrip().startswith("|"):
+            table.append(line)
+            continue
+        flush()
+        if line.startswith("#"):
+            title = line.lstrip("#").strip()
+            out += ["", f"**{title}**", ""]
+        else:
+            out.append(line.replace("`", "``"))
+    flush()
+    return "\n".join(out) + "\n"
+
+
+def _generate_bench():
+    target = HERE / "_generated"
+    for topic in ("dynamics", "so3", "kinematics", "se3", "nav", "earth"):
+        source = ROOT / "bench" / "results" / f"{topic}.md"
+        if source.exists():
+            text = markdown_tables_to_rst(source.read_text(encoding="utf-8"))
+        else:
+            text = (f".. note:: ``bench/results/{topic}.md`` has not been produced yet; "
+                    f"run ``make bench`` and rebuild.\n")
+        _write_if_changed(target / f"bench_{topic}.rst", text)
+
+
+def _generate_cli():
+    from typer.testing import CliRunner
+
+    from kreisel.cli import app
+
+    runner = CliRunner()
+    commands = [[]] + [[c.name or c.callback.__name__] for c in app.registered_commands]
+    blocks = []
+    for command in commands:
+        result = runner.invoke(app, [*command, "--help"], env={"COLUMNS": "100", "NO_COLOR": "1", "TERM": "dumb"})
+        title = "kreisel " + " ".join(command) if command else "kreisel"
+        blocks += [title, "-" * len(title), "", ".. code-block:: text", ""]
+        blocks += ["   " + line.rstrip() for line in result.output.splitlines()] + [""]
+    _write_if_changed(HERE / "_generated" / "cli_help.rst", "\n".join(blocks) + "\n")
+
+
+_generate_api()
+_generate_bench()
+_generate_cli()
+
+
+# --------------------------------------------------------------------------------------------
+# Docstrings write norms as |ψ|, which reStructuredText reads as a substitution reference.
+# Escape bars outside literals, roles and doctest lines before numpydoc parses the text.
+# --------------------------------------------------------------------------------------------
+_CODE = re.compile(r"(``.*?``|:[a-z:]+:`[^`]*`|`[^`]*`_?)")
+
+
+def _escape_bars(line):
+    if line.lstrip().startswith((">>>", "...")):
+        return line
+    parts = _CODE.split(line)
+    return "".join(p if k % 2 else re.sub(r"(?<!\\)\|", r"\\|", p) for k, p in enumerate(parts))
+
+
+def _escape_docstring(app, what, name, obj, options, lines):
+    in_literal = False
+    literal_indent = 0
+    for k, line in enumerate(lines):
+        stripped = line.strip()
+        indent = len(line) - len(line.lstrip())
+        if in_literal and stripped and indent <= literal_indent:
+            in_literal = False
+        if not in_literal:
+            lines[k] = _escape_bars(line)
+        if stripped.endswith("::") and not stripped.startswith(".. "):
+            in_literal, literal_indent = True, indent
+        elif stripped.startswith((".. math::", ".. code-block::")):
+            in_literal, literal_indent = True, indent
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _escape_docstring, priority=100)
