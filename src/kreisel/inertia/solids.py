@@ -222,7 +222,7 @@ def solid_cone(mass, radius, height, about="center_of_mass"):
     --------
     >>> import kreisel as kr
     >>> kr.inertia.solid_cone(20.0, 1.0, 1.0, about="apex").diagonal()
-    array([15.,  15.,  6.])
+    array([15., 15.,  6.])
     """
     if about not in _CONE_REFERENCE:
         raise ValueError(f"about must be one of {sorted(_CONE_REFERENCE)}, got {about!r}")
