@@ -254,8 +254,9 @@ def _open_session(scheduler, n_workers, threads_per_worker, key):
         return _Session(_DaskExecutor(scheduler, key), lambda: None)
     if scheduler is None:
         workers = n_workers if n_workers is not None else min(2, os.cpu_count() or 1)
+        # numba's parallel loops must not start a thread per core in every worker: one per Dask thread
         cluster = LocalCluster(n_workers=workers, threads_per_worker=threads_per_worker, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=None, env={"NUMBA_NUM_THREADS": str(threads_per_worker)})
         client = Client(cluster)
 
         def close():
