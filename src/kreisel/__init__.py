@@ -24,6 +24,7 @@ from .tops import __all__ as _tops_all
 from .se3 import *  # noqa: F401,F403
 from .se3 import __all__ as _se3_all
 from . import frames, earth, nav  # noqa: F401
+from . import io, sweep  # noqa: F401  (user-facing layers; neither imports dask or the web stack)
 
 try:
     __version__ = _version("kreisel")
@@ -41,5 +42,7 @@ __all__ = [
     "frames",
     "earth",
     "nav",
+    "io",
+    "sweep",
     "__version__",
 ]

@@ -178,6 +178,34 @@ def tour(
 
 
 @app.command()
+def sweep(
+    sweep_file: pathlib.Path = typer.Argument(..., help="Sweep TOML file (bundled: see kreisel.sweep.EXAMPLES)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Existing Dask scheduler, tcp://host:8786."),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes of the local cluster."),
+    output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="out.zarr | out.nc"),
+    plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Also draw the map: fig.png | .svg | .pdf"),
+):
+    """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
+    from .. import plot as plots
+    from ..sweep import SweepError, load_sweep_file, plot_sweep, run_sweep_file
+
+    try:
+        if output is None and load_sweep_file(sweep_file).output is None:
+            # results (and the checkpoint that lets an interrupted run resume) go to the working directory
+            output = pathlib.Path(f"{sweep_file.stem}.zarr")
+        dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output, console=err)
+    except SweepError as exc:
+        err.print(f"[bold red]error:[/] {exc}", soft_wrap=True)
+        raise typer.Exit(1)
+    except ValueError as exc:
+        usage_error(str(exc))
+    out.print(f"{dict(dataset.sizes)} points" + (f", wrote {output}" if output else ""))
+    if plot_file is not None:
+        plots.save(plot_sweep(dataset), plot_file)
+        out.print(f"wrote {plot_file}")
+
+
+@app.command()
 def serve(
     scenario: Optional[pathlib.Path] = typer.Argument(None, help="Scenario TOML to open in the viewer."),
     host: str = typer.Option("127.0.0.1", "--host", help="Interface to bind (loopback by default)."),
