@@ -18,7 +18,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..so3._kernels import qnormalize
 from .forces import evaluate_force
 from .torques import CALLBACK, DAMPING, evaluate_torque
 
@@ -37,26 +36,36 @@ _MAX_ITER = 100
 
 
 @_jit
-def rhs(t, y, inertia, mass, rows, frows, dy, scratch):
-    """dy/dt: Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m."""
+def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
+    """dy[offset:offset+ny] = Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m.
+
+    Arrays are addressed by index (never sliced) so the hot loops create no
+    array views; ``scratch`` (13,) receives the torque in [7:10], force in [10:13].
+    ``rows``/``frows`` are None for no torque/force: numba then compiles a
+    specialisation without the model evaluation (measurably faster loops).
+    """
     w0, w1, w2 = y[0], y[1], y[2]
     q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
-    m = scratch[7:10]
-    evaluate_torque(rows, t, y[3:7], y[0:3], m, scratch[0:7])
+    m0 = m1 = m2 = 0.0
+    if rows is not None:
+        evaluate_torque(rows, t, y, scratch)
+        m0, m1, m2 = scratch[7], scratch[8], scratch[9]
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
-    dy[0] = ((i1 - i2) * w1 * w2 + m[0]) / i0
-    dy[1] = ((i2 - i0) * w2 * w0 + m[1]) / i1
-    dy[2] = ((i0 - i1) * w0 * w1 + m[2]) / i2
-    dy[3] = -0.5 * (q1 * w0 + q2 * w1 + q3 * w2)
-    dy[4] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
-    dy[5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
-    dy[6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
-    if y.shape[0] == 13:
-        f = scratch[10:13]
-        evaluate_force(frows, t, y, f, scratch[0:7])
+    dy[offset] = ((i1 - i2) * w1 * w2 + m0) / i0
+    dy[offset + 1] = ((i2 - i0) * w2 * w0 + m1) / i1
+    dy[offset + 2] = ((i0 - i1) * w0 * w1 + m2) / i2
+    dy[offset + 3] = -0.5 * (q1 * w0 + q2 * w1 + q3 * w2)
+    dy[offset + 4] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
+    dy[offset + 5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
+    dy[offset + 6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
+    if ny == 13:
+        if frows is None:
+            scratch[10] = scratch[11] = scratch[12] = 0.0
+        else:
+            evaluate_force(frows, t, y, scratch)
         for k in range(3):
-            dy[7 + k] = y[10 + k]
-            dy[10 + k] = f[k] / mass
+            dy[offset + 7 + k] = y[10 + k]
+            dy[offset + 10 + k] = scratch[10 + k] / mass
 
 
 # ----------------------------------------------------------------------------
@@ -84,7 +93,7 @@ def _initial_step(t0, y0, f0, span, inertia, mass, rows, frows, rtol, atol, tmp,
     h0 = min(h0, span)
     for i in range(ny):
         tmp[i] = y0[i] + h0 * f0[i]
-    rhs(t0 + h0, tmp, inertia, mass, rows, frows, f1, scratch)
+    rhs(t0 + h0, tmp, ny, inertia, mass, rows, frows, f1, 0, scratch)
     for i in range(ny):
         tmp[i] = f1[i] - f0[i]
     d2 = _rms(tmp, scale) / h0
@@ -98,23 +107,31 @@ def _initial_step(t0, y0, f0, span, inertia, mass, rows, frows, rtol, atol, tmp,
 @_jit
 def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_c, tab_e3, tab_e5,
            tab_d, out):
-    """Integrate from ``t_out[0]`` and write the state at every ``t_out`` into ``out``."""
+    """Integrate from ``t_out[0]`` and write the state at every ``t_out`` into ``out``.
+
+    The stages live in one flat array ``k`` (stage r, component i at r·ny + i).
+    """
     ny = y0.size
     n_out = t_out.size
-    k = np.empty((16, ny))
+    k = np.empty(16 * ny)
     y = y0.copy()
     y_new = np.empty(ny)
     tmp = np.empty(ny)
+    f_start = np.empty(ny)
+    f_probe = np.empty(ny)
     dense = np.empty((7, ny))
-    scale = np.empty(ny)
     scratch = np.empty(13)
-    out[0, :] = y
+    for i in range(ny):
+        out[0, i] = y[i]
     if n_out == 1:
         return OK
     t = t_out[0]
     t_end = t_out[n_out - 1]
-    rhs(t, y, inertia, mass, rows, frows, k[0], scratch)
-    h = _initial_step(t, y, k[0], t_end - t, inertia, mass, rows, frows, rtol, atol, tmp, k[1], scratch)
+    rhs(t, y, ny, inertia, mass, rows, frows, k, 0, scratch)
+    for i in range(ny):
+        f_start[i] = k[i]
+    h = _initial_step(t, y, f_start, t_end - t, inertia, mass, rows, frows, rtol, atol, tmp, f_probe,
+                      scratch)
     j = 1
     while j < n_out:
         rejected = False
@@ -130,26 +147,26 @@ def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_
                 for i in range(ny):
                     acc = 0.0
                     for r in range(s):
-                        acc += tab_a[s, r] * k[r, i]
+                        acc += tab_a[s, r] * k[r * ny + i]
                     tmp[i] = y[i] + h * acc
-                rhs(t + tab_c[s] * h, tmp, inertia, mass, rows, frows, k[s], scratch)
+                rhs(t + tab_c[s] * h, tmp, ny, inertia, mass, rows, frows, k, s * ny, scratch)
             for i in range(ny):
                 acc = 0.0
                 for r in range(12):
-                    acc += tab_b[r] * k[r, i]
+                    acc += tab_b[r] * k[r * ny + i]
                 y_new[i] = y[i] + h * acc
-            rhs(t_new, y_new, inertia, mass, rows, frows, k[12], scratch)
+            rhs(t_new, y_new, ny, inertia, mass, rows, frows, k, 12 * ny, scratch)
             e5 = 0.0
             e3 = 0.0
             for i in range(ny):
-                scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+                scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
                 a5 = 0.0
                 a3 = 0.0
                 for r in range(13):
-                    a5 += tab_e5[r] * k[r, i]
-                    a3 += tab_e3[r] * k[r, i]
-                e5 += (a5 / scale[i]) ** 2
-                e3 += (a3 / scale[i]) ** 2
+                    a5 += tab_e5[r] * k[r * ny + i]
+                    a3 += tab_e3[r] * k[r * ny + i]
+                e5 += (a5 / scale) ** 2
+                e3 += (a3 / scale) ** 2
             if e5 == 0.0 and e3 == 0.0:
                 err = 0.0
             else:
@@ -170,22 +187,23 @@ def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_
                 for i in range(ny):
                     acc = 0.0
                     for r in range(s):
-                        acc += tab_a[s, r] * k[r, i]
+                        acc += tab_a[s, r] * k[r * ny + i]
                     tmp[i] = y[i] + h * acc
-                rhs(t + tab_c[s] * h, tmp, inertia, mass, rows, frows, k[s], scratch)
+                rhs(t + tab_c[s] * h, tmp, ny, inertia, mass, rows, frows, k, s * ny, scratch)
             for i in range(ny):
                 dy = y_new[i] - y[i]
                 dense[0, i] = dy
-                dense[1, i] = h * k[0, i] - dy
-                dense[2, i] = 2.0 * dy - h * (k[12, i] + k[0, i])
+                dense[1, i] = h * k[i] - dy
+                dense[2, i] = 2.0 * dy - h * (k[12 * ny + i] + k[i])
                 for p in range(4):
                     acc = 0.0
                     for r in range(16):
-                        acc += tab_d[p, r] * k[r, i]
+                        acc += tab_d[p, r] * k[r * ny + i]
                     dense[3 + p, i] = h * acc
             while j < n_out and t_out[j] <= t_new:
                 if t_out[j] == t_new:
-                    out[j, :] = y_new
+                    for i in range(ny):
+                        out[j, i] = y_new[i]
                 else:
                     x = (t_out[j] - t) / h
                     for i in range(ny):
@@ -197,7 +215,7 @@ def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_
                 j += 1
         for i in range(ny):
             y[i] = y_new[i]
-            k[0, i] = k[12, i]
+            k[i] = k[12 * ny + i]
             if not math.isfinite(y[i]):
                 return NOT_FINITE
         t = t_new
@@ -206,50 +224,74 @@ def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_
 
 
 # ----------------------------------------------------------------------------
-# fixed-step methods; each advances y[0:7] in place by one step h
+# fixed-step methods; each advances the rotation part y[0:7] in place by one step h.
+# Workspace: five flat arrays a, b, c, d, e of length 16 passed down from the driver.
 
 
 @_jit
-def _quat_times_axis(q, k, c, s):
-    """q ← q ⊗ (c, s e_k): a body-axis rotation applied on the right."""
+def _quat_times_axis(y, k, c, s):
+    """q ← q ⊗ (c, s e_k) for q = y[3:7]: a body-axis rotation applied on the right."""
     i = (k + 1) % 3
     j = (k + 2) % 3
-    q0, qk, qi, qj = q[0], q[1 + k], q[1 + i], q[1 + j]
-    q[0] = c * q0 - s * qk
-    q[1 + k] = c * qk + s * q0
-    q[1 + i] = c * qi + s * qj
-    q[1 + j] = c * qj - s * qi
+    q0, qk, qi, qj = y[3], y[4 + k], y[4 + i], y[4 + j]
+    y[3] = c * q0 - s * qk
+    y[4 + k] = c * qk + s * q0
+    y[4 + i] = c * qi + s * qj
+    y[4 + j] = c * qj - s * qi
 
 
 @_jit
-def _axis_flow(k, h, inertia, m, q):
+def _axis_flow(k, h, inertia, m, y):
     """Exact flow of H_k = m_k²/(2 I_k): m turns about body axis k by −h ω_k, q by +h ω_k."""
     i = (k + 1) % 3
     j = (k + 2) % 3
     half = 0.5 * h * m[k] / inertia[k]
     s2 = math.sin(half)
     c2 = math.cos(half)
-    c = math.cos(2.0 * half)
-    s = math.sin(2.0 * half)
+    # double-angle from the half-angle pair: two transcendental calls per flow
+    c = (c2 - s2) * (c2 + s2)
+    s = 2.0 * s2 * c2
     mi = m[i]
     mj = m[j]
     m[i] = c * mi + s * mj
     m[j] = c * mj - s * mi
-    _quat_times_axis(q, k, c2, s2)
+    _quat_times_axis(y, k, c2, s2)
 
 
 @_jit
 def _strang_free(h, inertia, y, m):
     # symmetric, hence second order; each flow keeps |m| and the space J exactly.
     # The flows act on m = I ω′ so that ω′ <-> m round trips happen once per step.
-    q = y[3:7]
     for a in range(3):
         m[a] = inertia[a] * y[a]
-    _axis_flow(0, 0.5 * h, inertia, m, q)
-    _axis_flow(1, 0.5 * h, inertia, m, q)
-    _axis_flow(2, h, inertia, m, q)
-    _axis_flow(1, 0.5 * h, inertia, m, q)
-    _axis_flow(0, 0.5 * h, inertia, m, q)
+    _axis_flow(0, 0.5 * h, inertia, m, y)
+    _axis_flow(1, 0.5 * h, inertia, m, y)
+    _axis_flow(2, h, inertia, m, y)
+    _axis_flow(1, 0.5 * h, inertia, m, y)
+    _axis_flow(0, 0.5 * h, inertia, m, y)
+    for a in range(3):
+        y[a] = m[a] / inertia[a]
+
+
+@_jit
+def _strang_run(h, n, weights, inertia, y, m):
+    """``n`` free steps, each a composition of Strang steps of sizes ``weights·h``.
+
+    Consecutive half-flows about axis 0 are merged into one (they commute and
+    add: m_0 is their invariant), saving one flow in five.
+    """
+    for a in range(3):
+        m[a] = inertia[a] * y[a]
+    pending = 0.0
+    for _ in range(n):
+        for g in weights:
+            pending += 0.5 * g * h
+            _axis_flow(0, pending, inertia, m, y)
+            _axis_flow(1, 0.5 * g * h, inertia, m, y)
+            _axis_flow(2, g * h, inertia, m, y)
+            _axis_flow(1, 0.5 * g * h, inertia, m, y)
+            pending = 0.5 * g * h
+    _axis_flow(0, pending, inertia, m, y)
     for a in range(3):
         y[a] = m[a] / inertia[a]
 
@@ -257,10 +299,9 @@ def _strang_free(h, inertia, y, m):
 @_jit
 def _kick(t, h, inertia, rows, y, scratch):
     """Explicit kick ω′ += h I⁻¹ M′(t, q, ω′): the exact flow when M′ does not depend on ω′."""
-    m = scratch[7:10]
-    evaluate_torque(rows, t, y[3:7], y[0:3], m, scratch[0:7])
+    evaluate_torque(rows, t, y, scratch)
     for a in range(3):
-        y[a] += h * m[a] / inertia[a]
+        y[a] += h * scratch[7 + a] / inertia[a]
 
 
 @_jit
@@ -282,15 +323,14 @@ def _closing_kick(t, h, inertia, rows, y, scratch):
     if not _depends_on_omega(rows):
         _kick(t, h, inertia, rows, y, scratch)
         return OK
-    m = scratch[7:10]
     w0, w1, w2 = y[0], y[1], y[2]
     size = abs(w0) + abs(w1) + abs(w2) + 1e-300
     previous = np.inf
     for _ in range(_MAX_ITER):
-        evaluate_torque(rows, t, y[3:7], y[0:3], m, scratch[0:7])
-        n0 = w0 + h * m[0] / inertia[0]
-        n1 = w1 + h * m[1] / inertia[1]
-        n2 = w2 + h * m[2] / inertia[2]
+        evaluate_torque(rows, t, y, scratch)
+        n0 = w0 + h * scratch[7] / inertia[0]
+        n1 = w1 + h * scratch[8] / inertia[1]
+        n2 = w2 + h * scratch[9] / inertia[2]
         change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
         y[0], y[1], y[2] = n0, n1, n2
         if change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size):
@@ -346,108 +386,110 @@ def _dmv_free(h, inertia, y):
 
 
 @_jit
-def _kick_drift_kick(method, t, h, inertia, rows, y, scratch):
-    torqued = rows.shape[0] > 0
-    if torqued:
+def _kick_drift_kick(method, t, h, inertia, rows, y, m, scratch):
+    if rows is not None:
         _kick(t, 0.5 * h, inertia, rows, y, scratch)
     status = OK
     if method == DMV:
         status = _dmv_free(h, inertia, y)
     else:
-        _strang_free(h, inertia, y, scratch[10:13])
-    if torqued and status == OK:
+        _strang_free(h, inertia, y, m)
+    if rows is not None and status == OK:
         status = _closing_kick(t + h, 0.5 * h, inertia, rows, y, scratch)
     return status
 
 
 @_jit
-def _rk4(t, h, inertia, rows, y, wk, scratch):
-    y0, k1, k2, k3, k4, tmp = wk[0, :7], wk[1, :7], wk[2, :7], wk[3, :7], wk[4, :7], wk[5, :7]
-    y0[:] = y[0:7]
-    rhs(t, y0, inertia, 1.0, rows, rows, k1, scratch)
-    for i in range(7):
-        tmp[i] = y0[i] + 0.5 * h * k1[i]
-    rhs(t + 0.5 * h, tmp, inertia, 1.0, rows, rows, k2, scratch)
-    for i in range(7):
-        tmp[i] = y0[i] + 0.5 * h * k2[i]
-    rhs(t + 0.5 * h, tmp, inertia, 1.0, rows, rows, k3, scratch)
-    for i in range(7):
-        tmp[i] = y0[i] + h * k3[i]
-    rhs(t + h, tmp, inertia, 1.0, rows, rows, k4, scratch)
-    for i in range(7):
-        y[i] = y0[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-    qnormalize(y[3:7])
+def _normalize_attitude(y):
+    n = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
+    for i in range(3, 7):
+        y[i] /= n
 
 
 @_jit
-def _dexpinv_right(u, f, out):
+def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
+    """Classical RK4 on (ω′, q); ``k`` holds the four stages at offsets 0, 7, 14, 21."""
+    for i in range(7):
+        y0[i] = y[i]
+    rhs(t, y0, 7, inertia, 1.0, rows, None, k, 0, scratch)
+    for s in range(1, 4):
+        a = h if s == 3 else 0.5 * h
+        for i in range(7):
+            tmp[i] = y0[i] + a * k[7 * (s - 1) + i]
+        rhs(t + a, tmp, 7, inertia, 1.0, rows, None, k, 7 * s, scratch)
+    for i in range(7):
+        y[i] = y0[i] + h / 6.0 * (k[i] + 2.0 * k[7 + i] + 2.0 * k[14 + i] + k[21 + i])
+    _normalize_attitude(y)
+
+
+@_jit
+def _dexpinv_right(u0, u1, u2, f0, f1, f2):
     """Body-frame (right-trivialised) dexp⁻¹: u̇ = f + ½ u × f + (1/12) u × (u × f) + O(u⁴ f)."""
-    c0 = u[1] * f[2] - u[2] * f[1]
-    c1 = u[2] * f[0] - u[0] * f[2]
-    c2 = u[0] * f[1] - u[1] * f[0]
-    d0 = u[1] * c2 - u[2] * c1
-    d1 = u[2] * c0 - u[0] * c2
-    d2 = u[0] * c1 - u[1] * c0
-    out[0] = f[0] + 0.5 * c0 + d0 / 12.0
-    out[1] = f[1] + 0.5 * c1 + d1 / 12.0
-    out[2] = f[2] + 0.5 * c2 + d2 / 12.0
+    c0 = u1 * f2 - u2 * f1
+    c1 = u2 * f0 - u0 * f2
+    c2 = u0 * f1 - u1 * f0
+    d0 = u1 * c2 - u2 * c1
+    d1 = u2 * c0 - u0 * c2
+    d2 = u0 * c1 - u1 * c0
+    return f0 + 0.5 * c0 + d0 / 12.0, f1 + 0.5 * c1 + d1 / 12.0, f2 + 0.5 * c2 + d2 / 12.0
 
 
 @_jit
-def _group_stage(q0, u, out):
-    """out = q0 ⊗ exp(u): the Lie-group stage point of RKMK."""
-    half = 0.5 * math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+def _group_stage(src, u0, u1, u2, dst):
+    """dst[3:7] = src[3:7] ⊗ exp(u): the Lie-group stage point of RKMK."""
+    half = 0.5 * math.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
     c = math.cos(half)
     s = 0.5 - half * half / 12.0 if half < 1e-4 else math.sin(half) / (2.0 * half)
-    e0, e1, e2, e3 = c, s * u[0], s * u[1], s * u[2]
-    out[0] = q0[0] * e0 - q0[1] * e1 - q0[2] * e2 - q0[3] * e3
-    out[1] = q0[0] * e1 + q0[1] * e0 + q0[2] * e3 - q0[3] * e2
-    out[2] = q0[0] * e2 - q0[1] * e3 + q0[2] * e0 + q0[3] * e1
-    out[3] = q0[0] * e3 + q0[1] * e2 - q0[2] * e1 + q0[3] * e0
+    e0, e1, e2, e3 = c, s * u0, s * u1, s * u2
+    p0, p1, p2, p3 = src[3], src[4], src[5], src[6]
+    dst[3] = p0 * e0 - p1 * e1 - p2 * e2 - p3 * e3
+    dst[4] = p0 * e1 + p1 * e0 + p2 * e3 - p3 * e2
+    dst[5] = p0 * e2 - p1 * e3 + p2 * e0 + p3 * e1
+    dst[6] = p0 * e3 + p1 * e2 - p2 * e1 + p3 * e0
 
 
 @_jit
-def _rkmk4(t, h, inertia, rows, y, wk, scratch):
-    """Runge-Kutta-Munthe-Kaas with the classical RK4 tableau on SO(3) × R³."""
-    y0 = wk[0, :7]
-    stage = wk[1, :7]
-    dw = wk[2:6, :3]     # ω̇ at the four stages
-    ku = wk[6:10, :3]    # dexp⁻¹ at the four stages
-    u = wk[10, :3]
-    deriv = wk[11, :7]
-    y0[:] = y[0:7]
-    coef = (0.0, 0.5, 0.5, 1.0)
+def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
+    """Runge-Kutta-Munthe-Kaas with the classical RK4 tableau on SO(3) × R³.
+
+    ``deriv`` holds ω̇′ of stage s at 7s, ``ku`` the dexp⁻¹ increments at 3s.
+    """
+    for i in range(7):
+        y0[i] = y[i]
+    u0 = u1 = u2 = 0.0
     for s in range(4):
-        a = coef[s] * h
+        a = 0.0 if s == 0 else (h if s == 3 else 0.5 * h)
+        if s > 0:
+            u0, u1, u2 = a * ku[3 * s - 3], a * ku[3 * s - 2], a * ku[3 * s - 1]
         for i in range(3):
-            u[i] = 0.0 if s == 0 else a * ku[s - 1, i]
-            stage[i] = y0[i] + (0.0 if s == 0 else a * dw[s - 1, i])
-        _group_stage(y0[3:7], u, stage[3:7])
-        rhs(t + a, stage, inertia, 1.0, rows, rows, deriv, scratch)
-        for i in range(3):
-            dw[s, i] = deriv[i]
-        _dexpinv_right(u, stage[0:3], ku[s])
+            stage[i] = y0[i] + (0.0 if s == 0 else a * deriv[7 * (s - 1) + i])
+        _group_stage(y0, u0, u1, u2, stage)
+        rhs(t + a, stage, 7, inertia, 1.0, rows, None, deriv, 7 * s, scratch)
+        k0, k1, k2 = _dexpinv_right(u0, u1, u2, stage[0], stage[1], stage[2])
+        ku[3 * s] = k0
+        ku[3 * s + 1] = k1
+        ku[3 * s + 2] = k2
+    u0 = h / 6.0 * (ku[0] + 2.0 * ku[3] + 2.0 * ku[6] + ku[9])
+    u1 = h / 6.0 * (ku[1] + 2.0 * ku[4] + 2.0 * ku[7] + ku[10])
+    u2 = h / 6.0 * (ku[2] + 2.0 * ku[5] + 2.0 * ku[8] + ku[11])
     for i in range(3):
-        u[i] = h / 6.0 * (ku[0, i] + 2.0 * ku[1, i] + 2.0 * ku[2, i] + ku[3, i])
-        y[i] = y0[i] + h / 6.0 * (dw[0, i] + 2.0 * dw[1, i] + 2.0 * dw[2, i] + dw[3, i])
-    _group_stage(y0[3:7], u, y[3:7])
-    qnormalize(y[3:7])
+        y[i] = y0[i] + h / 6.0 * (deriv[i] + 2.0 * deriv[7 + i] + 2.0 * deriv[14 + i] + deriv[21 + i])
+    _group_stage(y0, u0, u1, u2, y)
+    _normalize_attitude(y)
 
 
 @_jit
-def _midpoint(t, h, inertia, rows, y, wk, scratch):
+def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
     """Implicit midpoint on (ω′, q), solved by fixed-point iteration to round-off.
 
     The quaternion half is linear given the mean ω̄, so q1 = q0 ⊗ cay(h ω̄/2)
     in closed form (a unit quaternion); the momentum half is iterated.
     """
-    y0 = wk[0, :7]
-    mean = wk[1, :7]
-    torque = scratch[7:10]
-    y0[:] = y[0:7]
+    for i in range(7):
+        y0[i] = y[i]
     size = abs(y0[0]) + abs(y0[1]) + abs(y0[2]) + 1e-300
-    converged = False
     previous = np.inf
+    i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     for _ in range(_MAX_ITER):
         for i in range(3):
             mean[i] = 0.5 * (y0[i] + y[i])
@@ -462,50 +504,71 @@ def _midpoint(t, h, inertia, rows, y, wk, scratch):
         y[6] = p0 * s2 + p1 * s1 - p2 * s0 + p3 * c
         for i in range(3, 7):
             mean[i] = 0.5 * (y0[i] + y[i])
-        evaluate_torque(rows, t + 0.5 * h, mean[3:7], mean[0:3], torque, scratch[0:7])
+        m0 = m1 = m2 = 0.0
+        if rows is not None:
+            evaluate_torque(rows, t + 0.5 * h, mean, scratch)
+            m0, m1, m2 = scratch[7], scratch[8], scratch[9]
         w0, w1, w2 = mean[0], mean[1], mean[2]
-        i0, i1, i2 = inertia[0], inertia[1], inertia[2]
-        n0 = y0[0] + h * ((i1 - i2) * w1 * w2 + torque[0]) / i0
-        n1 = y0[1] + h * ((i2 - i0) * w2 * w0 + torque[1]) / i1
-        n2 = y0[2] + h * ((i0 - i1) * w0 * w1 + torque[2]) / i2
+        n0 = y0[0] + h * ((i1 - i2) * w1 * w2 + m0) / i0
+        n1 = y0[1] + h * ((i2 - i0) * w2 * w0 + m1) / i1
+        n2 = y0[2] + h * ((i0 - i1) * w0 * w1 + m2) / i2
         change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
         y[0], y[1], y[2] = n0, n1, n2
         # stop at round-off: the change no longer shrinks once it reaches a few ulps
         if change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size):
-            converged = True
-            break
+            return OK
         previous = change
-    if not converged:
-        return NO_CONVERGENCE
+    return NO_CONVERGENCE
+
+
+@_jit
+def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
+    if method == SPLITTING or method == DMV:
+        return _kick_drift_kick(method, t, h, inertia, rows, y, wa, scratch)
+    if method == SPLITTING4:
+        status = _kick_drift_kick(SPLITTING, t, YOSHIDA_OUTER * h, inertia, rows, y, wa, scratch)
+        t1 = t + YOSHIDA_OUTER * h
+        status += _kick_drift_kick(SPLITTING, t1, YOSHIDA_INNER * h, inertia, rows, y, wa, scratch)
+        t2 = t1 + YOSHIDA_INNER * h
+        status += _kick_drift_kick(SPLITTING, t2, YOSHIDA_OUTER * h, inertia, rows, y, wa, scratch)
+        return status
+    if method == RK4:
+        _rk4(t, h, inertia, rows, y, wa, wc, wb, scratch)
+        return OK
+    if method == RKMK4:
+        _rkmk4(t, h, inertia, rows, y, wa, wb, wc, wd, scratch)
+        return OK
+    return _midpoint(t, h, inertia, rows, y, wa, wb, scratch)
+
+
+@_jit
+def _advance(method, t0, h, n, inertia, rows, y, wa, wb, wc, wd, scratch):
+    """``n`` rotation steps from ``t0``: one loop per method keeps the dispatch out of the hot loop."""
+    if method == RK4:
+        for s in range(n):
+            _rk4(t0 + s * h, h, inertia, rows, y, wa, wc, wb, scratch)
+    elif method == RKMK4:
+        for s in range(n):
+            _rkmk4(t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
+    elif method == SPLITTING and rows is None:
+        _strang_run(h, n, (1.0,), inertia, y, wa)
+    elif method == SPLITTING4 and rows is None:
+        _strang_run(h, n, (YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), inertia, y, wa)
+    else:
+        for s in range(n):
+            status = _rotation_step(method, t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
+            if status != OK:
+                return status
     return OK
 
 
 @_jit
-def _rotation_step(method, t, h, inertia, rows, y, wk, scratch):
-    if method == SPLITTING or method == DMV:
-        return _kick_drift_kick(method, t, h, inertia, rows, y, scratch)
-    if method == SPLITTING4:
-        status = _kick_drift_kick(SPLITTING, t, YOSHIDA_OUTER * h, inertia, rows, y, scratch)
-        t1 = t + YOSHIDA_OUTER * h
-        status += _kick_drift_kick(SPLITTING, t1, YOSHIDA_INNER * h, inertia, rows, y, scratch)
-        t2 = t1 + YOSHIDA_INNER * h
-        status += _kick_drift_kick(SPLITTING, t2, YOSHIDA_OUTER * h, inertia, rows, y, scratch)
-        return status
-    if method == RK4:
-        _rk4(t, h, inertia, rows, y, wk, scratch)
-        return OK
-    if method == RKMK4:
-        _rkmk4(t, h, inertia, rows, y, wk, scratch)
-        return OK
-    return _midpoint(t, h, inertia, rows, y, wk, scratch)
-
-
-@_jit
 def _translation_kick(t, h, mass, frows, y, scratch):
-    f = scratch[10:13]
-    evaluate_force(frows, t, y, f, scratch[0:7])
+    if frows is None:
+        return
+    evaluate_force(frows, t, y, scratch)
     for k in range(3):
-        y[10 + k] += h * f[k] / mass
+        y[10 + k] += h * scratch[10 + k] / mass
 
 
 @_jit
@@ -513,29 +576,33 @@ def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
     """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps."""
     ny = y0.size
     y = y0.copy()
-    wk = np.empty((12, 7))
+    wa = np.empty(8)
+    wb = np.empty(8)
+    wc = np.empty(28)
+    wd = np.empty(12)
     scratch = np.empty(13)
-    out[0, :] = y
+    for i in range(ny):
+        out[0, i] = y[i]
     for k in range(t_out.size - 1):
         span = t_out[k + 1] - t_out[k]
         n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
         h = span / n_sub
-        for s in range(n_sub):
-            t = t_out[k] + s * h
-            if ny == 13:
-                # velocity Verlet for the centre of mass around the rotation step
-                _translation_kick(t, 0.5 * h, mass, frows, y, scratch)
-                for c in range(3):
-                    y[7 + c] += h * y[10 + c]
-            status = _rotation_step(method, t, h, inertia, rows, y, wk, scratch)
-            if status != OK:
+        if ny == 7:
+            if _advance(method, t_out[k], h, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
                 return NO_CONVERGENCE
-            if ny == 13:
-                _translation_kick(t + h, 0.5 * h, mass, frows, y, scratch)
+        for s in range(n_sub if ny == 13 else 0):
+            t = t_out[k] + s * h
+            # velocity Verlet for the centre of mass around the rotation step
+            _translation_kick(t, 0.5 * h, mass, frows, y, scratch)
+            for c in range(3):
+                y[7 + c] += h * y[10 + c]
+            if _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
+                return NO_CONVERGENCE
+            _translation_kick(t + h, 0.5 * h, mass, frows, y, scratch)
         for i in range(ny):
             if not math.isfinite(y[i]):
                 return NOT_FINITE
-        out[k + 1, :] = y
+            out[k + 1, i] = y[i]
     return OK
 
 

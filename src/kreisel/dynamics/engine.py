@@ -187,9 +187,9 @@ def _initial_quaternion(q0, batch_shape=()):
 def _torque_rows(torque, axes, t0, q0_body, omega0_body, keys):
     """Model table in the integration frame; registers a callable (id appended to ``keys``)."""
     if torque is None:
-        return np.zeros((0, _torques.ROW_SIZE))
+        return None
     if isinstance(torque, _torques.TorqueModel):
-        return np.ascontiguousarray(_torques.to_principal(torque.rows(), axes))
+        return _table(_torques.to_principal(torque.rows(), axes))
     if not callable(torque):
         raise TypeError(f"torque must be None, a torque model or a callable torque(t, q, omega_body), "
                         f"got {type(torque).__name__}")
@@ -205,6 +205,11 @@ def _torque_rows(torque, axes, t0, q0_body, omega0_body, keys):
     key = _torques.register_callback(fn)
     keys.append(key)
     return _torques.callback_row(key)
+
+
+def _table(rows):
+    """A model table for the kernels; None when empty (the kernels then skip the evaluation)."""
+    return np.ascontiguousarray(rows) if rows.shape[0] else None
 
 
 def _check_callable_output(fn, args, name):
@@ -266,7 +271,7 @@ def _scipy(t, y0, moments, mass, rows, frows, rtol, atol):
 
     def fun(tt, y):
         dy = np.empty_like(y)
-        _k.rhs(tt, y, moments, mass, rows, frows, dy, scratch)
+        _k.rhs(tt, y, y.size, moments, mass, rows, frows, dy, 0, scratch)
         return dy
 
     if t.size == 1:
@@ -387,9 +392,9 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
 
 def _force_rows(force, axes, t0, q_body, w_body, translation, keys):
     if translation is None or force is None:
-        return np.zeros((0, _torques.ROW_SIZE))
+        return None
     if isinstance(force, _forces.ForceModel):
-        return np.ascontiguousarray(_forces.to_principal(force.rows(), axes))
+        return _table(_forces.to_principal(force.rows(), axes))
     if not callable(force):
         raise TypeError(f"force must be None, a force model or a callable "
                         f"force(t, q, omega_body, position, velocity), got {type(force).__name__}")
@@ -523,7 +528,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     if torque is not None and not isinstance(torque, _torques.TorqueModel):
         raise TypeError("simulate_batch takes a built-in torque model (GravityTorque, ConstantTorque, "
                         f"MagneticTorque, LinearDamping or a sum); got {type(torque).__name__}")
-    rows = np.zeros((0, _torques.ROW_SIZE)) if torque is None else np.ascontiguousarray(torque.rows())
+    rows = None if torque is None else _table(torque.rows())
     if reduce is not None and not callable(reduce):
         raise TypeError(f"reduce must be callable, got {type(reduce).__name__}")
     count = int(np.prod(batch))

@@ -10,12 +10,13 @@ accepted too (called back from the compiled loop, slower).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit, objmode
 
 from .._validation import as_float_array
-from ..so3._kernels import qnormalize, qrotate
-from .torques import ROW_SIZE, _CALLBACKS
+from .torques import ROW_SIZE, _CALLBACKS, rotate_scalars
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 
@@ -118,50 +119,53 @@ def to_principal(rows, axes):
     return out
 
 
-def _call_registered(key, t, q, w, r, v):
-    return np.ascontiguousarray(
-        _CALLBACKS[int(key)](t, q.copy(), w.copy(), r.copy(), v.copy()), dtype=np.float64
-    )
+def _call_registered(key, t, y):
+    q = y[3:7] / np.linalg.norm(y[3:7])
+    f = _CALLBACKS[int(key)](t, q, y[0:3].copy(), y[7:10].copy(), y[10:13].copy())
+    return np.ascontiguousarray(f, dtype=np.float64)
 
 
 @njit(cache=True)
-def _callback_force(key, t, q, w, r, v, out):
+def _callback_force(key, t, y, scratch):
     with objmode(f="float64[:]"):
-        f = _call_registered(key, t, q, w, r, v)
-    out[0] += f[0]
-    out[1] += f[1]
-    out[2] += f[2]
+        f = _call_registered(key, t, y)
+    scratch[10] += f[0]
+    scratch[11] += f[1]
+    scratch[12] += f[2]
 
 
 @_jit
-def evaluate_force(rows, t, y, out, scratch):
-    """Space force on the centre of mass for the 13-state ``y = (ω′, q, r, v)``."""
-    out[0] = 0.0
-    out[1] = 0.0
-    out[2] = 0.0
+def evaluate_force(rows, t, y, scratch):
+    """Space force on the centre of mass for ``y = (ω′, q, r, v)`` into ``scratch[10:13]``."""
+    scratch[10] = 0.0
+    scratch[11] = 0.0
+    scratch[12] = 0.0
     n = rows.shape[0]
     if n == 0:
         return
-    qn = scratch[0:4]
-    f = scratch[4:7]
-    for i in range(4):
-        qn[i] = y[3 + i]
-    qnormalize(qn)
+    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
+    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
+    f0 = 0.0
+    f1 = 0.0
+    f2 = 0.0
     for i in range(n):
-        row = rows[i]
-        kind = int(row[0])
+        kind = int(rows[i, 0])
         if kind == F_SPACE:
-            out[0] += row[1]
-            out[1] += row[2]
-            out[2] += row[3]
+            f0 += rows[i, 1]
+            f1 += rows[i, 2]
+            f2 += rows[i, 3]
         elif kind == F_BODY:
-            qrotate(qn, row[1:4], f)
-            out[0] += f[0]
-            out[1] += f[1]
-            out[2] += f[2]
+            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 1], rows[i, 2], rows[i, 3], False)
+            f0 += v0
+            f1 += v1
+            f2 += v2
         elif kind == F_DRAG:
-            out[0] -= row[1] * y[10]
-            out[1] -= row[1] * y[11]
-            out[2] -= row[1] * y[12]
-        else:
-            _callback_force(row[1], t, qn, y[0:3], y[7:10], y[10:13], out)
+            f0 -= rows[i, 1] * y[10]
+            f1 -= rows[i, 1] * y[11]
+            f2 -= rows[i, 1] * y[12]
+    scratch[10] = f0
+    scratch[11] = f1
+    scratch[12] = f2
+    for i in range(n):
+        if int(rows[i, 0]) == F_CALLBACK:
+            _callback_force(rows[i, 1], t, y, scratch)

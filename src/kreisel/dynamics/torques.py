@@ -21,7 +21,6 @@ import numpy as np
 from numba import njit, objmode
 
 from .._validation import as_float_array
-from ..so3._kernels import qnormalize, qrotate_inverse
 
 __all__ = [
     "TorqueModel",
@@ -59,9 +58,9 @@ class TorqueModel:
         w = as_float_array(omega_body, "omega_body", tail=(3,))
         if q.ndim != 1 or w.ndim != 1:
             raise ValueError("a torque model is evaluated for one state: q (4,), omega_body (3,)")
-        out = np.empty(3)
-        evaluate_torque(self.rows(), float(t), q, w, out, np.empty(7))
-        return out
+        scratch = np.zeros(13)
+        evaluate_torque(self.rows(), float(t), np.concatenate([w, q]), scratch)
+        return scratch[7:10].copy()
 
 
 def _vector(x, name):
@@ -271,56 +270,77 @@ def callback_row(key):
     return r
 
 
-def _call_registered(key, t, q, w):
-    return np.ascontiguousarray(_CALLBACKS[int(key)](t, q.copy(), w.copy()), dtype=np.float64)
+def _call_registered(key, t, y):
+    q = y[3:7] / np.linalg.norm(y[3:7])
+    return np.ascontiguousarray(_CALLBACKS[int(key)](t, q, y[0:3].copy()), dtype=np.float64)
 
 
 @njit(cache=True)
-def _callback_torque(key, t, q, w, out):
+def _callback_torque(key, t, y, scratch):
     with objmode(r="float64[:]"):
-        r = _call_registered(key, t, q, w)
-    out[0] += r[0]
-    out[1] += r[1]
-    out[2] += r[2]
+        r = _call_registered(key, t, y)
+    scratch[7] += r[0]
+    scratch[8] += r[1]
+    scratch[9] += r[2]
 
 
 @_jit
-def evaluate_torque(rows, t, q, w, out, scratch):
-    """Body torque of the model table at (t, q, ω′) into ``out``; ``scratch`` is (7,)."""
-    out[0] = 0.0
-    out[1] = 0.0
-    out[2] = 0.0
+def rotate_scalars(q0, q1, q2, q3, x, y, z, inverse):
+    """R(q) v (or R(q)ᵀ v) on scalars, for a unit q: the formula of ``so3._kernels.qrotate``.
+
+    The integrators' innermost loops call this form so that no array views
+    (and their reference counting) are created per evaluation.
+    """
+    if inverse:
+        q1, q2, q3 = -q1, -q2, -q3
+    t0 = 2.0 * (q2 * z - q3 * y)
+    t1 = 2.0 * (q3 * x - q1 * z)
+    t2 = 2.0 * (q1 * y - q2 * x)
+    return (x + q0 * t0 + q2 * t2 - q3 * t1,
+            y + q0 * t1 + q3 * t0 - q1 * t2,
+            z + q0 * t2 + q1 * t1 - q2 * t0)
+
+
+@_jit
+def evaluate_torque(rows, t, y, scratch):
+    """Body torque of the model table at the state ``y = (ω′, q, ...)`` into ``scratch[7:10]``."""
+    scratch[7] = 0.0
+    scratch[8] = 0.0
+    scratch[9] = 0.0
     n = rows.shape[0]
     if n == 0:
         return
+    w0, w1, w2 = y[0], y[1], y[2]
     # stage states of explicit Runge-Kutta methods are not exactly unit
-    qn = scratch[0:4]
-    v = scratch[4:7]
-    qn[0] = q[0]
-    qn[1] = q[1]
-    qn[2] = q[2]
-    qn[3] = q[3]
-    qnormalize(qn)
+    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
+    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
     for i in range(n):
-        r = rows[i]
-        kind = int(r[0])
+        kind = int(rows[i, 0])
         if kind == BODY:
-            out[0] += r[1]
-            out[1] += r[2]
-            out[2] += r[3]
+            m0 += rows[i, 1]
+            m1 += rows[i, 2]
+            m2 += rows[i, 3]
         elif kind == SPACE:
-            qrotate_inverse(qn, r[1:4], v)
-            out[0] += v[0]
-            out[1] += v[1]
-            out[2] += v[2]
+            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 1], rows[i, 2], rows[i, 3], True)
+            m0 += v0
+            m1 += v1
+            m2 += v2
         elif kind == CROSS:
-            qrotate_inverse(qn, r[4:7], v)
-            out[0] += r[2] * v[2] - r[3] * v[1]
-            out[1] += r[3] * v[0] - r[1] * v[2]
-            out[2] += r[1] * v[1] - r[2] * v[0]
+            a0, a1, a2 = rows[i, 1], rows[i, 2], rows[i, 3]
+            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 4], rows[i, 5], rows[i, 6], True)
+            m0 += a1 * v2 - a2 * v1
+            m1 += a2 * v0 - a0 * v2
+            m2 += a0 * v1 - a1 * v0
         elif kind == DAMPING:
-            out[0] -= r[1] * w[0] + r[2] * w[1] + r[3] * w[2]
-            out[1] -= r[4] * w[0] + r[5] * w[1] + r[6] * w[2]
-            out[2] -= r[7] * w[0] + r[8] * w[1] + r[9] * w[2]
-        else:
-            _callback_torque(r[1], t, qn, w, out)
+            m0 -= rows[i, 1] * w0 + rows[i, 2] * w1 + rows[i, 3] * w2
+            m1 -= rows[i, 4] * w0 + rows[i, 5] * w1 + rows[i, 6] * w2
+            m2 -= rows[i, 7] * w0 + rows[i, 8] * w1 + rows[i, 9] * w2
+    scratch[7] = m0
+    scratch[8] = m1
+    scratch[9] = m2
+    for i in range(n):
+        if int(rows[i, 0]) == CALLBACK:
+            _callback_torque(rows[i, 1], t, y, scratch)
