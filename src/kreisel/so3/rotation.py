@@ -56,63 +56,189 @@ class Rotation:
     # -- construction -------------------------------------------------------
     @classmethod
     def from_quat(cls, quat, scalar_first=True):
-        """From quaternions (normalised); ``scalar_first=False`` for ``[x, y, z, w]`` input."""
+        """From quaternions (normalised); ``scalar_first=False`` for ``[x, y, z, w]`` input.
+
+        Examples
+        --------
+        A quarter turn about z; the quaternion is normalised on the way in:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_quat([2.0, 0.0, 0.0, 2.0])
+        >>> r.as_quat().round(6).tolist()
+        [0.707107, 0.0, 0.0, 0.707107]
+        >>> bool(Rotation.from_quat([0.0, 0.0, 1.0, 1.0], scalar_first=False).approx_equal(r))
+        True
+        """
         return cls(_scalar_first(quat, scalar_first))
 
     @classmethod
     def from_matrix(cls, matrix):
-        """From rotation matrices (nearly orthogonal ones are projected)."""
+        """From rotation matrices (nearly orthogonal ones are projected).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> rz = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+        >>> r = Rotation.from_matrix(rz)
+        >>> round(float(np.degrees(r.magnitude())), 9)
+        90.0
+        >>> bool(np.allclose(r.as_matrix(), rz, atol=1e-15))
+        True
+        """
         return cls._wrap(_matrix.matrix_to_quat(matrix))
 
     @classmethod
     def from_rotvec(cls, rotvec, degrees=False):
-        """From rotation vectors ψ = ψ n (exponential map)."""
+        """From rotation vectors ψ = ψ n (exponential map).
+
+        Examples
+        --------
+        The rotation vector's length is the angle, its direction the axis:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([0.0, 0.0, 90.0], degrees=True)
+        >>> np.round(r.apply([1.0, 0.0, 0.0]), 12).tolist()
+        [0.0, 1.0, 0.0]
+        >>> np.round(r.as_rotvec(degrees=True), 9).tolist()
+        [0.0, 0.0, 90.0]
+        """
         psi = np.asarray(rotvec, dtype=np.float64)
         return cls._wrap(_rotvec.rotvec_to_quat(np.deg2rad(psi) if degrees else psi))
 
     @classmethod
     def from_axis_angle(cls, axis, angle, degrees=False):
-        """From an axis (any nonzero length) and an angle."""
+        """From an axis (any nonzero length) and an angle.
+
+        Examples
+        --------
+        The axis need not be unit length:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_axis_angle([0.0, 0.0, 5.0], np.pi / 2)
+        >>> bool(r.approx_equal(Rotation.from_rotvec([0.0, 0.0, np.pi / 2])))
+        True
+        """
         return cls.from_rotvec(_rotvec.axis_angle_to_rotvec(axis, angle, degrees=degrees))
 
     @classmethod
     def from_euler(cls, seq, angles, degrees=False):
-        """From Euler angles in any of the 24 conventions (see :mod:`kreisel.so3.euler`)."""
+        """From Euler angles in any of the 24 conventions (see :mod:`kreisel.so3.euler`).
+
+        Examples
+        --------
+        The seed's mechanics angles (φ, θ, ψ) are the intrinsic sequence ``"ZXZ"``,
+        R = Rz(φ) Rx(θ) Rz(ψ):
+
+        >>> import numpy as np
+        >>> r = Rotation.from_euler("ZXZ", [30, 40, 50], degrees=True)
+        >>> rz = lambda deg: Rotation.from_rotvec([0.0, 0.0, deg], degrees=True)
+        >>> rx = Rotation.from_rotvec([40.0, 0.0, 0.0], degrees=True)
+        >>> bool(r.approx_equal(rz(30) * rx * rz(50)))
+        True
+        >>> np.round(r.as_euler("ZXZ", degrees=True), 9).tolist()
+        [30.0, 40.0, 50.0]
+        """
         return cls._wrap(_euler.euler_to_quat(seq, angles, degrees=degrees))
 
     @classmethod
     def from_su2(cls, u):
-        """From SU(2) matrices ``exp(-i σ·ψ/2)``."""
+        """From SU(2) matrices ``exp(-i σ·ψ/2)``.
+
+        Examples
+        --------
+        A half turn about x is ``-i σx`` in SU(2):
+
+        >>> import numpy as np
+        >>> u = np.array([[0.0, -1.0j], [-1.0j, 0.0]])
+        >>> bool(Rotation.from_su2(u).approx_equal(Rotation.from_rotvec([np.pi, 0.0, 0.0])))
+        True
+        """
         return cls._wrap(_su2.su2_to_quat(u))
 
     @classmethod
     def from_cayley_klein(cls, ck):
-        """From Cayley–Klein parameters ``(α, β, γ, δ)``."""
+        """From Cayley–Klein parameters ``(α, β, γ, δ)``.
+
+        Examples
+        --------
+        Round trip through the Cayley–Klein parameters:
+
+        >>> r = Rotation.from_euler("ZXZ", [0.3, 0.4, 0.5])
+        >>> bool(Rotation.from_cayley_klein(r.as_cayley_klein()).approx_equal(r))
+        True
+        """
         return cls._wrap(_su2.cayley_klein_to_quat(ck))
 
     @classmethod
     def from_euler_parameters(cls, e):
-        """From the seed's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`)."""
+        """From the seed's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`).
+
+        Examples
+        --------
+        The seed's Euler parameters are the conjugate quaternion (passive sign of the vector part):
+
+        >>> import numpy as np
+        >>> r = Rotation.from_euler_parameters([np.sqrt(0.5), 0.0, 0.0, -np.sqrt(0.5)])
+        >>> (r.as_quat().round(6) + 0.0).tolist()
+        [0.707107, 0.0, 0.0, 0.707107]
+        """
         return cls._wrap(_su2.euler_parameters_to_quat(e))
 
     @classmethod
     def from_gibbs(cls, g):
-        """From Gibbs (classical Rodrigues) vectors ``n tan(ψ/2)``."""
+        """From Gibbs (classical Rodrigues) vectors ``n tan(ψ/2)``.
+
+        Examples
+        --------
+        The Gibbs vector of a quarter turn about z is ``tan(45°) z``:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_gibbs([0.0, 0.0, 1.0])
+        >>> round(float(np.degrees(r.magnitude())), 9)
+        90.0
+        """
         return cls._wrap(_rodrigues.gibbs_to_quat(g))
 
     @classmethod
     def from_mrp(cls, p):
-        """From modified Rodrigues parameters ``n tan(ψ/4)``."""
+        """From modified Rodrigues parameters ``n tan(ψ/4)``.
+
+        Examples
+        --------
+        Unit-length modified Rodrigues parameters are a half turn (tan(π/4) = 1):
+
+        >>> import numpy as np
+        >>> r = Rotation.from_mrp([1.0, 0.0, 0.0])
+        >>> round(float(np.degrees(r.magnitude())), 9)
+        180.0
+        """
         return cls._wrap(_rodrigues.mrp_to_quat(p))
 
     @classmethod
     def from_scipy(cls, rotation):
-        """From a ``scipy.spatial.transform.Rotation`` (scalar-last internally)."""
+        """From a ``scipy.spatial.transform.Rotation`` (scalar-last internally).
+
+        Examples
+        --------
+        >>> from scipy.spatial.transform import Rotation as ScipyRotation
+        >>> s = ScipyRotation.from_rotvec([0.1, 0.2, 0.3])
+        >>> bool(Rotation.from_scipy(s).approx_equal(Rotation.from_rotvec([0.1, 0.2, 0.3])))
+        True
+        """
         return cls.from_quat(rotation.as_quat(), scalar_first=False)
 
     @classmethod
     def identity(cls, shape=()):
-        """Identity rotations of batch shape ``shape``."""
+        """Identity rotations of batch shape ``shape``.
+
+        Examples
+        --------
+        >>> r = Rotation.identity((2, 3))
+        >>> r.shape
+        (2, 3)
+        >>> r.as_quat()[0, 0].tolist()
+        [1.0, 0.0, 0.0, 0.0]
+        """
         return cls._wrap(_quat.quat_identity(shape))
 
     @classmethod
@@ -133,52 +259,161 @@ class Rotation:
 
     # -- representations ----------------------------------------------------
     def as_quat(self, canonical=False, scalar_first=True):
-        """Unit quaternions; ``canonical=True`` picks the sign with q0 >= 0."""
+        """Unit quaternions; ``canonical=True`` picks the sign with q0 >= 0.
+
+        Examples
+        --------
+        ``q`` and ``-q`` are the same rotation; ``canonical=True`` picks ``q0 >= 0``:
+
+        >>> r = Rotation.from_quat([-0.6, 0.0, 0.8, 0.0])
+        >>> r.as_quat(canonical=True).tolist()
+        [0.6, -0.0, -0.8, -0.0]
+        >>> r.as_quat(scalar_first=False).tolist()
+        [0.0, 0.8, 0.0, -0.6]
+        """
         q = self._q
         if canonical:
             q = np.where(q[..., :1] < 0.0, -q, q)
         return np.array(q if scalar_first else q[..., [1, 2, 3, 0]])
 
     def as_matrix(self):
-        """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``."""
+        """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``.
+
+        Examples
+        --------
+        The matrix is orthogonal with determinant +1:
+
+        >>> import numpy as np
+        >>> m = Rotation.from_rotvec([0.3, -0.2, 0.9]).as_matrix()
+        >>> bool(np.allclose(m @ m.T, np.eye(3), atol=1e-15)), round(float(np.linalg.det(m)), 12)
+        (True, 1.0)
+        """
         return _matrix.quat_to_matrix(self._q)
 
     def as_rotvec(self, degrees=False):
-        """Rotation vectors with |ψ| <= π."""
+        """Rotation vectors with |ψ| <= π.
+
+        Examples
+        --------
+        Logs are returned with ``|ψ| <= π``: a 270° turn about z comes back as -90°:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([0.0, 0.0, 270.0], degrees=True)
+        >>> (np.round(r.as_rotvec(degrees=True), 9) + 0.0).tolist()
+        [0.0, 0.0, -90.0]
+        """
         psi = _rotvec.quat_to_rotvec(self._q)
         return np.rad2deg(psi) if degrees else psi
 
     def as_axis_angle(self, degrees=False):
-        """``(axis, angle)`` with angle in [0, π] (axis ``[0, 0, 1]`` for the identity)."""
+        """``(axis, angle)`` with angle in [0, π] (axis ``[0, 0, 1]`` for the identity).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> axis, angle = Rotation.from_rotvec([0.0, 0.6, 0.8]).as_axis_angle(degrees=True)
+        >>> axis.round(12).tolist(), round(float(angle), 6)
+        ([0.0, 0.6, 0.8], 57.29578)
+        """
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
     def as_euler(self, seq, degrees=False):
-        """Euler angles (exact through gimbal lock)."""
+        """Euler angles (exact through gimbal lock).
+
+        Examples
+        --------
+        At gimbal lock (θ = 0 in ``"ZXZ"``) only φ + ψ is defined; the sum is kept exactly:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_euler("ZXZ", [20, 0, 30], degrees=True)
+        >>> phi, theta, psi = r.as_euler("ZXZ", degrees=True)
+        >>> round(float(phi + psi), 9), round(float(theta), 9)
+        (50.0, 0.0)
+        """
         return _euler.quat_to_euler(seq, self._q, degrees=degrees)
 
     def as_su2(self):
-        """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign)."""
+        """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign).
+
+        Examples
+        --------
+        SU(2) matrices are unitary with determinant 1 and compose like the rotations:
+
+        >>> import numpy as np
+        >>> a, b = Rotation.from_rotvec([0.1, 0.2, 0.3]), Rotation.from_rotvec([-0.4, 0.0, 0.5])
+        >>> u = a.as_su2()
+        >>> bool(np.allclose(u @ u.conj().T, np.eye(2))), round(float(np.linalg.det(u).real), 12)
+        (True, 1.0)
+        >>> bool(np.allclose((a * b).as_su2(), a.as_su2() @ b.as_su2()))
+        True
+        """
         return _su2.quat_to_su2(self._q)
 
     def as_cayley_klein(self):
-        """Cayley–Klein parameters ``(α, β, γ, δ)``."""
+        """Cayley–Klein parameters ``(α, β, γ, δ)``.
+
+        Examples
+        --------
+        The parameters satisfy αδ − βγ = 1:
+
+        >>> import numpy as np
+        >>> alpha, beta, gamma, delta = Rotation.from_euler("ZXZ", [0.3, 0.4, 0.5]).as_cayley_klein()
+        >>> bool(np.isclose(alpha * delta - beta * gamma, 1.0))
+        True
+        """
         return _su2.quat_to_cayley_klein(self._q)
 
     def as_euler_parameters(self):
-        """Euler parameters of the seed appendix (2), ``e = q*``."""
+        """Euler parameters of the seed appendix (2), ``e = q*``.
+
+        Examples
+        --------
+        The Euler parameters are the conjugate quaternion, and have unit norm:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([0.0, 0.0, np.pi / 2])
+        >>> r.as_euler_parameters().round(6).tolist()
+        [0.707107, -0.0, -0.0, -0.707107]
+        """
         return _su2.quat_to_euler_parameters(self._q)
 
     def as_gibbs(self):
-        """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns)."""
+        """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> g = Rotation.from_rotvec([0.0, 0.0, np.pi / 2]).as_gibbs()
+        >>> g.round(12).tolist()
+        [0.0, 0.0, 1.0]
+        """
         return _rodrigues.quat_to_gibbs(self._q)
 
     def as_mrp(self):
-        """Modified Rodrigues parameters with |p| <= 1."""
+        """Modified Rodrigues parameters with |p| <= 1.
+
+        Examples
+        --------
+        MRPs are chosen on the short side, |p| <= 1 (p = n tan(ψ/4)):
+
+        >>> import numpy as np
+        >>> p = Rotation.from_rotvec([0.0, 0.0, np.pi / 2]).as_mrp()
+        >>> round(float(p[2]), 12) == round(float(np.tan(np.pi / 8)), 12)
+        True
+        """
         return _rodrigues.quat_to_mrp(self._q)
 
     def to_scipy(self):
-        """The same rotations as a ``scipy.spatial.transform.Rotation``."""
+        """The same rotations as a ``scipy.spatial.transform.Rotation``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> r = Rotation.from_euler("ZXZ", [0.3, 0.4, 0.5])
+        >>> bool(np.allclose(r.to_scipy().as_matrix(), r.as_matrix(), atol=1e-15))
+        True
+        """
         from scipy.spatial.transform import Rotation as ScipyRotation
 
         return ScipyRotation.from_quat(self._q[..., [1, 2, 3, 0]])
@@ -190,29 +425,89 @@ class Rotation:
         return Rotation._wrap(_quat.quat_multiply(self._q, other._q))
 
     def inv(self):
-        """Inverse rotations."""
+        """Inverse rotations.
+
+        Examples
+        --------
+        A rotation composed with its inverse is the identity:
+
+        >>> r = Rotation.from_rotvec([0.3, -0.2, 0.9])
+        >>> bool((r * r.inv()).approx_equal(Rotation.identity()))
+        True
+        """
         return Rotation._wrap(_quat.quat_conjugate(self._q))
 
     def apply(self, vectors, inverse=False):
-        """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting."""
+        """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting.
+
+        Examples
+        --------
+        Rotating preserves length, and ``inverse=True`` undoes it:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([0.3, -0.2, 0.9])
+        >>> v = np.array([1.0, 2.0, 3.0])
+        >>> w = r.apply(v)
+        >>> bool(np.isclose(np.linalg.norm(w), np.linalg.norm(v))), bool(np.allclose(r.apply(w, inverse=True), v))
+        (True, True)
+        """
         return _quat.quat_apply(self._q, vectors, inverse=inverse)
 
     def magnitude(self):
-        """Rotation angles in [0, π]."""
+        """Rotation angles in [0, π].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([[0.0, 0.0, 0.5], [0.0, 3.0, 4.0]])
+        >>> r.magnitude().round(6).tolist()
+        [0.5, 1.283185]
+        """
         return np.linalg.norm(self.as_rotvec(), axis=-1)
 
     def mean(self, weights=None):
-        """Chordal L2 mean over the first batch axis (see :func:`quat_mean`)."""
+        """Chordal L2 mean over the first batch axis (see :func:`quat_mean`).
+
+        Examples
+        --------
+        The mean of two rotations about the same axis lies halfway between them:
+
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([[0.0, 0.0, 0.2], [0.0, 0.0, 0.6]])
+        >>> (r.mean().as_rotvec().round(9) + 0.0).tolist()
+        [0.0, 0.0, 0.4]
+        """
         if self._q.ndim < 2:
             raise ValueError("mean needs a batch of rotations")
         return Rotation._wrap(_interp.quat_mean(self._q, weights, axis=0))
 
     def slerp(self, other, t):
-        """Spherical linear interpolation from ``self`` (t = 0) to ``other`` (t = 1)."""
+        """Spherical linear interpolation from ``self`` (t = 0) to ``other`` (t = 1).
+
+        Examples
+        --------
+        Slerp moves at constant angular rate along the shortest arc:
+
+        >>> import numpy as np
+        >>> a = Rotation.identity()
+        >>> b = Rotation.from_rotvec([0.0, 0.0, 1.2])
+        >>> a.slerp(b, [0.25, 0.5]).as_rotvec().round(9).tolist()
+        [[0.0, 0.0, 0.3], [0.0, 0.0, 0.6]]
+        """
         return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
 
     def approx_equal(self, other, atol=1e-12):
-        """Whether the rotations agree to ``atol`` in angle (sign of q ignored)."""
+        """Whether the rotations agree to ``atol`` in angle (sign of q ignored).
+
+        Examples
+        --------
+        ``q`` and ``-q`` are equal rotations:
+
+        >>> import numpy as np
+        >>> q = np.array([0.6, 0.8, 0.0, 0.0])
+        >>> bool(Rotation.from_quat(q).approx_equal(Rotation.from_quat(-q)))
+        True
+        """
         return (self.inv() * other).magnitude() <= atol
 
     # -- container protocol -------------------------------------------------
