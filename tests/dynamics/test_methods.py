@@ -149,3 +149,32 @@ def test_spherical_body_closed_form():
         angle = theta * np.round(t / h)
         expected = np.column_stack([np.cos(angle / 2), np.sin(angle / 2)[:, None] * w / speed])
         np.testing.assert_allclose(tr.q, expected, atol=1e-12)
+
+
+EXACT_CASES = [  # (moments, ω0): rotation about axis 3, about axis 1, and the tennis racket
+    ((1.0, 2.0, 3.0), (0.2, 0.3, 1.0)),
+    ((1.0, 2.0, 3.0), (1.0, 0.3, -0.2)),
+    ((1.0, 2.0, 2.5), (0.1, 1.0, 0.1)),
+]
+
+
+@pytest.mark.parametrize("moments,omega0", EXACT_CASES)
+@pytest.mark.parametrize("method,dt,tol", [("dop853", None, 1e-10), ("scipy", None, 1e-10),
+                                           ("rk4", 1e-3, 1e-9), ("rkmk4", 1e-3, 1e-9),
+                                           ("splitting4", 1e-3, 1e-9), ("splitting", 1e-3, 1e-4),
+                                           ("dmv", 1e-3, 1e-4), ("midpoint", 1e-3, 1e-4)])
+def test_every_method_against_exact_euler_top(moments, omega0, method, dt, tol, tools):
+    tops = pytest.importorskip("kreisel.tops")
+    t = np.linspace(0.0, 10.0, 21)
+    exact = tops.EulerTop(*moments).solve(t, omega0, Q_TEST)
+    tr = kr.simulate(moments, t, omega0, Q_TEST, method=method, dt=dt)
+    assert np.abs(tr.omega - exact.omega).max() < tol
+    assert tools.quat_distance(tr.q, exact.q).max() < tol
+
+
+def test_default_meets_contract_against_exact_solution_long_run():
+    tops = pytest.importorskip("kreisel.tops")
+    t = np.linspace(0.0, 1000.0, 101)
+    exact = tops.EulerTop(1.0, 2.0, 3.0).solve(t, [0.1, 1.0, 0.1])
+    tr = kr.simulate([1.0, 2.0, 3.0], t, [0.1, 1.0, 0.1])
+    assert np.abs(tr.omega - exact.omega).max() < 1e-8
