@@ -149,3 +149,28 @@ def test_serve_refuses_bad_input_before_starting(tmp_path):
     assert result.exit_code == 2 and "cannot read" in result.output
     result = run("serve", "--port", "70000", "--no-browser")
     assert result.exit_code == 2 and "port" in result.output
+
+
+def test_sweep_writes_to_the_working_directory_and_plots(tmp_path, monkeypatch):
+    text = """
+model = "lagrange_apex"
+[grid.phi_dot]
+values = [-0.2, 0.0, 0.35]
+[grid.psi_dot]
+values = [10.0, 20.0]
+[constants]
+I1 = 1.0
+I3 = 0.5
+mgl = 1.0
+theta0_deg = 34.0
+"""
+    sweep_file = tmp_path / "small.toml"
+    sweep_file.write_text(text)
+    monkeypatch.chdir(tmp_path)
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "--plot", "map.png")
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "small.zarr").is_dir() and (tmp_path / "map.png").stat().st_size > 0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("mgl = 1.0", "mgl = 1.0\ncolour = 1"))
+    result = run("sweep", str(bad), "--scheduler", "serial")
+    assert result.exit_code == 2 and "colour" in result.output

@@ -117,10 +117,10 @@ def test_tennis_racket_file_checks_the_body():
         parse_sweep_file(text, "t.toml")
 
 
-def test_bundled_files_parse_and_resolve_output_next_to_the_file():
+def test_bundled_files_parse_and_never_write_into_the_package():
     for name in ks.EXAMPLES:
         spec = ks.load_sweep_file(ks.example_path(name))
-        assert spec.model == name and spec.output.parent == ks.example_path(name).parent
+        assert spec.model == name and spec.output is None
 
 
 def test_tennis_racket_flip_time_matches_the_closed_form():
@@ -166,7 +166,7 @@ def test_bundled_sweeps_run_from_files_and_plot(tmp_path):
         reduced = text.replace("num = 10", "num = 3").replace("num = 25", "num = 3").replace("count = 40", "count = 3")
         path = tmp_path / f"{name}.toml"
         path.write_text(reduced, encoding="utf-8")
-        ds = ks.run_sweep_file(path, scheduler="serial")
-        assert (tmp_path / ks.load_sweep_file(path).output.name).exists()
+        ds = ks.run_sweep_file(path, scheduler="serial", output=tmp_path / f"{name}.zarr")
+        assert (tmp_path / f"{name}.zarr").is_dir()
         fig = ks.plot_sweep(ds)
         assert isinstance(fig, Figure) and fig.axes[0].get_title()
