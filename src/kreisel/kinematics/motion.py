@@ -112,7 +112,17 @@ def relative_derivative(omega, vector, relative_rate):
 
 
 class VelocityTerms(NamedTuple):
-    """Absolute velocity of a point moving on a body, term by term (seed 四.7)."""
+    """Absolute velocity of a point moving on a body, term by term (seed 四.7).
+
+    Examples
+    --------
+    A person walking at 1 m/s radially outwards on a turntable spinning at
+    0.5 rad/s, 2 m from the axis: the turntable carries them sideways at ω r:
+
+    >>> v = three_term_velocity([0.0, 0.0, 0.5], [2.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+    >>> v.relative.tolist(), v.rotational.tolist(), v.total.tolist()
+    ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0])
+    """
 
     translational: np.ndarray  #: v_C, transport velocity of the reference point (平动牵连速度)
     relative: np.ndarray  #: v_CP = R d r′_CP/dt, velocity relative to the body (相对速度)
@@ -125,7 +135,20 @@ class VelocityTerms(NamedTuple):
 
 
 class AccelerationTerms(NamedTuple):
-    """Absolute acceleration of a point moving on a body, term by term (seed 四.7)."""
+    """Absolute acceleration of a point moving on a body, term by term (seed 四.7).
+
+    Examples
+    --------
+    The same walker (1 m/s outwards, 2 m out, table at 0.5 rad/s and speeding
+    up at 0.1 rad/s²): Coriolis 2 ω v sideways, centripetal ω² r inwards,
+    tangential ε r sideways:
+
+    >>> a = five_term_acceleration([0, 0, 0.5], [0, 0, 0.1], [2.0, 0, 0], [1.0, 0, 0], [0, 0, 0])
+    >>> a.coriolis.tolist(), a.centripetal.tolist(), a.tangential.tolist()
+    ([0.0, 1.0, 0.0], [-0.5, 0.0, 0.0], [0.0, 0.2, 0.0])
+    >>> a.total.round(12).tolist()
+    [-0.5, 1.2, 0.0]
+    """
 
     translational: np.ndarray  #: a_C (平动牵连加速度)
     tangential: np.ndarray  #: ε × r_CP, rotational transport acceleration (转动牵连加速度)

@@ -20,7 +20,20 @@ __all__ = ["ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "cent
 
 
 class ScrewAxis(NamedTuple):
-    """Instantaneous screw axis of a twist."""
+    """Instantaneous screw axis of a twist.
+
+    Examples
+    --------
+    A drill bit turning at 10 rad/s about z while advancing 0.02 m/s along it,
+    seen from a reference point 1 m off the axis: the axis is found again,
+    with pitch 2 mm per radian:
+
+    >>> s = screw_axis([0.0, 0.0, 10.0], [0.0, 10.0, 0.02], [1.0, 0.0, 0.0])
+    >>> s.kind, (s.point.round(12) + 0.0).tolist(), round(float(s.pitch), 12)
+    ('screw', [0.0, 0.0, 0.0], 0.002)
+    >>> s.direction.tolist(), s.axial_velocity.round(12).tolist()
+    ([0.0, 0.0, 1.0], [0.0, 0.0, 0.02])
+    """
 
     kind: np.ndarray  #: "translation", "rotation" or "screw" (str for a single twist)
     point: np.ndarray  #: point of the axis nearest the reference point (NaN for a translation)
@@ -131,7 +144,20 @@ def instantaneous_centre(omega, velocity, point=0.0):
 
 
 class Centrodes(NamedTuple):
-    """Space and body centrodes (空间极迹, 本体极迹) of a planar motion."""
+    """Space and body centrodes (空间极迹, 本体极迹) of a planar motion.
+
+    Examples
+    --------
+    A wheel of radius 1 rolling along x (centre (s, 1), angle -s): the space
+    centrode is the road y = 0, the body centrode the rim:
+
+    >>> t = np.linspace(0.0, 3.0, 7)
+    >>> c = centrodes(t, lambda t: -t, lambda t: np.stack([t, np.ones_like(t)], -1))
+    >>> c.space.shape, bool(np.allclose(c.space[:, 1], 0.0, atol=1e-9))
+    ((7, 2), True)
+    >>> bool(np.allclose(np.linalg.norm(c.body, axis=-1), 1.0))
+    True
+    """
 
     t: np.ndarray  #: sample times, (n,)
     space: np.ndarray  #: instantaneous centre in the fixed plane, (..., n, 2)
