@@ -11,19 +11,19 @@ from .report import Check, Section
 
 _TOP = LagrangeTop(1.0, 0.5, 1.0)  # I1 about the pivot, I3, mgl
 _THETA0 = 0.6
-_SPIN = 10.0  # ψ̇ at release
+_SPIN = 5.0  # ψ̇ at release: slow enough for the loci to be seen
 _LOCI = {  # ZXZ rates (φ̇, θ̇, ψ̇) at release, θ = θ0
-    "monotone": [0.35, 0.0, _SPIN],
+    "monotone": [0.3, 0.0, _SPIN],
     "cusp": [0.0, 0.0, _SPIN],
-    "loop": [-0.2, 0.0, _SPIN],
+    "loop": [-0.3, 0.0, _SPIN],
 }
 
 
 def lagrange_top(quick):
     """Lagrange top: effective potential and the three kinds of apex locus"""
     euler0 = [0.0, _THETA0, 0.0]
-    t = np.linspace(0.0, 12.0, 1200 if quick else 6000)
-    fig = Figure(figsize=(11, 4), layout="constrained")
+    t = np.linspace(0.0, 10.0, 1500 if quick else 6000)
+    fig = Figure(figsize=(12, 3.6), layout="constrained")
     ax0 = fig.add_subplot(1, 4, 1)
     theta = np.linspace(0.3, 1.1, 400)
     checks, levels = [], []
@@ -39,13 +39,14 @@ def lagrange_top(quick):
         theta_path = np.arccos(np.clip(tips[:, 2], -1, 1))
         low, high = _TOP.turning_points(euler0, rates)
         ax = fig.add_subplot(1, 4, k + 2)
-        ax.plot(np.degrees(np.unwrap(np.arctan2(tips[:, 1], tips[:, 0]))), np.degrees(theta_path), linewidth=1)
-        ax.axhline(np.degrees(low), color="0.6", linestyle=":")
-        ax.axhline(np.degrees(high), color="0.6", linestyle=":")
-        ax.invert_yaxis()
-        ax.set_title(f"apex locus: {kind}")
-        ax.set_xlabel("φ (°)")
-        ax.set_ylabel("θ (°)")
+        ax.plot(tips[:, 0], tips[:, 1], linewidth=1)
+        ring = np.linspace(0, 2 * np.pi, 200)
+        for bound in (low, high):
+            ax.plot(np.sin(bound) * np.cos(ring), np.sin(bound) * np.sin(ring), color="0.6", linestyle=":")
+        ax.set_aspect("equal")
+        ax.set_title(f"apex locus seen from above: {kind}", fontsize=9)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
         checks += [
             Check.equal(f"{kind}: apex_locus_kind", _TOP.apex_locus_kind(euler0, rates), kind),
             Check.close(f"{kind}: largest θ on the sampled path (rad)", float(theta_path.max()), float(high),
@@ -65,8 +66,8 @@ def lagrange_top(quick):
         "(loops). The exact solution u = u1 + (u2 − u1) sn² with φ, ψ from elliptic integrals of the third "
         "kind is compared with kreisel.simulate under a gravity torque.",
         checks,
-        [(fig, "Effective potentials and the apex paths (θ against φ, between the turning points) of a top "
-               "released at θ0 = 0.6 rad with three initial precession rates.")],
+        [(fig, "Effective potentials, and the path of the symmetry axis seen from above between the circles "
+               "of the turning points, for a top released at θ0 = 0.6 rad with three initial precession rates.")],
     )
 
 
