@@ -115,7 +115,22 @@ class RigidBody:
 
     @classmethod
     def from_properties(cls, properties):
-        """Rigid body of a :class:`MassProperties`: body origin at its centre of mass, same axes."""
+        """Rigid body of a :class:`MassProperties`: body origin at its centre of mass, same axes.
+
+        Examples
+        --------
+        A 3 kg cylinder (radius 0.5 m, height 2 m along z) described with its
+        centre at (0, 0, 1): the body origin is its centre of mass, so the moments
+        are the central ones, m r²/2 and m (3r² + h²)/12, not those about the base:
+
+        >>> import numpy as np, kreisel as kr
+        >>> cylinder = kr.inertia.MassProperties(3.0, np.array([0, 0, 1.0]), kr.inertia.solid_cylinder(3.0, 0.5, 2.0))
+        >>> body = kr.RigidBody.from_properties(cylinder)
+        >>> body.mass, body.principal_moments.round(12).tolist()
+        (3.0, [0.375, 1.1875, 1.1875])
+        >>> cylinder.about([0, 0, 0]).diagonal().round(12).tolist()
+        [4.1875, 4.1875, 0.375]
+        """
         return cls(properties.inertia, properties.mass)
 
     @classmethod
@@ -158,7 +173,18 @@ class RigidBody:
 
     @classmethod
     def from_points(cls, masses, positions):
-        """Rigid body of point masses, body origin at their centre of mass (:func:`kreisel.inertia.from_points`)."""
+        """Rigid body of point masses, body origin at their centre of mass (:func:`kreisel.inertia.from_points`).
+
+        Examples
+        --------
+        Two 1 kg masses 2 m apart on x, a third of 2 kg on y: the body origin moves
+        to their centre of mass, and the tensor is taken about it:
+
+        >>> import kreisel as kr
+        >>> body = kr.RigidBody.from_points([1.0, 1.0, 2.0], [[-1.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0]])
+        >>> body.mass, body.inertia.diagonal().round(12).tolist()
+        (4.0, [1.0, 2.0, 3.0])
+        """
         from .properties import from_points
 
         return cls.from_properties(from_points(masses, positions))

@@ -28,6 +28,18 @@ class MassProperties(NamedTuple):
         Centre of mass, m, in the coordinates the body was described in.
     inertia : (3, 3) ndarray
         Inertia tensor about ``com`` in the same axes, kg m².
+
+    Examples
+    --------
+    :func:`from_points` returns the mass properties of point masses; the
+    parallel-axis theorem gives the tensor about any other point:
+
+    >>> import kreisel as kr
+    >>> p = kr.inertia.from_points([1.0, 3.0], [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]])
+    >>> p.mass, p.com.tolist()
+    (4.0, [3.0, 0.0, 0.0])
+    >>> p.inertia.diagonal().round(12).tolist(), p.about([0, 0, 0]).diagonal().round(12).tolist()
+    ([0.0, 12.0, 12.0], [0.0, 48.0, 48.0])
     """
 
     mass: float

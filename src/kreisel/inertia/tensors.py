@@ -398,6 +398,20 @@ class InertiaEllipsoid(NamedTuple):
         Columns are the principal directions matching ``semi_axes``.
     x, y, z : (..., n_polar, n_azimuth) ndarray
         Surface points for plotting (e.g. ``plot_surface(x, y, z)``).
+
+    Examples
+    --------
+    Every sampled surface point x satisfies xᵀ I x = 1; the longest semi-axis
+    lies along the axis of smallest moment:
+
+    >>> import numpy as np, kreisel as kr
+    >>> I = np.diag([3.0, 1.0, 2.0])
+    >>> e = kr.inertia.inertia_ellipsoid(I)
+    >>> e.semi_axes.round(6).tolist(), np.abs(e.axes[:, 0]).tolist()
+    ([1.0, 0.707107, 0.57735], [0.0, 1.0, 0.0])
+    >>> xyz = np.stack([e.x, e.y, e.z], -1)
+    >>> bool(np.allclose(np.einsum("...i,ij,...j->...", xyz, I, xyz), 1.0))
+    True
     """
 
     semi_axes: np.ndarray
