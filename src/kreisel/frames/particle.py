@@ -102,6 +102,20 @@ class ParticleTrajectory:
         Potential energy of the built-in fields (``gravity``, ``spring``);
         None when a callable ``force`` (whose potential is unknown) was given.
     mass : float
+
+    Examples
+    --------
+    A mass on an isotropic spring (k/m = 4 s⁻²) observed from a frame turning at
+    0.5 rad/s: the Coriolis force curls the orbit, and the Jacobi integral
+    (:attr:`hamiltonian`) stays constant:
+
+    >>> import numpy as np
+    >>> tr = simulate_particle(np.linspace(0.0, 10.0, 201), [1, 0, 0], [0, 0.5, 0], [0, 0, 0.5], spring=4.0)
+    >>> tr, tr.r.shape
+    (ParticleTrajectory(n=201, t=[0, 10]), (201, 3))
+    >>> H = tr.hamiltonian
+    >>> float(H[0]), bool(np.ptp(H) < 1e-9)
+    (2.0, True)
     """
 
     def __init__(self, t, r, v, omega, a0, potential, mass):

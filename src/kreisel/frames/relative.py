@@ -49,6 +49,18 @@ AccelerationTerms.__doc__ = """Five terms of the absolute acceleration (seed 四
 
 translational (a_C), euler (ε×r), centripetal (ω×(ω×r)), relative (a_rel),
 coriolis (2 ω×v_rel) and their sum ``total``.
+
+Examples
+--------
+A star at rest, seen from a frame turning at 1 rad/s about z, circles the
+observer (r = (1, 0, 0), v_rel = -ω×r, a_rel = -r): centripetal, relative and
+Coriolis terms cancel, since its absolute acceleration is zero:
+
+>>> a = absolute_acceleration([0, 0, 0], [0, 0, 0], [0, 0, 1], [1, 0, 0], [0, -1, 0], [-1, 0, 0])
+>>> a.centripetal.tolist(), a.relative.tolist(), (a.coriolis + 0.0).tolist()
+([-1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
+>>> (a.total + 0.0).tolist()
+[0.0, 0.0, 0.0]
 """
 
 InertialForces = namedtuple("InertialForces", ["translational", "coriolis", "centrifugal", "euler", "total"])
@@ -56,6 +68,15 @@ InertialForces.__doc__ = """Fictitious (inertial) forces in a moving frame (seed
 
 translational (-m a0), coriolis (-2m ω×ṙ), centrifugal (-m ω×(ω×r)),
 euler (-m ω̇×r) and their sum ``total``.
+
+Examples
+--------
+The same star (no real force): centrifugal outwards plus Coriolis inwards
+give exactly the centripetal force m r̈ = -m r of its apparent circle:
+
+>>> f = inertial_forces([1, 0, 0], [0, -1, 0], [0, 0, 1])
+>>> (f.centrifugal + 0.0).tolist(), (f.coriolis + 0.0).tolist(), (f.total + 0.0).tolist()
+([1.0, 0.0, 0.0], [-2.0, 0.0, 0.0], [-1.0, 0.0, 0.0])
 """
 
 LagrangianTerms = namedtuple("LagrangianTerms", ["kinetic", "coriolis", "centrifugal", "translational", "potential"])
@@ -63,6 +84,15 @@ LagrangianTerms.__doc__ = """Terms of L (seed 八.1), which is their sum.
 
 kinetic ½mṙ², coriolis m ṙ·(ω×r), centrifugal ½m(ω×r)², translational
 -m a0·r, potential -V.
+
+Examples
+--------
+L is frame independent: for the star at rest in space the terms sum to its
+inertial kinetic energy, zero:
+
+>>> t = lagrangian_terms([1, 0, 0], [0, -1, 0], [0, 0, 1])
+>>> [float(x) for x in t], float(sum(t))
+([0.5, -1.0, 0.5, -0.0, -0.0], 0.0)
 """
 
 HamiltonianTerms = namedtuple("HamiltonianTerms", ["kinetic", "coriolis", "translational", "potential"])
@@ -70,6 +100,17 @@ HamiltonianTerms.__doc__ = """Terms of H(r, p) (seed 八.1), which is their sum.
 
 kinetic p²/2m, coriolis -p·(ω×r) (the generalised potential of the Coriolis
 and centrifugal forces), translational m a0·r, potential V.
+
+Examples
+--------
+With constant ω, H is the Jacobi integral ½mṙ² − ½m(ω×r)² + V:
+
+>>> r, v, omega = [2.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]
+>>> h = hamiltonian_terms(r, canonical_momentum(r, v, omega), omega)
+>>> float(h.kinetic), float(h.coriolis), float(sum(h))
+(4.5, -6.0, -1.5)
+>>> 0.5 * 1.0**2 - 0.5 * 2.0**2
+-1.5
 """
 
 
