@@ -81,7 +81,8 @@ def _dop853_tables():
     if not _tables:
         from scipy.integrate._ivp import dop853_coefficients as c
 
-        n = c.N_STAGES
+        if c.N_STAGES != 12 or c.N_STAGES_EXTENDED != 16 or c.INTERPOLATOR_POWER != 7:
+            raise RuntimeError("scipy's DOP853 coefficient tables changed layout; kreisel needs 12+4 stages")
         _tables.append((
             np.ascontiguousarray(c.A, dtype=np.float64),
             np.ascontiguousarray(c.B, dtype=np.float64),
@@ -90,7 +91,6 @@ def _dop853_tables():
             np.ascontiguousarray(c.E5, dtype=np.float64),
             np.ascontiguousarray(c.D, dtype=np.float64),
         ))
-        assert _tables[0][0].shape == (c.N_STAGES_EXTENDED, c.N_STAGES_EXTENDED) and n == 12
     return _tables[0]
 
 
