@@ -172,3 +172,14 @@ def test_integration_failure_is_reported():
     # a step far beyond the implicit iteration's reach
     with pytest.raises(RuntimeError, match="dt"):
         kr.simulate([1.0, 2.0, 3.0], [0.0, 10.0], [10.0, 50.0, 10.0], method="dmv", dt=1.0)
+
+
+@pytest.mark.parametrize("method,dt", [("dop853", None), ("rk4", 0.01)])
+def test_time_origin_and_single_sample(method, dt):
+    # the initial state sits at t[0], whatever its value; one sample returns it unchanged
+    a = kr.simulate([1.0, 2.0, 3.0], [0.0, 1.5], [0.1, 1.0, 0.1], method=method, dt=dt)
+    b = kr.simulate([1.0, 2.0, 3.0], [10.0, 11.5], [0.1, 1.0, 0.1], method=method, dt=dt)
+    np.testing.assert_allclose(a.omega, b.omega, atol=1e-13)
+    one = kr.simulate([1.0, 2.0, 3.0], [3.0], [0.1, 1.0, 0.1], method=method, dt=dt)
+    np.testing.assert_array_equal(one.omega, [[0.1, 1.0, 0.1]])
+    np.testing.assert_array_equal(one.q, [[1.0, 0.0, 0.0, 0.0]])

@@ -178,3 +178,20 @@ def test_default_meets_contract_against_exact_solution_long_run():
     exact = tops.EulerTop(1.0, 2.0, 3.0).solve(t, [0.1, 1.0, 0.1])
     tr = kr.simulate([1.0, 2.0, 3.0], t, [0.1, 1.0, 0.1])
     assert np.abs(tr.omega - exact.omega).max() < 1e-8
+
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+_moment = st.floats(0.5, 3.0)
+_rate = st.floats(-3.0, 3.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.tuples(_moment, _moment, _moment).filter(lambda m: 2 * max(m) <= sum(m)),
+       st.tuples(_rate, _rate, _rate).filter(lambda w: sum(x * x for x in w) > 1e-2),
+       st.sampled_from(["splitting", "splitting4", "dmv"]))
+def test_poisson_maps_keep_space_momentum_for_any_body(moments, omega0, method):
+    # exact invariants of the map: the space angular momentum (hence |J|), to round-off
+    tr = kr.simulate(moments, np.linspace(0, 5, 6), omega0, Q_TEST, method=method, dt=0.01)
+    j = tr.angular_momentum_space
+    np.testing.assert_allclose(j, np.broadcast_to(j[0], j.shape), rtol=0, atol=1e-12 * np.linalg.norm(j[0]))

@@ -24,7 +24,6 @@ __all__ = [
     "simulate_batch",
     "simulate_6dof",
     "Trajectory",
-    "METHODS",
     "TorqueModel",
     "GravityTorque",
     "ConstantTorque",

@@ -357,7 +357,8 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
         Largest step of a fixed-step method (required for them).
     rtol, atol : float
         Tolerances of the adaptive methods. ``atol=None`` uses ``rtol·|ω0|``
-        for ω′ and ``rtol`` for q, so accuracy does not depend on units.
+        for ω′ (``rtol`` rad/s when ω0 = 0) and ``rtol`` for q, so accuracy
+        does not depend on units.
     allow_unphysical : bool
         Accept positive moments that violate the triangle inequality
         I_i <= I_j + I_k (textbook test problems); refused by default.
