@@ -5,10 +5,15 @@ process, same inputs), the speed-up, and the ratio to a "streaming copy"
 bound — ``np.copyto`` of buffers as large as the operation's input plus
 output, the least memory traffic any implementation needs. Plus the time of
 one single-rotation ``quat_multiply``. Writes ``bench/results/so3.md``.
+
+kreisel runs batches of at least ``PARALLEL_THRESHOLD`` rotations on all
+cores (numba ``prange``); scipy is single-threaded. The load average is
+recorded with the table because the machine may be shared.
 """
 
 from __future__ import annotations
 
+import os
 import pathlib
 import time
 
@@ -60,12 +65,14 @@ def main():
         ("quat -> matrix", lambda: kr.quat_to_matrix(q), lambda: S.from_quat(q[:, [1, 2, 3, 0]]).as_matrix(), 4, 9),
         ("matrix -> quat", lambda: kr.matrix_to_quat(R), lambda: S.from_matrix(R).as_quat(), 9, 4),
         ("rotvec -> matrix", lambda: kr.rotvec_to_matrix(psi), lambda: S.from_rotvec(psi).as_matrix(), 3, 9),
+        ("rotvec -> quat", lambda: kr.rotvec_to_quat(psi), lambda: S.from_rotvec(psi).as_quat(), 3, 4),
         ("matrix -> rotvec", lambda: kr.matrix_to_rotvec(R), lambda: S.from_matrix(R).as_rotvec(), 9, 3),
         ("Euler ZXZ -> matrix", lambda: kr.euler_to_matrix("ZXZ", euler), lambda: S.from_euler("ZXZ", euler).as_matrix(), 3, 9),
         ("matrix -> Euler ZXZ", lambda: kr.matrix_to_euler("ZXZ", R), lambda: S.from_matrix(R).as_euler("ZXZ"), 9, 3),
         ("composition p q", lambda: kr.quat_multiply(p, q), lambda: sp * sq, 8, 4),
         ("apply R(q) v", lambda: kr.quat_apply(q, v), lambda: sq.apply(v), 7, 3),
     ]
+    load_before = os.getloadavg()
     rows = []
     for name, ours, theirs, n_in, n_out in cases:
         t_ours = median_time(ours)
@@ -78,13 +85,18 @@ def main():
     sa, sb = S.from_quat(a[[1, 2, 3, 0]]), S.from_quat(b[[1, 2, 3, 0]])
     single = median_time(lambda: [kr.quat_multiply(a, b) for _ in range(1000)]) / 1000
     single_scipy = median_time(lambda: [(sa * sb).as_quat() for _ in range(1000)]) / 1000
+    load_after = os.getloadavg()
+    load = lambda la: "/".join(f"{x:.1f}" for x in la)  # noqa: E731
 
     lines = [
         "# kreisel.so3 vs scipy.spatial.transform",
         "",
         f"10^6 rotations, medians of {REPEATS} runs (scipy: 3), one process, float64. "
         f"scipy {__import__('scipy').__version__}, numpy {np.__version__}, numba {__import__('numba').__version__}. "
-        "Copy bound: `np.copyto` of input- and output-sized buffers. Shared, noisy 2-core machine.",
+        "Copy bound: `np.copyto` of input- and output-sized (preallocated) buffers; kreisel also allocates its output. "
+        f"{os.cpu_count()} cores, kreisel uses {__import__('numba').get_num_threads()} threads for batches. "
+        f"Load average (1/5/15 min) before: {load(load_before)}, after: {load(load_after)} "
+        "(a load above the core count means other jobs shared the CPUs and the times are inflated).",
         "",
         "| operation | kreisel (ms) | scipy (ms) | speed-up vs scipy | copy bound (ms) | kreisel / copy |",
         "|---|---:|---:|---:|---:|---:|",

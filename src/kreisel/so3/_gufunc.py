@@ -64,7 +64,12 @@ class LazyGufunc:
         ``njit(parallel=True, cache=True)`` loop ``g(in..., out)`` over
         C-contiguous ``(n, *core)`` views of the inputs passed by the caller
         (size carriers are not passed) and of the output, calling the same
-        per-element kernel as ``function``. Used when the batch has at least
+        per-element kernel as ``function``, on element views sliced as
+        ``a[i, ::1]`` / ``a[i, :, ::1]``: such slices have numba's layout
+        ``'A'``, the layout the gufunc passes too, so each cached kernel is
+        compiled for one signature only (two processes adding different
+        signatures to the same on-disk cache index at once can pair a
+        signature with the other's machine code). Used when the batch has at least
         :data:`PARALLEL_THRESHOLD` elements and every input either has the
         full batch shape or, if its index is in ``shared``, no batch axes.
     shared : tuple of int

@@ -113,25 +113,25 @@ def _matrix_to_euler_one(R, axes, out):
 @njit(parallel=True, cache=True)
 def _euler_to_quat_parallel(angles, axes, out):
     for i in prange(angles.shape[0]):
-        _euler_to_quat_one(angles[i], axes, out[i])
+        _euler_to_quat_one(angles[i, ::1], axes[::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _euler_to_matrix_parallel(angles, axes, out):
     for i in prange(angles.shape[0]):
-        _euler_to_matrix_one(angles[i], axes, out[i])
+        _euler_to_matrix_one(angles[i, ::1], axes[::1], out[i, :, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _quat_to_euler_parallel(q, axes, out):
     for i in prange(q.shape[0]):
-        _quat_to_euler_one(q[i], axes, out[i])
+        _quat_to_euler_one(q[i, ::1], axes[::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _matrix_to_euler_parallel(R, axes, out):
     for i in prange(R.shape[0]):
-        _matrix_to_euler_one(R[i], axes, out[i])
+        _matrix_to_euler_one(R[i, :, ::1], axes[::1], out[i, ::1])
 
 
 @gufunc(["void(f8[:], i8[:], f8[:], f8[:])"], "(3),(3),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1,))
@@ -191,8 +191,8 @@ def _euler_angles(q0, q1, q2, q3, axes, out):
     # (a, b) has norm ~cos(β/2) and phase (α+γ)/2, (c, d) norm ~sin(β/2) and
     # phase (γ-α)/2; at gimbal lock one pair vanishes, but every nonzero
     # pair still carries its phase to full precision.
-    ab = math.hypot(a, b)
-    cd = math.hypot(c, d)
+    ab = _pair_norm(a, b)
+    cd = _pair_norm(c, d)
     beta = 2.0 * math.atan2(cd, ab)
     half_sum = math.atan2(b, a)
     half_diff = math.atan2(d, c)
@@ -211,6 +211,17 @@ def _euler_angles(q0, q1, q2, q3, axes, out):
     out[0] = _wrap(first)
     out[1] = beta
     out[2] = _wrap(third)
+
+
+@k._jit
+def _pair_norm(a, b):
+    # The pairs come from a unit quaternion (entries <= 2), so a² + b² cannot
+    # overflow; only below ~1e-150 can it underflow, and there math.hypot
+    # (twice as slow in a loop that is mostly transcendental calls) takes over.
+    n2 = a * a + b * b
+    if n2 > 1e-290:
+        return math.sqrt(n2)
+    return math.hypot(a, b)
 
 
 @k._jit

@@ -23,13 +23,13 @@ def _matrix_to_quat_one(R, out):
 @njit(parallel=True, cache=True)
 def _quat_to_matrix_parallel(q, out):
     for i in prange(q.shape[0]):
-        k.quat_to_matrix(q[i], out[i])
+        k.quat_to_matrix(q[i, ::1], out[i, :, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _matrix_to_quat_parallel(R, out):
     for i in prange(R.shape[0]):
-        _matrix_to_quat_one(R[i], out[i])
+        _matrix_to_quat_one(R[i, :, ::1], out[i, ::1])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)

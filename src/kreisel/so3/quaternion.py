@@ -50,19 +50,19 @@ def _applied(q, v, out):
 @njit(parallel=True, cache=True)
 def _multiply_parallel(p, q, out):
     for i in prange(p.shape[0]):
-        k.qmul(p[i], q[i], out[i])
+        k.qmul(p[i, ::1], q[i, ::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _normalize_parallel(q, out):
     for i in prange(q.shape[0]):
-        _normalized(q[i], out[i])
+        _normalized(q[i, ::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _apply_parallel(q, v, out):
     for i in prange(q.shape[0]):
-        _applied(q[i], v[i], out[i])
+        _applied(q[i, ::1], v[i, ::1], out[i, ::1])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)

@@ -52,25 +52,25 @@ def _matrix_to_rotvec_one(R, out):
 @njit(parallel=True, cache=True)
 def _rotvec_to_quat_parallel(psi, out):
     for i in prange(psi.shape[0]):
-        k.rotvec_to_quat(psi[i], out[i])
+        k.rotvec_to_quat(psi[i, ::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _quat_to_rotvec_parallel(q, out):
     for i in prange(q.shape[0]):
-        _quat_to_rotvec_one(q[i], out[i])
+        _quat_to_rotvec_one(q[i, ::1], out[i, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _rotvec_to_matrix_parallel(psi, out):
     for i in prange(psi.shape[0]):
-        _rotvec_to_matrix_one(psi[i], out[i])
+        _rotvec_to_matrix_one(psi[i, ::1], out[i, :, ::1])
 
 
 @njit(parallel=True, cache=True)
 def _matrix_to_rotvec_parallel(R, out):
     for i in prange(R.shape[0]):
-        _matrix_to_rotvec_one(R[i], out[i])
+        _matrix_to_rotvec_one(R[i, :, ::1], out[i, ::1])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
