@@ -1,0 +1,206 @@
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+import kreisel as kr
+
+TOP = kr.LagrangeTop(1.0, 0.5, 1.0)
+MOMENTS = (1.0, 1.0, 0.5)
+# (label, euler0, rates0): cusp = released from rest, loop = pushed backwards, monotone = pushed forwards
+STATES = {
+    "cusp": ([0.3, 0.5, 0.2], [0.0, 0.0, 10.0]),
+    "loop": ([0.3, 0.5, 0.2], [-0.6, 0.7, 10.0]),
+    "loop_low": ([0.3, 1.2, 0.2], [-0.5, -0.3, 6.0]),
+    "monotone": ([0.3, 0.9, 0.2], [7.8, 0.4, 5.15]),
+    "below_horizontal": ([0.0, 2.0, 0.0], [0.3, 0.1, -5.0]),
+}
+
+
+def _reference_from(reference, tr, t):
+    return reference(MOMENTS, tr.omega[0], tr.q[0], t, weight=TOP.mgl, lever=(0.0, 0.0, 1.0))
+
+
+def _cubic_roots_numpy(constants):
+    I1, I3, mgl = TOP.I1, TOP.I3, TOP.mgl
+    a, b = constants.J3 / I1, constants.Jz / I1
+    alpha, beta = (2 * constants.E - constants.J3**2 / I3) / I1, 2 * mgl / I1
+    # (1 - u²)(α - βu) - (b - au)² expanded by numpy polynomial algebra
+    f = np.polysub(np.polymul([-1.0, 0.0, 1.0], [-beta, alpha]), np.polymul([-a, b], [-a, b]))
+    return np.sort(np.roots(f).real)
+
+
+@pytest.mark.parametrize("label", STATES)
+def test_exact_solution_matches_reference(reference, label):
+    euler0, rates0 = STATES[label]
+    t = np.linspace(0.0, 20.0, 201)
+    tr = TOP.solve(t, euler0, rates0)
+    np.testing.assert_allclose(tr.euler[0], euler0, atol=1e-15)
+    omega_ref, q_ref = _reference_from(reference, tr, t)
+    np.testing.assert_allclose(tr.omega, omega_ref, atol=1e-10)
+    np.testing.assert_allclose(tr.q, q_ref, atol=1e-10)
+    # the reference's own Euler angles agree with the exact ones
+    angles = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]]).as_euler("ZXZ")
+    np.testing.assert_allclose(angles[:, 1], tr.euler[:, 1], atol=1e-10)
+
+
+@pytest.mark.parametrize("label", ["cusp", "loop"])
+def test_long_run_integrals_and_turning_points(reference, label):
+    euler0, rates0 = STATES[label]
+    t = np.linspace(0.0, 120.0, 6001)
+    tr = TOP.solve(t, euler0, rates0)
+    omega_ref, q_ref = _reference_from(reference, tr, t)
+    np.testing.assert_allclose(tr.q, q_ref, atol=2e-9)
+    constants = TOP.constants(euler0, rates0)
+    # integrals along the independent integration
+    R = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]])
+    J_space = R.apply(np.array(MOMENTS) * omega_ref)
+    axis_height = R.apply([0.0, 0.0, 1.0])[:, 2]
+    energy = 0.5 * np.sum(np.array(MOMENTS) * omega_ref**2, axis=1) + TOP.mgl * axis_height
+    np.testing.assert_allclose(MOMENTS[2] * omega_ref[:, 2], constants.J3, atol=1e-11)
+    np.testing.assert_allclose(J_space[:, 2], constants.Jz, atol=1e-11)
+    np.testing.assert_allclose(energy, constants.E, atol=1e-10)
+    # turning points: numpy roots of the cubic and the extremes of a long integration
+    u1, u2, u3 = _cubic_roots_numpy(constants)
+    np.testing.assert_allclose(TOP.cubic_roots(euler0, rates0), (u1, u2, u3), rtol=1e-12, atol=1e-13)
+    theta_min, theta_max = TOP.turning_points(euler0, rates0)
+    assert theta_min == pytest.approx(np.arccos(u2), abs=1e-11)
+    assert theta_max == pytest.approx(np.arccos(u1), abs=1e-11)
+    theta = np.arccos(np.clip(axis_height, -1, 1))
+    assert theta.min() == pytest.approx(theta_min, abs=1e-6) and theta.max() == pytest.approx(theta_max, abs=1e-6)
+    assert theta.min() >= theta_min - 1e-9 and theta.max() <= theta_max + 1e-9
+    # effective potential: ½ I1 θ̇² + V_eff(θ) = E, and V_eff = E at the turning points
+    veff = TOP.effective_potential(tr.euler[:, 1], constants.J3, constants.Jz)
+    np.testing.assert_allclose(0.5 * TOP.I1 * tr.euler_rates[:, 1] ** 2 + veff, constants.E, rtol=1e-12)
+    np.testing.assert_allclose(TOP.effective_potential([theta_min, theta_max], constants.J3, constants.Jz), constants.E, rtol=1e-11)
+    # nutation period and mean precession against the long run
+    period = TOP.nutation_period(euler0, rates0)
+    n = int(t[-1] // period)
+    late = TOP.solve(np.array([0.0, n * period]), euler0, rates0)
+    np.testing.assert_allclose(late.euler[1, 1], euler0[1], atol=1e-10)
+    phi = np.unwrap(R.as_euler("ZXZ")[:, 0])
+    k = np.searchsorted(t, n * period)
+    slope = (late.euler[1, 0] - late.euler[0, 0]) / (n * period)
+    assert TOP.mean_precession_rate(euler0, rates0) == pytest.approx(slope, rel=1e-11)
+    assert (phi[k] - phi[0]) / t[k] == pytest.approx(slope, rel=1e-3)
+
+
+@pytest.mark.parametrize("label, kind", [("cusp", "cusp"), ("loop", "loop"), ("loop_low", "loop"), ("monotone", "monotone")])
+def test_apex_locus_kinds(reference, label, kind):
+    euler0, rates0 = STATES[label]
+    assert TOP.apex_locus_kind(euler0, rates0) == kind
+    # φ̇ along an independent integration: one sign (monotone), both signs (loop), zero at the cusps
+    t = np.linspace(0.0, 2 * TOP.nutation_period(euler0, rates0), 4001)
+    tr = TOP.solve(t[:1], euler0, rates0)
+    omega_ref, q_ref = _reference_from(reference, tr, t)
+    angles = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]]).as_euler("ZXZ")
+    theta, psi = angles[:, 1], angles[:, 2]
+    phidot = (omega_ref[:, 0] * np.sin(psi) + omega_ref[:, 1] * np.cos(psi)) / np.sin(theta)
+    scale = np.abs(phidot).max()
+    if kind == "monotone":
+        assert np.all(phidot > 0.05 * scale) or np.all(phidot < -0.05 * scale)
+    elif kind == "loop":
+        assert phidot.max() > 0.05 * scale and phidot.min() < -0.05 * scale
+    else:
+        assert phidot.min() > -1e-7 * scale or phidot.max() < 1e-7 * scale
+        assert np.abs(phidot).min() < 1e-3 * scale
+
+
+@pytest.mark.parametrize("theta0", [0.4, 1.0, 2.2])
+def test_steady_precession_keeps_theta(reference, theta0):
+    omega3 = 8.0
+    for rate in TOP.steady_precession_rates(theta0, omega3):
+        rates0 = [rate, 0.0, omega3 - np.cos(theta0) * rate]
+        t = np.linspace(0.0, 10.0, 101)
+        tr = TOP.solve(t[:1], [0.0, theta0, 0.0], rates0)
+        omega_ref, q_ref = _reference_from(reference, tr, t)
+        theta = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]]).as_euler("ZXZ")[:, 1]
+        np.testing.assert_allclose(theta, theta0, atol=1e-9)
+        u1, u2, _ = TOP.cubic_roots([0.0, theta0, 0.0], rates0)
+        assert u2 - u1 < 1e-7
+    # θ equation I1 cos θ φ̇² − J3 φ̇ + mgl = 0, and no steady precession for a slow top tilted up
+    slow, fast = TOP.steady_precession_rates(0.4, omega3)
+    J3 = TOP.I3 * omega3
+    for rate in (slow, fast):
+        assert TOP.I1 * np.cos(0.4) * rate**2 - J3 * rate + TOP.mgl == pytest.approx(0.0, abs=1e-12)
+    assert np.isnan(TOP.steady_precession_rates(0.1, 1.0)[0])
+    # horizontal axis: only the slow precession mgl/J3 remains
+    slow, fast = TOP.steady_precession_rates(np.pi / 2, omega3)
+    assert slow == pytest.approx(TOP.mgl / J3, rel=1e-15) and abs(fast) > 1e15
+
+
+def test_sleeping_top_threshold(reference):
+    threshold = TOP.sleeping_top_threshold()
+    assert threshold == pytest.approx(2 * np.sqrt(TOP.I1 * TOP.mgl) / TOP.I3)
+    assert TOP.sleeping_top_stable(1.05 * threshold) and not TOP.sleeping_top_stable(0.95 * threshold)
+    np.testing.assert_array_equal(TOP.sleeping_top_stable([0.5 * threshold, 2 * threshold]), [False, True])
+    # the independent integration: a nearly upright top stays up only above the threshold
+    t = np.linspace(0.0, 40.0, 401)
+    for factor, stays_up in [(1.05, True), (0.95, False)]:
+        omega3 = factor * threshold
+        tr = TOP.solve(t[:1], [0.0, 1e-3, 0.0], [0.0, 0.0, omega3])
+        omega_ref, q_ref = _reference_from(reference, tr, t)
+        theta = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]]).as_euler("ZXZ")[:, 1]
+        assert (theta.max() < 0.05) == stays_up
+        # the roots of f(u) say the same: θ_max = arccos(u1) with u1 → a²/β − 1 for the upright top
+        theta_max = TOP.turning_points([0.0, 1e-3, 0.0], [0.0, 0.0, omega3])[1]
+        assert (theta_max < 0.05) == stays_up
+        assert 0.95 * theta_max < theta.max() <= theta_max + 1e-9
+
+
+@pytest.mark.parametrize("theta0", [0.5, 1.3])
+def test_fast_top_approaches_seed_estimates(theta0):
+    errors = []
+    for omega3 in (50.0, 100.0, 200.0):
+        ft = TOP.fast_top(theta0, omega3)
+        J3 = TOP.I3 * omega3
+        assert ft.approx_precession_rate == pytest.approx(TOP.mgl / J3)
+        assert ft.approx_nutation_frequency == pytest.approx(J3 / TOP.I1)
+        errors.append(
+            [
+                abs(ft.exact_precession_rate / ft.approx_precession_rate - 1),
+                abs(ft.exact_nutation_frequency / ft.approx_nutation_frequency - 1),
+                abs(ft.exact_nutation_amplitude / ft.approx_nutation_amplitude - 1),
+            ]
+        )
+    errors = np.array(errors)
+    # relative errors are O(1/p), p = J3²/(2 I1 mgl): a factor 4 per doubling of the spin
+    assert np.all(errors[-1] < 1e-3)
+    np.testing.assert_allclose(errors[:-1] / errors[1:], 4.0, rtol=0.05)
+    # exact values are those of the quadrature
+    ft = TOP.fast_top(theta0, 100.0)
+    u1, u2, _ = TOP.cubic_roots([0.0, theta0, 0.0], [0.0, 0.0, 100.0])
+    assert ft.exact_nutation_amplitude == pytest.approx(u2 - u1)
+    assert ft.exact_nutation_frequency == pytest.approx(2 * np.pi / TOP.nutation_period([0.0, theta0, 0.0], [0.0, 0.0, 100.0]))
+
+
+def test_larmor_precession_is_the_fast_top_limit():
+    e, m, B = 1.602176634e-19, 9.1093837139e-31, 0.7
+    assert kr.larmor_precession_rate(B) == pytest.approx(e * B / (2 * m), rel=1e-15)
+    # orbiting charge: μ = e ω a²/2, J = m ω a²; as a fast top mgl -> μB, I3 ω3 -> J (scaled units)
+    scale_e, scale_m, a = 1.0, 1.0, 1.0
+    for omega in (200.0, 400.0):
+        mu, J = scale_e * omega * a**2 / 2, scale_m * omega * a**2
+        top = kr.LagrangeTop(1.0 * scale_m * a**2, scale_m * a**2, mu * B)
+        rate = top.fast_top(1.0, J / (scale_m * a**2)).exact_precession_rate
+        assert rate == pytest.approx(kr.larmor_precession_rate(B, scale_e, scale_m), rel=2 * (mu * B) / omega**2)
+
+
+def test_simulate_agrees_with_exact_solution():
+    euler0, rates0 = STATES["loop"]
+    t = np.linspace(0.0, 30.0, 301)
+    exact = TOP.solve(t, euler0, rates0)
+    sim = TOP.simulate(t, euler0, rates0, rtol=1e-13)
+    np.testing.assert_allclose(sim.q, exact.q, atol=1e-9)
+    np.testing.assert_allclose(sim.omega, exact.omega, atol=1e-9)
+    np.testing.assert_allclose(sim.euler, exact.euler, atol=1e-9)
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="mgl"):
+        kr.LagrangeTop(1.0, 0.5, -1.0)
+    with pytest.raises(ValueError, match="theta"):
+        TOP.turning_points([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    with pytest.raises(ValueError, match="rates0"):
+        TOP.solve([0.0], [0.0, 0.5, 0.0], [0.0, 1.0])
+    with pytest.raises(ValueError, match="theta must lie"):
+        TOP.effective_potential(0.0, 1.0, 1.0)
