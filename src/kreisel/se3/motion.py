@@ -65,7 +65,24 @@ def sclerp(start, end, fraction):
 
 
 class PointMotion(NamedTuple):
-    """Position, velocity and acceleration of a body point, each ``(..., n, 3)`` in space components."""
+    """Position, velocity and acceleration of a body point, each ``(..., n, 3)`` in space components.
+
+    Examples
+    --------
+    A point 0.5 m from the hub of a wheel turning at 3 rad/s: speed ω r, and
+    acceleration ω² r towards the hub:
+
+    >>> import numpy as np
+    >>> from kreisel.so3 import rotvec_to_quat
+    >>> t = np.linspace(0.0, 1.0, 101)
+    >>> m = point_trajectory([0.5, 0.0, 0.0], t, rotvec_to_quat(np.outer(3.0 * t, [0, 0, 1])))
+    >>> m.position.shape, m.velocity.shape, m.acceleration.shape
+    ((101, 3), (101, 3), (101, 3))
+    >>> bool(np.allclose(np.linalg.norm(m.velocity, axis=-1), 1.5))
+    True
+    >>> bool(np.allclose(m.acceleration, -9.0 * m.position, atol=1e-5))
+    True
+    """
 
     position: np.ndarray
     velocity: np.ndarray

@@ -37,6 +37,20 @@ class Screw(NamedTuple):
         Slide along ``axis`` (signed), metres.
     pitch : ndarray (...)
         ``translation / angle``; ``inf`` for pure translations, 0 for the identity.
+
+    Examples
+    --------
+    A quarter turn about the vertical line through (1, 0, 0) combined with a
+    0.5 m rise (Chasles): :meth:`RigidTransform.as_screw` finds the axis,
+    angle, slide and pitch again:
+
+    >>> from kreisel.se3 import RigidTransform
+    >>> T = RigidTransform.from_screw([0, 0, 1], [1.0, 0, 0], np.pi / 2, 0.5)
+    >>> s = T.as_screw()
+    >>> s.axis.round(12).tolist(), (s.point.round(12) + 0.0).tolist()
+    ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0])
+    >>> round(float(s.angle), 12), round(float(s.translation), 12), round(float(s.pitch), 9)
+    (1.570796326795, 0.5, 0.318309886)
     """
 
     axis: np.ndarray

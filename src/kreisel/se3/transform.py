@@ -335,15 +335,50 @@ class RigidTransform:
         return np.array(self._translation)
 
     def as_quat(self):
-        """Unit quaternions of the rotation part, scalar first, ``(..., 4)``."""
+        """Unit quaternions of the rotation part, scalar first, ``(..., 4)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> T = RigidTransform.from_rotation_translation([np.sqrt(0.5), 0, 0, np.sqrt(0.5)], [1.0, 0, 0])
+        >>> T.as_quat().round(6).tolist()
+        [0.707107, 0.0, 0.0, 0.707107]
+        """
         return np.array(self._quat)
 
     def as_components(self):
-        """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``."""
+        """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``.
+
+        Examples
+        --------
+        The pair is a round trip: it rebuilds the same displacement:
+
+        >>> import numpy as np
+        >>> T = RigidTransform.from_rotation_translation([np.sqrt(0.5), 0, 0, np.sqrt(0.5)], [1.0, 2.0, 3.0])
+        >>> rotation, translation = T.as_components()
+        >>> round(float(np.degrees(rotation.magnitude())), 9), translation.tolist()
+        (90.0, [1.0, 2.0, 3.0])
+        >>> bool(np.allclose(RigidTransform.from_rotation_translation(rotation, translation).as_matrix(), T.as_matrix()))
+        True
+        """
         return self.rotation, self.translation
 
     def as_matrix(self):
-        """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``."""
+        """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
+
+        Examples
+        --------
+        The homogeneous matrix acting on ``(r, 1)`` moves points like :meth:`apply`,
+        and matrix products compose like ``*``:
+
+        >>> import numpy as np
+        >>> T = RigidTransform.from_rotation_translation([np.sqrt(0.5), 0, 0, np.sqrt(0.5)], [1.0, 0, 0])
+        >>> M = T.as_matrix()
+        >>> (M @ [1.0, 0.0, 0.0, 1.0]).round(12).tolist(), T.apply([1.0, 0.0, 0.0]).round(12).tolist()
+        ([1.0, 1.0, 0.0, 1.0], [1.0, 1.0, 0.0])
+        >>> bool(np.allclose((T * T).as_matrix(), M @ M))
+        True
+        """
         return _kernels.as_matrix(self._quat, self._translation)
 
     def as_dual_quat(self):
@@ -391,11 +426,35 @@ class RigidTransform:
         return screw_parameters(self._quat, self._translation)
 
     def adjoint(self):
-        """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``."""
+        """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
+
+        Examples
+        --------
+        The adjoint carries twists between frames, ``exp(Ad_T ξ) = T exp(ξ) T⁻¹``, and
+        is a homomorphism, ``Ad_(T1 T2) = Ad_T1 Ad_T2``:
+
+        >>> import numpy as np
+        >>> T1 = RigidTransform.from_exp_coords([0.3, -0.2, 0.5, 1.0, 2.0, 0.0])
+        >>> T2 = RigidTransform.from_exp_coords([0.0, 0.4, 0.1, 0.0, -1.0, 0.5])
+        >>> xi = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+        >>> lhs = RigidTransform.from_exp_coords(T1.adjoint() @ xi).as_matrix()
+        >>> bool(np.allclose(lhs, (T1 * RigidTransform.from_exp_coords(xi) * T1.inv()).as_matrix()))
+        True
+        >>> bool(np.allclose((T1 * T2).adjoint(), T1.adjoint() @ T2.adjoint()))
+        True
+        """
         return lie.adjoint(quat_to_matrix(self._quat), self._translation)
 
     def to_scipy(self):
-        """Equivalent ``scipy.spatial.transform.RigidTransform``."""
+        """Equivalent ``scipy.spatial.transform.RigidTransform``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> T = RigidTransform.from_exp_coords([0.3, -0.2, 0.5, 1.0, 2.0, 0.0])
+        >>> bool(np.allclose(T.to_scipy().apply([1.0, 2.0, 3.0]), T.apply([1.0, 2.0, 3.0])))
+        True
+        """
         from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
         from scipy.spatial.transform import Rotation as ScipyRotation
 
@@ -455,7 +514,22 @@ class RigidTransform:
         return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse)
 
     def change_base_point(self, offset):
-        """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`."""
+        """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.
+
+        Examples
+        --------
+        A door turned 90° about its hinge at the origin; describing the same motion
+        about the door's far corner A (1 m along body x) keeps R and moves the base
+        point to where A went:
+
+        >>> import numpy as np
+        >>> T = RigidTransform.from_rotation([np.sqrt(0.5), 0, 0, np.sqrt(0.5)])
+        >>> TA = T.change_base_point([1.0, 0.0, 0.0])
+        >>> (TA.translation.round(12) + 0.0).tolist(), bool(np.allclose(TA.as_quat(), T.as_quat()))
+        ([0.0, 1.0, 0.0], True)
+        >>> bool(np.allclose(TA.apply([0.5, 0.0, 0.0]), T.apply([1.5, 0.0, 0.0])))
+        True
+        """
         return change_base_point(self, offset)
 
     # -- container protocol ----------------------------------------------------------------------
