@@ -10,7 +10,18 @@ EXAMPLES = ("tennis_racket", "sleeping_top", "fast_top", "kovalevskaya", "foucau
 
 
 def example_path(name):
-    """Path of the bundled scenario ``name`` inside the installed package."""
+    """Path of the bundled scenario ``name`` inside the installed package.
+
+    Examples
+    --------
+    >>> path = example_path("tennis_racket")
+    >>> path.name, path.is_file()
+    ('tennis_racket.toml', True)
+    >>> example_path("pendulum")
+    Traceback (most recent call last):
+        ...
+    ValueError: name must be one of tennis_racket, sleeping_top, fast_top, kovalevskaya, foucault, coning, got 'pendulum'
+    """
     if name not in EXAMPLES:
         raise ValueError(f"name must be one of {', '.join(EXAMPLES)}, got {name!r}")
     return pathlib.Path(str(resources.files("kreisel.io.examples").joinpath(f"{name}.toml")))

@@ -127,7 +127,23 @@ _OPTIONAL_TABLES = {"rigid_body": ("torque",)}
 
 @dataclasses.dataclass
 class Scenario:
-    """A validated scenario: ``kind``, the checked ``data`` and the file it came from."""
+    """A validated scenario: ``kind``, the checked ``data`` and the file it came from.
+
+    Examples
+    --------
+    Without a title or a file, the kind names the scenario:
+
+    >>> scenario = parse_scenario('''
+    ... kind = "foucault"
+    ... [foucault]
+    ... length = 67.0
+    ... latitude_deg = 48.85
+    ... duration = 60.0
+    ... amplitude = 0.05
+    ... ''')
+    >>> scenario.kind, scenario.title, scenario.path is None
+    ('foucault', 'foucault', True)
+    """
 
     kind: str
     data: dict
@@ -146,6 +162,17 @@ def load_scenario(path):
     ScenarioError
         Unreadable file, TOML syntax error, unknown key, wrong type, missing
         required key or non-physical value, with file, key and line.
+
+    Examples
+    --------
+    The bundled scenarios load like any file:
+
+    >>> from kreisel.io import example_path
+    >>> scenario = load_scenario(example_path("tennis_racket"))
+    >>> scenario.kind, scenario.title, scenario.path.name
+    ('rigid_body', 'Tennis racket (Dzhanibekov) flips', 'tennis_racket.toml')
+    >>> scenario.data["body"]["moments"].tolist(), scenario.data["initial"]["frame"]
+    ([1.0, 2.0, 3.0], 'body')
     """
     path = pathlib.Path(path)
     try:
@@ -156,7 +183,27 @@ def load_scenario(path):
 
 
 def parse_scenario(text, path=None):
-    """Validate scenario TOML ``text`` (``path`` only labels the messages)."""
+    """Validate scenario TOML ``text`` (``path`` only labels the messages).
+
+    Examples
+    --------
+    Defaults are filled in; a non-physical value is refused with its key and line:
+
+    >>> text = '''
+    ... [body]
+    ... moments = [1.0, 2.0, 3.0]
+    ... [initial]
+    ... omega = [0.0, 0.0, 1.0]
+    ... [integration]
+    ... t_end = -1.0
+    ... '''
+    >>> parse_scenario(text.replace("-1.0", "5.0")).data["integration"]
+    {'t_end': 5.0, 't_start': 0.0, 'n_samples': 1001}
+    >>> parse_scenario(text, "spin.toml")
+    Traceback (most recent call last):
+        ...
+    kreisel.io.scenario.ScenarioError: spin.toml:7: integration.t_end: must be positive, got -1.0
+    """
     label = str(path) if path is not None else "<scenario>"
     try:
         raw = tomllib.loads(text)
