@@ -256,6 +256,8 @@ def _check_rtol(rtol):
 
 
 def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol):
+    # a fresh writable C array: numba compiles one specialisation per array layout
+    moments = np.array(moments, dtype=np.float64, order="C")
     out = np.empty((t.size, y0.size))
     if method == "scipy":
         return _scipy(t, y0, moments, mass, rows, frows, rtol, atol)
@@ -533,7 +535,8 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     if reduce is not None and not callable(reduce):
         raise TypeError(f"reduce must be callable, got {type(reduce).__name__}")
     count = int(np.prod(batch))
-    moments = np.ascontiguousarray(np.broadcast_to(moments, batch + (3,)).reshape(count, 3))
+    # writable C copies: the batch kernel then reuses the single-body specialisation of the integrators
+    moments = np.array(np.broadcast_to(moments, batch + (3,)).reshape(count, 3), order="C")
     y0 = np.empty((count, 7))
     y0[:, 0:3] = np.broadcast_to(w, batch + (3,)).reshape(count, 3)
     y0[:, 3:7] = _initial_quaternion(q_in, batch).reshape(count, 4) if q_in is not None else [1.0, 0, 0, 0]
@@ -547,7 +550,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     def integrate(lo, hi):
         out = np.empty((hi - lo, t.size, 7))
         status = np.zeros(hi - lo, dtype=np.int64)
-        _k.run_batch(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, rows, rtol, atol_v[lo:hi],
+        _k.run_batch(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
                      tables, out, status)
         _raise_status(status)
         return out
