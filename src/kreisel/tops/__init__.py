@@ -10,12 +10,15 @@ Kovalevskaya integral.
 from ._elliptic import complete_elliptic_pi, elliptic_pi
 from .euler_top import EulerTop, SteadyRotation
 from .kovalevskaya import KovalevskayaIntegrals, KovalevskayaTop
+from .poinsot import PoinsotGeometry, poinsot
 from .lagrange import FastTop, LagrangeConstants, LagrangeTop, larmor_precession_rate
 from .symmetric import Cones, SymmetricTop
 
 __all__ = [
     "EulerTop",
     "SteadyRotation",
+    "poinsot",
+    "PoinsotGeometry",
     "SymmetricTop",
     "Cones",
     "LagrangeTop",

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array
+from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..so3 import quat_apply
 from .euler_top import _check_moments
@@ -114,8 +115,6 @@ class KovalevskayaTop:
         >>> bool(np.allclose(K, K[0], rtol=1e-9))
         True
         """
-        from ..dynamics import GravityTorque, simulate
-
         torque = GravityTorque(self.mgl, [1.0, 0.0, 0.0])
         tr = simulate(self.moments, t, omega0, q0, torque=torque, method=method, **options)
         gamma = quat_apply(tr.q, np.array([0.0, 0.0, 1.0]), inverse=True)
