@@ -6,7 +6,9 @@ expression, Dask vs in-process) in one process and writes its own table to
 they do not compete for the two cores) and concatenates the tables under a
 header naming the machine and its load.
 
-Usage: ``python bench/run_all.py [topic ...]`` (default: all).
+Usage: ``python bench/run_all.py [topic ...]`` (default: all);
+``python bench/run_all.py --assemble`` only rebuilds RESULTS.md from the tables
+already in ``bench/results``.
 """
 
 from __future__ import annotations
@@ -49,4 +51,5 @@ def main(selected):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or topics())
+    args = sys.argv[1:]
+    main([] if args == ["--assemble"] else args or topics())
