@@ -222,5 +222,26 @@ def serve(
 
 
 def run():
-    """Console-script entry point."""
+    """Console-script entry point.
+
+    Examples
+    --------
+    ``run`` reads ``sys.argv`` like the installed ``kreisel`` command and exits
+    with its status: 0 on success, 2 for a usage error (one line on standard
+    error, no traceback):
+
+    >>> import sys
+    >>> from unittest import mock
+    >>> def kreisel(*args):
+    ...     with mock.patch.object(sys, "argv", ["kreisel", *args]):
+    ...         try:
+    ...             run()
+    ...         except SystemExit as exit:
+    ...             print("exit status", exit.code)
+    >>> kreisel("--version")  # doctest: +ELLIPSIS
+    kreisel ...
+    exit status 0
+    >>> kreisel("run", "no-such-scenario.toml")
+    exit status 2
+    """
     app()

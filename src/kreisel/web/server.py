@@ -49,6 +49,24 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
         TCP port; 0 picks a free one.
     open_browser : bool
         Open the default web browser at the URL once the server listens.
+
+    Examples
+    --------
+    Bad input is refused before any socket is opened or server started (a real
+    call blocks until Ctrl+C, so only refusals are shown here):
+
+    >>> serve(port=70000, open_browser=False)
+    Traceback (most recent call last):
+        ...
+    ValueError: port must be an integer in 0..65535, got 70000
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "spin.toml")
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("[body]\\nmoment = [1.0, 2.0, 3.0]\\n")
+    >>> serve(path, open_browser=False)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    kreisel.io.scenario.ScenarioError: ...: body.moment: unknown key (expected one of: ...)
     """
     from .app import create_app
     from .session import load
