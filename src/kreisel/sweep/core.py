@@ -79,6 +79,17 @@ class SweepProgress:
     ``"retry"`` (the chunk failed and was resubmitted) or ``"failed"`` (no
     retries left); ``done`` counts the chunks finished so far (resumed ones
     included) out of ``total``; ``message`` describes a failure.
+
+    Examples
+    --------
+    A ``progress`` callback receives one event per chunk:
+
+    >>> from kreisel.sweep import lagrange_apex_locus
+    >>> events = []
+    >>> ds = sweep(lagrange_apex_locus, {"phi_dot": [0.0, 2.0], "psi_dot": [10.0]}, chunk_size=1,
+    ...            scheduler="serial", progress=events.append)
+    >>> [(e.event, e.done, e.total) for e in events]
+    [('done', 1, 2), ('done', 2, 2)]
     """
 
     event: str
