@@ -36,8 +36,8 @@ def median_time(fn, repeats=REPEATS):
     return float(np.median(times))
 
 
-def copy_bound(n_in, n_out):
-    """Time to stream ``n_in`` doubles in and ``n_out`` doubles out (two copies)."""
+def copy_buffers(n_in, n_out):
+    """A run that streams ``n_in`` doubles in and ``n_out`` doubles out (two copies)."""
     src_in, dst_in = np.random.rand(n_in), np.empty(n_in)
     src_out, dst_out = np.random.rand(n_out), np.empty(n_out)
 
@@ -45,7 +45,26 @@ def copy_bound(n_in, n_out):
         np.copyto(dst_in, src_in)
         np.copyto(dst_out, src_out)
 
-    return median_time(run)
+    return run
+
+
+def interleaved_times(ours, theirs, copy, rounds=REPEATS):
+    """Median and best times of the three runs, taken in alternation.
+
+    On a shared machine the load drifts within seconds; alternating the
+    runs gives kreisel, scipy and the copy bound the same conditions, and
+    the best times are the least disturbed by other jobs.
+    """
+    runs = (ours, theirs, copy)
+    for fn in runs:
+        fn()  # compile / warm caches
+    times = [[], [], []]
+    for _ in range(rounds):
+        for fn, bucket in zip(runs, times):
+            t = time.perf_counter()
+            fn()
+            bucket.append(time.perf_counter() - t)
+    return [float(np.median(b)) for b in times], [min(b) for b in times]
 
 
 def main():
@@ -75,10 +94,8 @@ def main():
     load_before = os.getloadavg()
     rows = []
     for name, ours, theirs, n_in, n_out in cases:
-        t_ours = median_time(ours)
-        t_scipy = median_time(theirs, repeats=3)
-        t_copy = copy_bound(n_in * N, n_out * N)
-        rows.append((name, t_ours, t_scipy, t_copy))
+        (t_ours, t_scipy, t_copy), best = interleaved_times(ours, theirs, copy_buffers(n_in * N, n_out * N))
+        rows.append((name, t_ours, t_scipy, t_copy, best))
         print(f"{name:22s} kreisel {t_ours * 1e3:8.2f} ms  scipy {t_scipy * 1e3:8.1f} ms  copy {t_copy * 1e3:6.2f} ms", flush=True)
 
     a, b = np.array([0.9, 0.1, 0.3, 0.2]), np.array([0.5, -0.5, 0.5, 0.5])
@@ -91,19 +108,22 @@ def main():
     lines = [
         "# kreisel.so3 vs scipy.spatial.transform",
         "",
-        f"10^6 rotations, medians of {REPEATS} runs (scipy: 3), one process, float64. "
+        f"10^6 rotations, medians of {REPEATS} runs taken in alternation (kreisel, scipy, copy), one process, float64. "
         f"scipy {__import__('scipy').__version__}, numpy {np.__version__}, numba {__import__('numba').__version__}. "
         "Copy bound: `np.copyto` of input- and output-sized (preallocated) buffers; kreisel also allocates its output. "
         f"{os.cpu_count()} cores, kreisel uses {__import__('numba').get_num_threads()} threads for batches. "
         f"Load average (1/5/15 min) before: {load(load_before)}, after: {load(load_after)} "
-        "(a load above the core count means other jobs shared the CPUs and the times are inflated).",
+        "(a load above the core count means other jobs shared the CPUs and the times are inflated; "
+        "the best-of-runs columns are the least disturbed).",
         "",
-        "| operation | kreisel (ms) | scipy (ms) | speed-up vs scipy | copy bound (ms) | kreisel / copy |",
-        "|---|---:|---:|---:|---:|---:|",
+        "| operation | kreisel (ms) | scipy (ms) | speed-up vs scipy | copy bound (ms) | kreisel / copy "
+        "| best kreisel (ms) | best speed-up | best kreisel / best copy |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
-    for name, t_ours, t_scipy, t_copy in rows:
+    for name, t_ours, t_scipy, t_copy, (b_ours, b_scipy, b_copy) in rows:
         lines.append(
-            f"| {name} | {t_ours * 1e3:.2f} | {t_scipy * 1e3:.1f} | {t_scipy / t_ours:.1f}× | {t_copy * 1e3:.2f} | {t_ours / t_copy:.2f} |"
+            f"| {name} | {t_ours * 1e3:.2f} | {t_scipy * 1e3:.1f} | {t_scipy / t_ours:.1f}× | {t_copy * 1e3:.2f} | {t_ours / t_copy:.2f} "
+            f"| {b_ours * 1e3:.2f} | {b_scipy / b_ours:.1f}× | {b_ours / b_copy:.2f} |"
         )
     lines += [
         "",
