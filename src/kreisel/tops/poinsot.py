@@ -37,6 +37,24 @@ class PoinsotGeometry:
         √(2T)/|J|, the distance of the invariable plane from the fixed point (seed 五.5 ii).
     inertia_ellipsoid_axes : (3,) ndarray
         Semi-axes 1/√I_i of the inertia ellipsoid (body axes as given).
+
+    Examples
+    --------
+    The polhode lies on both the inertia ellipsoid Σ I_i r_i² = 1 and the
+    momentum ellipsoid Σ I_i² r_i² = J²/(2T); the herpolhode lies in the
+    invariable plane at distance √(2T)/|J| from the fixed point:
+
+    >>> import numpy as np
+    >>> top = EulerTop(1.0, 2.0, 3.0)
+    >>> omega0 = [0.3, 0.2, 1.0]
+    >>> g = poinsot(top, np.linspace(0.0, top.omega_period(omega0), 40), omega0)
+    >>> bool(np.allclose(g.polhode**2 @ top.moments, 1.0, rtol=1e-13))
+    True
+    >>> J, T = float(top.angular_momentum(omega0)), float(top.energy(omega0))
+    >>> bool(np.allclose(g.polhode**2 @ top.moments**2, J**2 / (2 * T), rtol=1e-13))
+    True
+    >>> round(g.plane_distance, 12), round(float(np.sqrt(2 * T) / J), 12)
+    (0.585408150526, 0.585408150526)
     """
 
     t: np.ndarray
