@@ -42,6 +42,21 @@ class Cones:
     body_rate : float
         Angular rate of ω about the symmetry axis in the body,
         Ω = (I3 − I1) J cos θ0 / (I1 I3) (seed: −ψ̇).
+
+    Examples
+    --------
+    An oblate top (I3 = 2 I1) with J at θ0 = 0.3 rad from its axis: the body
+    cone's half-angle obeys tan β = (I3/I1) tan θ0, and the space cone's is the
+    difference β − θ0 (J lies between the axis and ω):
+
+    >>> import numpy as np
+    >>> c = SymmetricTop(1.0, 2.0).cones(J=1.0, theta0=0.3)
+    >>> round(float(np.tan(c.body_half_angle)), 12), round(float(2.0 * np.tan(0.3)), 12)
+    (0.618672499219, 0.618672499219)
+    >>> round(c.space_half_angle, 12) == round(c.body_half_angle - 0.3, 12)
+    True
+    >>> float(c.space_rate), round(c.body_rate, 12)   # J/I1 and (I3 − I1) J cos θ0/(I1 I3)
+    (1.0, 0.477668244563)
     """
 
     nutation_angle: float
@@ -91,16 +106,49 @@ class SymmetricTop:
         return J, theta0
 
     def precession_rate(self, J):
-        """φ̇ = J/I1: rate of the symmetry axis (and of ω) about J in space, rad/s."""
+        """φ̇ = J/I1: rate of the symmetry axis (and of ω) about J in space, rad/s.
+
+        Independent of I3 and of the tilt θ0 (seed 五.7).
+
+        Examples
+        --------
+        >>> float(SymmetricTop(2.0, 3.0).precession_rate(J=5.0))
+        2.5
+        """
         return float(as_float_array(J, "J")) / self.I1
 
     def body_precession_rate(self, J, theta0):
-        """Ω = (I3 − I1) J cos θ0/(I1 I3): rate of ω about the symmetry axis in the body (= −ψ̇)."""
+        """Ω = (I3 − I1) J cos θ0/(I1 I3): rate of ω about the symmetry axis in the body (= −ψ̇).
+
+        Examples
+        --------
+        Euler's free wobble of a rigid Earth: with J cos θ0 = I3 ω3, Ω = ω3 (I3 − I1)/I1,
+        so a dynamical flattening (I3 − I1)/I1 = 1/305 gives a period of 305
+        sidereal days:
+
+        >>> import numpy as np
+        >>> earth = SymmetricTop(1.0, 1.0 + 1.0 / 305.0)
+        >>> sidereal_day = 86164.0
+        >>> spin = 2 * np.pi / sidereal_day
+        >>> wobble = earth.body_precession_rate(J=earth.I3 * spin, theta0=0.0)
+        >>> round(float(2 * np.pi / wobble / sidereal_day), 6)
+        305.0
+        """
         J, theta0 = self._check_state(J, theta0)
         return (self.I3 - self.I1) * J * np.cos(theta0) / (self.I1 * self.I3)
 
     def euler_angles(self, t, J, theta0, phi0=0.0, psi0=0.0):
-        """ZXZ angles (φ, θ, ψ) at times ``t``, shape (n, 3) (seed 五.7 (3))."""
+        """ZXZ angles (φ, θ, ψ) at times ``t``, shape (n, 3) (seed 五.7 (3)).
+
+        Examples
+        --------
+        A prolate top (I3 < I1): θ stays at θ0, φ grows at J/I1 and ψ grows too
+        (ψ̇ = −Ω > 0), here at (I1 − I3) J cos θ0/(I1 I3) = 0.5 rad/s:
+
+        >>> import numpy as np
+        >>> SymmetricTop(2.0, 1.0).euler_angles([0.0, 1.0, 2.0], J=2.0, theta0=np.pi / 3).round(6).tolist()
+        [[0.0, 1.047198, 0.0], [1.0, 1.047198, 0.5], [2.0, 1.047198, 1.0]]
+        """
         t = as_float_array(t, "t")
         J, theta0 = self._check_state(J, theta0)
         phi = J * t / self.I1 + float(as_float_array(phi0, "phi0"))
@@ -112,6 +160,23 @@ class SymmetricTop:
 
         Body: ω1 = (J sin θ0/I1) sin ψ, ω2 = (J sin θ0/I1) cos ψ, ω3 = J cos θ0/I3;
         space: ω = J/I1 e_z + (1/I3 − 1/I1) J cos θ0 e3 with e3 the symmetry axis.
+
+        Examples
+        --------
+        The two closed forms describe one motion: the attitude carries body ω to
+        space ω, and the body angular momentum (I1 ω1, I1 ω2, I3 ω3) to the fixed J e_z:
+
+        >>> import numpy as np
+        >>> from kreisel.so3 import quat_apply
+        >>> top = SymmetricTop(1.0, 2.0)
+        >>> t = np.linspace(0.0, 3.0, 4)
+        >>> body = top.angular_velocity(t, J=1.0, theta0=0.4)
+        >>> space = top.angular_velocity(t, J=1.0, theta0=0.4, frame="space")
+        >>> q = top.solve(t, J=1.0, theta0=0.4).q
+        >>> bool(np.allclose(quat_apply(q, body), space, rtol=0.0, atol=1e-15))
+        True
+        >>> bool(np.allclose(quat_apply(q, [1.0, 1.0, 2.0] * body), [0.0, 0.0, 1.0], rtol=0.0, atol=1e-15))
+        True
         """
         body = check_frame(frame)
         angles = self.euler_angles(t, J, theta0, phi0, psi0)
