@@ -8,22 +8,37 @@ Endpoints (all JSON unless noted):
 ``POST /api/scenario``               ``{"form": {...}}`` -> ``{"toml": ...}``
 ``POST /api/run``                    ``{"preset": name}`` | ``{"toml": text}`` | ``{"form": {...}}`` -> the run
 ``POST /api/export?format=nc|csv``   same body -> the trajectory file (attachment)
+``WebSocket /api/stream``            same body as the first message -> the run in chunks (below)
 
 Invalid scenarios answer 400 and work over the limits answers 422, with the reason in ``detail``.
+A body may add ``"exact": true`` to use the closed form of the free top instead of an integrator.
+
+The stream runs in a worker thread one chunk of samples at a time (the event loop stays free) and sends
+``start``, then ``chunk`` messages as soon as each is computed, then ``done`` with the drift summary (see
+:func:`kreisel.web.session.stream`); it allows :data:`~kreisel.web.session.MAX_STREAM_SAMPLES` samples
+instead of the one-shot reply's :data:`~kreisel.web.session.MAX_SAMPLES`. The client may send
+``"cancel"`` (or ``{"type": "cancel"}``) at any time: the stream stops after the chunk in progress and
+answers ``{"type": "cancelled", "samples": sent}``. A request that is refused gets
+``{"type": "error", "status": 400|404|422, "detail": reason}`` before any work, then the socket closes
+with code 1008 (policy violation); a run that fails midway sends an error with status 500 and closes
+with 1011; a finished or cancelled stream closes with 1000.
 Nothing reads or writes the user's files except the export, which writes to a private temporary folder.
 """
 
 from __future__ import annotations
 
+import asyncio
+import json
 import pathlib
 import tempfile
 import tomllib
 
-from fastapi import FastAPI, HTTPException, Query
+from fastapi import FastAPI, HTTPException, Query, WebSocket, WebSocketDisconnect
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, Field, ValidationError
 from starlette.background import BackgroundTask
+from starlette.concurrency import run_in_threadpool
 
 from . import session
 from .presets import PRESETS, preset_text
@@ -57,6 +72,7 @@ class RunRequest(BaseModel):
     preset: str | None = None
     toml: str | None = Field(None, max_length=MAX_TOML_CHARS)
     form: Form | None = None
+    exact: bool = False
 
 
 def _scenario_text(request):
@@ -83,6 +99,76 @@ def _checked(call, *args):
         raise HTTPException(422, str(exc)) from None
     except session.ScenarioError as exc:
         raise HTTPException(400, str(exc)) from None
+
+
+def _validation_detail(exc):
+    return "; ".join(f"{'.'.join(str(p) for p in e['loc']) or 'request'}: {e['msg']}" for e in exc.errors())
+
+
+def _is_cancel(message):
+    text = message.get("text")
+    if text is None:
+        return False
+    if text.strip() == "cancel":
+        return True
+    try:
+        return json.loads(text) == {"type": "cancel"}
+    except ValueError:
+        return False
+
+
+async def _stream(websocket):
+    """Serve one streamed run on an accepted ``websocket`` (protocol in the module docstring)."""
+    try:
+        request = RunRequest.model_validate_json(await websocket.receive_text())
+        messages = await run_in_threadpool(_checked, session.stream, _scenario_text(request), request.exact)
+    except WebSocketDisconnect:
+        return
+    except (HTTPException, ValidationError, KeyError) as exc:
+        if isinstance(exc, HTTPException):
+            status, detail = exc.status_code, exc.detail
+        elif isinstance(exc, ValidationError):
+            status, detail = 422, _validation_detail(exc)
+        else:  # a binary frame: receive_text finds no "text"
+            status, detail = 400, "send the run request as a JSON text message"
+        await websocket.send_json({"type": "error", "status": status, "detail": detail})
+        await websocket.close(code=1008, reason=detail[:120])
+        return
+
+    cancelled = asyncio.Event()
+
+    async def listen():
+        # cancel on request or when the client goes away; other messages are ignored
+        while True:
+            message = await websocket.receive()
+            if message["type"] == "websocket.disconnect" or _is_cancel(message):
+                cancelled.set()
+                return
+
+    listener = asyncio.create_task(listen())
+    sent = 0
+    try:
+        while not cancelled.is_set():
+            try:
+                message = await run_in_threadpool(next, messages, None)
+            except Exception as exc:  # the integrator failed midway (step size collapse, ...)
+                await websocket.send_json({"type": "error", "status": 500, "detail": f"the run failed: {exc}"})
+                await websocket.close(code=1011)
+                return
+            if message is None:
+                await websocket.close(code=1000)
+                return
+            if cancelled.is_set():
+                break
+            await websocket.send_json(message)
+            sent += len(message["t"]) if message["type"] == "chunk" else 0
+        await websocket.send_json({"type": "cancelled", "samples": sent})
+        await websocket.close(code=1000)
+    except (WebSocketDisconnect, RuntimeError):
+        return  # the client left while we were sending
+    finally:
+        listener.cancel()
+        messages.close()
 
 
 def create_app(scenario_text=None):
@@ -131,19 +217,26 @@ def create_app(scenario_text=None):
 
     @app.post("/api/run")
     def run(request: RunRequest):
-        return JSONResponse(_checked(session.run, _scenario_text(request)))
+        return JSONResponse(_checked(session.run, _scenario_text(request), request.exact))
+
+    @app.websocket("/api/stream")
+    async def stream(websocket: WebSocket):
+        await websocket.accept()
+        await _stream(websocket)
 
     @app.post("/api/export")
     def export(request: RunRequest, format: str = Query("nc", pattern="^(nc|csv)$")):
         text = _scenario_text(request)
-        scenario = _checked(session.load, text)
+        # what the viewer streamed it can export: the file is written from one run held in memory
+        scenario = _checked(session.load, text, session.MAX_STREAM_SAMPLES)
         if scenario.kind != "rigid_body":
             raise HTTPException(400, "only rigid-body runs export as a trajectory file")
-        from ..io import run_scenario, save_result
+        from ..io import save_result
 
+        traj = _checked(lambda: session.Solver(scenario, request.exact).run())
         folder = tempfile.TemporaryDirectory(prefix="kreisel-export-")
         name = "".join(c if c.isalnum() else "_" for c in scenario.title.lower()).strip("_") or "trajectory"
-        path = save_result(run_scenario(scenario), pathlib.Path(folder.name) / f"{name}.{format}")
+        path = save_result(traj, pathlib.Path(folder.name) / f"{name}.{format}")
         return FileResponse(path, filename=path.name, background=BackgroundTask(folder.cleanup))
 
     if STATIC.is_dir():

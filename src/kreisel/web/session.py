@@ -8,13 +8,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..io import ScenarioError, parse_scenario, run_scenario
+from ..dynamics import simulate
+from ..io import ScenarioError, parse_scenario
+from ..io.run import build_body, initial_attitude, torque_model
 from ..kinematics import euler_rates
 from ..so3 import quat_apply, quat_to_euler
 from ..tops import EulerTop, LagrangeTop
 
 METHODS = ("dop853", "splitting", "dmv", "rkmk4", "midpoint", "rk4")
+# One JSON reply holds the whole run; a stream holds one chunk at a time on the server, so its limit is
+# set by what the browser keeps (about 0.5 kB of JavaScript arrays per sample: 100 MB at the limit).
 MAX_SAMPLES = 20_000
+MAX_STREAM_SAMPLES = 200_000
+CHUNK_SAMPLES = 2_000
 MAX_STEPS = 2_000_000
 MAX_TURNS = 100_000
 
@@ -71,8 +77,6 @@ def form_fields(scenario):
         mgl = entry["weight"] * abs(float(entry["lever"][lever_axis]))
         if entry["lever"][lever_axis] < 0:
             return None
-    from ..io.run import initial_attitude
-
     euler = np.rad2deg(quat_to_euler("ZXZ", initial_attitude(data["initial"].get("attitude"))))
     grid = data["integration"]
     return {"title": scenario.title, "moments": body["moments"].tolist(), "omega": data["initial"]["omega"].tolist(),
@@ -81,7 +85,7 @@ def form_fields(scenario):
             "dt": grid.get("dt")}
 
 
-def check_workload(scenario):
+def check_workload(scenario, max_samples=MAX_SAMPLES):
     """Refuse scenarios that read files or would take more than a few seconds; RunRefused says why."""
     data = scenario.data
     if scenario.kind == "coning":
@@ -95,9 +99,9 @@ def check_workload(scenario):
     if "mesh" in data["body"]:
         raise RunRefused("body.mesh: the viewer does not read mesh files; use moments, tensor or shape")
     grid = data["integration"]
-    if grid["n_samples"] > MAX_SAMPLES:
+    if grid["n_samples"] > max_samples:
         raise RunRefused(f"integration.n_samples = {grid['n_samples']} is too many: the viewer allows at most "
-                         f"{MAX_SAMPLES}")
+                         f"{max_samples}" + (" (stream the run to get more)" if max_samples < MAX_STREAM_SAMPLES else ""))
     if grid.get("dt") is not None and grid["t_end"] / grid["dt"] > MAX_STEPS:
         raise RunRefused(f"integration: t_end / dt = {grid['t_end'] / grid['dt']:.3g} steps is too many: "
                          f"the viewer allows at most {MAX_STEPS}")
@@ -107,10 +111,10 @@ def check_workload(scenario):
                          f"{MAX_TURNS}")
 
 
-def load(text):
+def load(text, max_samples=MAX_SAMPLES):
     """Validate scenario TOML ``text`` and check its workload; ScenarioError or RunRefused."""
     scenario = parse_scenario(text)
-    check_workload(scenario)
+    check_workload(scenario, max_samples)
     return scenario
 
 
@@ -120,31 +124,105 @@ def _gravity(scenario):
     return (gravity[0]["weight"], gravity[0]["lever"]) if gravity else None
 
 
-def rigid_body_result(scenario, traj):
-    """JSON-ready arrays and seed quantities of a rigid-body run."""
-    gravity = _gravity(scenario)
+class Solver:
+    """The motion of a rigid-body scenario on any stretch of its time grid.
+
+    ``exact=False`` integrates with :func:`kreisel.simulate` from the state given at the stretch's first
+    time; ``exact=True`` evaluates the closed form of the free top (:meth:`kreisel.tops.EulerTop.solve`,
+    seed 五.3), which needs no state: every sample depends on its time only.
+    """
+
+    def __init__(self, scenario, exact=False):
+        data = scenario.data
+        self.title = scenario.title
+        self.q0 = initial_attitude(data["initial"].get("attitude"))
+        self.omega0 = data["initial"]["omega"]
+        if data["initial"]["frame"] == "space":
+            self.omega0 = quat_apply(self.q0, self.omega0, inverse=True)
+        grid = data["integration"]
+        self.t = np.linspace(grid["t_start"], grid["t_start"] + grid["t_end"], grid["n_samples"])
+        self.body = build_body(data["body"])
+        self.torque = torque_model(data.get("torque", []))
+        self.method, self.dt = grid.get("method"), grid.get("dt")
+        self.top = None
+        if exact:
+            tensor = self.body.inertia
+            if self.torque is not None or np.count_nonzero(tensor - np.diag(np.diag(tensor))):
+                raise RunRefused("exact: the closed-form solution is for a torque-free body whose body axes are "
+                                 "principal (give body.moments and no [[torque]])")
+            self.top = EulerTop(*np.diag(tensor))
+
+    def run(self):
+        """The whole run: the trajectory on the scenario's time grid."""
+        traj = self(self.t, self.omega0, self.q0)
+        traj.meta["scenario"] = self.title
+        return traj
+
+    def __call__(self, t, omega_start, q_start):
+        """Trajectory at times ``t`` starting from (ω′, q) at ``t[0]`` (ignored by the exact solution)."""
+        if self.top is not None:
+            traj = self.top.solve(t - self.t[0], self.omega0, self.q0)
+            traj.meta["method"] = "exact"
+            return traj
+        return simulate(self.body, t, omega_start, q0=q_start, torque=self.torque, method=self.method, dt=self.dt)
+
+
+class Drift:
+    """Largest change of energy, |J| and the direction of the space J since the first sample, gathered chunk
+    by chunk; the relative figures of :meth:`kreisel.dynamics.Trajectory.drift` plus the potential energy."""
+
+    def __init__(self):
+        self.energy0 = self.J0 = None
+        self.energy = self.J_norm = self.direction = 0.0
+
+    def add(self, energy, J):
+        if self.energy0 is None:
+            self.energy0, self.J0 = energy[0], J[0]
+        norms = np.linalg.norm(J, axis=-1)
+        angle = np.arctan2(np.linalg.norm(np.cross(J, self.J0), axis=-1), J @ self.J0)
+        self.energy = max(self.energy, float(np.max(np.abs(energy - self.energy0))))
+        self.J_norm = max(self.J_norm, float(np.max(np.abs(norms - np.linalg.norm(self.J0)))))
+        self.direction = max(self.direction, float(np.max(angle)))
+
+    def summary(self, free):
+        J0 = float(np.linalg.norm(self.J0))
+        return {"energy": self.energy / float(abs(self.energy0) or 1.0), "J_norm": self.J_norm / (J0 or 1.0),
+                "direction": self.direction if free else None}
+
+
+def samples(traj, gravity):
+    """The arrays the viewer shows at each sample: t, q, ω′, ω space, J space, |J|, energy and kinetic energy."""
     kinetic = traj.energy
     potential = np.zeros_like(kinetic)
     if gravity is not None:
         weight, lever = gravity
         # gravity along space -z: V = m g (R l)_z about the pivot (seed 六.1)
         potential = weight * quat_apply(traj.q, lever)[:, 2]
-    energy = kinetic + potential
     J = traj.angular_momentum_space
-    J_norm = np.linalg.norm(J, axis=-1)
-    scale_e = abs(energy[0]) if energy[0] != 0 else 1.0
-    return {
-        "kind": "rigid_body", "title": scenario.title, "method": traj.meta.get("method"),
-        "t": traj.t.tolist(), "q": traj.q.tolist(), "omega": traj.omega.tolist(),
-        "omega_space": traj.omega_space.tolist(), "J": J.tolist(), "J_norm": J_norm.tolist(),
-        "energy": energy.tolist(), "kinetic": kinetic.tolist(),
-        "inertia": traj.inertia.tolist(),
-        "gravity": None if gravity is None else {"weight": gravity[0], "lever": gravity[1].tolist()},
-        "drift": {"energy": float(np.max(np.abs(energy - energy[0])) / scale_e),
-                  "J_norm": float(np.max(np.abs(J_norm - J_norm[0])) / (J_norm[0] or 1.0)),
-                  "direction": float(traj.drift()["direction"]) if gravity is None else None},
-        "seed": seed_quantities(traj, gravity),
-    }
+    return {"t": traj.t, "q": traj.q, "omega": traj.omega, "omega_space": traj.omega_space, "J": J,
+            "J_norm": np.linalg.norm(J, axis=-1), "energy": kinetic + potential, "kinetic": kinetic}
+
+
+def _lists(arrays):
+    return {key: value.tolist() for key, value in arrays.items()}
+
+
+def rigid_body_header(scenario, traj):
+    """Everything of a rigid-body run's JSON but the samples and the drift (seed quantities from ``traj[0]``)."""
+    gravity = _gravity(scenario)
+    return {"kind": "rigid_body", "title": scenario.title, "method": traj.meta.get("method"),
+            "inertia": traj.inertia.tolist(),
+            "gravity": None if gravity is None else {"weight": gravity[0], "lever": gravity[1].tolist()},
+            "seed": seed_quantities(traj, gravity)}
+
+
+def rigid_body_result(scenario, traj):
+    """JSON-ready arrays and seed quantities of a rigid-body run."""
+    gravity = _gravity(scenario)
+    arrays = samples(traj, gravity)
+    drift = Drift()
+    drift.add(arrays["energy"], arrays["J"])
+    return {**rigid_body_header(scenario, traj), **_lists(arrays), "drift": drift.summary(gravity is None)}
 
 
 def seed_quantities(traj, gravity):
@@ -211,17 +289,77 @@ def foucault_result(scenario):
                      "period_hours": float(2 * np.pi / abs(rate) / 3600.0) if rate else None}}
 
 
-def run(text):
-    """Run scenario TOML ``text``: the JSON answer of ``/api/run`` (raises ScenarioError, RunRefused)."""
+def run(text, exact=False):
+    """Run scenario TOML ``text``: the JSON answer of ``/api/run`` (raises ScenarioError, RunRefused).
+
+    ``exact=True`` uses the closed form of the free top instead of an integrator.
+    """
     scenario = load(text)
     if scenario.kind == "foucault":
         answer = foucault_result(scenario)
         answer["form"] = None
     else:
-        answer = rigid_body_result(scenario, run_scenario(scenario))
+        answer = rigid_body_result(scenario, Solver(scenario, exact).run())
         answer["form"] = form_fields(scenario)
     answer["toml"] = text
     return answer
 
 
-__all__ = ["METHODS", "MAX_SAMPLES", "RunRefused", "ScenarioError", "scenario_toml", "form_fields", "load", "run"]
+def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES):
+    """Validate ``text`` now, then return a generator of the run's messages, one chunk of work per message.
+
+    Messages: ``{"type": "start", ...}`` (what :func:`run` answers but the samples and the drift, plus
+    ``n_samples`` and ``n_chunks``), then ``{"type": "chunk", "index", "offset", t, q, omega, ...}`` with
+    consecutive samples, then ``{"type": "done", "drift": ...}``. The integrators restart each chunk from
+    the last state of the previous one: dop853's error control then restarts too, so a streamed run agrees
+    with :func:`run` to the integrator's tolerance (not bit for bit); fixed-step methods take the same
+    steps either way (each interval between samples is stepped alone), and the exact solution is
+    evaluated per sample, so those agree to round-off.
+
+    Examples
+    --------
+    >>> from kreisel.web.presets import preset_text
+    >>> messages = list(stream(preset_text("tennis_racket"), exact=True, chunk_samples=500))
+    >>> [m["type"] for m in messages]
+    ['start', 'chunk', 'chunk', 'chunk', 'chunk', 'chunk', 'done']
+    >>> sum(len(m["t"]) for m in messages if m["type"] == "chunk") == messages[0]["n_samples"]
+    True
+    """
+    if not isinstance(chunk_samples, int) or chunk_samples < 2:
+        raise ValueError(f"chunk_samples must be an integer >= 2, got {chunk_samples!r}")
+    scenario = load(text, MAX_STREAM_SAMPLES)
+    solver = None if scenario.kind == "foucault" else Solver(scenario, exact)
+    return _messages(scenario, solver, text, chunk_samples)
+
+
+def _messages(scenario, solver, text, chunk_samples):
+    if solver is None:
+        # the pendulum's turning points come from one event-located integration: a single chunk
+        result = foucault_result(scenario)
+        arrays = {key: result.pop(key) for key in ("t", "swing_azimuth", "tilt")}
+        drift = result.pop("drift")
+        yield {"type": "start", **result, "form": None, "toml": text, "n_samples": len(arrays["t"]), "n_chunks": 1}
+        yield {"type": "chunk", "index": 0, "offset": 0, **arrays}
+        yield {"type": "done", "drift": drift}
+        return
+    t = solver.t
+    # chunk k holds samples [bounds[k], bounds[k + 1]); its integration starts at the sample before
+    bounds = list(range(0, t.size, chunk_samples)) + [t.size]
+    gravity = _gravity(scenario)
+    drift = Drift()
+    omega, q = solver.omega0, solver.q0
+    for index, (first, stop) in enumerate(zip(bounds[:-1], bounds[1:])):
+        start = max(first - 1, 0)
+        traj = solver(t[start:stop], omega, q)
+        omega, q = traj.omega[-1], traj.q[-1]
+        if index == 0:
+            yield {"type": "start", **rigid_body_header(scenario, traj), "form": form_fields(scenario),
+                   "toml": text, "n_samples": int(t.size), "n_chunks": len(bounds) - 1}
+        arrays = {key: value[first - start:] for key, value in samples(traj, gravity).items()}
+        drift.add(arrays["energy"], arrays["J"])
+        yield {"type": "chunk", "index": index, "offset": first, **_lists(arrays)}
+    yield {"type": "done", "drift": drift.summary(gravity is None)}
+
+
+__all__ = ["METHODS", "MAX_SAMPLES", "MAX_STREAM_SAMPLES", "CHUNK_SAMPLES", "RunRefused", "ScenarioError",
+           "Solver", "Drift", "samples", "scenario_toml", "form_fields", "load", "run", "stream"]
