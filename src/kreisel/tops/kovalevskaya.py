@@ -37,6 +37,15 @@ class KovalevskayaIntegrals:
         |γ|² (= 1).
     kovalevskaya : ndarray
         K = (p² − q² − cγ1)² + (2pq − cγ2)², rad⁴/s⁴.
+
+    Examples
+    --------
+    For ω = (0.5, 0.2, 1) with the vertical along body axis 3 (c = mgl/I3 = 1):
+
+    >>> top = KovalevskayaTop(1.0, 1.0)
+    >>> ints = top.integrals([0.5, 0.2, 1.0], [0.0, 0.0, 1.0])
+    >>> round(float(ints.energy), 12), float(ints.area), float(ints.geometric)   # I3 (p² + q² + r²/2) = 0.79
+    (0.79, 1.0, 1.0)
     """
 
     energy: np.ndarray
@@ -81,6 +90,23 @@ class KovalevskayaTop:
             Body angular velocity, rad/s.
         gamma : (..., 3) array_like
             Upward unit vertical in body components (Rᵀ e_z).
+
+        Returns
+        -------
+        KovalevskayaIntegrals
+
+        Examples
+        --------
+        Kovalevskaya's fourth integral is what makes this top integrable: with the
+        centre of mass tipped onto the horizontal (γ1 = 0), K = (p² − q²)² + (2pq − c γ2)²:
+
+        >>> import numpy as np
+        >>> top = KovalevskayaTop(2.0, 1.0)   # c = mgl/I3 = 0.5
+        >>> ints = top.integrals([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [0.0, 1.0, 0.0])
+        >>> ints.kovalevskaya.round(12).tolist()   # (1 + 0.25, 1 + 0.25)
+        [1.25, 1.25]
+        >>> ints.energy.round(12).tolist(), ints.area.tolist()   # I3 (p² + q²); 2 q γ2
+        ([2.0, 2.0], [0.0, 2.0])
         """
         omega = as_float_array(omega, "omega", tail=(3,))
         gamma = as_float_array(gamma, "gamma", tail=(3,))

@@ -44,6 +44,20 @@ class LagrangeConstants:
         p_φ = I1 φ̇ sin²θ + J3 cos θ, angular momentum about the vertical.
     E : float
         Energy ½ I1 (θ̇² + φ̇² sin²θ) + J3²/(2 I3) + mgl cos θ.
+
+    Examples
+    --------
+    φ and ψ are cyclic, so J3 and Jz are conserved along with E; evaluated on
+    the exact motion they keep their initial values:
+
+    >>> import numpy as np
+    >>> top = LagrangeTop(1.0, 0.5, 1.0)
+    >>> tr = top.solve(np.linspace(0.0, 3.0, 5), [0.0, 0.5, 0.0], [0.2, 0.1, 10.0])
+    >>> values = np.array([[c.J3, c.Jz, c.E] for c in map(top.constants, tr.euler, tr.euler_rates)])
+    >>> values[0].round(6).tolist()
+    [5.087758, 4.510898, 26.772464]
+    >>> bool(np.allclose(values, values[0], rtol=1e-13, atol=0.0))
+    True
     """
 
     J3: float
@@ -69,6 +83,18 @@ class FastTop:
         2π / (nutation period 2K(m)/λ).
     exact_precession_rate : float
         Mean φ̇ over one nutation period (complete integrals of the third kind).
+
+    Examples
+    --------
+    Released from rest at θ0 = 0.8 with J3 = I3 ω3 = 100 (I1 = 1, mgl = 1): the
+    nutation is tiny (~2 I1 mgl sin²θ0/J3²) and fast (~J3/I1), the precession slow
+    (~mgl/J3); the seed's estimates agree with the exact values to O(mgl I1/J3²):
+
+    >>> ft = LagrangeTop(1.0, 0.5, 1.0).fast_top(0.8, 200.0)
+    >>> round(float(ft.approx_nutation_amplitude), 9), round(ft.exact_nutation_amplitude, 9)
+    (0.00010292, 0.000102949)
+    >>> round(float(ft.approx_nutation_frequency), 6), round(ft.exact_nutation_frequency, 6)
+    (100.0, 99.986066)
     """
 
     approx_nutation_amplitude: float
@@ -266,12 +292,39 @@ class LagrangeTop:
 
     # ---- nutation and the apex ------------------------------------------------------
     def turning_points(self, euler0, rates0):
-        """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (seed 六.4)."""
+        """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (seed 六.4).
+
+        Examples
+        --------
+        Released with θ̇ = φ̇ = 0 at θ0 = 0.5 the top starts at its highest point, and
+        the effective potential equals the energy at both turning points (θ̇ = 0):
+
+        >>> top = LagrangeTop(1.0, 0.5, 1.0)
+        >>> euler0, rates0 = [0.0, 0.5, 0.0], [0.0, 0.0, 10.0]
+        >>> theta_min, theta_max = top.turning_points(euler0, rates0)
+        >>> round(theta_min, 12), round(theta_max, 6)
+        (0.5, 0.542863)
+        >>> c = top.constants(euler0, rates0)
+        >>> [bool(abs(top.effective_potential(th, c.J3, c.Jz) - c.E) < 1e-12) for th in (theta_min, theta_max)]
+        [True, True]
+        """
         quad, _, _ = self._quadrature(euler0, rates0)
         return float(np.arccos(quad.u2)), float(np.arccos(quad.u1))
 
     def cubic_roots(self, euler0, rates0):
-        """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (seed 六.4)."""
+        """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (seed 六.4).
+
+        Examples
+        --------
+        u = cos θ moves between u1 = cos θ_max and u2 = cos θ_min; the third root
+        lies above 1, outside the physical range:
+
+        >>> import numpy as np
+        >>> top = LagrangeTop(1.0, 0.5, 1.0)
+        >>> u1, u2, u3 = top.cubic_roots([0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
+        >>> round(float(u2), 12) == round(float(np.cos(0.5)), 12), round(float(u1), 6), bool(u3 > 1.0)
+        (True, 0.856233, True)
+        """
         quad, _, _ = self._quadrature(euler0, rates0)
         return quad.u1, quad.u2, quad.u3
 
@@ -282,6 +335,14 @@ class LagrangeTop:
         one sign on [u1, u2], ``"cusp"`` if it vanishes at a turning point
         (within ``rtol`` of |a| + |b|, e.g. released with θ̇ = φ̇ = 0), ``"loop"``
         if it changes sign inside the nutation range.
+
+        Examples
+        --------
+        The same tilt and spin (mean precession ≈ 0.2 rad/s) with three initial φ̇:
+
+        >>> top = LagrangeTop(1.0, 0.5, 1.0)
+        >>> [top.apex_locus_kind([0.0, 0.5, 0.0], [phidot, 0.0, 10.0]) for phidot in (0.0, 0.3, -0.5)]
+        ['cusp', 'monotone', 'loop']
         """
         quad, _, _ = self._quadrature(euler0, rates0)
         g1 = quad.b - quad.a * quad.u1
@@ -292,12 +353,37 @@ class LagrangeTop:
         return "loop" if g1 * g2 < 0.0 else "monotone"
 
     def nutation_period(self, euler0, rates0):
-        """Period of θ(t), 2K(m)/λ, seconds."""
+        """Period of θ(t), 2K(m)/λ, seconds.
+
+        Examples
+        --------
+        A fast top (J3 = 100, I1 = 1) nods with nearly the period 2π I1/J3 (seed 六.7):
+
+        >>> import numpy as np
+        >>> top = LagrangeTop(1.0, 0.5, 1.0)
+        >>> round(top.nutation_period([0.0, 0.8, 0.0], [0.0, 0.0, 200.0]), 6), round(2 * np.pi / 100.0, 6)
+        (0.062841, 0.062832)
+        """
         quad, _, _ = self._quadrature(euler0, rates0)
         return float(2.0 * quad.quarter / quad.lam)
 
     def mean_precession_rate(self, euler0, rates0):
-        """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind)."""
+        """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind).
+
+        Examples
+        --------
+        Started at the slow steady-precession rate there is no nutation and the mean
+        is that rate; released from rest, a fast top precesses at about mgl/J3:
+
+        >>> top = LagrangeTop(1.0, 0.5, 1.0)
+        >>> slow, _ = top.steady_precession_rates(0.5, 10.0)
+        >>> import numpy as np
+        >>> rates0 = [slow, 0.0, 10.0 - slow * np.cos(0.5)]   # ω3 = φ̇ cos θ + ψ̇ = 10
+        >>> round(top.mean_precession_rate([0.0, 0.5, 0.0], rates0), 9), round(slow, 9)
+        (0.207561568, 0.207561568)
+        >>> round(top.mean_precession_rate([0.0, 0.8, 0.0], [0.0, 0.0, 200.0]), 6)   # mgl/J3 = 0.01
+        0.010001
+        """
         quad, _, _ = self._quadrature(euler0, rates0)
         return quad.mean_precession_rate()
 
@@ -329,11 +415,26 @@ class LagrangeTop:
         return float(slow), float(fast)
 
     def sleeping_top_threshold(self):
-        """Smallest spin ω3 = 2√(I1 mgl)/I3 for which the upright top is stable, rad/s."""
+        """Smallest spin ω3 = 2√(I1 mgl)/I3 for which the upright top is stable, rad/s.
+
+        Examples
+        --------
+        >>> LagrangeTop(1.0, 0.5, 1.0).sleeping_top_threshold()   # 2 √(1 · 1)/0.5
+        4.0
+        """
         return float(2.0 * np.sqrt(self.I1 * self.mgl) / self.I3)
 
     def sleeping_top_stable(self, omega3):
-        """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (seed 六.6)."""
+        """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (seed 六.6).
+
+        Examples
+        --------
+        Friction slows the spin below :meth:`sleeping_top_threshold` (4 rad/s here)
+        and the top starts to wobble; broadcasts over ``omega3``:
+
+        >>> LagrangeTop(1.0, 0.5, 1.0).sleeping_top_stable([6.0, 4.1, 3.9, -5.0]).tolist()
+        [True, True, False, True]
+        """
         J3 = self.I3 * as_float_array(omega3, "omega3")
         return J3 * J3 > 4.0 * self.I1 * self.mgl
 
