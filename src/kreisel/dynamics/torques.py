@@ -42,10 +42,40 @@ class TorqueModel:
 
     A model is also callable, ``model(t, q, omega_body)`` returning the body
     torque ``M′`` in N m, which is what the integrators evaluate.
+
+    Examples
+    --------
+    A top standing upright feels no gravity torque (lever parallel to the
+    weight), only the damping −C ω′ of its spin:
+
+    >>> from kreisel.dynamics import GravityTorque, LinearDamping, TorqueModel
+    >>> model = GravityTorque(9.81, [0.0, 0.0, 0.1]) + LinearDamping(0.01)
+    >>> isinstance(model, TorqueModel), len(model.rows())
+    (True, 2)
+    >>> model(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 10.0]).tolist()
+    [0.0, 0.0, -0.1]
     """
 
     def rows(self):
-        """The model's table rows in body coordinates, shape ``(k, ROW_SIZE)``."""
+        """The model's table rows in body coordinates, shape ``(k, ROW_SIZE)``.
+
+        Column 0 is the kind, the rest its parameters; a sum stacks the rows of
+        its terms, which the compiled integrators add up.
+
+        Examples
+        --------
+        Gravity on a top is the torque on a dipole: both are a body vector crossed
+        with a fixed space vector (lever × m g, dipole × B), so they share one row kind:
+
+        >>> from kreisel.dynamics import GravityTorque, MagneticTorque, LinearDamping
+        >>> gravity = GravityTorque(2.0, [0.0, 0.0, 0.5])
+        >>> gravity.rows()[0].tolist()
+        [2.0, 0.0, 0.0, 0.5, 0.0, 0.0, -2.0, 0.0, 0.0, 0.0]
+        >>> bool((gravity.rows() == MagneticTorque([0.0, 0.0, 0.5], [0.0, 0.0, -2.0]).rows()).all())
+        True
+        >>> (gravity + LinearDamping(0.1)).rows().shape
+        (2, 10)
+        """
         raise NotImplementedError
 
     def __add__(self, other):
