@@ -117,11 +117,12 @@ def _is_cancel(message):
         return False
 
 
-async def _stream(websocket):
+async def _stream(websocket, chunk_samples):
     """Serve one streamed run on an accepted ``websocket`` (protocol in the module docstring)."""
     try:
         request = RunRequest.model_validate_json(await websocket.receive_text())
-        messages = await run_in_threadpool(_checked, session.stream, _scenario_text(request), request.exact)
+        messages = await run_in_threadpool(_checked, session.stream, _scenario_text(request), request.exact,
+                                            chunk_samples)
     except WebSocketDisconnect:
         return
     except (HTTPException, ValidationError, KeyError) as exc:
@@ -171,8 +172,10 @@ async def _stream(websocket):
         messages.close()
 
 
-def create_app(scenario_text=None):
+def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES):
     """The viewer's FastAPI app; ``scenario_text`` (TOML) is offered as the initial scenario.
+
+    ``chunk_samples`` is the number of samples per message of ``/api/stream``.
 
     Examples
     --------
@@ -181,6 +184,8 @@ def create_app(scenario_text=None):
     >>> client.get("/api/presets").json()[0]["name"]
     'tennis_racket'
     """
+    if not isinstance(chunk_samples, int) or chunk_samples < 2:
+        raise ValueError(f"chunk_samples must be an integer >= 2, got {chunk_samples!r}")
     app = FastAPI(title="kreisel viewer", docs_url=None, redoc_url=None, openapi_url=None)
 
     @app.get("/", response_class=HTMLResponse)
@@ -222,7 +227,7 @@ def create_app(scenario_text=None):
     @app.websocket("/api/stream")
     async def stream(websocket: WebSocket):
         await websocket.accept()
-        await _stream(websocket)
+        await _stream(websocket, chunk_samples)
 
     @app.post("/api/export")
     def export(request: RunRequest, format: str = Query("nc", pattern="^(nc|csv)$")):
