@@ -179,4 +179,3 @@ def symmetric_top_cones(quick):
     )
 
 
-SECTIONS = (inertia_ellipsoid, tennis_racket, poinsot_construction, symmetric_top_cones)

@@ -14,14 +14,18 @@ from .._fileio import atomic_output
 from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, rotations
 from .report import Section, render_html
 
+# in the order of the seed chapter: 二, 三 (with its navigation remarks), 四, 五, 六, 七, 八
 SECTIONS = (
     *rotations.SECTIONS,
     *kinematics.SECTIONS,
-    *free_top.SECTIONS,
+    *navigation.SECTIONS,
+    free_top.inertia_ellipsoid,
+    *integrators.SECTIONS,
+    free_top.tennis_racket,
+    free_top.poinsot_construction,
+    free_top.symmetric_top_cones,
     *heavy_top.SECTIONS,
     *earth_frame.SECTIONS,
-    *navigation.SECTIONS,
-    *integrators.SECTIONS,
 )
 
 
