@@ -174,3 +174,14 @@ theta0_deg = 34.0
     bad.write_text(text.replace("mgl = 1.0", "mgl = 1.0\ncolour = 1"))
     result = run("sweep", str(bad), "--scheduler", "serial")
     assert result.exit_code == 2 and "colour" in result.output
+
+
+def test_convert_reads_a_csv_file(tmp_path):
+    rows = tmp_path / "angles.csv"
+    rows.write_text("# phi, theta, psi in degrees\n30, 45, 60\n0, 90, 0\n")
+    result = run("convert", "--from", "euler:ZXZ", "--to", "rotvec", "--degrees", "--input", str(rows))
+    assert result.exit_code == 0, result.output
+    expected = kr.Rotation.from_euler("ZXZ", [[30, 45, 60], [0, 90, 0]], degrees=True).as_rotvec(degrees=True)
+    np.testing.assert_allclose(numbers(result.stdout), expected, atol=1e-8)
+    result = run("convert", "--from", "quat", "--to", "matrix", "--input", str(tmp_path / "absent.csv"))
+    assert result.exit_code == 2 and "cannot read" in result.output

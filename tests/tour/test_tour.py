@@ -1,15 +1,17 @@
-"""The quick tour writes a self-contained report in which every section passes."""
+"""``kreisel tour --quick`` writes a self-contained report in which every section passes."""
 
 import re
 
-from rich.console import Console
+from typer.testing import CliRunner
 
-from kreisel.tour import SECTIONS, run_tour
+from kreisel.cli import app
+from kreisel.tour import SECTIONS
 
 
 def test_quick_tour_passes_and_is_self_contained(tmp_path):
-    console = Console(file=open(tmp_path / "log.txt", "w"), width=120)
-    assert run_tour(tmp_path / "out", quick=True, console=console)
+    result = CliRunner().invoke(app, ["tour", "--quick", "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "FAIL" not in result.output
     html = (tmp_path / "out" / "index.html").read_text(encoding="utf-8")
     assert f"{len(SECTIONS)} of {len(SECTIONS)} sections pass" in html
     assert "FAIL" not in html
