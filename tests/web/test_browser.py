@@ -21,6 +21,12 @@ pytestmark = [
 ]
 
 
+def websockets_served():
+    from kreisel.web.server import websocket_support
+
+    return websocket_support()
+
+
 @pytest.fixture(scope="module")
 def playwright():
     sync_api = pytest.importorskip("playwright.sync_api")
@@ -48,6 +54,16 @@ def test_tennis_racket_preset_plays_with_constant_energy(page):
     page.wait_for_function("window.kreisel && window.kreisel.ready && window.kreisel.data.kind === 'rigid_body'",
                            timeout=240_000)
     assert page.evaluate("document.getElementById('preset').value") == "tennis_racket"
+    # the run came over the WebSocket stream, chunk by chunk, and all of it arrived; a uvicorn without a
+    # WebSocket library refuses the upgrade, and the page must then fall back to the one-shot JSON run
+    page.wait_for_function("window.kreisel.done", timeout=240_000)
+    arrived = page.evaluate("({streamed: window.kreisel.streamed, chunks: window.kreisel.chunks, "
+                            "n_chunks: window.kreisel.data.n_chunks, n: window.kreisel.data.t.length})")
+    assert arrived["n"] == 2001
+    if websockets_served():
+        assert arrived["streamed"] and arrived["chunks"] == arrived["n_chunks"] == 2
+    else:
+        assert not arrived["streamed"] and arrived["chunks"] == 0
     assert page.evaluate("window.kreisel.webgl"), "WebGL (SwiftShader) was not available"
     page.evaluate("document.getElementById('speed').value = 1; document.getElementById('speed').oninput()")
     page.wait_for_function("window.kreisel.plotted.energy.length > 200", timeout=120_000)

@@ -3,9 +3,11 @@ import { drawPlot } from "./plots.js";
 import { Viewer, webglAvailable } from "./scene.js";
 
 const $ = (id) => document.getElementById(id);
-// window.kreisel is read by the end-to-end tests: the data, the playback position and what is plotted
+// window.kreisel is read by the end-to-end tests: the data, the playback position, what is plotted and
+// how the run arrived (streamed: over /api/stream; chunks: chunk messages received; done: all samples in)
 const state = (window.kreisel = { data: null, index: 0, time: 0, playing: true, ready: false, error: null,
-  plotted: { omega: [], energy: [], J: [] } });
+  streamed: false, chunks: 0, done: false, plotted: { omega: [], energy: [], J: [] } });
+let socket = null;
 let viewer = null;
 
 function status(message, error = false) {
@@ -33,7 +35,7 @@ function readForm() {
     mgl: num("mgl") || 0, lever_axis: parseInt($("lever").value, 10), t_end: num("tend"),
     n_samples: parseInt($("nsamp").value, 10),
   };
-  if ($("method").value) form.method = $("method").value;
+  if ($("method").value && $("method").value !== "exact") form.method = $("method").value;
   return form;
 }
 
@@ -57,11 +59,11 @@ function readout(d) {
     const s = d.seed;
     lines.push(`swing plane rate  ${fmt(s.precession_rate_measured)} rad/s`,
       `theory −Ω sin λ    ${fmt(s.precession_rate_theory)} rad/s`,
-      `one turn in       ${fmt(s.period_hours, 5)} h`, `Jacobi drift      ${fmt(d.drift.jacobi, 3)}`);
+      `one turn in       ${fmt(s.period_hours, 5)} h`, `Jacobi drift      ${d.drift ? fmt(d.drift.jacobi, 3) : "–"}`);
   } else {
     const s = d.seed;
     lines.push(`method ${d.method}`, `T   = ${fmt(s.T, 10)} J`, `J   = [${s.J.map((v) => fmt(v, 5)).join(", ")}]`,
-      `|J| = ${fmt(s.J_norm, 10)}`, `energy drift ${fmt(d.drift.energy, 3)}, |J| drift ${fmt(d.drift.J_norm, 3)}`);
+      `|J| = ${fmt(s.J_norm, 10)}`, d.drift ? `energy drift ${fmt(d.drift.energy, 3)}, |J| drift ${fmt(d.drift.J_norm, 3)}` : "drift: when the run is complete");
     if (s.regime) lines.push(`free-top regime: ${s.regime}`);
     lines.push("steady rotation about principal axes:");
     for (const a of s.stability) {
@@ -79,27 +81,80 @@ function readout(d) {
   $("readout").textContent = lines.join("\n");
 }
 
+// Start playing `d`, which may hold only the first chunk of a streamed run.
 function show(d) {
   state.data = d;
   state.index = 0;
   state.time = d.t[0];
   state.ready = true;
   if (d.form) fillForm(d.form);
+  if (d.method === "exact") $("method").value = "exact";
   if (viewer) viewer.load(d);
   readout(d);
   const heavyOrFoucault = d.kind === "foucault" ? "swing-plane azimuth (rad)" : "Energy (J)";
   document.querySelectorAll("#side h2")[1].textContent = heavyOrFoucault;
-  status(`${d.title}: ${d.t.length} samples`);
+  status(`${d.title}: ${d.t.length} of ${d.n_samples || d.t.length} samples`);
 }
 
-async function run(body) {
-  status("computing…");
-  state.ready = false;
+// The one-shot JSON run: the fallback where a WebSocket cannot be opened.
+async function runOnce(body) {
   try {
-    show(await (await api("/api/run", body)).json());
+    const d = await (await api("/api/run", body)).json();
+    state.done = true;
+    show(d);
   } catch (e) {
     status(e.message, true);
   }
+}
+
+// Stream the run over /api/stream: playback starts with the first chunk while the rest is computed.
+function run(body) {
+  status("computing…");
+  state.ready = false;
+  state.done = false;
+  state.chunks = 0;
+  if (socket) { try { socket.send("cancel"); socket.close(); } catch (e) { /* already closed */ } }
+  const ws = (socket = new WebSocket(`${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/stream`));
+  let d = null, heard = false;
+  ws.onopen = () => ws.send(JSON.stringify(body));
+  ws.onmessage = (event) => {
+    if (ws !== socket) return; // a replaced run still talking
+    heard = true;
+    const m = JSON.parse(event.data);
+    if (m.type === "error") { status(m.detail, true); return; }
+    if (m.type === "start") {
+      d = m;
+      const keys = m.kind === "foucault" ? ["t", "swing_azimuth", "tilt"] : ["t", "q", "omega", "omega_space", "J", "J_norm", "energy", "kinetic"];
+      for (const k of keys) d[k] = [];
+      d.drift = null;
+      d._keys = keys;
+      return;
+    }
+    if (m.type === "chunk") {
+      for (const k of d._keys) for (const v of m[k]) d[k].push(v);
+      state.chunks += 1;
+      state.streamed = true;
+      d._series = null;
+      if (state.chunks === 1) show(d);
+      else {
+        if (viewer) viewer.append();
+        status(`${d.title}: ${d.t.length} of ${d.n_samples} samples…`);
+      }
+      return;
+    }
+    if (m.type === "done") {
+      d.drift = m.drift;
+      state.done = true;
+      readout(d);
+      status(`${d.title}: ${d.t.length} samples`);
+    }
+  };
+  ws.onclose = () => {
+    if (ws !== socket) return;
+    socket = null;
+    if (!heard) runOnce(body);
+    else if (!state.done && !state.error) status("the stream ended before the run was complete", true);
+  };
 }
 
 function series(d) {
@@ -112,10 +167,10 @@ function drawPlots() {
   const d = state.data;
   if (!d) return;
   if (!d._series) d._series = series(d);
-  const s = d._series, i = state.index;
-  state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, ["#d33", "#393", "#33d"], i);
-  state.plotted.energy = drawPlot($("plot-energy"), d.t, s.energy, ["#b60"], i)[0];
-  state.plotted.J = drawPlot($("plot-J"), d.t, s.J, ["#088"], i)[0];
+  const s = d._series, i = state.index, span = d.t_range || null;
+  state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, ["#d33", "#393", "#33d"], i, span);
+  state.plotted.energy = drawPlot($("plot-energy"), d.t, s.energy, ["#b60"], i, span)[0];
+  state.plotted.J = drawPlot($("plot-J"), d.t, s.J, ["#088"], i, span)[0];
 }
 
 function download(blob, name) {
@@ -138,16 +193,20 @@ function frame(now) {
   const dt = Math.min(0.1, (now - last) / 1000);
   last = now;
   if (d && state.ready) {
-    const span = d.t[d.t.length - 1] - d.t[0];
+    const [first, end] = d.t_range || [d.t[0], d.t[d.t.length - 1]];
+    const last = d.t[d.t.length - 1];
     if (state.playing) {
-      // the whole run plays in about 40 s at speed 1
-      state.time += dt * Math.pow(10, num("speed")) * (span / 40);
-      if (state.time > d.t[d.t.length - 1]) { state.time = d.t[d.t.length - 1]; state.playing = false; $("play").textContent = "Play"; }
+      // the whole run plays in about 40 s at speed 1; while it streams in, playback waits at the last sample
+      state.time += dt * Math.pow(10, num("speed")) * ((end - first) / 40);
+      if (state.time > last) {
+        state.time = last;
+        if (state.done) { state.playing = false; $("play").textContent = "Play"; }
+      }
       state.index = indexAt(state.time, d.t);
     }
     if (viewer) { viewer.frame = $("camera").value; viewer.show(state.index); }
     drawPlots();
-    $("hud").textContent = `t = ${d.t[state.index].toFixed(3)} s   (${state.index + 1}/${d.t.length})`;
+    $("hud").textContent = `t = ${d.t[state.index].toFixed(3)} s   (${state.index + 1}/${d.n_samples || d.t.length})`;
   }
   if (viewer) viewer.render();
   requestAnimationFrame(frame);
@@ -163,7 +222,7 @@ async function init() {
   for (const p of presets) $("preset").add(new Option(p.title, p.name));
   const describe = () => ($("description").textContent = presets.find((p) => p.name === $("preset").value)?.description || "");
   $("preset").onchange = () => { describe(); run({ preset: $("preset").value }); };
-  $("run").onclick = () => run({ form: readForm() });
+  $("run").onclick = () => run({ form: readForm(), exact: $("method").value === "exact" });
   $("play").onclick = () => {
     if (!state.data) return;
     if (!state.playing && state.index >= state.data.t.length - 1) state.time = state.data.t[0];
@@ -181,7 +240,7 @@ async function init() {
   const exportAs = async (format) => {
     if (!state.data) return;
     try {
-      const response = await api(`/api/export?format=${format}`, { toml: state.data.toml });
+      const response = await api(`/api/export?format=${format}`, { toml: state.data.toml, exact: state.data.method === "exact" });
       const name = /filename="([^"]+)"/.exec(response.headers.get("content-disposition") || "")?.[1] || `trajectory.${format}`;
       download(await response.blob(), name);
     } catch (e) { status(e.message, true); }

@@ -22,14 +22,16 @@ function yRange(series) {
 
 function fmt(v) { return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(4) : v.toPrecision(8); }
 
-/** Draw `series` (arrays over `t`) up to sample `upto` inclusive; returns the plotted values. */
-export function drawPlot(canvas, t, series, colors, upto) {
+/** Draw `series` (arrays over `t`) up to sample `upto` inclusive on the time axis `span` (default: all of
+ * `t`, which may still be growing while a run streams in); returns the plotted values. */
+export function drawPlot(canvas, t, series, colors, upto, span = null) {
   const [ctx, w, h] = sized(canvas);
   ctx.clearRect(0, 0, w, h);
   const plotted = series.map((s) => s.slice(0, upto + 1));
   if (!t.length) return plotted;
   const [lo, hi] = yRange(series);
-  const t0 = t[0], t1 = t[t.length - 1] > t0 ? t[t.length - 1] : t0 + 1;
+  const [t0, last] = span || [t[0], t[t.length - 1]];
+  const t1 = last > t0 ? last : t0 + 1;
   const left = 4, right = w - 4, top = 14, bottom = h - 4;
   const x = (v) => left + ((v - t0) / (t1 - t0)) * (right - left);
   const y = (v) => bottom - ((v - lo) / (hi - lo)) * (bottom - top);
@@ -39,7 +41,11 @@ export function drawPlot(canvas, t, series, colors, upto) {
     ctx.strokeStyle = colors[k];
     ctx.lineWidth = 1.4;
     ctx.beginPath();
-    values.forEach((v, i) => (i ? ctx.lineTo(x(t[i]), y(v)) : ctx.moveTo(x(t[i]), y(v))));
+    // a long run draws about two points per pixel column, not every sample each frame
+    const stride = Math.max(1, Math.floor(values.length / (2 * w)));
+    ctx.moveTo(x(t[0]), y(values[0]));
+    for (let i = stride; i < values.length; i += stride) ctx.lineTo(x(t[i]), y(values[i]));
+    if (values.length > 1) ctx.lineTo(x(t[values.length - 1]), y(values[values.length - 1]));
     ctx.stroke();
   });
   ctx.fillStyle = "#666";

@@ -16,10 +16,14 @@ export function webglAvailable() {
 const quat = (q) => new THREE.Quaternion(q[1], q[2], q[3], q[0]);
 const vec = (v, s = 1) => new THREE.Vector3(v[0] * s, v[1] * s, v[2] * s);
 
-function trail(points, color) {
-  const geometry = new THREE.BufferGeometry().setFromPoints(points);
+// A trail sized for the whole run; `point(i)` gives sample i, filled in by append() as chunks arrive.
+function trail(capacity, color, point) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * capacity), 3));
   geometry.setDrawRange(0, 1);
-  return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+  const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+  line.point = point;
+  return line;
 }
 
 function arrow(color) {
@@ -111,7 +115,7 @@ export class Viewer {
     this.JArrow = arrow(0x008888);
     this.world.add(this.omegaArrow, this.JArrow);
     this.J0 = Math.max(1e-300, seed.J_norm);
-    const n = data.t.length;
+    const n = data.n_samples || data.t.length;
     if (heavy) {
       const lever = vec(data.gravity.lever);
       const lhat = lever.clone().normalize();
@@ -121,8 +125,8 @@ export class Viewer {
       this.world.add(pivot);
       const g = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(-1.6, 1.6, 1.2), 0.8, 0x444444, 0.15, 0.08);
       this.world.add(g);
-      const apex = data.q.map((q) => lhat.clone().multiplyScalar(size[k] * 1.05).applyQuaternion(quat(q)));
-      this.trails = [trail(apex, 0x0077cc)];
+      const apex = lhat.clone().multiplyScalar(size[k] * 1.05);
+      this.trails = [trail(n, 0x0077cc, (i) => apex.clone().applyQuaternion(quat(data.q[i])))];
       const sphere = new THREE.Mesh(new THREE.SphereGeometry(size[k] * 1.05, 32, 16),
         new THREE.MeshBasicMaterial({ color: 0x8899aa, wireframe: true, transparent: true, opacity: 0.12 }));
       this.world.add(sphere, ...this.trails);
@@ -139,12 +143,25 @@ export class Viewer {
       plane.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), Jhat);
       plane.position.copy(Jhat.clone().multiplyScalar((2 * T / seed.J_norm) * this.s));
       this.world.add(plane);
-      this.trails = [trail(data.omega_space.map((w) => vec(w, this.s)), 0x228822)]; // herpolhode
-      this.bodyTrails = [trail(data.omega.map((w) => vec(w, this.s)), 0xaa2288)]; // polhode
+      this.trails = [trail(n, 0x228822, (i) => vec(data.omega_space[i], this.s))]; // herpolhode
+      this.bodyTrails = [trail(n, 0xaa2288, (i) => vec(data.omega[i], this.s))]; // polhode
       this.world.add(...this.trails);
       this.body.add(...this.bodyTrails);
     }
-    this.n = n;
+    this.filled = 0;
+    this.append();
+  }
+
+  /** Add the samples that arrived since the last call to the trails. */
+  append() {
+    const d = this.data, upto = Math.min(d.t.length, d.n_samples || d.t.length);
+    for (const tr of this.trails.concat(this.bodyTrails)) {
+      const position = tr.geometry.attributes.position;
+      for (let i = this.filled; i < upto; i++) { const p = tr.point(i); position.setXYZ(i, p.x, p.y, p.z); }
+      position.needsUpdate = true;
+      if (this.filled < upto) tr.geometry.computeBoundingSphere();
+    }
+    this.filled = upto;
   }
 
   loadFoucault(data) {
@@ -164,17 +181,18 @@ export class Viewer {
       const sign = i % 2 ? -1 : 1, r = sign * Math.abs(data.tilt[i]) * gain;
       return new THREE.Vector3(r * Math.cos(data.swing_azimuth[i]), r * Math.sin(data.swing_azimuth[i]), 0.02);
     });
-    this.trails = [trail(this.footprints, 0x3050d0)];
+    this.trails = [trail(this.footprints.length, 0x3050d0, (i) => this.footprints[i])];
     this.bodyTrails = [];
     this.world.add(this.bob, this.string, this.swingPlane, ...this.trails);
     this.L = L;
-    this.n = data.t.length;
+    this.filled = 0;
+    this.append();
   }
 
   show(i) {
     const d = this.data;
     if (!d) return;
-    for (const tr of this.trails.concat(this.bodyTrails)) tr.geometry.setDrawRange(0, i + 1);
+    for (const tr of this.trails.concat(this.bodyTrails)) tr.geometry.setDrawRange(0, Math.min(i + 1, this.filled));
     if (d.kind === "foucault") {
       const p = this.footprints[i];
       const bob = new THREE.Vector3(p.x * 0.5, p.y * 0.5, 0.3);

@@ -24,6 +24,16 @@ def bind(host="127.0.0.1", port=0):
     return sock
 
 
+def websocket_support():
+    """Whether uvicorn can serve WebSockets here (it needs the ``websockets`` or ``wsproto`` package).
+
+    Without one, ``/api/stream`` cannot be reached and the page falls back to one-shot JSON runs.
+    """
+    import importlib.util
+
+    return any(importlib.util.find_spec(name) is not None for name in ("websockets", "wsproto"))
+
+
 def make_server(app):
     """A uvicorn server for ``app``; run it with ``.run(sockets=[sock])`` on a socket from :func:`bind`."""
     import uvicorn
@@ -69,7 +79,7 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
     kreisel.io.scenario.ScenarioError: ...: body.moment: unknown key (expected one of: ...)
     """
     from .app import create_app
-    from .session import load
+    from .session import MAX_SAMPLES, load
 
     text = None
     if scenario is not None:
@@ -83,6 +93,9 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
     url = url_of(sock)
     server = make_server(create_app(text))
     print(f"kreisel viewer at {url}  (Ctrl+C to stop)", flush=True)
+    if not websocket_support():
+        print("note: runs are not streamed (install the `websockets` package); each comes in one reply of at "
+              f"most {MAX_SAMPLES} samples", flush=True)
     if open_browser:
         threading.Timer(0.5, webbrowser.open, args=(url,)).start()
     try:
