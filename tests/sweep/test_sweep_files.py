@@ -90,20 +90,20 @@ num = 3
 
 
 @pytest.mark.parametrize("edit, match", [
-    (lambda s: "colour = 1\n" + s, r"my\.toml: colour: unknown key"),
-    (lambda s: s + "colour = 1\n", r"my\.toml: grid\.psi_dot\.colour: unknown key"),
-    (lambda s: s.replace('"lagrange_apex"', '"spinning_plate"'), "model: expected one of"),
+    (lambda s: "colour = 1\n" + s, r"my\.toml:1: colour: unknown key"),
+    (lambda s: s + "colour = 1\n", r"my\.toml:9: grid\.psi_dot\.colour: unknown key"),
+    (lambda s: s.replace('"lagrange_apex"', '"spinning_plate"'), ":2: model: expected one of"),
     (lambda s: s.replace('model = "lagrange_apex"', ''), "model: missing"),
-    (lambda s: s.replace("num = 3", "num = 3.0"), r"grid\.psi_dot\.num: expected an integer"),
-    (lambda s: s.replace("num = 3", "num = 3\ncount = 2"), r"grid\.psi_dot: give exactly one"),
-    (lambda s: s.replace("stop = 8.0\n", ""), r"grid\.psi_dot: missing 'stop'"),
-    (lambda s: s.replace("[grid.phi_dot]", "[grid.theta_dot]"), r"grid\.theta_dot: unknown key"),
-    (lambda s: s + "[constants]\nmgl = \"heavy\"\n", r"constants\.mgl: expected a finite number"),
-    (lambda s: s + "[constants]\nweight = 1.0\n", r"constants\.weight: unknown key"),
+    (lambda s: s.replace("num = 3", "num = 3.0"), r":8: grid\.psi_dot\.num: expected an integer"),
+    (lambda s: s.replace("num = 3", "num = 3\ncount = 2"), r":5: grid\.psi_dot: give exactly one"),
+    (lambda s: s.replace("stop = 8.0\n", ""), r":5: grid\.psi_dot: missing 'stop'"),
+    (lambda s: s.replace("[grid.phi_dot]", "[grid.theta_dot]"), r":3: grid\.theta_dot: unknown key"),
+    (lambda s: s + "[constants]\nmgl = \"heavy\"\n", r":10: constants\.mgl: expected a finite number"),
+    (lambda s: s + "[constants]\nweight = 1.0\n", r":10: constants\.weight: unknown key"),
     (lambda s: s + "[constants]\ntheta0_deg = 180.0\n", "theta0_deg"),
-    (lambda s: s.replace("values = [-1.0, 0.0, 2.0]", "values = []"), r"grid\.phi_dot\.values"),
-    (lambda s: 'output = "map.csv"\n' + s, r"output: must end in"),
-    (lambda s: "chunk_size = 0\n" + s, "chunk_size: must be positive"),
+    (lambda s: s.replace("values = [-1.0, 0.0, 2.0]", "values = []"), r":4: grid\.phi_dot\.values"),
+    (lambda s: 'output = "map.csv"\n' + s, r":1: output: must end in"),
+    (lambda s: "chunk_size = 0\n" + s, ":1: chunk_size: must be positive"),
     (lambda s: s + "[grid", "my.toml"),
 ])
 def test_bad_sweep_files_refused(edit, match):

@@ -4,6 +4,8 @@ from .bundled import EXAMPLES, copy_example, example_path
 from .results import ResultError, load_trajectory, save_result
 from .run import run_scenario, summary
 from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
+from .schema import SchemaError
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_trajectory", "save_result",
-           "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario"]
+           "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
+           "SchemaError"]

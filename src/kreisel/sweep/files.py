@@ -1,8 +1,8 @@
 """Sweep files: a bundled sweep, its grid and constants described in TOML.
 
 Schema (every key is checked before any work starts; an unknown key, a wrong
-type or a value out of range raises :class:`SweepFileError` naming the file
-and the key)::
+type or a value out of range raises :class:`SweepFileError` naming the file,
+the key and its line; the checks are those of :mod:`kreisel.io.schema`)::
 
     title = "..."                  # optional
     description = "..."            # optional
@@ -13,9 +13,10 @@ and the key)::
 
     [grid.<parameter>]             # one table per grid parameter of the model, each exactly one of:
     values = [1.0, 2.0]            #   explicit values
-    start = 0.0                    #   num points from start to stop (spacing "linear" or "log")
+    start = 0.0                    #   num points from start to stop
     stop = 1.0
     num = 11
+    spacing = "log"                #   optional with start/stop/num: "linear" (default) or "log"
     count = 20                     #   the integers 0 .. count-1 (Monte Carlo trials)
 
     [constants]                    # optional, the model's keyword constants
@@ -31,23 +32,41 @@ from __future__ import annotations
 
 import dataclasses
 import pathlib
-import tomllib
 from importlib import resources
 
 import numpy as np
 
+from ..io.schema import Document, Key, SchemaError, read_text
 from .core import sweep
 from .models import MODELS
 
 EXAMPLES = ("tennis_racket", "lagrange_apex", "imu_monte_carlo")
 
-_TOP = {"title": "str", "description": "str", "model": "str", "chunk_size": "int", "retries": "int",
-        "output": "str", "grid": "table", "constants": "table"}
-_AXIS = {"values": "list", "start": "number", "stop": "number", "num": "int", "count": "int", "spacing": "str"}
+_TOP = {
+    "title": Key("str", default=""),
+    "description": Key("str", default=""),
+    "model": Key("str", required=True, choices=tuple(MODELS), doc=f"one of {', '.join(MODELS)}"),
+    "chunk_size": Key("int", default=256, positive=True, doc="grid points per task"),
+    "retries": Key("int", default=2, minimum=0, doc="resubmissions of a failing chunk"),
+    "output": Key("str", doc=".zarr or .nc, relative to the file"),
+    "grid": Key("table"),  # its keys depend on the model: checked once the model is known
+    "constants": Key("table"),
+}
+_AXIS = {
+    "values": Key("numbers"),
+    "start": Key("number"),
+    "stop": Key("number"),
+    "num": Key("int", positive=True),
+    "count": Key("int", positive=True),
+    "spacing": Key("str", choices=("linear", "log")),
+}
+_FORMS = {"values": ("values",), "start": ("start", "stop", "num"), "count": ("count",)}
 
 
-class SweepFileError(ValueError):
-    """A sweep file that does not follow the schema (names the file and the key)."""
+class SweepFileError(SchemaError):
+    """A sweep file that does not follow the schema (names the file, the key and its line)."""
+
+    unnamed = "<sweep>"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -89,66 +108,24 @@ def example_path(name):
     return pathlib.Path(str(resources.files("kreisel.sweep.examples").joinpath(f"{name}.toml")))
 
 
-def _type_ok(value, kind):
-    if kind == "str":
-        return isinstance(value, str)
-    if kind == "bool":
-        return isinstance(value, bool)
-    if kind == "int":
-        return isinstance(value, int) and not isinstance(value, bool)
-    if kind == "number":
-        return isinstance(value, (int, float)) and not isinstance(value, bool) and bool(np.isfinite(value))
-    if kind == "table":
-        return isinstance(value, dict)
-    return isinstance(value, list)
-
-
-_EXPECTED = {"str": "a string", "bool": "true or false", "int": "an integer", "number": "a finite number",
-             "table": "a table", "list": "an array"}
-
-
-def _checked(label, table, schema, prefix):
-    for key, value in table.items():
-        dotted = f"{prefix}{key}"
-        if key not in schema:
-            raise SweepFileError(f"{label}: {dotted}: unknown key (expected one of: {', '.join(sorted(schema))})")
-        if not _type_ok(value, schema[key]):
-            raise SweepFileError(f"{label}: {dotted}: expected {_EXPECTED[schema[key]]}, got {value!r}")
-    return table
-
-
-def _axis(label, name, table):
-    prefix = f"grid.{name}."
-    _checked(label, table, _AXIS, prefix)
-    forms = [form for form in (("values",), ("start", "stop", "num"), ("count",)) if form[0] in table]
-    if len(forms) != 1:
-        raise SweepFileError(f"{label}: grid.{name}: give exactly one of values, start/stop/num or count")
-    form = forms[0]
-    extra = sorted(set(table) - set(form) - ({"spacing"} if form[0] == "start" else set()))
+def _axis(document, name, axis):
+    key = ("grid", name)
+    form = _FORMS[document.exactly_one(axis, tuple(_FORMS), key)]
+    extra = sorted(set(axis) - set(form) - ({"spacing"} if form[0] == "start" else set()))
     if extra:
-        raise SweepFileError(f"{label}: {prefix}{extra[0]}: not used with {'/'.join(form)}")
-    missing = [key for key in form if key not in table]
+        document.fail(key + (extra[0],), f"not used with {'/'.join(form)}")
+    missing = [name for name in form if name not in axis]
     if missing:
-        raise SweepFileError(f"{label}: grid.{name}: missing {missing[0]!r} (start, stop and num go together)")
+        document.fail(key, f"missing {missing[0]!r} (start, stop and num go together)")
     if form[0] == "values":
-        values = table["values"]
-        if not values or not all(_type_ok(v, "number") for v in values):
-            raise SweepFileError(f"{label}: {prefix}values: expected a non-empty array of finite numbers")
-        return np.array(values, dtype=int if all(isinstance(v, int) for v in values) else float)
+        return axis["values"]
     if form[0] == "count":
-        if table["count"] < 1:
-            raise SweepFileError(f"{label}: {prefix}count: must be positive, got {table['count']}")
-        return np.arange(table["count"])
-    if table["num"] < 1:
-        raise SweepFileError(f"{label}: {prefix}num: must be positive, got {table['num']}")
-    spacing = table.get("spacing", "linear")
-    if spacing not in ("linear", "log"):
-        raise SweepFileError(f"{label}: {prefix}spacing: expected 'linear' or 'log', got {spacing!r}")
-    if spacing == "log":
-        if table["start"] <= 0 or table["stop"] <= 0:
-            raise SweepFileError(f"{label}: {prefix}start: log spacing needs positive start and stop")
-        return np.geomspace(table["start"], table["stop"], table["num"])
-    return np.linspace(table["start"], table["stop"], table["num"])
+        return np.arange(axis["count"])
+    if axis.get("spacing", "linear") == "log":
+        if axis["start"] <= 0 or axis["stop"] <= 0:
+            document.fail(key + ("start",), "log spacing needs positive start and stop")
+        return np.geomspace(axis["start"], axis["stop"], axis["num"])
+    return np.linspace(axis["start"], axis["stop"], axis["num"])
 
 
 def parse_sweep_file(text, path=None):
@@ -173,47 +150,30 @@ def parse_sweep_file(text, path=None):
     >>> parse_sweep_file(text + "[constants]\\nmass = 1.0\\n", "apex.toml")
     Traceback (most recent call last):
         ...
-    kreisel.sweep.files.SweepFileError: apex.toml: constants.mass: unknown key (expected one of: I1, I3, mgl, theta0_deg)
+    kreisel.sweep.files.SweepFileError: apex.toml:10: constants.mass: unknown key (expected one of: I1, I3, mgl, theta0_deg)
     """
-    label = str(path) if path is not None else "<sweep>"
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise SweepFileError(f"{label}: {exc}") from None
-    _checked(label, raw, _TOP, "")
-    if "model" not in raw:
-        raise SweepFileError(f"{label}: model: missing required key (one of {', '.join(MODELS)})")
-    if raw["model"] not in MODELS:
-        raise SweepFileError(f"{label}: model: expected one of {', '.join(map(repr, MODELS))}, got {raw['model']!r}")
-    model = MODELS[raw["model"]]
-    grid_table = raw.get("grid", {})
-    _checked(label, grid_table, dict.fromkeys(model.grid, "table"), "grid.")
-    missing = [name for name in model.grid if name not in grid_table]
-    if missing:
-        raise SweepFileError(f"{label}: grid.{missing[0]}: missing (model {raw['model']!r} sweeps "
-                             f"{', '.join(model.grid)})")
-    grid = {name: _axis(label, name, grid_table[name]) for name in model.grid}
-    constants_table = raw.get("constants", {})
-    _checked(label, constants_table, {name: kind for name, (kind, _) in model.constants.items()}, "constants.")
-    constants = {name: default for name, (_, default) in model.constants.items() if default is not None}
-    constants.update({k: float(v) if model.constants[k][0] == "number" else v for k, v in constants_table.items()})
-    for key in ("chunk_size", "retries"):
-        if key in raw and raw[key] < (1 if key == "chunk_size" else 0):
-            raise SweepFileError(f"{label}: {key}: must be {'positive' if key == 'chunk_size' else 'non-negative'}")
+    document = Document(text, path, SweepFileError)
+    data = document.table(_TOP)
+    model = MODELS[data["model"]]
+    axes_schema = {name: Key("table", required=True, schema=_AXIS, doc=f"model {data['model']!r} sweeps "
+                             f"{', '.join(model.grid)}") for name in model.grid}
+    axes = document.table(axes_schema, data.get("grid", {}), ("grid",))
+    grid = {name: _axis(document, name, axis) for name, axis in axes.items()}
+    constants_schema = {name: Key(kind, default=default) for name, (kind, default) in model.constants.items()}
+    constants = document.table(constants_schema, data.get("constants", {}), ("constants",))
     try:
         model.check(grid, constants)
     except ValueError as exc:
-        raise SweepFileError(f"{label}: {exc}") from None
+        raise SweepFileError(f"{document.label}: {exc}") from None
     output = None
-    if "output" in raw:
-        output = pathlib.Path(raw["output"])
+    if "output" in data:
+        output = pathlib.Path(data["output"])
         if output.suffix not in (".zarr", ".nc"):
-            raise SweepFileError(f"{label}: output: must end in .zarr or .nc, got {raw['output']!r}")
+            document.fail(("output",), f"must end in .zarr or .nc, got {data['output']!r}")
         if path is not None and not output.is_absolute():
             output = pathlib.Path(path).parent / output
-    return SweepFile(pathlib.Path(path) if path is not None else None, raw.get("title", ""),
-                     raw.get("description", ""), raw["model"], grid, constants, raw.get("chunk_size", 256),
-                     raw.get("retries", 2), output)
+    return SweepFile(pathlib.Path(path) if path is not None else None, data["title"], data["description"],
+                     data["model"], grid, constants, data["chunk_size"], data["retries"], output)
 
 
 def load_sweep_file(path):
@@ -229,12 +189,7 @@ def load_sweep_file(path):
     >>> spec.constants
     {'I1': 1.0, 'I3': 0.5, 'mgl': 1.0, 'theta0_deg': 60.0}
     """
-    path = pathlib.Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise SweepFileError(f"{path}: cannot read sweep file ({exc.strerror})") from None
-    return parse_sweep_file(text, path)
+    return parse_sweep_file(read_text(path, SweepFileError, "sweep file"), path)
 
 
 def run_sweep_file(path, scheduler=None, n_workers=None, output=None, console=None, progress=None):
