@@ -18,7 +18,7 @@ import warnings
 import numpy as np
 
 import kreisel as kr
-from kreisel.kinematics import _compiled
+from kreisel.so3 import _gufunc
 from kreisel.kinematics._series import BORTZ_SERIES, BORTZ_SERIES_BELOW
 
 N = 1_000_000
@@ -68,12 +68,12 @@ def median_time(fn, repeats=7):
 
 def single_core(fn):
     def run():
-        saved = _compiled.PARALLEL_ABOVE
-        _compiled.PARALLEL_ABOVE = 1 << 62
+        saved = _gufunc.PARALLEL_THRESHOLD
+        _gufunc.PARALLEL_THRESHOLD = 1 << 62
         try:
             return fn()
         finally:
-            _compiled.PARALLEL_ABOVE = saved
+            _gufunc.PARALLEL_THRESHOLD = saved
 
     return run
 

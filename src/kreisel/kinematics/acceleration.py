@@ -12,9 +12,9 @@ import numpy as np
 
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_conjugate, quat_multiply
+from ..so3._gufunc import gufunc
 from . import _kernels as k
 from ._checks import batch_shape, vectors
-from ._compiled import kernel
 from .euler import _angles, euler_rate_matrix
 from .rates import _quaternions, _skew_part_vee
 from ..so3.euler import parse_sequence
@@ -99,7 +99,7 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
 
 # ε = J ψ̈ + (dJ/dt) ψ̇ with J = 1 + sign A hat(ψ) + B hat(ψ)²; since
 # hat(ψ̇)ψ̇ = 0, (dJ/dt)ψ̇ = (ψ·ψ̇)[sign A'/ψ ψ×ψ̇ + B'/ψ ψ×(ψ×ψ̇)] + B ψ̇×(ψ×ψ̇).
-@kernel(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(n),(n),(n),()->(n)")
+@gufunc(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(3),(3),(3),()->(3)")
 def _rotvec_acceleration(psi, v, acc, sign, out):
     x, y, z = psi[0], psi[1], psi[2]
     angle = math.sqrt(x * x + y * y + z * z)

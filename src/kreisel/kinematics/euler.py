@@ -25,13 +25,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import prange
+from numba import njit, prange
 
 from .._validation import check_frame
+from ..so3._gufunc import gufunc
 from ..so3.euler import parse_sequence
 from . import _kernels as k
 from ._checks import batch_shape, tolerance, vectors
-from ._compiled import kernel, row_loop
 from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
 
 __all__ = [
@@ -52,16 +52,26 @@ def _code(seq, frame):
     return np.array([*axes, not intrinsic, body], dtype=np.int64)
 
 
-@kernel(["void(f8[:], f8[:], i8[:], f8[:])"], "(n),(n),(m)->(n)")
-def _omega_from_rates(angles, rates, code, out):
-    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
+# The element kernels take and return scalars and the kernel code as a tuple:
+# passing arrays into a compiled call costs about as much as the kernel
+# itself, and in the parallel loops every thread would update the reference
+# count of the one shared code array.
+@k._jit
+def _code_tuple(code):
+    return code[0], code[1], code[2], code[3], code[4]
+
+
+@k._jit
+def _omega_element(x0, x1, x2, r0, r1, r2, code):
+    """ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order."""
+    c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
     if code[3]:
-        r0, r1, r2 = rates[2], rates[1], rates[0]
-    else:
-        r0, r1, r2 = rates[0], rates[1], rates[2]
-    out[0] = r0 * c0[0] + r1 * c1[0] + r2 * c2[0]
-    out[1] = r0 * c0[1] + r1 * c1[1] + r2 * c2[1]
-    out[2] = r0 * c0[2] + r1 * c1[2] + r2 * c2[2]
+        r0, r2 = r2, r0
+    return (
+        r0 * c0[0] + r1 * c1[0] + r2 * c2[0],
+        r0 * c0[1] + r1 * c1[1] + r2 * c2[1],
+        r0 * c0[2] + r1 * c1[2] + r2 * c2[2],
+    )
 
 
 @k._jit
@@ -73,24 +83,50 @@ def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
         return math.nan, middle, math.nan
     a0, a1, a2 = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
     b0, b1, b2 = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
-    r0 = (a0 * w0 + a1 * w1 + a2 * w2) / det
-    r2 = (b0 * w0 + b1 * w1 + b2 * w2) / det
+    inv = 1.0 / det
+    r0 = (a0 * w0 + a1 * w1 + a2 * w2) * inv
+    r2 = (b0 * w0 + b1 * w1 + b2 * w2) * inv
     if code[3]:
         return r2, middle, r0
     return r0, middle, r2
 
 
-@row_loop(3)
-def _rates_from_omega(angles, w, code, tol, out):
-    for i in prange(out.shape[0]):
+# The kernel code (and the tolerance) are shared by the whole batch; the
+# array is read as ``code[::1]``, numba's layout 'A' as in the gufuncs, so
+# _code_tuple is compiled for one signature.
+
+
+@njit(parallel=True, cache=True)
+def _omega_from_rates_parallel(angles, rates, code, out):
+    code = _code_tuple(code[::1])
+    for i in prange(angles.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _omega_element(
+            angles[i, 0], angles[i, 1], angles[i, 2], rates[i, 0], rates[i, 1], rates[i, 2], code
+        )
+
+
+@njit(parallel=True, cache=True)
+def _rates_from_omega_parallel(angles, w, code, tol, out):
+    code = _code_tuple(code[::1])
+    for i in prange(angles.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _rates_element(
             angles[i, 0], angles[i, 1], angles[i, 2], w[i, 0], w[i, 1], w[i, 2], code, tol
         )
 
 
-@kernel(["void(f8[:], i8[:], f8[:, :])"], "(n),(m)->(n,n)")
+@gufunc(["void(f8[:], f8[:], i8[:], f8[:])"], "(3),(3),(5)->(3)", parallel=_omega_from_rates_parallel, shared=(2,))
+def _omega_from_rates(angles, rates, code, out):
+    out[0], out[1], out[2] = _omega_element(angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], _code_tuple(code))
+
+
+@gufunc(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(3),(3),(5),()->(3)", parallel=_rates_from_omega_parallel, shared=(2, 3))
+def _rates_from_omega(angles, w, code, tol, out):
+    out[0], out[1], out[2] = _rates_element(angles[0], angles[1], angles[2], w[0], w[1], w[2], _code_tuple(code), tol)
+
+
+@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(5)->(3,3)")
 def _matrix(angles, code, out):
-    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
+    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     if code[3]:
         c0, c2 = c2, c0
     for i in range(3):
@@ -99,9 +135,9 @@ def _matrix(angles, code, out):
         out[i, 2] = c2[i]
 
 
-@kernel(["void(f8[:], i8[:], f8, f8[:, :])"], "(n),(m),()->(n,n)")
+@gufunc(["void(f8[:], i8[:], f8, f8[:, :])"], "(3),(5),()->(3,3)")
 def _matrix_inverse(angles, code, tol, out):
-    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], code)
+    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     first, last = (2, 0) if code[3] else (0, 2)
     inv = math.nan if abs(det) <= tol else 1.0 / det
     a = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
@@ -255,7 +291,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     angles = _angles(angles, degrees)
     omega = vectors(omega, "omega")
     batch_shape(("angles", angles, 1), ("omega", omega, 1))
-    out = _rates_from_omega((angles, omega), (code, tol))
+    out = _rates_from_omega(angles, omega, code, tol)
     warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out
 

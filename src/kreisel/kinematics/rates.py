@@ -10,7 +10,7 @@ import numpy as np
 
 from .._validation import as_float_array, check_frame
 from ._checks import batch_shape, vectors
-from ._compiled import THREE, kernel
+from ..so3._gufunc import gufunc
 
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
 
@@ -61,7 +61,7 @@ def angular_velocity(R, Rdot, frame="space"):
 
 # sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
 # products differ only in the sign of the cross-product term.
-@kernel(["void(f8[:], f8[:], f8, f8[:])"], "(n),(m),()->(n)")
+@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(3),()->(4)")
 def _quat_rate(q, w, sign, out):
     q0, vx, vy, vz = q[0], q[1], q[2], q[3]
     wx, wy, wz = w[0], w[1], w[2]
@@ -76,8 +76,8 @@ def _quat_rate(q, w, sign, out):
 
 # ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
 # for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
-@kernel(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(n),(n),(),(m)->(m)")
-def _quat_angular_velocity(q, qd, sign, three, out):
+@gufunc(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(4),(4),(),(3)->(3)")
+def _quat_angular_velocity(q, qd, sign, carrier3, out):
     q0, vx, vy, vz = q[0], q[1], q[2], q[3]
     p0, px, py, pz = qd[0], qd[1], qd[2], qd[3]
     s = 2.0 / (q0 * q0 + vx * vx + vy * vy + vz * vz)
@@ -153,4 +153,4 @@ def angular_velocity_from_quat_rate(q, qdot, frame="space"):
     q = _quaternions(q, "q")
     qdot = vectors(qdot, "qdot", 4)
     batch_shape(("q", q, 1), ("qdot", qdot, 1))
-    return _quat_angular_velocity(q, qdot, sign, THREE)
+    return _quat_angular_velocity(q, qdot, sign)

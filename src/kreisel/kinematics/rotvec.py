@@ -22,12 +22,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import prange
+from numba import njit, prange
 
 from .._validation import check_frame
+from ..so3._gufunc import gufunc
 from . import _kernels as k
 from ._checks import batch_shape, tolerance, vectors
-from ._compiled import kernel, row_loop
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning, warn_if_any
 
 __all__ = [
@@ -48,22 +48,24 @@ def _sign(frame):
     return _BODY if check_frame(frame) else _SPACE
 
 
-@kernel(["void(f8, f8[:])"], "()->()")
+@gufunc(["void(f8, f8[:])"], "()->()")
 def _bortz(angle, out):
     out[0] = k.bortz_coefficient(angle)
 
 
+# Element kernels on scalars: passing array views into a compiled call costs
+# about as much as these kernels. The frame sign and the tolerance are shared
+# by the whole batch.
+
+
 # J v = v + sign A ψ×v + B ψ×(ψ×v): sign +1 is J_l (space), −1 is J_r (body)
-@kernel(["void(f8[:], f8[:], f8, f8[:])"], "(n),(n),()->(n)")
-def _dexp_apply(psi, v, sign, out):
-    x, y, z = psi[0], psi[1], psi[2]
+@k._jit
+def _dexp_element(x, y, z, v0, v1, v2, sign):
     a, b = k.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    cx, cy, cz = k.cross(x, y, z, v[0], v[1], v[2])
+    cx, cy, cz = k.cross(x, y, z, v0, v1, v2)
     ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
     sa = sign * a
-    out[0] = v[0] + sa * cx + b * ccx
-    out[1] = v[1] + sa * cy + b * ccy
-    out[2] = v[2] + sa * cz + b * ccz
+    return v0 + sa * cx + b * ccx, v1 + sa * cy + b * ccy, v2 + sa * cz + b * ccz
 
 
 # J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w), NaN at the poles |ψ| = 2πk
@@ -79,12 +81,28 @@ def _dexp_inverse_element(x, y, z, w0, w1, w2, sign, tol):
     return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
 
 
-@row_loop(3)
-def _dexp_inverse_apply(psi, w, sign, tol, out):
-    for i in prange(out.shape[0]):
+@njit(parallel=True, cache=True)
+def _dexp_apply_parallel(psi, v, sign, out):
+    for i in prange(psi.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _dexp_element(psi[i, 0], psi[i, 1], psi[i, 2], v[i, 0], v[i, 1], v[i, 2], sign)
+
+
+@njit(parallel=True, cache=True)
+def _dexp_inverse_apply_parallel(psi, w, sign, tol, out):
+    for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _dexp_inverse_element(
             psi[i, 0], psi[i, 1], psi[i, 2], w[i, 0], w[i, 1], w[i, 2], sign, tol
         )
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(3),(3),()->(3)", parallel=_dexp_apply_parallel, shared=(2,))
+def _dexp_apply(psi, v, sign, out):
+    out[0], out[1], out[2] = _dexp_element(psi[0], psi[1], psi[2], v[0], v[1], v[2], sign)
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8, f8[:])"], "(3),(3),(),()->(3)", parallel=_dexp_inverse_apply_parallel, shared=(2, 3))
+def _dexp_inverse_apply(psi, w, sign, tol, out):
+    out[0], out[1], out[2] = _dexp_inverse_element(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
 
 
 @k._jit
@@ -102,14 +120,14 @@ def _write_matrix(x, y, z, linear, quadratic, out):
     out[2, 1] = quadratic * y * z + linear * x
 
 
-@kernel(["void(f8[:], f8, f8[:, :])"], "(n),()->(n,n)")
+@gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
 def _dexp_matrix(psi, sign, out):
     x, y, z = psi[0], psi[1], psi[2]
     a, b = k.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
     _write_matrix(x, y, z, sign * a, b, out)
 
 
-@kernel(["void(f8[:], f8, f8, f8[:, :])"], "(n),(),()->(n,n)")
+@gufunc(["void(f8[:], f8, f8, f8[:, :])"], "(3),(),()->(3,3)")
 def _dexp_inverse_matrix(psi, sign, tol, out):
     x, y, z = psi[0], psi[1], psi[2]
     angle = math.sqrt(x * x + y * y + z * z)
@@ -215,7 +233,7 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
     omega = vectors(omega, "omega")
     tol = tolerance(tol)
     batch_shape(("psi", psi, 1), ("omega", omega, 1))
-    out = _dexp_inverse_apply((psi, omega), (sign, tol))
+    out = _dexp_inverse_apply(psi, omega, sign, tol)
     warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out
 

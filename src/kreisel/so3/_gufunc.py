@@ -73,7 +73,9 @@ class LazyGufunc:
         :data:`PARALLEL_THRESHOLD` elements and every input either has the
         full batch shape or, if its index is in ``shared``, no batch axes.
     shared : tuple of int
-        Inputs the parallel loop takes whole (e.g. Euler axis indices).
+        Inputs without batch axes that the parallel loop takes whole: arrays
+        such as Euler axis indices, or scalars such as a frame sign or a
+        tolerance (passed as Python floats, as to the gufunc).
     """
 
     __slots__ = ("_function", "_signatures", "_layout", "_carriers", "_gufunc", "_cores", "_out", "_parallel", "_shared")
@@ -102,13 +104,14 @@ class LazyGufunc:
             )(self._function)
         return gufunc(*args, *self._carriers[len(args):])
 
-
     def _call_parallel(self, args):
         """Result of the parallel loop, or None if the batch is small or broadcast."""
         batch = None
         for index, (a, core) in enumerate(zip(args, self._cores)):
-            shape = a.shape[: a.ndim - len(core)]
-            if shape == () and index in self._shared:
+            shape = np.shape(a)[: np.ndim(a) - len(core)]
+            if index in self._shared:
+                if shape != ():
+                    return None
                 continue
             if batch is None:
                 batch = shape
@@ -118,8 +121,8 @@ class LazyGufunc:
         if n < PARALLEL_THRESHOLD:
             return None
         flat = [
-            a if a.shape == core else np.ascontiguousarray(a).reshape(n, *core)
-            for a, core in zip(args, self._cores)
+            a if index in self._shared else np.ascontiguousarray(a).reshape(n, *core)
+            for index, (a, core) in enumerate(zip(args, self._cores))
         ]
         out = np.empty((*batch, *self._out))
         self._parallel(*flat, out.reshape(n, *self._out))
