@@ -8,7 +8,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from .tensors import (
-    _as_mass,
+    _positive,
     _outer_term,
     as_rotation_matrix,
     as_symmetric_tensor,
@@ -117,7 +117,7 @@ def from_points(masses, positions):
     >>> p.inertia.diagonal()
     array([ 0., 12., 12.])
     """
-    m = _as_mass(masses, "masses", allow_zero=True)
+    m = _positive(masses, "masses", allow_zero=True)
     r = as_float_array(positions, "positions", tail=(3,))
     if m.ndim != 1 or r.shape != (m.size, 3):
         raise ValueError(f"masses must be (N,) and positions (N, 3), got {m.shape} and {r.shape}")

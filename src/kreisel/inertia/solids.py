@@ -12,16 +12,16 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import as_float_array
-from .tensors import _as_mass
+from .tensors import _positive
 
 
-def _length(x, name, allow_zero=False):
-    a = as_float_array(x, name)
-    bad = a < 0 if allow_zero else a <= 0
-    if np.any(bad):
-        relation = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} must be {relation}, got {float(a[bad].flat[0])!r}")
-    return a
+def _radii(outer, outer_name, inner, inner_name, allow_zero=True, reason=""):
+    """An outer length and an inner one that must not exceed it (``inner=None``: equal to it)."""
+    big = _positive(outer, outer_name)
+    small = big if inner is None else _positive(inner, inner_name, allow_zero=allow_zero)
+    if np.any(small > big):
+        raise ValueError(f"{inner_name} must not exceed {outer_name}{reason}")
+    return big, small
 
 
 def _diagonal(xx, yy, zz):
@@ -41,7 +41,7 @@ def _axisymmetric(transverse, axial):
 
 def _from_extents(mass, squares):
     """m diag(b + c, a + c, a + b) for per-axis mean squares (a, b, c) = (<x²>, <y²>, <z²>)."""
-    m = _as_mass(mass)[..., None]
+    m = _positive(mass, "mass")[..., None]
     a, b, c = np.moveaxis(m * squares, -1, 0)
     return _diagonal(b + c, a + c, a + b)
 
@@ -68,7 +68,7 @@ def box(mass, size):
            [ 0.,  0.,  5.]])
     """
     edges = as_float_array(size, "size", tail=(3,))
-    _length(edges, "size", allow_zero=True)
+    _positive(edges, "size", allow_zero=True)
     return _from_extents(mass, edges**2 / 12.0)
 
 
@@ -91,7 +91,7 @@ def solid_ellipsoid(mass, semi_axes):
     array([13., 10.,  5.])
     """
     semi = as_float_array(semi_axes, "semi_axes", tail=(3,))
-    _length(semi, "semi_axes")
+    _positive(semi, "semi_axes")
     return _from_extents(mass, semi**2 / 5.0)
 
 
@@ -104,8 +104,8 @@ def solid_sphere(mass, radius):
     >>> kr.inertia.solid_sphere(5.0, 1.0).diagonal()
     array([2., 2., 2.])
     """
-    m = _as_mass(mass)
-    r = _length(radius, "radius")
+    m = _positive(mass, "mass")
+    r = _positive(radius, "radius")
     moment = 0.4 * m * r**2
     return _diagonal(moment, moment, moment)
 
@@ -134,11 +134,8 @@ def hollow_sphere(mass, radius, inner_radius=None):
     >>> kr.inertia.hollow_sphere(5.0, 1.0, 0.0).diagonal()   # the solid ball
     array([2., 2., 2.])
     """
-    m = _as_mass(mass)
-    R = _length(radius, "radius")
-    r = R if inner_radius is None else _length(inner_radius, "inner_radius", allow_zero=True)
-    if np.any(r > R):
-        raise ValueError("inner_radius must not exceed radius")
+    m = _positive(mass, "mass")
+    R, r = _radii(radius, "radius", inner_radius, "inner_radius")
     numerator = R**4 + R**3 * r + R**2 * r**2 + R * r**3 + r**4
     moment = 0.4 * m * numerator / (R**2 + R * r + r**2)
     return _diagonal(moment, moment, moment)
@@ -182,12 +179,9 @@ def hollow_cylinder(mass, radius, height, inner_radius=None):
     >>> kr.inertia.hollow_cylinder(12.0, 1.0, 2.0).diagonal()
     array([10., 10., 12.])
     """
-    m = _as_mass(mass)
-    R = _length(radius, "radius")
-    h = _length(height, "height")
-    r = R if inner_radius is None else _length(inner_radius, "inner_radius", allow_zero=True)
-    if np.any(r > R):
-        raise ValueError("inner_radius must not exceed radius")
+    m = _positive(mass, "mass")
+    R, r = _radii(radius, "radius", inner_radius, "inner_radius")
+    h = _positive(height, "height")
     radial = R**2 + r**2
     return _axisymmetric(m * (3.0 * radial + h**2) / 12.0, 0.5 * m * radial)
 
@@ -226,9 +220,9 @@ def solid_cone(mass, radius, height, about="center_of_mass"):
     """
     if about not in _CONE_REFERENCE:
         raise ValueError(f"about must be one of {sorted(_CONE_REFERENCE)}, got {about!r}")
-    m = _as_mass(mass)
-    r = _length(radius, "radius")
-    h = _length(height, "height")
+    m = _positive(mass, "mass")
+    r = _positive(radius, "radius")
+    h = _positive(height, "height")
     # distance from the reference point to the centre of mass along z, in units of h
     offset = _CONE_REFERENCE[about] * h
     transverse = m * (3.0 / 20.0 * r**2 + 3.0 / 80.0 * h**2) + m * offset**2
@@ -247,8 +241,8 @@ def thin_rod(mass, length):
     >>> kr.inertia.thin_rod(3.0, 2.0).diagonal()
     array([1., 1., 0.])
     """
-    m = _as_mass(mass)
-    L = _length(length, "length")
+    m = _positive(mass, "mass")
+    L = _positive(length, "length")
     transverse = m * L**2 / 12.0
     return _axisymmetric(transverse, np.zeros_like(transverse))
 
@@ -264,8 +258,8 @@ def thin_disk(mass, radius):
     >>> kr.inertia.thin_disk(4.0, 1.0).diagonal()
     array([1., 1., 2.])
     """
-    m = _as_mass(mass)
-    r = _length(radius, "radius")
+    m = _positive(mass, "mass")
+    r = _positive(radius, "radius")
     return _axisymmetric(0.25 * m * r**2, 0.5 * m * r**2)
 
 
@@ -280,8 +274,8 @@ def thin_ring(mass, radius):
     >>> kr.inertia.thin_ring(2.0, 1.0).diagonal()
     array([1., 1., 2.])
     """
-    m = _as_mass(mass)
-    r = _length(radius, "radius")
+    m = _positive(mass, "mass")
+    r = _positive(radius, "radius")
     return _axisymmetric(0.5 * m * r**2, m * r**2)
 
 
@@ -297,9 +291,8 @@ def torus(mass, major_radius, minor_radius):
     >>> kr.inertia.torus(8.0, 1.0, 1.0).diagonal()
     array([ 9.,  9., 14.])
     """
-    m = _as_mass(mass)
-    R = _length(major_radius, "major_radius")
-    a = _length(minor_radius, "minor_radius")
-    if np.any(a > R):
-        raise ValueError("minor_radius must not exceed major_radius (a self-intersecting torus)")
+    m = _positive(mass, "mass")
+    R, a = _radii(
+        major_radius, "major_radius", minor_radius, "minor_radius", allow_zero=False, reason=" (a self-intersecting torus)"
+    )
     return _axisymmetric(m * (0.5 * R**2 + 0.625 * a**2), m * (R**2 + 0.75 * a**2))

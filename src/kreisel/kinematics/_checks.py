@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validation import as_float_array, check_frame
 from ..so3._gufunc import finite_array
 
 
@@ -21,6 +22,27 @@ def batch_shape(*items):
         described = ", ".join(f"{name} {a.shape}" for name, a, _ in items)
         names = " and ".join(name for name, _, _ in items)
         raise ValueError(f"{names} have batch shapes that do not broadcast: {described}") from None
+
+
+def same_batch(core_ndim, **arrays):
+    """The validated ``arrays``, in order, once their batch shapes (all but ``core_ndim`` trailing axes) broadcast."""
+    batch_shape(*((name, a, core_ndim) for name, a in arrays.items()))
+    return tuple(arrays.values())
+
+
+def vector_batch(length=3, **named):
+    """Finite ``(..., length)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
+    return same_batch(1, **{name: vectors(x, name, length) for name, x in named.items()})
+
+
+def matrix_batch(**named):
+    """Float ``(..., 3, 3)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
+    return same_batch(2, **{name: as_float_array(x, name, (3, 3)) for name, x in named.items()})
+
+
+def frame_sign(frame):
+    """+1 for space components, −1 for body components: the sign that tells the two rate maps apart."""
+    return -1.0 if check_frame(frame) else 1.0
 
 
 def tolerance(tol, name="tol"):

@@ -10,14 +10,14 @@ import math
 
 import numpy as np
 
-from .._validation import as_float_array, check_frame
+from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
-from ..so3._gufunc import gufunc
-from . import _kernels as k
-from ._checks import batch_shape, vectors
-from .euler import _angles, euler_rate_matrix
-from .rates import _quaternions, _skew_part_vee
+from ..so3._gufunc import gufunc, quaternion_array
 from ..so3.euler import parse_sequence
+from . import _kernels as k
+from ._checks import batch_shape, frame_sign, matrix_batch, same_batch, vector_batch, vectors
+from .euler import _angles, euler_rate_matrix
+from .rates import _skew_part_vee
 
 __all__ = [
     "angular_acceleration",
@@ -55,10 +55,7 @@ def angular_acceleration(R, Rdot, Rddot, frame="space"):
     array([0., 0., 1.])
     """
     body = check_frame(frame)
-    R = as_float_array(R, "R", (3, 3))
-    Rdot = as_float_array(Rdot, "Rdot", (3, 3))
-    Rddot = as_float_array(Rddot, "Rddot", (3, 3))
-    batch_shape(("R", R, 2), ("Rdot", Rdot, 2), ("Rddot", Rddot, 2))
+    R, Rdot, Rddot = matrix_batch(R=R, Rdot=Rdot, Rddot=Rddot)
     Rt = np.swapaxes(R, -1, -2)
     return _skew_part_vee(Rt @ Rddot if body else Rddot @ Rt)
 
@@ -85,10 +82,9 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
     array([1., 0., 0.])
     """
     body = check_frame(frame)
-    q = _quaternions(q, "q")
-    qdot = vectors(qdot, "qdot", 4)
-    qddot = vectors(qddot, "qddot", 4)
-    batch_shape(("q", q, 1), ("qdot", qdot, 1), ("qddot", qddot, 1))
+    q, qdot, qddot = same_batch(
+        1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4), qddot=vectors(qddot, "qddot", 4)
+    )
     q_inv = quat_conjugate(q) / np.einsum("...i,...i->...", q, q)[..., None]
     if body:
         rate, curvature = quat_multiply(q_inv, qdot), quat_multiply(q_inv, qddot)
@@ -138,11 +134,8 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
     >>> angular_acceleration_from_rotvec([0.0, 0.0, 1.0], [0.0, 0.0, 2.0], [0.0, 0.0, 3.0])
     array([0., 0., 3.])
     """
-    sign = -1.0 if check_frame(frame) else 1.0
-    psi = vectors(psi, "psi")
-    psidot = vectors(psidot, "psidot")
-    psiddot = vectors(psiddot, "psiddot")
-    batch_shape(("psi", psi, 1), ("psidot", psidot, 1), ("psiddot", psiddot, 1))
+    sign = frame_sign(frame)
+    psi, psidot, psiddot = vector_batch(psi=psi, psidot=psidot, psiddot=psiddot)
     return _rotvec_acceleration(psi, psidot, psiddot, sign)
 
 

@@ -31,7 +31,7 @@ from .._validation import check_frame
 from ..so3._gufunc import gufunc
 from ..so3.euler import parse_sequence
 from . import _kernels as k
-from ._checks import batch_shape, tolerance, vectors
+from ._checks import same_batch, tolerance, vectors
 from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
 
 __all__ = [
@@ -247,8 +247,7 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     """
     code = _code(seq, frame)
     angles = _angles(angles, degrees)
-    rates = _angles(rates, degrees, "rates")
-    batch_shape(("angles", angles, 1), ("rates", rates, 1))
+    angles, rates = same_batch(1, angles=angles, rates=_angles(rates, degrees, "rates"))
     return _omega_from_rates(angles, rates, code)
 
 
@@ -289,8 +288,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     code = _code(seq, frame)
     tol = tolerance(tol)
     angles = _angles(angles, degrees)
-    omega = vectors(omega, "omega")
-    batch_shape(("angles", angles, 1), ("omega", omega, 1))
+    angles, omega = same_batch(1, angles=angles, omega=vectors(omega, "omega"))
     out = _rates_from_omega(angles, omega, code, tol)
     warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out

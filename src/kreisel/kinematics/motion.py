@@ -10,7 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._checks import batch_shape, vectors
+from ._checks import vector_batch
 
 __all__ = [
     "point_velocity",
@@ -21,12 +21,6 @@ __all__ = [
     "three_term_velocity",
     "five_term_acceleration",
 ]
-
-
-def _vectors(**named):
-    arrays = {name: vectors(value, name) for name, value in named.items()}
-    batch_shape(*((name, a, 1) for name, a in arrays.items()))
-    return arrays.values()
 
 
 def point_velocity(omega, r, reference_velocity=0.0):
@@ -107,7 +101,7 @@ def relative_derivative(omega, vector, relative_rate):
     >>> relative_derivative([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0])
     array([0., 1., 0.])
     """
-    omega, a, rate = _vectors(omega=omega, vector=vector, relative_rate=relative_rate)
+    omega, a, rate = vector_batch(omega=omega, vector=vector, relative_rate=relative_rate)
     return rate + np.cross(omega, a)
 
 
@@ -191,7 +185,7 @@ def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
     >>> terms.rotational, terms.total
     (array([0., 1., 0.]), array([1., 1., 0.]))
     """
-    omega, r, v_rel, v_c = _vectors(
+    omega, r, v_rel, v_c = vector_batch(
         omega=omega, r=r, relative_velocity=_as_vector(relative_velocity), reference_velocity=_as_vector(reference_velocity)
     )
     shape = np.broadcast_shapes(omega.shape, r.shape, v_rel.shape, v_c.shape)
@@ -231,7 +225,7 @@ def five_term_acceleration(omega, epsilon, r, relative_velocity, relative_accele
     >>> terms.coriolis, terms.centripetal
     (array([0., 4., 0.]), array([-2.,  0.,  0.]))
     """
-    omega, epsilon, r, v_rel, a_rel, a_c = _vectors(
+    omega, epsilon, r, v_rel, a_rel, a_c = vector_batch(
         omega=omega,
         epsilon=epsilon,
         r=r,

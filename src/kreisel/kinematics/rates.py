@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array, check_frame
-from ._checks import batch_shape, vectors
-from ..so3._gufunc import gufunc
+from .._validation import check_frame
+from ..so3._gufunc import gufunc, quaternion_array
+from ._checks import frame_sign, matrix_batch, same_batch, vectors
 
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
 
@@ -52,9 +52,7 @@ def angular_velocity(R, Rdot, frame="space"):
     array([0., 0., 2.])
     """
     body = check_frame(frame)
-    R = as_float_array(R, "R", (3, 3))
-    Rdot = as_float_array(Rdot, "Rdot", (3, 3))
-    batch_shape(("R", R, 2), ("Rdot", Rdot, 2))
+    R, Rdot = matrix_batch(R=R, Rdot=Rdot)
     A = np.swapaxes(R, -1, -2) @ Rdot if body else Rdot @ np.swapaxes(R, -1, -2)
     return _skew_part_vee(A)
 
@@ -89,13 +87,6 @@ def _quat_angular_velocity(q, qd, sign, carrier3, out):
     out[2] = s * (q0 * pz - p0 * vz - sign * cz)
 
 
-def _quaternions(q, name):
-    q = vectors(q, name, 4)
-    if q.size and not np.all(np.einsum("...i,...i->...", q, q) > 0.0):
-        raise ValueError(f"{name} must be nonzero quaternions")
-    return q
-
-
 def quat_rate(q, omega, frame="space"):
     """Quaternion rate from the angular velocity (seed 三.3).
 
@@ -121,10 +112,8 @@ def quat_rate(q, omega, frame="space"):
     >>> quat_rate([0.6, 0.8, 0.0, 0.0], [2.0, 0.0, 0.0])
     array([-0.8,  0.6,  0. ,  0. ])
     """
-    sign = -1.0 if check_frame(frame) else 1.0
-    q = _quaternions(q, "q")
-    omega = vectors(omega, "omega")
-    batch_shape(("q", q, 1), ("omega", omega, 1))
+    sign = frame_sign(frame)
+    q, omega = same_batch(1, q=quaternion_array(q), omega=vectors(omega, "omega"))
     return _quat_rate(q, omega, sign)
 
 
@@ -149,8 +138,6 @@ def angular_velocity_from_quat_rate(q, qdot, frame="space"):
     >>> angular_velocity_from_quat_rate([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0], frame="body")
     array([0., 0., 2.])
     """
-    sign = -1.0 if check_frame(frame) else 1.0
-    q = _quaternions(q, "q")
-    qdot = vectors(qdot, "qdot", 4)
-    batch_shape(("q", q, 1), ("qdot", qdot, 1))
+    sign = frame_sign(frame)
+    q, qdot = same_batch(1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4))
     return _quat_angular_velocity(q, qdot, sign)

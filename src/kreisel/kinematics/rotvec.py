@@ -24,10 +24,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .._validation import check_frame
 from ..so3._gufunc import gufunc
 from . import _kernels as k
-from ._checks import batch_shape, tolerance, vectors
+from ._checks import frame_sign, tolerance, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning, warn_if_any
 
 __all__ = [
@@ -42,10 +41,6 @@ __all__ = [
 ]
 
 _SPACE, _BODY = 1.0, -1.0
-
-
-def _sign(frame):
-    return _BODY if check_frame(frame) else _SPACE
 
 
 @gufunc(["void(f8, f8[:])"], "()->()")
@@ -191,10 +186,8 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
     >>> angular_velocity_from_rotvec_rate([0.0, 0.0, 1.0], [0.0, 0.0, 2.0])
     array([0., 0., 2.])
     """
-    sign = _sign(frame)
-    psi = vectors(psi, "psi")
-    psidot = vectors(psidot, "psidot")
-    batch_shape(("psi", psi, 1), ("psidot", psidot, 1))
+    sign = frame_sign(frame)
+    psi, psidot = vector_batch(psi=psi, psidot=psidot)
     return _dexp_apply(psi, psidot, sign)
 
 
@@ -228,11 +221,9 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
     >>> rotvec_rate([0.1, 0.0, 0.0], [0.0, 1.0, 0.0], frame="body")  # ½ ψ×ω′ + f ψ×(ψ×ω′)
     array([0.        , 0.99916653, 0.05      ])
     """
-    sign = _sign(frame)
-    psi = vectors(psi, "psi")
-    omega = vectors(omega, "omega")
+    sign = frame_sign(frame)
+    psi, omega = vector_batch(psi=psi, omega=omega)
     tol = tolerance(tol)
-    batch_shape(("psi", psi, 1), ("omega", omega, 1))
     out = _dexp_inverse_apply(psi, omega, sign, tol)
     warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out

@@ -19,6 +19,25 @@ _jit = njit(cache=True, nogil=True)
 
 
 @_jit
+def _start(q0, b, q, out):
+    """Load the normalised initial attitude of batch element ``b`` into ``q`` and ``out[b, 0]``."""
+    for c in range(4):
+        q[c] = q0[b, c]
+    qnormalize(q)
+    for c in range(4):
+        out[b, 0, c] = q[c]
+
+
+@_jit
+def _advance(qn, q, out, b, j):
+    """Renormalise the updated attitude ``qn`` (against drift), make it current and store it as sample ``j``."""
+    qnormalize(qn)
+    for c in range(4):
+        q[c] = qn[c]
+        out[b, j, c] = qn[c]
+
+
+@_jit
 def integrate_increments(q0, dtheta, k, out):
     """Strapdown update from angle increments with the compressed coning correction.
 
@@ -33,11 +52,7 @@ def integrate_increments(q0, dtheta, k, out):
     qn = np.empty(4)
     phi = np.empty(3)
     for b in range(n_batch):
-        for c in range(4):
-            q[c] = q0[b, c]
-        qnormalize(q)
-        for c in range(4):
-            out[b, 0, c] = q[c]
+        _start(q0, b, q, out)
         for j in range(n_updates):
             base = j * per_update
             s0 = 0.0
@@ -63,10 +78,7 @@ def integrate_increments(q0, dtheta, k, out):
             phi[2] = s2 + (w0 * l1 - w1 * l0)
             rotvec_to_quat(phi, dq)
             qmul(q, dq, qn)
-            qnormalize(qn)
-            for c in range(4):
-                q[c] = qn[c]
-                out[b, j + 1, c] = qn[c]
+            _advance(qn, q, out, b, j + 1)
 
 
 @_jit
@@ -124,11 +136,7 @@ def integrate_rates(q0, t, omega, use_bortz, out):
     dq = np.empty(4)
     qn = np.empty(4)
     for b in range(n_batch):
-        for c in range(4):
-            y[c] = q0[b, c]
-        qnormalize(y)
-        for c in range(4):
-            out[b, 0, c] = y[c]
+        _start(q0, b, y, out)
         for j in range(n - 1):
             h = t[j + 1] - t[j]
             a0, a1, a2 = omega[b, j, 0], omega[b, j, 1], omega[b, j, 2]
@@ -165,7 +173,4 @@ def integrate_rates(q0, t, omega, use_bortz, out):
                 _quat_derivative(ys, e0, e1, e2, k4)
                 for c in range(4):
                     qn[c] = y[c] + h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
-            qnormalize(qn)
-            for c in range(4):
-                y[c] = qn[c]
-                out[b, j + 1, c] = qn[c]
+            _advance(qn, y, out, b, j + 1)

@@ -65,17 +65,7 @@ def qrotate_inverse(q, v, out):
 @_jit
 def quat_to_matrix(q, out):
     """``out = R(q)`` exactly as printed in seed 二.4 (q need not be unit: it is scaled)."""
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
-    s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    out[0, 0] = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s
-    out[0, 1] = 2.0 * (q1 * q2 - q0 * q3) * s
-    out[0, 2] = 2.0 * (q1 * q3 + q0 * q2) * s
-    out[1, 0] = 2.0 * (q1 * q2 + q0 * q3) * s
-    out[1, 1] = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * s
-    out[1, 2] = 2.0 * (q2 * q3 - q0 * q1) * s
-    out[2, 0] = 2.0 * (q1 * q3 - q0 * q2) * s
-    out[2, 1] = 2.0 * (q2 * q3 + q0 * q1) * s
-    out[2, 2] = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * s
+    write_matrix(q[0], q[1], q[2], q[3], out)
 
 
 @_jit
@@ -85,43 +75,17 @@ def rotvec_to_quat(psi, out):
     sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
     result is accurate to the last bit at tiny angles.
     """
-    x, y, z = psi[0], psi[1], psi[2]
-    a2 = x * x + y * y + z * z
-    a = math.sqrt(a2)
-    if a < 1e-4:
-        s = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0
-        c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0
-    else:
-        s = math.sin(0.5 * a) / a
-        c = math.cos(0.5 * a)
-    out[0] = c
-    out[1] = s * x
-    out[2] = s * y
-    out[3] = s * z
+    out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
 
 
 @_jit
 def quat_to_rotvec(q, out):
-    """Logarithm of a unit quaternion as a rotation vector with |ψ| <= π.
+    """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
 
     Uses ψ = 2 atan2(|v|, |q0|) (well conditioned everywhere, including
     ψ -> 0 and ψ -> π) after choosing the hemisphere q0 >= 0.
     """
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
-    if q0 < 0.0:
-        q0, q1, q2, q3 = -q0, -q1, -q2, -q3
-    v = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
-    n = math.sqrt(q0 * q0 + v * v)
-    ang = 2.0 * math.atan2(v, q0)
-    if v < 1e-8 * n:
-        # ψ/sin(ψ/2) -> 2/|q| (1 + ψ²/24) at small angle, with ψ ≈ 2v/q0
-        r = v / q0
-        k = 2.0 / q0 * (1.0 - r * r / 3.0)
-    else:
-        k = ang / v
-    out[0] = k * q1
-    out[1] = k * q2
-    out[2] = k * q3
+    out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])
 
 
 # ---------------------------------------------------------------------------
