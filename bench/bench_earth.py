@@ -24,7 +24,7 @@ def run_scipy():
 
     def rhs(t, y):
         out = np.empty(6)
-        pendulum_rhs.py_func(t, y, p, out)
+        pendulum_rhs.py_func(t, y, p, out, 0)
         return out
 
     y0 = np.array([np.sin(AMP), 0, -np.cos(AMP), 0, 0, 0])

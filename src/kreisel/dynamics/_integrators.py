@@ -18,14 +18,17 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from .._dop853 import NOT_FINITE, OK, integrate
 from .forces import evaluate_force
 from .torques import CALLBACK, DAMPING, evaluate_torque
 
 _jit = njit(cache=True, nogil=True)
+# the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
+_inline = njit(cache=True, nogil=True, inline="always")
 
 # method ids (the public names live in _simulate.METHODS)
 DOP853, SPLITTING, SPLITTING4, DMV, RKMK4, MIDPOINT, RK4 = 0, 1, 2, 3, 4, 5, 6
-OK, STEP_TOO_SMALL, NOT_FINITE, NO_CONVERGENCE = 0, 1, 2, 3
+NO_CONVERGENCE = 3
 
 # Yoshida's triple jump: composing a symmetric 2nd-order step gives order 4
 _CBRT2 = 2.0 ** (1.0 / 3.0)
@@ -36,20 +39,37 @@ _MAX_ITER = 100
 
 
 @_jit
+def _torque_into(rows, t, y, scratch):
+    # rows is None for no torque: numba then compiles this to three stores
+    if rows is None:
+        scratch[7] = scratch[8] = scratch[9] = 0.0
+    else:
+        evaluate_torque(rows, t, y, scratch)
+
+
+@_jit
+def _force_into(frows, t, y, scratch):
+    if frows is None:
+        scratch[10] = scratch[11] = scratch[12] = 0.0
+    else:
+        evaluate_force(frows, t, y, scratch)
+
+
+@_inline
 def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
     """dy[offset:offset+ny] = Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m.
 
     Arrays are addressed by index (never sliced) so the hot loops create no
     array views; ``scratch`` (13,) receives the torque in [7:10], force in [10:13].
     ``rows``/``frows`` are None for no torque/force: numba then compiles a
-    specialisation without the model evaluation (measurably faster loops).
+    specialisation without the model evaluation (measurably faster loops);
+    the None test lives in :func:`_torque_into`/:func:`_force_into` because
+    this function is inlined, where numba no longer prunes on argument types.
     """
     w0, w1, w2 = y[0], y[1], y[2]
     q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
-    m0 = m1 = m2 = 0.0
-    if rows is not None:
-        evaluate_torque(rows, t, y, scratch)
-        m0, m1, m2 = scratch[7], scratch[8], scratch[9]
+    _torque_into(rows, t, y, scratch)
+    m0, m1, m2 = scratch[7], scratch[8], scratch[9]
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     dy[offset] = ((i1 - i2) * w1 * w2 + m0) / i0
     dy[offset + 1] = ((i2 - i0) * w2 * w0 + m1) / i1
@@ -59,168 +79,16 @@ def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
     dy[offset + 5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
     dy[offset + 6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
     if ny == 13:
-        if frows is None:
-            scratch[10] = scratch[11] = scratch[12] = 0.0
-        else:
-            evaluate_force(frows, t, y, scratch)
+        _force_into(frows, t, y, scratch)
         for k in range(3):
             dy[offset + 7 + k] = y[10 + k]
             dy[offset + 10 + k] = scratch[10 + k] / mass
 
 
-# ----------------------------------------------------------------------------
-# adaptive Dormand-Prince 8(5,3) with 7th-order dense output (Hairer-Norsett-Wanner II.10)
-
-
-@_jit
-def _rms(x, scale):
-    s = 0.0
-    for i in range(x.size):
-        v = x[i] / scale[i]
-        s += v * v
-    return math.sqrt(s / x.size)
-
-
-@_jit
-def _initial_step(t0, y0, f0, span, inertia, mass, rows, frows, rtol, atol, tmp, f1, scratch):
-    ny = y0.size
-    scale = np.empty(ny)
-    for i in range(ny):
-        scale[i] = atol[i] + abs(y0[i]) * rtol
-    d0 = _rms(y0, scale)
-    d1 = _rms(f0, scale)
-    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-    h0 = min(h0, span)
-    for i in range(ny):
-        tmp[i] = y0[i] + h0 * f0[i]
-    rhs(t0 + h0, tmp, ny, inertia, mass, rows, frows, f1, 0, scratch)
-    for i in range(ny):
-        tmp[i] = f1[i] - f0[i]
-    d2 = _rms(tmp, scale) / h0
-    if d1 <= 1e-15 and d2 <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
-    else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
-    return min(100.0 * h0, h1, span)
-
-
-@_jit
-def dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_c, tab_e3, tab_e5,
-           tab_d, out):
-    """Integrate from ``t_out[0]`` and write the state at every ``t_out`` into ``out``.
-
-    The stages live in one flat array ``k`` (stage r, component i at r·ny + i).
-    """
-    ny = y0.size
-    n_out = t_out.size
-    k = np.empty(16 * ny)
-    y = y0.copy()
-    y_new = np.empty(ny)
-    tmp = np.empty(ny)
-    f_start = np.empty(ny)
-    f_probe = np.empty(ny)
-    dense = np.empty((7, ny))
-    scratch = np.empty(13)
-    for i in range(ny):
-        out[0, i] = y[i]
-    if n_out == 1:
-        return OK
-    t = t_out[0]
-    t_end = t_out[n_out - 1]
-    rhs(t, y, ny, inertia, mass, rows, frows, k, 0, scratch)
-    for i in range(ny):
-        f_start[i] = k[i]
-    h = _initial_step(t, y, f_start, t_end - t, inertia, mass, rows, frows, rtol, atol, tmp, f_probe,
-                      scratch)
-    j = 1
-    while j < n_out:
-        rejected = False
-        while True:
-            min_step = 10.0 * _EPS * max(abs(t), 1e-300)
-            if h < min_step:
-                return STEP_TOO_SMALL
-            t_new = t + h
-            if t_new >= t_end:
-                t_new = t_end
-            h = t_new - t
-            for s in range(1, 12):
-                for i in range(ny):
-                    acc = 0.0
-                    for r in range(s):
-                        acc += tab_a[s, r] * k[r * ny + i]
-                    tmp[i] = y[i] + h * acc
-                rhs(t + tab_c[s] * h, tmp, ny, inertia, mass, rows, frows, k, s * ny, scratch)
-            for i in range(ny):
-                acc = 0.0
-                for r in range(12):
-                    acc += tab_b[r] * k[r * ny + i]
-                y_new[i] = y[i] + h * acc
-            rhs(t_new, y_new, ny, inertia, mass, rows, frows, k, 12 * ny, scratch)
-            e5 = 0.0
-            e3 = 0.0
-            for i in range(ny):
-                scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-                a5 = 0.0
-                a3 = 0.0
-                for r in range(13):
-                    a5 += tab_e5[r] * k[r * ny + i]
-                    a3 += tab_e3[r] * k[r * ny + i]
-                e5 += (a5 / scale) ** 2
-                e3 += (a3 / scale) ** 2
-            if e5 == 0.0 and e3 == 0.0:
-                err = 0.0
-            else:
-                err = h * e5 / math.sqrt((e5 + 0.01 * e3) * ny)
-            if not math.isfinite(err):
-                err = 1e300
-            if err < 1.0:
-                factor = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
-                if rejected:
-                    factor = min(1.0, factor)
-                h_next = h * factor
-                break
-            h *= max(0.2, 0.9 * err ** (-1.0 / 8.0))
-            rejected = True
-        if t_out[j] <= t_new:
-            # three extra stages make the interpolant 7th order
-            for s in range(13, 16):
-                for i in range(ny):
-                    acc = 0.0
-                    for r in range(s):
-                        acc += tab_a[s, r] * k[r * ny + i]
-                    tmp[i] = y[i] + h * acc
-                rhs(t + tab_c[s] * h, tmp, ny, inertia, mass, rows, frows, k, s * ny, scratch)
-            for i in range(ny):
-                dy = y_new[i] - y[i]
-                dense[0, i] = dy
-                dense[1, i] = h * k[i] - dy
-                dense[2, i] = 2.0 * dy - h * (k[12 * ny + i] + k[i])
-                for p in range(4):
-                    acc = 0.0
-                    for r in range(16):
-                        acc += tab_d[p, r] * k[r * ny + i]
-                    dense[3 + p, i] = h * acc
-            while j < n_out and t_out[j] <= t_new:
-                if t_out[j] == t_new:
-                    for i in range(ny):
-                        out[j, i] = y_new[i]
-                else:
-                    x = (t_out[j] - t) / h
-                    for i in range(ny):
-                        v = 0.0
-                        for p in range(7):
-                            v += dense[6 - p, i]
-                            v *= x if p % 2 == 0 else 1.0 - x
-                        out[j, i] = v + y[i]
-                j += 1
-        for i in range(ny):
-            y[i] = y_new[i]
-            k[i] = k[12 * ny + i]
-            if not math.isfinite(y[i]):
-                return NOT_FINITE
-        t = t_new
-        h = h_next
-    return OK
+@_inline
+def _model_rhs(t, y, model, dy, offset):
+    """:func:`rhs` in the calling convention of :mod:`kreisel._dop853`; ``model = (inertia, mass, rows, frows, scratch)``."""
+    rhs(t, y, y.size, model[0], model[1], model[2], model[3], dy, offset, model[4])
 
 
 # ----------------------------------------------------------------------------
@@ -607,12 +475,17 @@ def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
 
 
 @_jit
+def _dop853_run(t_out, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
+    # its own function, not inlined into run: LLVM optimises the stage loop better alone
+    model = (inertia, mass, rows, frows, np.empty(13))
+    return integrate(_model_rhs, model, t_out, y0, rtol, atol, np.inf, tables, out, False)
+
+
+@_jit
 def run(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
     """One body: dispatch to DOP853 or a fixed-step method."""
     if method == DOP853:
-        tab_a, tab_b, tab_c, tab_e3, tab_e5, tab_d = tables
-        return dop853(t_out, y0, inertia, mass, rows, frows, rtol, atol, tab_a, tab_b, tab_c,
-                      tab_e3, tab_e5, tab_d, out)
+        return _dop853_run(t_out, y0, inertia, mass, rows, frows, rtol, atol, tables, out)
     return fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out)
 
 

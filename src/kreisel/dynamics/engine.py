@@ -45,6 +45,7 @@ import operator
 
 import numpy as np
 
+from .. import _dop853
 from .._validation import as_float_array
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from . import _integrators as _k
@@ -68,30 +69,9 @@ ADAPTIVE = ("dop853", "scipy")
 DEFAULT_RTOL = 1e-12
 
 _STATUS = {
-    _k.STEP_TOO_SMALL: "the adaptive step fell below round-off (the solution is probably singular)",
-    _k.NOT_FINITE: "the state became non-finite (step too large or torque unbounded)",
+    **_dop853.MESSAGES,
     _k.NO_CONVERGENCE: "the implicit iteration did not converge (reduce dt)",
 }
-
-_tables = []
-
-
-def _dop853_tables():
-    # Hairer's coefficients as shipped with scipy (the same numbers as the Fortran DOP853)
-    if not _tables:
-        from scipy.integrate._ivp import dop853_coefficients as c
-
-        if c.N_STAGES != 12 or c.N_STAGES_EXTENDED != 16 or c.INTERPOLATOR_POWER != 7:
-            raise RuntimeError("scipy's DOP853 coefficient tables changed layout; kreisel needs 12+4 stages")
-        _tables.append((
-            np.ascontiguousarray(c.A, dtype=np.float64),
-            np.ascontiguousarray(c.B, dtype=np.float64),
-            np.ascontiguousarray(c.C, dtype=np.float64),
-            np.ascontiguousarray(c.E3, dtype=np.float64),
-            np.ascontiguousarray(c.E5, dtype=np.float64),
-            np.ascontiguousarray(c.D, dtype=np.float64),
-        ))
-    return _tables[0]
 
 
 # ---------------------------------------------------------------------------- input checks
@@ -261,7 +241,7 @@ def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol):
     out = np.empty((t.size, y0.size))
     if method == "scipy":
         return _scipy(t, y0, moments, mass, rows, frows, rtol, atol)
-    status = _k.run(METHODS[method], t, dt, y0, moments, mass, rows, frows, rtol, atol, _dop853_tables(), out)
+    status = _k.run(METHODS[method], t, dt, y0, moments, mass, rows, frows, rtol, atol, _dop853.tableau(), out)
     _raise_status(status)
     return out
 
@@ -542,7 +522,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     y0[:, 3:7] = _initial_quaternion(q_in, batch).reshape(count, 4) if q_in is not None else [1.0, 0, 0, 0]
     atol_v = _atol(atol, np.linalg.norm(y0[:, 0:3], axis=-1), 7, rtol)
     mass = np.ones(count)
-    tables = _dop853_tables()
+    tables = _dop853.tableau()
     code = METHODS[method]
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}

@@ -19,9 +19,10 @@ does not change the east offset at first order).
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
+from .. import _dop853
 from .._validation import as_float_array
-from ..frames import _integrator
 from ..frames.particle import _NPAR, _FIELD, _W, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
@@ -76,6 +77,60 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     return (2.0 / 3.0) * w * c * np.sqrt(2.0 * h**3 / g)
 
 
+@njit(cache=True, nogil=True)
+def _land_kernel(p, y0, rtol, atol, max_step, tables):
+    """Integrate :func:`builtin_rhs` from t = 0 until the height ``y[2]`` comes down through zero.
+
+    Returns ``(status, t, y)`` there. The crossing step is found by the adaptive
+    loop, then its length is solved for by Newton's method on a single DOP853
+    step (dz/dτ = ``y[5]``), so the landing state has the integrator's full order.
+    """
+    n = y0.size
+    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
+    y = y0.copy()
+    y_new = np.empty(n)
+    tmp = np.empty(n)
+    t = 0.0
+    builtin_rhs(t, y, p, k, 0)
+    h = _dop853.initial_step(builtin_rhs, p, t, y, k, max_step, rtol, atol, tmp, y_new)
+    while True:
+        status, t_new, h_taken, h_next = _dop853.advance(
+            builtin_rhs, p, t, y, h, np.inf, max_step, rtol, atol, tables, k, tmp, y_new
+        )
+        if status != _dop853.OK:
+            return status, t, y
+        if y_new[2] <= 0.0 and y_new[5] < 0.0:
+            if y[2] > 0.0:
+                break
+            # a launch from the ground that is back below it after one step: shorten
+            h = 0.5 * h_taken
+            continue
+        t = t_new
+        h = h_next
+        for i in range(n):
+            y[i] = y_new[i]
+            k[i] = k[_dop853.N_STAGES * n + i]
+    # safeguarded Newton (bisection fallback) on the length of the last step
+    lo, hi = 0.0, h_taken
+    tau = h_taken * y[2] / (y[2] - y_new[2])
+    for _ in range(100):
+        _dop853.attempt(builtin_rhs, p, t, y, tau, tables, k, tmp, y_new)
+        if y_new[2] > 0.0:
+            lo = tau
+        else:
+            hi = tau
+        step = -y_new[2] / y_new[5] if y_new[5] != 0.0 else np.inf
+        new_tau = tau + step
+        if not (lo < new_tau < hi):
+            new_tau = 0.5 * (lo + hi)
+        converged = abs(new_tau - tau) <= 1e-15 * tau
+        tau = new_tau
+        if converged:
+            break
+    _dop853.attempt(builtin_rhs, p, t, y, tau, tables, k, tmp, y_new)
+    return _dop853.OK, t + tau, y_new
+
+
 def _land(position, velocity, latitude_deg, g, omega):
     """Landing time and ENU state of one particle under the model of the module note."""
     p = np.zeros(_NPAR)
@@ -85,7 +140,9 @@ def _land(position, velocity, latitude_deg, g, omega):
     # flight time without rotation; steps of an eighth of it keep the landing search well posed
     vz = velocity[2]
     flight = (vz + np.sqrt(vz * vz + 2.0 * g * position[2])) / g
-    return _integrator.land(builtin_rhs, p, 0.0, y0, 1e-13, 1e-13, flight / 8.0, *_integrator.tableau())
+    status, t, y = _land_kernel(p, y0, 1e-13, np.full(6, 1e-13), flight / 8.0, _dop853.tableau())
+    _dop853.check_status(status)
+    return t, y
 
 
 def simulate_drop(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):

@@ -16,8 +16,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .. import _dop853
 from .._validation import as_float_array
-from ..frames import _integrator
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -61,8 +61,11 @@ def foucault_period(latitude_deg, omega=OMEGA_EARTH):
 
 
 @njit(cache=True, nogil=True)
-def pendulum_rhs(t, y, p, out):
-    """Spherical pendulum in a frame turning at constant ω: y = (u, u̇), p = (ω, g, l)."""
+def pendulum_rhs(t, y, p, out, offset):
+    """Spherical pendulum in a frame turning at constant ω: y = (u, u̇), p = (ω, g, l).
+
+    The right-hand side of :mod:`kreisel._dop853`: dy/dt into ``out[offset:offset + 6]``.
+    """
     wx, wy, wz, g, length = p[0], p[1], p[2], p[3], p[4]
     ux, uy, uz, vx, vy, vz = y[0], y[1], y[2], y[3], y[4], y[5]
     rx, ry, rz = length * ux, length * uy, length * (1.0 + uz)
@@ -76,73 +79,63 @@ def pendulum_rhs(t, y, p, out):
     fz = -g - cz - 2.0 * length * kz
     fu = fx * ux + fy * uy + fz * uz
     vv = vx * vx + vy * vy + vz * vz
-    out[0], out[1], out[2] = vx, vy, vz
-    out[3] = (fx - fu * ux) / length - vv * ux
-    out[4] = (fy - fu * uy) / length - vv * uy
-    out[5] = (fz - fu * uz) / length - vv * uz
+    out[offset], out[offset + 1], out[offset + 2] = vx, vy, vz
+    out[offset + 3] = (fx - fu * ux) / length - vv * ux
+    out[offset + 4] = (fy - fu * uy) / length - vv * uy
+    out[offset + 5] = (fz - fu * uz) / length - vv * uz
 
 
-@njit(nogil=True)
-def _hermite(p0, m0, p1, m1, h, s):
-    s2 = s * s
-    s3 = s2 * s
-    return (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * h * m0 + (3 * s2 - 2 * s3) * p1 + (s3 - s2) * h * m1
-
-
-@njit(nogil=True)
-def _interpolate(y0, f0, y1, f1, h, s, out):
-    for i in range(6):
-        out[i] = _hermite(y0[i], f0[i], y1[i], f1[i], h, s)
-
-
-@njit(nogil=True)
-def _swing(rhs, p, y0, duration, rtol, atol, max_step, capacity, A, B, C, E3, E5):
+@njit(cache=True, nogil=True)
+def _swing(p, y0, duration, rtol, atol, max_step, capacity, tables):
     """Integrate to ``duration`` recording each maximum of the horizontal excursion.
 
     A maximum is where s = u_h·u̇_h falls through zero; it is located inside
-    the step by bisection on the cubic Hermite interpolant of (u, u̇).
+    the step by bisection on the integrator's 7th-order dense output.
     """
     times = np.empty(capacity)
     azimuth = np.empty(capacity)
     tilt = np.empty(capacity)
     count = 0
     n = 6
+    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
     y = y0.copy()
-    f = np.empty(n)
-    t = 0.0
-    rhs(t, y, p, f)
-    K = np.empty((13, n))
     y_new = np.empty(n)
-    f_new = np.empty(n)
+    tmp = np.empty(n)
+    dense = np.empty((7, n))
     z = np.empty(n)
-    h = _integrator.initial_step(rhs, p, t, y, f, rtol, atol, max_step)
+    t = 0.0
+    pendulum_rhs(t, y, p, k, 0)
+    h = _dop853.initial_step(pendulum_rhs, p, t, y, k, min(duration, max_step), rtol, atol, tmp, z)
     s_old = y[0] * y[3] + y[1] * y[4]
     while t < duration:
-        h_taken, h_next = _integrator.advance(
-            rhs, p, t, y, f, h, duration, rtol, atol, max_step, A, B, C, E3, E5, K, y_new, f_new
+        status, t_new, h_taken, h = _dop853.advance(
+            pendulum_rhs, p, t, y, h, duration, max_step, rtol, atol, tables, k, tmp, y_new
         )
+        if status != _dop853.OK:
+            return status, times, azimuth, tilt, count, y
         s_new = y_new[0] * y_new[3] + y_new[1] * y_new[4]
         if s_old > 0.0 and s_new <= 0.0:
+            _dop853.dense_coefficients(pendulum_rhs, p, t, y, y_new, h_taken, tables, k, tmp, dense)
             lo, hi = 0.0, 1.0
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
-                _interpolate(y, f, y_new, f_new, h_taken, mid, z)
+                _dop853.interpolate(dense, y, mid, z)
                 if z[0] * z[3] + z[1] * z[4] > 0.0:
                     lo = mid
                 else:
                     hi = mid
-            _interpolate(y, f, y_new, f_new, h_taken, 0.5 * (lo + hi), z)
+            _dop853.interpolate(dense, y, 0.5 * (lo + hi), z)
             if count < capacity:
                 times[count] = t + 0.5 * (lo + hi) * h_taken
                 azimuth[count] = math.atan2(z[1], z[0])
                 tilt[count] = math.atan2(math.hypot(z[0], z[1]), -z[2])
             count += 1
         s_old = s_new
-        t = duration if h_taken == duration - t else t + h_taken
-        h = h_next
-        y[:] = y_new
-        f[:] = f_new
-    return times, azimuth, tilt, count, y
+        t = t_new
+        for i in range(n):
+            y[i] = y_new[i]
+            k[i] = k[_dop853.N_STAGES * n + i]
+    return _dop853.OK, times, azimuth, tilt, count, y
 
 
 class FoucaultSwing:
@@ -273,14 +266,16 @@ def foucault_pendulum(
         [np.sin(amplitude) * np.cos(azimuth), np.sin(amplitude) * np.sin(azimuth), -np.cos(amplitude), 0.0, 0.0, 0.0]
     )
     period = 2.0 * np.pi * np.sqrt(length / g)
-    # the Hermite event interpolation wants several steps per swing
+    # several steps per swing keep at most one excursion maximum inside a step
     max_step = period / 16.0
     capacity = int(2.2 * duration / period) + 16
-    tab = _integrator.tableau()
+    tables = _dop853.tableau()
+    atol = np.full(y0.size, float(atol))
     while True:
-        times, az, tilt, count, y_end = _swing(
-            pendulum_rhs, p, y0, duration, rtol, atol, max_step, capacity, *tab
+        status, times, az, tilt, count, y_end = _swing(
+            p, y0, duration, float(rtol), atol, max_step, capacity, tables
         )
+        _dop853.check_status(status)
         if count <= capacity:
             break
         capacity = count + 16

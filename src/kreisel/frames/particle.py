@@ -1,7 +1,7 @@
 """Simulation of a particle in a moving, rotating frame (seed 八.1, Lagrange equations).
 
 m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r, integrated by the compiled
-adaptive DOP853 of :mod:`kreisel.frames._integrator`.
+adaptive DOP853 of :mod:`kreisel._dop853`.
 """
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .. import _dop853
 from .._validation import as_float_array
-from . import _integrator
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -27,8 +27,8 @@ def _cross_into(a, b, out):
 
 
 @njit(cache=True, nogil=True)
-def relative_acceleration(r, v, w, wdot, a0, specific_force, out):
-    """``out = f - a0 - 2 ω×v - ω×(ω×r) - ω̇×r`` for a specific force ``f`` (force per mass)."""
+def relative_acceleration(r, v, w, wdot, a0, specific_force, out, offset):
+    """``out[offset:offset + 3] = f - a0 - 2 ω×v - ω×(ω×r) - ω̇×r`` for a specific force ``f`` (force per mass)."""
     c = np.empty(3)
     wr = np.empty(3)
     wwr = np.empty(3)
@@ -38,20 +38,29 @@ def relative_acceleration(r, v, w, wdot, a0, specific_force, out):
     _cross_into(w, wr, wwr)
     _cross_into(wdot, r, er)
     for i in range(3):
-        out[i] = specific_force[i] - a0[i] - 2.0 * c[i] - wwr[i] - er[i]
+        out[offset + i] = specific_force[i] - a0[i] - 2.0 * c[i] - wwr[i] - er[i]
 
 
 @njit(cache=True, nogil=True)
-def builtin_rhs(t, y, p, out):
-    """Particle with ω(t) = ω0 + ω̇ (t - t0), constant a0, uniform field and isotropic spring."""
+def builtin_rhs(t, y, p, out, offset):
+    """Particle with ω(t) = ω0 + ω̇ (t - t0), constant a0, uniform field and isotropic spring.
+
+    The right-hand side of :mod:`kreisel._dop853`: dy/dt into ``out[offset:offset + 6]``.
+    """
     w = np.empty(3)
     f = np.empty(3)
     dt = t - p[_T0]
     for i in range(3):
         w[i] = p[_W + i] + p[_WDOT + i] * dt
         f[i] = p[_FIELD + i] - p[_SPRING] * y[i]
-        out[i] = y[3 + i]
-    relative_acceleration(y[:3], y[3:], w, p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], f, out[3:])
+        out[offset + i] = y[3 + i]
+    relative_acceleration(y[:3], y[3:], w, p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], f, out, offset + 3)
+
+
+@njit(cache=True, nogil=True)
+def _integrate_builtin(p, t, y0, rtol, atol, max_step, tables, out):
+    # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._dop853)
+    return _dop853.integrate(builtin_rhs, p, t, y0, rtol, atol, max_step, tables, out, True)
 
 
 def _as_function(value, name, nargs):
@@ -75,15 +84,16 @@ def _callable_rhs(omega, omega_dot, a0, force, mass):
     inv_mass = 1.0 / mass
 
     @njit
-    def rhs(t, y, p, out):
+    def rhs(t, y, p, out, offset):
         r = y[:3]
         v = y[3:]
         f = np.asarray(force_fn(t, r, v), dtype=np.float64) * inv_mass
         w = np.asarray(w_fn(t), dtype=np.float64)
         wdot = np.asarray(wdot_fn(t), dtype=np.float64)
         acc = np.asarray(a0_fn(t), dtype=np.float64)
-        out[:3] = v
-        relative_acceleration(r, v, w, wdot, acc, f, out[3:])
+        for i in range(3):
+            out[offset + i] = v[i]
+        relative_acceleration(r, v, w, wdot, acc, f, out, offset + 3)
 
     return rhs
 
@@ -236,7 +246,9 @@ def simulate_particle(
         omega_dot = (0.0, 0.0, 0.0)
 
     y0 = np.concatenate([r0, v0])
-    tab = _integrator.tableau()
+    tables = _dop853.tableau()
+    atol = np.full(y0.size, float(atol))
+    y = np.empty((t.size, y0.size))
     builtin = not (callable(omega) or callable(omega_dot) or callable(a0) or force is not None)
     if builtin:
         w = as_float_array(omega, "omega", tail=(3,)).reshape(3)
@@ -245,7 +257,7 @@ def simulate_particle(
         p = np.zeros(_NPAR)
         p[_W:_W + 3], p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], p[_FIELD:_FIELD + 3] = w, wdot, acc0, gravity
         p[_SPRING], p[_T0] = spring, t[0]
-        y = _integrator.integrate(builtin_rhs, p, t, y0, rtol, atol, max_step, *tab)
+        status = _integrate_builtin(p, t, y0, float(rtol), atol, float(max_step), tables, y)
         omega_t = w + wdot * (t - t[0])[:, None]
         a0_t = np.broadcast_to(acc0, (t.size, 3)).copy()
     else:
@@ -263,9 +275,10 @@ def simulate_particle(
 
         f_user = njit(force) if force is not None else njit(lambda tt, r, v: np.zeros(3))
         rhs = _callable_rhs(omega, omega_dot, a0, total_force, mass)
-        y = _integrator.integrate(rhs, np.zeros(1), t, y0, rtol, atol, max_step, *tab)
+        status = _dop853.integrate(rhs, np.zeros(1), t, y0, float(rtol), atol, float(max_step), tables, y, True)
         omega_t = _sample(omega, "omega", t)
         a0_t = _sample(a0, "a0", t)
+    _dop853.check_status(status)
     r, v = y[:, :3], y[:, 3:]
     if force is None:
         potential = mass * (-(r @ gravity) + 0.5 * spring * np.sum(r * r, axis=-1))

@@ -1,0 +1,250 @@
+"""The one compiled adaptive Dormand–Prince 8(5,3) integrator of kreisel.
+
+Stepping, error norm, step-size control and the 7th-order dense output follow
+Hairer, Nørsett & Wanner, *Solving ODEs I* (II.10), as scipy's ``DOP853``; the
+Butcher tableau is read from ``scipy.integrate._ivp.dop853_coefficients`` so
+that no coefficient is re-typed. :mod:`kreisel.dynamics` (Euler's equations)
+and :mod:`kreisel.frames`/:mod:`kreisel.earth` (particles in rotating frames)
+both integrate with it.
+
+The right-hand side is passed in as a compiled function
+``rhs(t, y, args, dy, offset)`` writing dy/dt into ``dy[offset:offset + y.size]``
+(the stages live in one flat array, stage r at ``r·ny``, so no array views are
+created in the hot loop); ``args`` is whatever the model needs (a tuple, an
+array). Routines that take ``rhs`` are compiled without ``cache=True``: numba
+cannot cache a function whose argument is another compiled function (each
+process would add a new, never reused entry to ``__pycache__``). Callers make
+them cacheable by calling them from a cached kernel with a fixed module-level
+``rhs`` (the kernel's cache then holds the whole compiled loop); only
+user-supplied callables are compiled per call.
+
+Status codes: 0 success, 1 the step fell below round-off, 2 non-finite state.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
+MESSAGES = {
+    STEP_TOO_SMALL: "the adaptive step fell below round-off (the solution is probably singular)",
+    NOT_FINITE: "the state became non-finite (step too large or model unbounded)",
+}
+
+N_STAGES = 12  # stage 12 is the slope at the new point (first-same-as-last)
+N_STAGES_EXTENDED = 16  # three more for the 7th-order interpolant
+_SAFETY = 0.9
+_MIN_FACTOR = 0.2
+_MAX_FACTOR = 10.0
+_ERROR_EXPONENT = -1.0 / 8.0
+_EPS = 2.220446049250313e-16
+
+_cached = njit(cache=True, nogil=True)
+_generic = njit(nogil=True, inline="always")  # takes ``rhs`` as an argument: see the module note
+
+_TABLES = []
+
+
+def tableau():
+    """Hairer's DOP853 coefficients ``(A, B, C, E3, E5, D)`` as contiguous float arrays (scipy's numbers)."""
+    if not _TABLES:
+        from scipy.integrate._ivp import dop853_coefficients as c
+
+        if c.N_STAGES != N_STAGES or c.N_STAGES_EXTENDED != N_STAGES_EXTENDED or c.INTERPOLATOR_POWER != 7:
+            raise RuntimeError("scipy's DOP853 coefficient tables changed layout; kreisel needs 12+4 stages")
+        _TABLES.append(tuple(np.ascontiguousarray(a, dtype=np.float64) for a in (c.A, c.B, c.C, c.E3, c.E5, c.D)))
+    return _TABLES[0]
+
+
+def check_status(status, messages=MESSAGES):
+    """Raise ``RuntimeError`` for a failed integration (``status != OK``)."""
+    if status != OK:
+        raise RuntimeError(f"integration failed: {messages[int(status)]}")
+
+
+@_generic
+def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
+    """Starting step of Hairer's algorithm (scipy's ``select_initial_step``), at most ``span``."""
+    ny = y.size
+    d0 = 0.0
+    d1 = 0.0
+    for i in range(ny):
+        scale = atol[i] + abs(y[i]) * rtol
+        d0 += (y[i] / scale) ** 2
+        d1 += (f[i] / scale) ** 2
+    d0 = math.sqrt(d0 / ny)
+    d1 = math.sqrt(d1 / ny)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, span)
+    for i in range(ny):
+        tmp[i] = y[i] + h0 * f[i]
+    rhs(t + h0, tmp, args, probe, 0)
+    d2 = 0.0
+    for i in range(ny):
+        scale = atol[i] + abs(y[i]) * rtol
+        d2 += ((probe[i] - f[i]) / scale) ** 2
+    d2 = math.sqrt(d2 / ny) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+    return min(100.0 * h0, h1, span)
+
+
+@_generic
+def stages(rhs, args, t, y, h, first, last, tables, k, tmp):
+    """Stages ``first … last-1``: k_s = f(t + c_s h, y + h Σ_r a_sr k_r)."""
+    A, C = tables[0], tables[2]
+    ny = y.size
+    for s in range(first, last):
+        for i in range(ny):
+            acc = 0.0
+            for r in range(s):
+                acc += A[s, r] * k[r * ny + i]
+            tmp[i] = y[i] + h * acc
+        rhs(t + C[s] * h, tmp, args, k, s * ny)
+
+
+@_generic
+def attempt(rhs, args, t, y, h, tables, k, tmp, y_new):
+    """One step of size ``h`` from ``(t, y)`` with ``k[:ny] = f(t, y)``: ``y_new`` and its slope (stage 12)."""
+    ny = y.size
+    B = tables[1]
+    stages(rhs, args, t, y, h, 1, N_STAGES, tables, k, tmp)
+    for i in range(ny):
+        acc = 0.0
+        for r in range(N_STAGES):
+            acc += B[r] * k[r * ny + i]
+        y_new[i] = y[i] + h * acc
+    rhs(t + h, y_new, args, k, N_STAGES * ny)
+
+
+@_cached
+def error_norm(y, y_new, h, k, E3, E5, rtol, atol):
+    """Hairer's combined 5th/3rd-order error estimate, scaled RMS; ``inf`` when not finite."""
+    ny = y.size
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(ny):
+        scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+        a5 = 0.0
+        a3 = 0.0
+        for r in range(N_STAGES + 1):
+            a5 += E5[r] * k[r * ny + i]
+            a3 += E3[r] * k[r * ny + i]
+        e5 += (a5 / scale) ** 2
+        e3 += (a3 / scale) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    err = abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * ny)
+    return err if math.isfinite(err) else np.inf
+
+
+@_generic
+def advance(rhs, args, t, y, h, t_end, max_step, rtol, atol, tables, k, tmp, y_new):
+    """One accepted step from ``t`` towards ``t_end`` (never past it), trying ``h`` first.
+
+    Returns ``(status, t_new, h_taken, h_next)``; the new state is in
+    ``y_new`` and its slope in stage 12 of ``k``.
+    """
+    rejected = False
+    h = min(h, max_step)
+    h_natural = h
+    while True:
+        if h < 10.0 * _EPS * max(abs(t), 1e-300):
+            return STEP_TOO_SMALL, t, 0.0, h
+        clipped = t + h >= t_end
+        t_new = t_end if clipped else t + h
+        h = t_new - t
+        attempt(rhs, args, t, y, h, tables, k, tmp, y_new)
+        err = error_norm(y, y_new, h, k, tables[3], tables[4], rtol, atol)
+        if err < 1.0:
+            factor = _MAX_FACTOR if err == 0.0 else min(_MAX_FACTOR, _SAFETY * err**_ERROR_EXPONENT)
+            if rejected:
+                return OK, t_new, h, h * min(1.0, factor)
+            # a step shortened only to land on t_end says nothing about the natural step
+            return OK, t_new, h, max(h * factor, h_natural) if clipped else h * factor
+        h *= max(_MIN_FACTOR, _SAFETY * err**_ERROR_EXPONENT)
+        rejected = True
+
+
+@_generic
+def dense_coefficients(rhs, args, t, y, y_new, h, tables, k, tmp, dense):
+    """Three extra stages and the (7, ny) coefficients of the 7th-order interpolant of the last step."""
+    ny = y.size
+    D = tables[5]
+    stages(rhs, args, t, y, h, N_STAGES + 1, N_STAGES_EXTENDED, tables, k, tmp)
+    for i in range(ny):
+        dy = y_new[i] - y[i]
+        dense[0, i] = dy
+        dense[1, i] = h * k[i] - dy
+        dense[2, i] = 2.0 * dy - h * (k[N_STAGES * ny + i] + k[i])
+        for p in range(4):
+            acc = 0.0
+            for r in range(N_STAGES_EXTENDED):
+                acc += D[p, r] * k[r * ny + i]
+            dense[3 + p, i] = h * acc
+
+
+@_cached
+def interpolate(dense, y, x, out):
+    """``out`` = the state at the fraction ``x`` ∈ [0, 1] of the step that starts at ``y``."""
+    for i in range(y.size):
+        v = 0.0
+        for p in range(7):
+            v += dense[6 - p, i]
+            v *= x if p % 2 == 0 else 1.0 - x
+        out[i] = v + y[i]
+
+
+@_generic
+def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_outputs):
+    """Write the state at every sorted time ``t_out`` (``t_out[0]`` the initial time) into ``out``.
+
+    Steps are chosen by the error control; output times inside a step are
+    filled by the dense output, or, with ``land_on_outputs``, every step is
+    shortened to end on the next output time (more steps on a fine output
+    grid, no interpolation error). Returns a status code.
+    """
+    ny = y0.size
+    n_out = t_out.size
+    k = np.empty(N_STAGES_EXTENDED * ny)
+    y = y0.copy()
+    y_new = np.empty(ny)
+    tmp = np.empty(ny)
+    probe = np.empty(ny)
+    dense = np.empty((7, ny))
+    for i in range(ny):
+        out[0, i] = y[i]
+    if n_out == 1:
+        return OK
+    t = t_out[0]
+    t_end = t_out[n_out - 1]
+    rhs(t, y, args, k, 0)
+    h = initial_step(rhs, args, t, y, k, min(t_end - t, max_step), rtol, atol, tmp, probe)
+    j = 1
+    while j < n_out:
+        target = t_out[j] if land_on_outputs else t_end
+        status, t_new, h_taken, h = advance(rhs, args, t, y, h, target, max_step, rtol, atol, tables, k, tmp,
+                                            y_new)
+        if status != OK:
+            return status
+        if t_out[j] <= t_new:
+            dense_coefficients(rhs, args, t, y, y_new, h_taken, tables, k, tmp, dense)
+            while j < n_out and t_out[j] <= t_new:
+                if t_out[j] == t_new:
+                    for i in range(ny):
+                        out[j, i] = y_new[i]
+                else:
+                    interpolate(dense, y, (t_out[j] - t) / h_taken, out[j])
+                j += 1
+        for i in range(ny):
+            y[i] = y_new[i]
+            k[i] = k[N_STAGES * ny + i]
+            if not math.isfinite(y[i]):
+                return NOT_FINITE
+        t = t_new
+    return OK
