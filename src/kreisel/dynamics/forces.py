@@ -16,7 +16,8 @@ import numpy as np
 from numba import njit, objmode
 
 from .._validation import as_float_array
-from .torques import ROW_SIZE, _CALLBACKS, rotate_scalars
+from ._rows import RowModel, RowSum, row
+from .torques import _CALLBACKS, rotate_scalars
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 
@@ -25,7 +26,7 @@ F_SPACE, F_BODY, F_DRAG, F_CALLBACK = 0, 1, 2, 3
 _jit = njit(cache=True, nogil=True)
 
 
-class ForceModel:
+class ForceModel(RowModel):
     """Base class of the compiled force models; models add with ``+``.
 
     Examples
@@ -70,10 +71,6 @@ class ForceModel:
         """
         raise NotImplementedError
 
-    def __add__(self, other):
-        if not isinstance(other, ForceModel):
-            return NotImplemented
-        return ForceSum(self, other)
 
 
 class ConstantForce(ForceModel):
@@ -101,10 +98,7 @@ class ConstantForce(ForceModel):
         self.frame = frame
 
     def rows(self):
-        r = np.zeros((1, ROW_SIZE))
-        r[0, 0] = F_SPACE if self.frame == "space" else F_BODY
-        r[0, 1:4] = self.force
-        return r
+        return row(F_SPACE if self.frame == "space" else F_BODY, self.force)
 
 
 class LinearDrag(ForceModel):
@@ -123,13 +117,10 @@ class LinearDrag(ForceModel):
         self.coefficient = c
 
     def rows(self):
-        r = np.zeros((1, ROW_SIZE))
-        r[0, 0] = F_DRAG
-        r[0, 1] = self.coefficient
-        return r
+        return row(F_DRAG, [self.coefficient])
 
 
-class ForceSum(ForceModel):
+class ForceSum(RowSum, ForceModel):
     """Sum of force models (what ``model_a + model_b`` returns).
 
     Nested sums are flattened, so the compiled loop sees one row per force.
@@ -144,18 +135,11 @@ class ForceSum(ForceModel):
     (3, 10)
     """
 
-    def __init__(self, *models):
-        flat = []
-        for m in models:
-            if not isinstance(m, ForceModel):
-                raise TypeError(f"ForceSum takes force models, got {type(m).__name__}")
-            flat.extend(m.models if isinstance(m, ForceSum) else [m])
-        self.models = tuple(flat)
+    family = ForceModel
+    noun = "force"
 
-    def rows(self):
-        if not self.models:
-            return np.zeros((0, ROW_SIZE))
-        return np.concatenate([m.rows() for m in self.models])
+
+ForceModel._sum = ForceSum
 
 
 def to_principal(rows, axes):

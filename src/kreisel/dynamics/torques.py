@@ -21,6 +21,7 @@ import numpy as np
 from numba import njit, objmode
 
 from .._validation import as_float_array
+from ._rows import ROW_SIZE, RowModel, RowSum, row
 
 __all__ = [
     "TorqueModel",
@@ -31,13 +32,12 @@ __all__ = [
     "TorqueSum",
 ]
 
-ROW_SIZE = 10
 BODY, SPACE, CROSS, DAMPING, CALLBACK = 0, 1, 2, 3, 4
 
 _jit = njit(cache=True, nogil=True)
 
 
-class TorqueModel:
+class TorqueModel(RowModel):
     """Base class of the compiled torque models; models add with ``+``.
 
     A model is also callable, ``model(t, q, omega_body)`` returning the body
@@ -78,11 +78,6 @@ class TorqueModel:
         """
         raise NotImplementedError
 
-    def __add__(self, other):
-        if not isinstance(other, TorqueModel):
-            return NotImplemented
-        return TorqueSum(self, other)
-
     def __call__(self, t, q, omega_body):
         q = as_float_array(q, "q", tail=(4,))
         w = as_float_array(omega_body, "omega_body", tail=(3,))
@@ -98,14 +93,6 @@ def _vector(x, name):
     if a.ndim != 1:
         raise ValueError(f"{name} must have shape (3,), got {a.shape}")
     return a
-
-
-def _row(kind, *vectors):
-    r = np.zeros(ROW_SIZE)
-    r[0] = kind
-    flat = np.concatenate([np.ravel(v) for v in vectors]) if vectors else np.zeros(0)
-    r[1:1 + flat.size] = flat
-    return r[None, :]
 
 
 class GravityTorque(TorqueModel):
@@ -138,7 +125,7 @@ class GravityTorque(TorqueModel):
         self.lever = _vector(lever, "lever")
 
     def rows(self):
-        return _row(CROSS, self.lever, np.array([0.0, 0.0, -self.weight]))
+        return row(CROSS, self.lever, np.array([0.0, 0.0, -self.weight]))
 
     def __repr__(self):
         return f"GravityTorque(weight={self.weight!r}, lever={self.lever.tolist()!r})"
@@ -166,7 +153,7 @@ class MagneticTorque(TorqueModel):
         self.field = _vector(field, "field")
 
     def rows(self):
-        return _row(CROSS, self.dipole, self.field)
+        return row(CROSS, self.dipole, self.field)
 
     def __repr__(self):
         return f"MagneticTorque(dipole={self.dipole.tolist()!r}, field={self.field.tolist()!r})"
@@ -196,7 +183,7 @@ class ConstantTorque(TorqueModel):
         self.frame = frame
 
     def rows(self):
-        return _row(BODY if self.frame == "body" else SPACE, self.torque)
+        return row(BODY if self.frame == "body" else SPACE, self.torque)
 
     def __repr__(self):
         return f"ConstantTorque({self.torque.tolist()!r}, frame={self.frame!r})"
@@ -229,13 +216,13 @@ class LinearDamping(TorqueModel):
         self.coefficient = c
 
     def rows(self):
-        return _row(DAMPING, self.coefficient)
+        return row(DAMPING, self.coefficient)
 
     def __repr__(self):
         return f"LinearDamping({self.coefficient.tolist()!r})"
 
 
-class TorqueSum(TorqueModel):
+class TorqueSum(RowSum, TorqueModel):
     """Sum of torque models (what ``model_a + model_b`` returns).
 
     Examples
@@ -245,21 +232,14 @@ class TorqueSum(TorqueModel):
     array([0., 0., 0.])
     """
 
-    def __init__(self, *models):
-        flat = []
-        for m in models:
-            if not isinstance(m, TorqueModel):
-                raise TypeError(f"TorqueSum takes torque models, got {type(m).__name__}")
-            flat.extend(m.models if isinstance(m, TorqueSum) else [m])
-        self.models = tuple(flat)
-
-    def rows(self):
-        if not self.models:
-            return np.zeros((0, ROW_SIZE))
-        return np.concatenate([m.rows() for m in self.models])
+    family = TorqueModel
+    noun = "torque"
 
     def __repr__(self):
         return " + ".join(repr(m) for m in self.models) or "TorqueSum()"
+
+
+TorqueModel._sum = TorqueSum
 
 
 def to_principal(rows, axes):
@@ -294,10 +274,7 @@ def release_callback(key):
 
 
 def callback_row(key):
-    r = np.zeros((1, ROW_SIZE))
-    r[0, 0] = CALLBACK
-    r[0, 1] = key
-    return r
+    return row(CALLBACK, [key])
 
 
 def _call_registered(key, t, y):
