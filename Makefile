@@ -30,7 +30,11 @@ demo: $(VENV)/.installed-run web
 test: $(VENV)/.installed-dev web
 	$(PY) -m pytest -n 2 --dist loadfile -q
 
-bench: $(VENV)/.installed-dev
+$(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
+	$(PY) -m pip install --quiet -e ".[dev,bench]"
+	touch $@
+
+bench: $(VENV)/.installed-bench
 	$(PY) bench/run_all.py
 
 docs: $(VENV)/.installed-docs
