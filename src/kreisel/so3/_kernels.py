@@ -38,28 +38,24 @@ def qnormalize(q):
 
 
 @_jit
-def qrotate(q, v, out):
-    """``out = R(q) v`` for a unit quaternion, without forming the matrix."""
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+def _rotated(q0, q1, q2, q3, x, y, z):
     # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
-    t0 = 2.0 * (q2 * v[2] - q3 * v[1])
-    t1 = 2.0 * (q3 * v[0] - q1 * v[2])
-    t2 = 2.0 * (q1 * v[1] - q2 * v[0])
-    out[0] = v[0] + q0 * t0 + q2 * t2 - q3 * t1
-    out[1] = v[1] + q0 * t1 + q3 * t0 - q1 * t2
-    out[2] = v[2] + q0 * t2 + q1 * t1 - q2 * t0
+    t0 = 2.0 * (q2 * z - q3 * y)
+    t1 = 2.0 * (q3 * x - q1 * z)
+    t2 = 2.0 * (q1 * y - q2 * x)
+    return x + q0 * t0 + q2 * t2 - q3 * t1, y + q0 * t1 + q3 * t0 - q1 * t2, z + q0 * t2 + q1 * t1 - q2 * t0
+
+
+@_jit
+def qrotate(q, v, out):
+    """``out = R(q) v`` for a unit quaternion, without forming the matrix (``out`` may be ``v``)."""
+    out[0], out[1], out[2] = _rotated(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
 
 
 @_jit
 def qrotate_inverse(q, v, out):
-    """``out = R(q)^T v`` for a unit quaternion."""
-    q0, q1, q2, q3 = q[0], -q[1], -q[2], -q[3]
-    t0 = 2.0 * (q2 * v[2] - q3 * v[1])
-    t1 = 2.0 * (q3 * v[0] - q1 * v[2])
-    t2 = 2.0 * (q1 * v[1] - q2 * v[0])
-    out[0] = v[0] + q0 * t0 + q2 * t2 - q3 * t1
-    out[1] = v[1] + q0 * t1 + q3 * t0 - q1 * t2
-    out[2] = v[2] + q0 * t2 + q1 * t1 - q2 * t0
+    """``out = R(q)^T v`` for a unit quaternion, the rotation by its conjugate (``out`` may be ``v``)."""
+    out[0], out[1], out[2] = _rotated(q[0], -q[1], -q[2], -q[3], v[0], v[1], v[2])
 
 
 @_jit
