@@ -10,8 +10,10 @@ from ..so3._kernels import quat_to_matrix
 
 @njit(cache=True, nogil=True)
 def _fill_matrices(q, out):
+    # Element slices with numba's layout 'A', as so3's gufuncs pass them: the
+    # shared kernel is compiled (and cached on disk) for one signature only.
     for k in range(q.shape[0]):
-        quat_to_matrix(q[k], out[k])
+        quat_to_matrix(q[k, ::1], out[k, :, ::1])
 
 
 def quaternions_to_matrices(q):

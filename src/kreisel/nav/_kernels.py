@@ -19,6 +19,17 @@ _jit = njit(cache=True, nogil=True)
 
 
 @_jit
+def _buffer():
+    """A scratch 4-vector (or 3-vector in its first slots) with numba's layout 'A'.
+
+    so3's gufuncs pass 'A' arrays to the shared kernels (qmul, qnormalize,
+    rotvec_to_quat); buffers of the same layout here keep each of those
+    compiled, and cached on disk, for one signature only.
+    """
+    return np.empty((1, 4))[0, ::1]
+
+
+@_jit
 def _start(q0, b, q, out):
     """Load the normalised initial attitude of batch element ``b`` into ``q`` and ``out[b, 0]``."""
     for c in range(4):
@@ -47,10 +58,10 @@ def integrate_increments(q0, dtheta, k, out):
     n_batch = dtheta.shape[0]
     per_update = k.shape[0] + 1
     n_updates = dtheta.shape[1] // per_update
-    q = np.empty(4)
-    dq = np.empty(4)
-    qn = np.empty(4)
-    phi = np.empty(3)
+    q = _buffer()
+    dq = _buffer()
+    qn = _buffer()
+    phi = _buffer()
     for b in range(n_batch):
         _start(q0, b, q, out)
         for j in range(n_updates):
@@ -127,14 +138,14 @@ def integrate_rates(q0, t, omega, use_bortz, out):
     """
     n_batch = omega.shape[0]
     n = t.shape[0]
-    y = np.empty(4)
-    ys = np.empty(4)
-    k1 = np.empty(4)
-    k2 = np.empty(4)
-    k3 = np.empty(4)
-    k4 = np.empty(4)
-    dq = np.empty(4)
-    qn = np.empty(4)
+    y = _buffer()
+    ys = _buffer()
+    k1 = _buffer()
+    k2 = _buffer()
+    k3 = _buffer()
+    k4 = _buffer()
+    dq = _buffer()
+    qn = _buffer()
     for b in range(n_batch):
         _start(q0, b, y, out)
         for j in range(n - 1):

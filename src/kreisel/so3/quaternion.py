@@ -83,7 +83,8 @@ def _apply(q, v, out):
 @njit(cache=True, nogil=True)
 def _multiply_one(p, q):
     out = np.empty(4)
-    k.qmul(p, q, out)
+    # The tuple product: qmul itself stays compiled for the gufuncs' layout 'A' only.
+    out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     finite = True
     for i in range(4):
         finite = finite and abs(out[i]) <= 1.7976931348623157e308
@@ -91,7 +92,9 @@ def _multiply_one(p, q):
 
 
 def _is_single(x):
-    return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64
+    # Writable arrays only: a read-only one would compile (and cache) a second
+    # signature of _multiply_one and of the shared kernel qmul.
+    return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64 and x.flags.writeable
 
 
 def quat_multiply(p, q):
