@@ -86,3 +86,10 @@ def test_six_dof_and_batch_round_trips(tmp_path):
         batch.save(tmp_path / "batch.csv")
     with pytest.raises(ValueError, match=".nc or .csv"):
         batch.save(tmp_path / "batch.h5")
+
+
+def test_extra_arrays_may_not_hide_trajectory_attributes():
+    args = ([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
+    for name in ("euler", "energy", "drift", "omega_space"):
+        with pytest.raises(ValueError, match=f"extra array '{name}' would hide"):
+            kr.Trajectory(*args, **{name: [[0.0] * 3] * 2})

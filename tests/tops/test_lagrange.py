@@ -34,13 +34,13 @@ def test_exact_solution_matches_reference(reference, label):
     euler0, rates0 = STATES[label]
     t = np.linspace(0.0, 20.0, 201)
     tr = TOP.solve(t, euler0, rates0)
-    np.testing.assert_allclose(tr.euler[0], euler0, atol=1e-15)
+    np.testing.assert_allclose(tr.zxz_angles[0], euler0, atol=1e-15)
     omega_ref, q_ref = _reference_from(reference, tr, t)
     np.testing.assert_allclose(tr.omega, omega_ref, atol=1e-10)
     np.testing.assert_allclose(tr.q, q_ref, atol=1e-10)
     # the reference's own Euler angles agree with the exact ones
     angles = Rotation.from_quat(q_ref[:, [1, 2, 3, 0]]).as_euler("ZXZ")
-    np.testing.assert_allclose(angles[:, 1], tr.euler[:, 1], atol=1e-10)
+    np.testing.assert_allclose(angles[:, 1], tr.zxz_angles[:, 1], atol=1e-10)
 
 
 @pytest.mark.parametrize("label", ["cusp", "loop"])
@@ -69,17 +69,17 @@ def test_long_run_integrals_and_turning_points(reference, label):
     assert theta.min() == pytest.approx(theta_min, abs=1e-6) and theta.max() == pytest.approx(theta_max, abs=1e-6)
     assert theta.min() >= theta_min - 1e-9 and theta.max() <= theta_max + 1e-9
     # effective potential: ½ I1 θ̇² + V_eff(θ) = E, and V_eff = E at the turning points
-    veff = TOP.effective_potential(tr.euler[:, 1], constants.J3, constants.Jz)
-    np.testing.assert_allclose(0.5 * TOP.I1 * tr.euler_rates[:, 1] ** 2 + veff, constants.E, rtol=1e-12)
+    veff = TOP.effective_potential(tr.zxz_angles[:, 1], constants.J3, constants.Jz)
+    np.testing.assert_allclose(0.5 * TOP.I1 * tr.zxz_rates[:, 1] ** 2 + veff, constants.E, rtol=1e-12)
     np.testing.assert_allclose(TOP.effective_potential([theta_min, theta_max], constants.J3, constants.Jz), constants.E, rtol=1e-11)
     # nutation period and mean precession against the long run
     period = TOP.nutation_period(euler0, rates0)
     n = int(t[-1] // period)
     late = TOP.solve(np.array([0.0, n * period]), euler0, rates0)
-    np.testing.assert_allclose(late.euler[1, 1], euler0[1], atol=1e-10)
+    np.testing.assert_allclose(late.zxz_angles[1, 1], euler0[1], atol=1e-10)
     phi = np.unwrap(R.as_euler("ZXZ")[:, 0])
     k = np.searchsorted(t, n * period)
-    slope = (late.euler[1, 0] - late.euler[0, 0]) / (n * period)
+    slope = (late.zxz_angles[1, 0] - late.zxz_angles[0, 0]) / (n * period)
     assert TOP.mean_precession_rate(euler0, rates0) == pytest.approx(slope, rel=1e-11)
     assert (phi[k] - phi[0]) / t[k] == pytest.approx(slope, rel=1e-3)
 
@@ -192,7 +192,7 @@ def test_simulate_agrees_with_exact_solution():
     sim = TOP.simulate(t, euler0, rates0, rtol=1e-13)
     np.testing.assert_allclose(sim.q, exact.q, atol=1e-9)
     np.testing.assert_allclose(sim.omega, exact.omega, atol=1e-9)
-    np.testing.assert_allclose(sim.euler, exact.euler, atol=1e-9)
+    np.testing.assert_allclose(sim.zxz_angles, exact.zxz_angles, atol=1e-9)
 
 
 def test_bad_input():

@@ -57,6 +57,8 @@ class Trajectory:
         self.inertia = inertia
         self.meta = dict(meta or {})
         for key, value in extra.items():
+            if hasattr(type(self), key) or key in vars(self):
+                raise ValueError(f"extra array {key!r} would hide Trajectory.{key}; give it another name")
             setattr(self, key, np.asarray(value))
         self._extra = tuple(extra)
 

@@ -53,7 +53,7 @@ class LagrangeConstants:
     >>> import numpy as np
     >>> top = LagrangeTop(1.0, 0.5, 1.0)
     >>> tr = top.solve(np.linspace(0.0, 3.0, 5), [0.0, 0.5, 0.0], [0.2, 0.1, 10.0])
-    >>> values = np.array([[c.J3, c.Jz, c.E] for c in map(top.constants, tr.euler, tr.euler_rates)])
+    >>> values = np.array([[c.J3, c.Jz, c.E] for c in map(top.constants, tr.zxz_angles, tr.zxz_rates)])
     >>> values[0].round(6).tolist()
     [5.087758, 4.510898, 26.772464]
     >>> bool(np.allclose(values, values[0], rtol=1e-13, atol=0.0))
@@ -466,7 +466,7 @@ class LagrangeTop:
     def _trajectory(self, t, euler, rates, meta):
         q = euler_to_quat("ZXZ", euler)
         omega = angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
-        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, euler=euler, euler_rates=rates)
+        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
 
     def solve(self, t, euler0, rates0):
         """Exact motion by quadrature (MATH.md §2): u(t) by sn², φ and ψ by Π.
@@ -481,13 +481,13 @@ class LagrangeTop:
         Returns
         -------
         Trajectory
-            With ``q``, body ``omega`` and the extra arrays ``euler`` (n, 3)
-            and ``euler_rates`` (n, 3).
+            With ``q``, body ``omega`` and the extra arrays ``zxz_angles`` (n, 3),
+            continuous (φ and ψ not wrapped), and ``zxz_rates`` (n, 3).
 
         Examples
         --------
         >>> tr = LagrangeTop(1.0, 0.5, 1.0).solve([0.0, 1.0], [0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
-        >>> round(float(tr.euler[1, 1]), 6)
+        >>> round(float(tr.zxz_angles[1, 1]), 6)
         0.523312
         """
         t = as_float_array(t, "t")
@@ -506,12 +506,12 @@ class LagrangeTop:
         The body is (I1, I1, I3) about the pivot, weight ``mgl`` at lever (0, 0, 1)
         (only the product m g l enters). ``options`` go to :func:`kreisel.simulate`
         (``dt``, ``rtol``, ``atol``). The returned trajectory also carries the
-        ZXZ angles ``euler`` recovered from ``q`` (φ and ψ unwrapped).
+        ZXZ angles ``zxz_angles`` recovered from ``q`` (φ and ψ unwrapped).
 
         Examples
         --------
         >>> tr = LagrangeTop(1.0, 0.5, 1.0).simulate([0.0, 1.0], [0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
-        >>> round(float(tr.euler[1, 1]), 6)
+        >>> round(float(tr.zxz_angles[1, 1]), 6)
         0.523312
         """
         euler0, rates0 = self._check_state(euler0, rates0)
@@ -524,4 +524,4 @@ class LagrangeTop:
         euler[:, 2] = np.unwrap(euler[:, 2])
         euler[:, 0] += euler0[0] - euler[0, 0]
         euler[:, 2] += euler0[2] - euler[0, 2]
-        return Trajectory(tr.t, tr.q, tr.omega, tr.inertia, meta=tr.meta, euler=euler)
+        return Trajectory(tr.t, tr.q, tr.omega, tr.inertia, meta=tr.meta, zxz_angles=euler)

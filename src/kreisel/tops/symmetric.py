@@ -201,7 +201,7 @@ class SymmetricTop:
         q = euler_to_quat("ZXZ", angles)
         omega = self.angular_velocity(t, J, theta0, phi0, psi0, frame="body")
         meta = {"method": "closed form", "body": "SymmetricTop", "J": J, "theta0": theta0}
-        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, euler=angles)
+        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=angles)
 
     def cones(self, J, theta0):
         """Half-angles, relative position and senses of the body and space cones.
