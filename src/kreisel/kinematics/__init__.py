@@ -12,7 +12,6 @@ centre and centrodes.
 
 from . import acceleration, euler, motion, rates, rotvec, screw
 from ._singularity import (
-    SINGULAR_TOL,
     GimbalLockWarning,
     KinematicSingularityWarning,
     RotationVectorSingularityWarning,

@@ -30,9 +30,7 @@ def omega(traj, frame="body"):
     ax = fig.add_subplot()
     for i in range(3):
         ax.plot(traj.t, values[..., i], label=f"ω{prime}{i + 1}")
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("ω (rad/s)")
-    ax.set_title(f"angular velocity, {frame} components")
+    ax.set(xlabel="t (s)", ylabel="ω (rad/s)", title=f"angular velocity, {frame} components")
     ax.legend(loc="upper right")
     return fig
 
@@ -58,9 +56,7 @@ def energy(traj):
     for label, series in (("T", traj.energy), ("|J|", np.linalg.norm(traj.angular_momentum_body, axis=-1))):
         ref = series[..., :1]
         ax.plot(traj.t, (series - ref) / np.where(ref == 0, 1.0, ref), label=f"{label}(t)/{label}(0) − 1")
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("relative drift")
-    ax.set_title("first integrals")
+    ax.set(xlabel="t (s)", ylabel="relative drift", title="first integrals")
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
     ax.legend(loc="best")
     return fig
@@ -86,9 +82,7 @@ def euler(traj, seq="ZXZ", degrees=True):
     names = ("φ", "θ", "ψ") if seq == "ZXZ" else tuple(f"angle {i + 1}" for i in range(3))
     for i in range(3):
         ax.plot(traj.t, angles[..., i], label=names[i])
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("angle (°)" if degrees else "angle (rad)")
-    ax.set_title(f"Euler angles ({seq})")
+    ax.set(xlabel="t (s)", ylabel="angle (°)" if degrees else "angle (rad)", title=f"Euler angles ({seq})")
     ax.legend(loc="best")
     return fig
 
@@ -117,8 +111,7 @@ def polhode(traj):
                       color="0.8", linewidth=0.4)
     for path in w:
         ax.plot(path[:, 0], path[:, 1], path[:, 2], color="C3", linewidth=1.5)
-    ax.set_xlabel("ω′1")
-    ax.set_ylabel("ω′2")
+    ax.set(xlabel="ω′1", ylabel="ω′2")
     ax.set_zlabel("ω′3")
     ax.set_title("polhode on the energy ellipsoid")
     ax.set_box_aspect(semi)
@@ -155,9 +148,7 @@ def herpolhode(traj):
     y = np.einsum("...i,...i->...", w, e2[..., None, :])
     ax.plot(x.T if x.ndim > 1 else x, y.T if y.ndim > 1 else y, color="C0", linewidth=0.8)
     ax.set_aspect("equal")
-    ax.set_xlabel("ω · e1 (rad/s)")
-    ax.set_ylabel("ω · e2 (rad/s)")
-    ax.set_title("herpolhode on the invariable plane")
+    ax.set(xlabel="ω · e1 (rad/s)", ylabel="ω · e2 (rad/s)", title="herpolhode on the invariable plane")
     return fig
 
 

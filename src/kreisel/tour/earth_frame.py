@@ -24,14 +24,10 @@ def eastward_deflection(quick):
     ax1, ax2 = fig.subplots(1, 2)
     ax1.loglog(heights, sim, "o", label="simulation (full rotating-frame equations)")
     ax1.loglog(heights, earth.eastward_deflection(heights, _LATITUDE, g=_G, omega=_OMEGA), label="(2/3) ω cos λ √(2h³/g)")
-    ax1.set_xlabel("drop height h (m)")
-    ax1.set_ylabel("eastward deflection (m)")
-    ax1.set_title("Hefei, λ = 31.8584°")
+    ax1.set(xlabel="drop height h (m)", ylabel="eastward deflection (m)", title="Hefei, λ = 31.8584°")
     ax1.legend(fontsize=8)
     ax2.plot(latitudes, 1e3 * earth.eastward_deflection(100.0, latitudes, g=_G, omega=_OMEGA))
-    ax2.set_xlabel("latitude (°)")
-    ax2.set_ylabel("deflection of a 100 m drop (mm)")
-    ax2.set_title("largest at the equator, zero at the poles")
+    ax2.set(xlabel="latitude (°)", ylabel="deflection of a 100 m drop (mm)", title="largest at the equator, zero at the poles")
     return Section(
         "Eastward deflection of a falling body", "八.3",
         "A body dropped from rest at height h in the rotating Earth frame lands east of the foot of the "
@@ -59,9 +55,7 @@ def foucault_pendulum(quick):
         ax.plot(run.t / 60, np.degrees(run.swing_azimuth - run.swing_azimuth[0]), label=label)
     ax.plot(north.t / 60, np.degrees(theory * north.t), "k--", linewidth=0.8, label="∓ ω sin λ t")
     ax.plot(north.t / 60, -np.degrees(theory * north.t), "k--", linewidth=0.8)
-    ax.set_xlabel("t (min)")
-    ax.set_ylabel("swing-plane azimuth change (°)")
-    ax.set_title("10 m pendulum, measured at each maximal excursion")
+    ax.set(xlabel="t (min)", ylabel="swing-plane azimuth change (°)", title="10 m pendulum, measured at each maximal excursion")
     ax.legend(fontsize=8)
     return Section(
         "Foucault pendulum", "八.3",

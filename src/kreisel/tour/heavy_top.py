@@ -45,8 +45,7 @@ def lagrange_top(quick):
             ax.plot(np.sin(bound) * np.cos(ring), np.sin(bound) * np.sin(ring), color="0.6", linestyle=":")
         ax.set_aspect("equal")
         ax.set_title(f"apex locus seen from above: {kind}", fontsize=9)
-        ax.set_xlabel("x")
-        ax.set_ylabel("y")
+        ax.set(xlabel="x", ylabel="y")
         checks += [
             Check.equal(f"{kind}: apex_locus_kind", _TOP.apex_locus_kind(euler0, rates), kind),
             Check.close(f"{kind}: largest θ on the sampled path (rad)", float(theta_path.max()), float(high),
@@ -93,9 +92,7 @@ def fast_and_sleeping_top(quick):
     ax = fig.add_subplot()
     ax.loglog(spins, exact_rates, "o-", label="exact mean φ̇")
     ax.loglog(spins, approx_rates, "--", label="m g l/(I3 ω3)")
-    ax.set_xlabel("spin ω3 (rad/s)")
-    ax.set_ylabel("mean precession rate (rad/s)")
-    ax.set_title("fast top released from rest at θ0 = 0.6 rad")
+    ax.set(xlabel="spin ω3 (rad/s)", ylabel="mean precession rate (rad/s)", title="fast top released from rest at θ0 = 0.6 rad")
     ax.legend()
     return Section(
         "Fast top and sleeping top", "六.6–7",
@@ -125,9 +122,7 @@ def kovalevskaya_top(quick):
     fig = Figure(figsize=(7, 3.8), layout="constrained")
     ax = fig.add_subplot()
     ax.plot(t, traj.omega, linewidth=0.8)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("ω′ (rad/s)")
-    ax.set_title(f"Kovalevskaya top: K = {K[0]:.6f} conserved to {np.ptp(K) / abs(K[0]):.1e}")
+    ax.set(xlabel="t (s)", ylabel="ω′ (rad/s)", title=f"Kovalevskaya top: K = {K[0]:.6f} conserved to {np.ptp(K) / abs(K[0]):.1e}")
     return Section(
         "Kovalevskaya top", "七",
         "With I1 = I2 = 2 I3 and the centre of mass in the equatorial plane the heavy top has a fourth "

@@ -53,13 +53,9 @@ def work_precision(quick):
         errs.append(max(float(np.max(energy)), 1e-17))
         costs.append(seconds)
     ax1.loglog(costs, errs, "s--", color="k", label="dop853 (adaptive)")
-    ax1.set_xlabel("CPU time (s)")
-    ax1.set_ylabel("max relative energy error")
-    ax1.set_title(f"work–precision, T = {t_end:g}")
+    ax1.set(xlabel="CPU time (s)", ylabel="max relative energy error", title=f"work–precision, T = {t_end:g}")
     ax1.legend(fontsize=7)
-    ax2.set_xlabel("t")
-    ax2.set_ylabel("relative energy error")
-    ax2.set_title("energy error along the run, h = 0.1")
+    ax2.set(xlabel="t", ylabel="relative energy error", title="energy error along the run, h = 0.1")
     ax2.legend(fontsize=7, ncol=2)
     return Section(
         "Choosing an integrator", "四.5",

@@ -80,9 +80,7 @@ def bortz_coefficient(quick):
     ax.semilogy(psi, coefficient, label="kreisel")
     ax.semilogy(psi[big], closed[big], "--", label="closed form (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ)")
     ax.axvline(2 * np.pi, color="0.6", linestyle=":")
-    ax.set_xlabel("ψ (rad)")
-    ax.set_ylabel("coefficient")
-    ax.set_title("Bortz equation: ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)")
+    ax.set(xlabel="ψ (rad)", ylabel="coefficient", title="Bortz equation: ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)")
     ax.legend(fontsize=8)
     return Section(
         "The Bortz coefficient", "三.5",

@@ -47,9 +47,7 @@ def coning_drift(quick):
                    Check.close(f"N = {n}: angle between the drift and body −x (rad)",
                                float(np.arccos(min(1.0, along_minus_x))), alpha, rtol=1e-3,
                                source="α: the drift is about the cone axis")]
-    ax.set_xlabel("λ = Ω T_s")
-    ax.set_ylabel("drift rate (rad/s)")
-    ax.set_title("coning α = 1°, Ω = 2π rad/s: N-sample updates")
+    ax.set(xlabel="λ = Ω T_s", ylabel="drift rate (rad/s)", title="coning α = 1°, Ω = 2π rad/s: N-sample updates")
     ax.legend(fontsize=7, ncol=2)
     return Section(
         "Strapdown attitude and coning drift", "三.3, 三.5",

@@ -90,9 +90,7 @@ def gimbal_lock(quick):
     ax.loglog(theta, np.abs(rates[:, 0]), label="|φ̇|")
     ax.loglog(theta, np.abs(rates[:, 2]), "--", label="|ψ̇|")
     ax.loglog(theta, np.linalg.norm(qdot, axis=-1), label="|q̇| = |ω|/2")
-    ax.set_xlabel("θ (rad)")
-    ax.set_ylabel("rate")
-    ax.set_title("ZXZ Euler rates blow up like 1/sin θ; quaternion rates do not")
+    ax.set(xlabel="θ (rad)", ylabel="rate", title="ZXZ Euler rates blow up like 1/sin θ; quaternion rates do not")
     ax.legend()
     return Section(
         "Gimbal lock", "二.3, 三.6",
@@ -147,9 +145,7 @@ def quaternion_renormalisation(quick):
     t = h * np.arange(1, steps + 1)
     for k, label in enumerate(["quaternion, raw", "quaternion, renormalised", "DCM, raw", "DCM, SVD-projected"]):
         ax.semilogy(t, np.maximum(err[:, k], 1e-17), label=label, linewidth=1)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("| |q| − 1 |  or  |RᵀR − 1|")
-    ax.set_title("RK4 attitude integration, h = 0.01 s")
+    ax.set(xlabel="t (s)", ylabel="| |q| − 1 |  or  |RᵀR − 1|", title="RK4 attitude integration, h = 0.01 s")
     ax.legend()
     return Section(
         "Quaternion renormalisation vs DCM drift", "二.4(2)",
