@@ -48,6 +48,9 @@ Stable API (names, signatures and return types are kept; additions only):
     file already holds the line ``NOTES_MARKER``, that line and everything
     after it (hand-written notes on earlier runs) are kept after the new
     text. Prints ``text`` first when ``echo``.
+``atomic_write(path, text) -> pathlib.Path``
+    Writes ``text`` to ``path`` through a temporary file in the same folder
+    and ``os.replace`` (readers see the old or the new file, never a part).
 ``RESULTS``
     ``pathlib.Path`` of ``bench/results``.
 """
@@ -201,9 +204,15 @@ def write_results(topic: str, text: str, *, echo: bool = True) -> pathlib.Path:
         at = old.find(NOTES_MARKER)
         if at >= 0:
             text += "\n" + old[at:].rstrip("\n") + "\n"
-    fd, tmp = tempfile.mkstemp(prefix=f".{topic}.", suffix=".md.tmp", dir=RESULTS)
+    return atomic_write(path, text)
+
+
+def atomic_write(path: pathlib.Path, text: str) -> pathlib.Path:
+    """Replace ``path`` by a file holding ``text`` in one step (temporary file, then ``os.replace``)."""
+    path = pathlib.Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp", dir=path.parent)
     try:
-        os.fchmod(fd, 0o644)  # mkstemp's 0600 would make the table private
+        os.fchmod(fd, 0o644)  # mkstemp's 0600 would make the file private
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
         os.replace(tmp, path)

@@ -10,50 +10,14 @@ least memory traffic any implementation with that storage needs. Writes
 
 from __future__ import annotations
 
-import pathlib
-import time
-
 import numpy as np
 from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
 
 import kreisel as kr
+from _common import header, interleaved, load_average, markdown_table, median_time, streaming_copy, write_results
 
 N = 1_000_000
 REPEATS = 4
-
-
-def median_time(fn, repeats=REPEATS):
-    fn()  # compile / load the numba cache
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times))
-
-
-def paired_medians(ours, theirs, repeats=REPEATS):
-    """Medians of interleaved runs, so that the load of the shared machine hits both alike."""
-    ours()  # compile / load the numba cache
-    t_ours, t_theirs = [], []
-    for _ in range(repeats):
-        for fn, times in ((ours, t_ours), (theirs, t_theirs)):
-            t = time.perf_counter()
-            fn()
-            times.append(time.perf_counter() - t)
-    return float(np.median(t_ours)), float(np.median(t_theirs))
-
-
-def copy_bound(n_in, n_out):
-    """Time to stream ``n_in`` doubles in and ``n_out`` doubles out (two copies)."""
-    src_in, dst_in = np.random.rand(n_in), np.empty(n_in)
-    src_out, dst_out = np.random.rand(n_out), np.empty(n_out)
-
-    def run():
-        np.copyto(dst_in, src_in)
-        np.copyto(dst_out, src_out)
-
-    return median_time(run)
 
 
 def main():
@@ -76,29 +40,27 @@ def main():
         ("exp (from twist)", lambda: kr.RigidTransform.from_exp_coords(twists), lambda: ScipyRigidTransform.from_exp_coords(twists), 6, 7),
         ("log (as twist)", lambda: a.as_exp_coords(), lambda: sa.as_exp_coords(), 7, 6),
     ]
+    load_before = load_average()
     rows = []
     for name, ours, theirs, n_in, n_out in cases:
-        t_ours, t_scipy = paired_medians(ours, theirs)
-        t_copy = copy_bound(n_in * N, n_out * N)
+        t_ours, t_scipy = (t.median for t in interleaved(ours, theirs, repeats=REPEATS, warmup=(True, False)))
+        t_copy = median_time(streaming_copy(n_in * N, n_out * N), REPEATS)
         rows.append((name, t_ours, t_scipy, t_copy))
         print(f"{name:24s} kreisel {t_ours * 1e3:8.2f} ms  scipy {t_scipy * 1e3:8.1f} ms  copy {t_copy * 1e3:6.2f} ms", flush=True)
 
-    lines = [
-        "# kreisel.se3 vs scipy RigidTransform (10^6 poses)",
-        "",
+    lines = header(
+        "kreisel.se3 vs scipy RigidTransform (10^6 poses)",
         f"Medians of {REPEATS} interleaved runs, same process, one thread; shared noisy machine.",
         "'copy bound' = np.copyto of kreisel's input + output bytes (7 doubles per pose).",
-        "",
-        "| operation | kreisel (ms) | scipy (ms) | speed-up | kreisel / copy bound |",
-        "|---|---:|---:|---:|---:|",
-    ]
-    for name, t_ours, t_scipy, t_copy in rows:
-        lines.append(f"| {name} | {t_ours * 1e3:.2f} | {t_scipy * 1e3:.1f} | {t_scipy / t_ours:.1f}x | {t_ours / t_copy:.1f} |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    out = pathlib.Path(__file__).parent / "results" / "se3.md"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text)
+        load_before=load_before,
+    )
+    lines += markdown_table(
+        ["operation", "kreisel (ms)", "scipy (ms)", "speed-up", "kreisel / copy bound"],
+        [(name, f"{t_ours * 1e3:.2f}", f"{t_scipy * 1e3:.1f}", f"{t_scipy / t_ours:.1f}x", f"{t_ours / t_copy:.1f}")
+         for name, t_ours, t_scipy, t_copy in rows],
+        align="-rrrr",
+    )
+    write_results("se3", "\n".join(lines))
 
 
 if __name__ == "__main__":
