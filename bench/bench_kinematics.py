@@ -10,9 +10,6 @@ forces the serial gufunc; the default uses both cores for large batches.
 Run: python bench/bench_kinematics.py  (writes bench/results/kinematics.md)
 """
 
-import os
-import pathlib
-import time
 import warnings
 
 import numpy as np
@@ -20,9 +17,11 @@ import numpy as np
 import kreisel as kr
 from kreisel.so3 import _gufunc
 from kreisel.kinematics._series import BORTZ_SERIES, BORTZ_SERIES_BELOW
+from _common import header, load_average, markdown_table, median_time, write_results
 
 N = 1_000_000
 TOL = 1e-8
+REPEATS = 7
 
 
 def bortz_numpy(psi, w):
@@ -56,16 +55,6 @@ def zyx_body_numpy(angles, w):
     return np.stack([yawdot, c * w[:, 1] - s * w[:, 2], w[:, 0] + np.sin(theta) * yawdot], axis=-1)
 
 
-def median_time(fn, repeats=7):
-    fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times))
-
-
 def single_core(fn):
     def run():
         saved = _gufunc.PARALLEL_THRESHOLD
@@ -91,6 +80,7 @@ def main():
         ("euler_rates ZXZ body", lambda: kr.euler_rates("ZXZ", angles, w, frame="body"), lambda: zxz_body_numpy(angles, w)),
         ("euler_rates ZYX body", lambda: kr.euler_rates("ZYX", angles, w, frame="body"), lambda: zyx_body_numpy(angles, w)),
     ]
+    load_before = load_average()
     rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -98,25 +88,23 @@ def main():
             got, want = ours(), numpy_ref()
             err = np.max(np.abs(got - want) / (1.0 + np.abs(want)))
             assert err < 1e-12, (name, err)
-            t_np = median_time(numpy_ref)
-            t_1 = median_time(single_core(ours))
-            t_2 = median_time(ours)
-            rows.append(f"| {name} | {t_np * 1e3:.1f} | {t_1 * 1e3:.1f} | {t_2 * 1e3:.1f} | {t_np / t_1:.1f} | {t_np / t_2:.1f} | {err:.1e} |")
-    table = "\n".join(
-        [
-            f"Rate maps on {N:,} samples, medians of 7 runs (ms); ratio = numpy time / kreisel time.",
-            f"Load average during the run: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (shared machine;"
-            " the 2-core column needs a free second core).",
-            "",
-            "| operation | numpy | kreisel, one core | kreisel, default (2 cores) | ratio, one core | ratio, default | max rel. difference |",
-            "|---|---|---|---|---|---|---|",
-            *rows,
-        ]
+            t_np = median_time(numpy_ref, REPEATS)
+            t_1 = median_time(single_core(ours), REPEATS)
+            t_2 = median_time(ours, REPEATS)
+            rows.append((name, f"{t_np * 1e3:.1f}", f"{t_1 * 1e3:.1f}", f"{t_2 * 1e3:.1f}", f"{t_np / t_1:.1f}",
+                         f"{t_np / t_2:.1f}", f"{err:.1e}"))
+    lines = header(
+        None,
+        f"Rate maps on {N:,} samples, medians of {REPEATS} runs (ms); ratio = numpy time / kreisel time.",
+        "Shared machine: the 2-core column needs a free second core.",
+        load_before=load_before,
     )
-    print(table)
-    out = pathlib.Path(__file__).parent / "results"
-    out.mkdir(exist_ok=True)
-    (out / "kinematics.md").write_text(table + "\n")
+    lines += markdown_table(
+        ["operation", "numpy", "kreisel, one core", "kreisel, default (2 cores)", "ratio, one core", "ratio, default",
+         "max rel. difference"],
+        rows,
+    )
+    write_results("kinematics", "\n".join(lines))
 
 
 if __name__ == "__main__":
