@@ -3,14 +3,12 @@
 Run: python bench/bench_earth.py  (writes bench/results/earth.md)
 """
 
-import pathlib
-import time
-
 import numpy as np
 from scipy.integrate import solve_ivp
 
 import kreisel as kr
 from kreisel.earth.foucault import pendulum_rhs
+from _common import header, load_average, markdown_table, median_time, write_results
 
 LENGTH, LAT, DURATION, AMP, OMEGA = 1.0, 45.0, 100.0, 0.05, 0.02
 
@@ -31,28 +29,15 @@ def run_scipy():
     return solve_ivp(rhs, (0, DURATION), y0, method="DOP853", rtol=1e-10, atol=1e-12).y[:, -1]
 
 
-def median_time(fn, repeats=5):
-    fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times))
-
-
 if __name__ == "__main__":
-    tk = median_time(run_kreisel)
-    ts = median_time(run_scipy, repeats=3)
-    table = "\n".join([
-        f"Foucault pendulum, {DURATION:g} s of a {LENGTH:g} m pendulum (50 swings), rtol 1e-10",
-        "",
-        "| implementation | median time (s) | ratio to kreisel |",
-        "|---|---|---|",
-        f"| kreisel.earth.foucault_pendulum (compiled DOP853 + event search) | {tk:.4f} | 1.0 |",
-        f"| scipy solve_ivp DOP853, same right-hand side in Python (no events) | {ts:.4f} | {ts / tk:.1f} |",
-    ])
-    print(table)
-    out = pathlib.Path(__file__).parent / "results"
-    out.mkdir(exist_ok=True)
-    (out / "earth.md").write_text(table + "\n")
+    load_before = load_average()
+    tk = median_time(run_kreisel, 5)
+    ts = median_time(run_scipy, 3)
+    lines = header(None, f"Foucault pendulum, {DURATION:g} s of a {LENGTH:g} m pendulum (50 swings), rtol 1e-10",
+                   load_before=load_before)
+    lines += markdown_table(
+        ["implementation", "median time (s)", "ratio to kreisel"],
+        [("kreisel.earth.foucault_pendulum (compiled DOP853 + event search)", f"{tk:.4f}", "1.0"),
+         ("scipy solve_ivp DOP853, same right-hand side in Python (no events)", f"{ts:.4f}", f"{ts / tk:.1f}")],
+    )
+    write_results("earth", "\n".join(lines))
