@@ -12,28 +12,16 @@ Writes ``bench/results/nav.md``.
 
 from __future__ import annotations
 
-import pathlib
-import time
-
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 import kreisel as kr
+from _common import header, load_average, markdown_table, median_time, write_results
 
 N = 1_000_000
 PEER_N = 10_000
 REPEATS = 5
 K = {1: (), 2: (2 / 3,), 4: (54 / 105, 92 / 105, 214 / 105)}
-
-
-def median_time(fn, repeats=REPEATS):
-    fn()  # compile / warm caches
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times))
 
 
 def update_vectors(dtheta, n):
@@ -80,10 +68,7 @@ DRIFT_CASES = [(1.0, 1, 60, 20), (1.0, 2, 60, 20), (1.0, 3, 24, 40), (0.1, 4, 16
 
 def drift_table():
     """Measured drift rate (body frame, whole cone periods) against the classical coefficient."""
-    lines = ["", "## Coning drift (1 Hz cone): measured rate of the body-frame error vs "
-             "α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)",
-             "", "| α | N | λ = ΩT_s | formula (rad/s) | measured −x (rad/s) | ratio | angle to −x / α |",
-             "|---:|---:|---:|---:|---:|---:|---:|"]
+    rows = []
     for alpha_deg, n, per_period, periods in DRIFT_CASES:
         alpha, ts = np.radians(alpha_deg), 1.0 / per_period
         m = kr.nav.coning_motion(alpha, 2 * np.pi, ts, per_period * periods)
@@ -92,8 +77,12 @@ def drift_table():
         drift = error / m.t[-1]
         formula = kr.nav.coning_drift(alpha, 2 * np.pi, ts, n)
         angle = np.arccos(-drift[0] / np.linalg.norm(drift))
-        lines.append(f"| {alpha_deg}° | {n} | {2 * np.pi * ts:.4f} | {formula:.4e} | {-drift[0]:.4e} | "
-                     f"{-drift[0] / formula:.4f} | {angle / alpha:.3f} |")
+        rows.append((f"{alpha_deg}°", n, f"{2 * np.pi * ts:.4f}", f"{formula:.4e}", f"{-drift[0]:.4e}",
+                     f"{-drift[0] / formula:.4f}", f"{angle / alpha:.3f}"))
+    lines = ["", "## Coning drift (1 Hz cone): measured rate of the body-frame error vs "
+             "α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)", ""]
+    lines += markdown_table(["α", "N", "λ = ΩT_s", "formula (rad/s)", "measured −x (rad/s)", "ratio", "angle to −x / α"],
+                            rows, align="rrrrrrr")
     return lines
 
 
@@ -101,9 +90,10 @@ def main():
     m = kr.nav.coning_motion(np.radians(1.0), 2 * np.pi, 0.01, N)
     q0, d = m.q[0], m.dtheta
     dp = d[:PEER_N]
+    load_before = load_average()
     rows = []
     for n in (1, 2, 4):
-        ours = median_time(lambda: kr.nav.attitude_from_increments(q0, d, n))
+        ours = median_time(lambda: kr.nav.attitude_from_increments(q0, d, n), REPEATS)
         ref = kr.nav.attitude_from_increments(q0, dp, n)
         for name, fn in (("python loop", python_loop), ("scipy Rotation loop", scipy_loop)):
             got = fn(q0, dp, n)
@@ -113,23 +103,20 @@ def main():
             rows.append((f"increments, N = {n}", name, ours, peer))
     t = m.t
     for method in ("quaternion", "bortz"):
-        ours = median_time(lambda: kr.nav.attitude_from_rates(q0, t, m.omega, method=method))
+        ours = median_time(lambda: kr.nav.attitude_from_rates(q0, t, m.omega, method=method), REPEATS)
         rows.append((f"rates, {method} RK4", "—", ours, float("nan")))
 
-    lines = ["# kreisel.nav benchmark", "",
-             f"10^6 samples (coning, α = 1°, 1 Hz, T_s = 10 ms); peers timed on {PEER_N} and scaled to 10^6.",
-             f"Medians of {REPEATS} runs (peers 3); contract: 10^6 increments in < 0.5 s.", "",
-             "| case | peer | kreisel (s) | peer (s, scaled) | speed-up |",
-             "|---|---|---:|---:|---:|"]
+    lines = header("kreisel.nav benchmark",
+                   f"10^6 samples (coning, α = 1°, 1 Hz, T_s = 10 ms); peers timed on {PEER_N} and scaled to 10^6.",
+                   f"Medians of {REPEATS} runs (peers 3); contract: 10^6 increments in < 0.5 s.",
+                   load_before=load_before)
+    table = []
     for case, peer_name, ours, peer in rows:
         ratio = "—" if np.isnan(peer) else f"{peer / ours:.0f}×"
         peer_s = "—" if np.isnan(peer) else f"{peer:.2f}"
-        lines.append(f"| {case} | {peer_name} | {ours:.4f} | {peer_s} | {ratio} |")
-    text = "\n".join(lines + drift_table()) + "\n"
-    print(text)
-    out = pathlib.Path(__file__).resolve().parent / "results" / "nav.md"
-    out.parent.mkdir(exist_ok=True)
-    out.write_text(text, encoding="utf-8")
+        table.append((case, peer_name, f"{ours:.4f}", peer_s, ratio))
+    lines += markdown_table(["case", "peer", "kreisel (s)", "peer (s, scaled)", "speed-up"], table, align="--rrr")
+    write_results("nav", "\n".join(lines + drift_table()))
 
 
 if __name__ == "__main__":
