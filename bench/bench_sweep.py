@@ -8,15 +8,11 @@ excluded (started once), the submission, transfer and assembly are included.
 Writes bench/results/sweep.md.
 """
 
-import os
-import pathlib
-import statistics
-import time
-
 import numpy as np
 
 import kreisel as kr
 from kreisel.sweep import sweep
+from _common import header, load_average, markdown_table, median_time, write_results
 
 CHUNK = 10_000
 STEPS = 200
@@ -34,43 +30,31 @@ def free_body_chunk(middle_moment, tilt):
 GRID = {"middle_moment": np.linspace(1.05, 1.95, 20), "tilt": np.linspace(0.01, 0.5, CHUNK // 10)}
 
 
-def median_time(fn, repeats):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
-
-
 def main():
     from distributed import Client, LocalCluster
 
     free_body_chunk(np.array([1.5]), np.array([0.1]))   # compile
     bodies = GRID["middle_moment"].size * GRID["tilt"].size
+    load_before = load_average()
     rows = []
-    serial = median_time(lambda: sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler="serial"), 3)
+    serial = median_time(lambda: sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler="serial"), 3, warmup=False)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                       env={"NUMBA_NUM_THREADS": "1"}) as cluster, Client(cluster) as client:
         client.run(free_body_chunk, np.array([1.5]), np.array([0.1]))   # compile (numba cache) on the workers
         reference = sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler="serial")
         assert sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler=client).identical(reference)
-        dask = median_time(lambda: sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler=client), 3)
+        dask = median_time(lambda: sweep(free_body_chunk, GRID, chunk_size=CHUNK, scheduler=client), 3, warmup=False)
     rows.append(("in process (serial chunks, numba 2 threads)", serial, bodies * STEPS / serial))
     rows.append(("Dask LocalCluster 2 workers × 1 thread", dask, bodies * STEPS / dask))
     overhead = (dask - serial) / dask
 
-    lines = [f"Free-body sweep, {bodies} bodies in chunks of {CHUNK}, splitting, {STEPS} steps each "
-             f"(attitude included), medians of 3 runs", "",
-             "| run | median wall (s) | body-steps/s |", "|---|---|---|"]
-    lines += [f"| {name} | {wall:.3f} | {rate:.3g} |" for name, wall, rate in rows]
+    lines = header(None, f"Free-body sweep, {bodies} bodies in chunks of {CHUNK}, splitting, {STEPS} steps each "
+                   "(attitude included), medians of 3 runs", load_before=load_before)
+    lines += markdown_table(["run", "median wall (s)", "body-steps/s"],
+                            [(name, f"{wall:.3f}", f"{rate:.3g}") for name, wall, rate in rows])
     lines += ["", f"Dask overhead: {100 * overhead:.1f} % of the Dask wall time (target < 10 %)",
               "(simulate_batch speed-up from 1 to 2 threads: see bench/results/dynamics.md)"]
-    text = "\n".join(lines) + "\n"
-    print(text)
-    out = pathlib.Path(__file__).parent / "results" / "sweep.md"
-    out.parent.mkdir(exist_ok=True)
-    out.write_text(text, encoding="utf-8")
+    write_results("sweep", "\n".join(lines))
 
 
 if __name__ == "__main__":
