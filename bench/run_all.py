@@ -14,13 +14,11 @@ already in ``bench/results``.
 from __future__ import annotations
 
 import datetime
-import os
-import pathlib
-import platform
 import subprocess
 import sys
 
-HERE = pathlib.Path(__file__).resolve().parent
+from _common import HERE, RESULTS, atomic_write, header, load_average
+
 ORDER = ("so3", "kinematics", "se3", "dynamics", "tops", "earth", "nav", "sweep")
 
 
@@ -30,24 +28,21 @@ def topics():
 
 
 def main(selected):
+    load_before = load_average() if selected else None
     for topic in selected:
         print(f"== bench_{topic}.py", flush=True)
         subprocess.run([sys.executable, str(HERE / f"bench_{topic}.py")], check=True)
-    load = " / ".join(f"{x:.2f}" for x in os.getloadavg())
-    header = [
-        "# Benchmark results",
-        "",
-        f"Assembled {datetime.date.today().isoformat()} by `bench/run_all.py` (`make bench`) on "
-        f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}; "
-        f"load average after the runs {load}. Each table is written by its own script; times are "
-        "medians of several runs, peers measured in the same process. The machine is shared, so "
-        "absolute times are noisy: the ratios are what to compare.",
-        "",
-    ]
-    parts = [(HERE / "results" / f"{t}.md").read_text(encoding="utf-8").strip() for t in topics()
-             if (HERE / "results" / f"{t}.md").is_file()]
-    (HERE / "RESULTS.md").write_text("\n".join(header) + "\n\n" + "\n\n".join(parts) + "\n", encoding="utf-8")
-    print(f"wrote {HERE / 'RESULTS.md'}")
+    lines = header(
+        "Benchmark results",
+        f"Assembled {datetime.date.today().isoformat()} by `bench/run_all.py` (`make bench`). Each table is "
+        "written by its own script; times are medians of several runs, peers measured in the same process. "
+        "The machine is shared, so absolute times are noisy: the ratios are what to compare.",
+        load_before=load_before,
+    )
+    parts = [(RESULTS / f"{t}.md").read_text(encoding="utf-8").strip() for t in topics()
+             if (RESULTS / f"{t}.md").is_file()]
+    out = atomic_write(HERE / "RESULTS.md", "\n".join(lines) + "\n" + "\n\n".join(parts) + "\n")
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":
