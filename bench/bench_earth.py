@@ -4,11 +4,11 @@ Run: python bench/bench_earth.py  (writes bench/results/earth.md)
 """
 
 import numpy as np
+from _common import header, load_average, markdown_table, median_time, write_results
 from scipy.integrate import solve_ivp
 
 import kreisel as kr
 from kreisel.earth.foucault import pendulum_rhs
-from _common import header, load_average, markdown_table, median_time, write_results
 
 LENGTH, LAT, DURATION, AMP, OMEGA = 1.0, 45.0, 100.0, 0.05, 0.02
 

@@ -13,11 +13,11 @@ Run: python bench/bench_kinematics.py  (writes bench/results/kinematics.md)
 import warnings
 
 import numpy as np
+from _common import header, load_average, markdown_table, median_time, write_results
 
 import kreisel as kr
-from kreisel.so3 import _gufunc
 from kreisel.kinematics._series import BORTZ_SERIES, BORTZ_SERIES_BELOW
-from _common import header, load_average, markdown_table, median_time, write_results
+from kreisel.so3 import _gufunc
 
 N = 1_000_000
 TOL = 1e-8

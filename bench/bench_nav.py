@@ -13,10 +13,10 @@ Writes ``bench/results/nav.md``.
 from __future__ import annotations
 
 import numpy as np
+from _common import header, load_average, markdown_table, median_time, write_results
 from scipy.spatial.transform import Rotation
 
 import kreisel as kr
-from _common import header, load_average, markdown_table, median_time, write_results
 
 N = 1_000_000
 PEER_N = 10_000
@@ -79,8 +79,8 @@ def drift_table():
         angle = np.arccos(-drift[0] / np.linalg.norm(drift))
         rows.append((f"{alpha_deg}°", n, f"{2 * np.pi * ts:.4f}", f"{formula:.4e}", f"{-drift[0]:.4e}",
                      f"{-drift[0] / formula:.4f}", f"{angle / alpha:.3f}"))
-    lines = ["", "## Coning drift (1 Hz cone): measured rate of the body-frame error vs "
-             "α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)", ""]
+    lines = ["", ("## Coning drift (1 Hz cone): measured rate of the body-frame error vs "
+                  "α²Ωλ^(2N) N!/(2^(N+1)(2N+1)!!)"), ""]
     lines += markdown_table(["α", "N", "λ = ΩT_s", "formula (rad/s)", "measured −x (rad/s)", "ratio", "angle to −x / α"],
                             rows, align="rrrrrrr")
     return lines
@@ -93,17 +93,17 @@ def main():
     load_before = load_average()
     rows = []
     for n in (1, 2, 4):
-        ours = median_time(lambda: kr.nav.attitude_from_increments(q0, d, n), REPEATS)
+        ours = median_time(lambda n=n: kr.nav.attitude_from_increments(q0, d, n), REPEATS)
         ref = kr.nav.attitude_from_increments(q0, dp, n)
         for name, fn in (("python loop", python_loop), ("scipy Rotation loop", scipy_loop)):
             got = fn(q0, dp, n)
             agree = np.abs(np.abs(np.sum(got * ref, axis=-1)) - 1).max()
             assert agree < 1e-12, (name, n, agree)
-            peer = median_time(lambda: fn(q0, dp, n), repeats=3) * N / PEER_N
+            peer = median_time(lambda fn=fn, n=n: fn(q0, dp, n), repeats=3) * N / PEER_N
             rows.append((f"increments, N = {n}", name, ours, peer))
     t = m.t
     for method in ("quaternion", "bortz"):
-        ours = median_time(lambda: kr.nav.attitude_from_rates(q0, t, m.omega, method=method), REPEATS)
+        ours = median_time(lambda method=method: kr.nav.attitude_from_rates(q0, t, m.omega, method=method), REPEATS)
         rows.append((f"rates, {method} RK4", "—", ours, float("nan")))
 
     lines = header("kreisel.nav benchmark",

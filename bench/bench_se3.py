@@ -11,10 +11,18 @@ least memory traffic any implementation with that storage needs. Writes
 from __future__ import annotations
 
 import numpy as np
+from _common import (
+    header,
+    interleaved,
+    load_average,
+    markdown_table,
+    median_time,
+    streaming_copy,
+    write_results,
+)
 from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
 
 import kreisel as kr
-from _common import header, interleaved, load_average, markdown_table, median_time, streaming_copy, write_results
 
 N = 1_000_000
 REPEATS = 4

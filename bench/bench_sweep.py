@@ -9,10 +9,10 @@ Writes bench/results/sweep.md.
 """
 
 import numpy as np
+from _common import header, load_average, markdown_table, median_time, write_results
 
 import kreisel as kr
 from kreisel.sweep import sweep
-from _common import header, load_average, markdown_table, median_time, write_results
 
 CHUNK = 10_000
 STEPS = 200
