@@ -7,31 +7,10 @@ callable; :func:`simulate_batch` runs many bodies in parallel;
 :class:`Trajectory`.
 """
 
+from . import forces, torques
 from .engine import METHODS, simulate, simulate_6dof, simulate_batch
-from .forces import ConstantForce, ForceModel, ForceSum, LinearDrag
-from .torques import (
-    ConstantTorque,
-    GravityTorque,
-    LinearDamping,
-    MagneticTorque,
-    TorqueModel,
-    TorqueSum,
-)
+from .forces import *  # noqa: F403
+from .torques import *  # noqa: F403
 from .trajectory import Trajectory
 
-__all__ = [
-    "simulate",
-    "simulate_batch",
-    "simulate_6dof",
-    "Trajectory",
-    "TorqueModel",
-    "GravityTorque",
-    "ConstantTorque",
-    "MagneticTorque",
-    "LinearDamping",
-    "TorqueSum",
-    "ForceModel",
-    "ConstantForce",
-    "LinearDrag",
-    "ForceSum",
-]
+__all__ = ["simulate", "simulate_batch", "simulate_6dof", "Trajectory", *torques.__all__, *forces.__all__]

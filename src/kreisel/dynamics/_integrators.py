@@ -19,14 +19,17 @@ import numpy as np
 from numba import njit, prange
 
 from .._dop853 import NOT_FINITE, OK, integrate
+from ..so3._kernels import _rotated as rotated
+from ..so3._kernels import qnormalize, quat_product, rotvec_quat
+from ._rows import CALLBACK
 from .forces import evaluate_force
-from .torques import CALLBACK, DAMPING, evaluate_torque
+from .torques import DAMPING, evaluate_torque
 
 _jit = njit(cache=True, nogil=True)
 # the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
 _inline = njit(cache=True, nogil=True, inline="always")
 
-# method ids (the public names live in _simulate.METHODS)
+# method ids (the public names live in engine.METHODS)
 DOP853, SPLITTING, SPLITTING4, DMV, RKMK4, MIDPOINT, RK4 = 0, 1, 2, 3, 4, 5, 6
 NO_CONVERGENCE = 3
 
@@ -38,23 +41,6 @@ _EPS = 2.220446049250313e-16
 _MAX_ITER = 100
 
 
-@_jit
-def _torque_into(rows, t, y, scratch):
-    # rows is None for no torque: numba then compiles this to three stores
-    if rows is None:
-        scratch[7] = scratch[8] = scratch[9] = 0.0
-    else:
-        evaluate_torque(rows, t, y, scratch)
-
-
-@_jit
-def _force_into(frows, t, y, scratch):
-    if frows is None:
-        scratch[10] = scratch[11] = scratch[12] = 0.0
-    else:
-        evaluate_force(frows, t, y, scratch)
-
-
 @_inline
 def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
     """dy[offset:offset+ny] = Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m.
@@ -62,24 +48,23 @@ def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
     Arrays are addressed by index (never sliced) so the hot loops create no
     array views; ``scratch`` (13,) receives the torque in [7:10], force in [10:13].
     ``rows``/``frows`` are None for no torque/force: numba then compiles a
-    specialisation without the model evaluation (measurably faster loops);
-    the None test lives in :func:`_torque_into`/:func:`_force_into` because
-    this function is inlined, where numba no longer prunes on argument types.
+    specialisation without the model evaluation (measurably faster loops).
     """
     w0, w1, w2 = y[0], y[1], y[2]
     q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
-    _torque_into(rows, t, y, scratch)
+    evaluate_torque(rows, t, y, scratch)
     m0, m1, m2 = scratch[7], scratch[8], scratch[9]
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     dy[offset] = ((i1 - i2) * w1 * w2 + m0) / i0
     dy[offset + 1] = ((i2 - i0) * w2 * w0 + m1) / i1
     dy[offset + 2] = ((i0 - i1) * w0 * w1 + m2) / i2
-    dy[offset + 3] = -0.5 * (q1 * w0 + q2 * w1 + q3 * w2)
-    dy[offset + 4] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
-    dy[offset + 5] = 0.5 * (q0 * w1 + q3 * w0 - q1 * w2)
-    dy[offset + 6] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
+    d0, d1, d2, d3 = quat_product(q0, q1, q2, q3, 0.0, w0, w1, w2)
+    dy[offset + 3] = 0.5 * d0
+    dy[offset + 4] = 0.5 * d1
+    dy[offset + 5] = 0.5 * d2
+    dy[offset + 6] = 0.5 * d3
     if ny == 13:
-        _force_into(frows, t, y, scratch)
+        evaluate_force(frows, t, y, scratch)
         for k in range(3):
             dy[offset + 7 + k] = y[10 + k]
             dy[offset + 10 + k] = scratch[10 + k] / mass
@@ -182,6 +167,18 @@ def _depends_on_omega(rows):
 
 
 @_jit
+def _iterate_omega(y, n0, n1, n2, size, previous):
+    """Store the fixed-point iterate ω′ = n; return (converged, change).
+
+    Converged at round-off: the change is a few ulps of ``size`` = |ω′|₁, or it
+    no longer shrinks once it is that small.
+    """
+    change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
+    y[0], y[1], y[2] = n0, n1, n2
+    return change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size), change
+
+
+@_jit
 def _closing_kick(t, h, inertia, rows, y, scratch):
     """Implicit kick ω′_new = ω′ + h I⁻¹ M′(t, q, ω′_new), the adjoint of :func:`_kick`.
 
@@ -199,11 +196,9 @@ def _closing_kick(t, h, inertia, rows, y, scratch):
         n0 = w0 + h * scratch[7] / inertia[0]
         n1 = w1 + h * scratch[8] / inertia[1]
         n2 = w2 + h * scratch[9] / inertia[2]
-        change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
-        y[0], y[1], y[2] = n0, n1, n2
-        if change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size):
+        converged, previous = _iterate_omega(y, n0, n1, n2, size, previous)
+        if converged:
             return OK
-        previous = change
     return NO_CONVERGENCE
 
 
@@ -235,21 +230,12 @@ def _dmv_free(h, inertia, y):
     if not converged:
         return NO_CONVERGENCE
     c = math.sqrt(1.0 - (v0 * v0 + v1 * v1 + v2 * v2))
-    # m_{k+1} = Ωᵀ m_k  (rotate the body momentum back by Ω)
-    t0 = 2.0 * (-v1 * m2 + v2 * m1)
-    t1 = 2.0 * (-v2 * m0 + v0 * m2)
-    t2 = 2.0 * (-v0 * m1 + v1 * m0)
-    n0 = m0 + c * t0 - v1 * t2 + v2 * t1
-    n1 = m1 + c * t1 - v2 * t0 + v0 * t2
-    n2 = m2 + c * t2 - v0 * t1 + v1 * t0
+    # m_{k+1} = Ωᵀ m_k  (rotate the body momentum back by Ω), q_{k+1} = q_k ⊗ Ω
+    n0, n1, n2 = rotated(c, -v0, -v1, -v2, m0, m1, m2)
     y[0] = n0 / inertia[0]
     y[1] = n1 / inertia[1]
     y[2] = n2 / inertia[2]
-    q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
-    y[3] = q0 * c - q1 * v0 - q2 * v1 - q3 * v2
-    y[4] = q0 * v0 + q1 * c + q2 * v2 - q3 * v1
-    y[5] = q0 * v1 - q1 * v2 + q2 * c + q3 * v0
-    y[6] = q0 * v2 + q1 * v1 - q2 * v0 + q3 * c
+    y[3], y[4], y[5], y[6] = quat_product(y[3], y[4], y[5], y[6], c, v0, v1, v2)
     return OK
 
 
@@ -268,13 +254,6 @@ def _kick_drift_kick(method, t, h, inertia, rows, y, m, scratch):
 
 
 @_jit
-def _normalize_attitude(y):
-    n = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
-    for i in range(3, 7):
-        y[i] /= n
-
-
-@_jit
 def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
     """Classical RK4 on (ω′, q); ``k`` holds the four stages at offsets 0, 7, 14, 21."""
     for i in range(7):
@@ -287,7 +266,7 @@ def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
         rhs(t + a, tmp, 7, inertia, 1.0, rows, None, k, 7 * s, scratch)
     for i in range(7):
         y[i] = y0[i] + h / 6.0 * (k[i] + 2.0 * k[7 + i] + 2.0 * k[14 + i] + k[21 + i])
-    _normalize_attitude(y)
+    qnormalize(y[3:7])
 
 
 @_jit
@@ -305,15 +284,8 @@ def _dexpinv_right(u0, u1, u2, f0, f1, f2):
 @_jit
 def _group_stage(src, u0, u1, u2, dst):
     """dst[3:7] = src[3:7] ⊗ exp(u): the Lie-group stage point of RKMK."""
-    half = 0.5 * math.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
-    c = math.cos(half)
-    s = 0.5 - half * half / 12.0 if half < 1e-4 else math.sin(half) / (2.0 * half)
-    e0, e1, e2, e3 = c, s * u0, s * u1, s * u2
-    p0, p1, p2, p3 = src[3], src[4], src[5], src[6]
-    dst[3] = p0 * e0 - p1 * e1 - p2 * e2 - p3 * e3
-    dst[4] = p0 * e1 + p1 * e0 + p2 * e3 - p3 * e2
-    dst[5] = p0 * e2 - p1 * e3 + p2 * e0 + p3 * e1
-    dst[6] = p0 * e3 + p1 * e2 - p2 * e1 + p3 * e0
+    e0, e1, e2, e3 = rotvec_quat(u0, u1, u2)
+    dst[3], dst[4], dst[5], dst[6] = quat_product(src[3], src[4], src[5], src[6], e0, e1, e2, e3)
 
 
 @_jit
@@ -343,7 +315,7 @@ def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
     for i in range(3):
         y[i] = y0[i] + h / 6.0 * (deriv[i] + 2.0 * deriv[7 + i] + 2.0 * deriv[14 + i] + deriv[21 + i])
     _group_stage(y0, u0, u1, u2, y)
-    _normalize_attitude(y)
+    qnormalize(y[3:7])
 
 
 @_jit
@@ -365,27 +337,18 @@ def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
         na = a0 * a0 + a1 * a1 + a2 * a2
         inv = 1.0 / (1.0 + na)
         c, s0, s1, s2 = (1.0 - na) * inv, 2.0 * a0 * inv, 2.0 * a1 * inv, 2.0 * a2 * inv
-        p0, p1, p2, p3 = y0[3], y0[4], y0[5], y0[6]
-        y[3] = p0 * c - p1 * s0 - p2 * s1 - p3 * s2
-        y[4] = p0 * s0 + p1 * c + p2 * s2 - p3 * s1
-        y[5] = p0 * s1 - p1 * s2 + p2 * c + p3 * s0
-        y[6] = p0 * s2 + p1 * s1 - p2 * s0 + p3 * c
+        y[3], y[4], y[5], y[6] = quat_product(y0[3], y0[4], y0[5], y0[6], c, s0, s1, s2)
         for i in range(3, 7):
             mean[i] = 0.5 * (y0[i] + y[i])
-        m0 = m1 = m2 = 0.0
-        if rows is not None:
-            evaluate_torque(rows, t + 0.5 * h, mean, scratch)
-            m0, m1, m2 = scratch[7], scratch[8], scratch[9]
+        evaluate_torque(rows, t + 0.5 * h, mean, scratch)
+        m0, m1, m2 = scratch[7], scratch[8], scratch[9]
         w0, w1, w2 = mean[0], mean[1], mean[2]
         n0 = y0[0] + h * ((i1 - i2) * w1 * w2 + m0) / i0
         n1 = y0[1] + h * ((i2 - i0) * w2 * w0 + m1) / i1
         n2 = y0[2] + h * ((i0 - i1) * w0 * w1 + m2) / i2
-        change = abs(n0 - y[0]) + abs(n1 - y[1]) + abs(n2 - y[2])
-        y[0], y[1], y[2] = n0, n1, n2
-        # stop at round-off: the change no longer shrinks once it reaches a few ulps
-        if change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size):
+        converged, previous = _iterate_omega(y, n0, n1, n2, size, previous)
+        if converged:
             return OK
-        previous = change
     return NO_CONVERGENCE
 
 
@@ -444,11 +407,7 @@ def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
     """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps."""
     ny = y0.size
     y = y0.copy()
-    wa = np.empty(8)
-    wb = np.empty(8)
-    wc = np.empty(28)
-    wd = np.empty(12)
-    scratch = np.empty(13)
+    wa, wb, wc, wd, scratch = np.empty(8), np.empty(8), np.empty(28), np.empty(12), np.empty(13)
     for i in range(ny):
         out[0, i] = y[i]
     for k in range(t_out.size - 1):

@@ -1,15 +1,27 @@
-"""What torque and force models share: one row of floats per model, and sums of models.
+"""What torque and force models share: rows of floats, sums, callbacks and the compiled sum.
 
 A model is encoded as rows of a small float table (``row[0]`` the kind,
 ``row[1:]`` its parameters) that the compiled integrators read inside their
-time loop; models of one family add with ``+`` into a flat sum.
+time loop; models of one family add with ``+`` into a flat sum. Each family
+gives the contribution of one row as a compiled *term*; :func:`sum_rows`
+adds the terms (and the Python callables, kind :data:`CALLBACK`) into three
+slots of the integrators' scratch array.
 """
 
 from __future__ import annotations
 
+import itertools
+import math
+
 import numpy as np
+from numba import njit, objmode
 
 ROW_SIZE = 10
+CALLBACK = -1  # the kind of a row that calls a registered Python function (the same in every family)
+
+# takes the family's ``term`` as an argument: inlined into a cached kernel of each family,
+# for the reason given in kreisel._dop853 (a compiled function argument cannot be cached)
+_generic = njit(nogil=True, inline="always")
 
 
 def row(kind, *vectors):
@@ -55,3 +67,75 @@ class RowSum:
         if not self.models:
             return np.zeros((0, ROW_SIZE))
         return np.concatenate([m.rows() for m in self.models])
+
+
+# Python callables are looked up by id from the compiled loop: a table row
+# carries only numbers, so the registry maps that number back to the function
+# and to whether it also takes the centre of mass position and velocity.
+_CALLBACKS = {}
+_IDS = itertools.count(1)
+
+
+def register_callback(function, translation=False):
+    """Store a model callable; return its :data:`CALLBACK` table row.
+
+    ``function(t, q, omega_body)``, or with ``translation=True``
+    ``function(t, q, omega_body, position, velocity)``, returns a (3,) vector.
+    """
+    key = next(_IDS)
+    _CALLBACKS[key] = (function, translation)
+    return row(CALLBACK, [key])
+
+
+def release_callback(rows):
+    """Forget the callables of a table's :data:`CALLBACK` rows."""
+    if rows is None:
+        return
+    for r in rows:
+        if int(r[0]) == CALLBACK:
+            _CALLBACKS.pop(int(r[1]), None)
+
+
+def _call_registered(key, t, y):
+    function, translation = _CALLBACKS[int(key)]
+    args = (t, y[3:7] / np.linalg.norm(y[3:7]), y[0:3].copy())
+    if translation:
+        args += (y[7:10].copy(), y[10:13].copy())
+    return np.ascontiguousarray(function(*args), dtype=np.float64)
+
+
+@njit(cache=True)
+def _callback_into(key, t, y, scratch, at):
+    with objmode(r="float64[:]"):
+        r = _call_registered(key, t, y)
+    scratch[at] += r[0]
+    scratch[at + 1] += r[1]
+    scratch[at + 2] += r[2]
+
+
+@_generic
+def sum_rows(term, rows, t, y, scratch, at):
+    """``scratch[at:at+3]`` = Σ ``term(rows, i, q, y)`` over the rows, then the callables' values.
+
+    ``y = (ω′, q, ...)``; ``term`` gets the unit attitude as four scalars
+    (stage states of explicit Runge-Kutta methods are not exactly unit) and
+    returns three scalars; it returns zeros for kinds it does not know.
+    """
+    n = rows.shape[0]
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    if n > 0:
+        norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
+        q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
+        for i in range(n):
+            a0, a1, a2 = term(rows, i, q0, q1, q2, q3, y)
+            s0 += a0
+            s1 += a1
+            s2 += a2
+    scratch[at] = s0
+    scratch[at + 1] = s1
+    scratch[at + 2] = s2
+    for i in range(n):
+        if int(rows[i, 0]) == CALLBACK:
+            _callback_into(rows[i, 1], t, y, scratch, at)

@@ -49,6 +49,7 @@ from .. import _dop853
 from .._validation import as_float_array
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from . import _integrators as _k
+from . import _rows
 from . import forces as _forces
 from . import torques as _torques
 from .trajectory import Trajectory
@@ -164,8 +165,8 @@ def _initial_quaternion(q0, batch_shape=()):
     return np.broadcast_to(q / norm, batch_shape + (4,)).copy() if batch_shape else q / norm
 
 
-def _torque_rows(torque, axes, t0, q0_body, omega0_body, keys):
-    """Model table in the integration frame; registers a callable (id appended to ``keys``)."""
+def _torque_rows(torque, axes, t0, q0_body, omega0_body):
+    """Model table in the integration frame; a callable is registered (release the table after use)."""
     if torque is None:
         return None
     if isinstance(torque, _torques.TorqueModel):
@@ -182,9 +183,7 @@ def _torque_rows(torque, axes, t0, q0_body, omega0_body, keys):
         def fn(t, q, w):  # principal-frame state -> user's body frame and back
             return axes.T @ np.asarray(torque(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w), dtype=float)
 
-    key = _torques.register_callback(fn)
-    keys.append(key)
-    return _torques.callback_row(key)
+    return _rows.register_callback(fn)
 
 
 def _table(rows):
@@ -294,15 +293,15 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
     if translation is not None:
         parts.extend(translation)
     y0 = np.ascontiguousarray(np.concatenate(parts))
-    keys = []
+    rows = frows = None
     try:
-        rows = _torque_rows(torque, axes, t[0], q_body, w_body, keys)
-        frows = _force_rows(force, axes, t[0], q_body, w_body, translation, keys)
+        rows = _torque_rows(torque, axes, t[0], q_body, w_body)
+        frows = _force_rows(force, axes, t[0], q_body, w_body, translation)
         atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
         y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v)
     finally:
-        for key in keys:
-            _torques.release_callback(key)
+        _rows.release_callback(rows)
+        _rows.release_callback(frows)
     omega, q = _to_body_frame(y[:, 0:3], _normalized(y[:, 3:7]), axes)
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
@@ -373,7 +372,7 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     return Trajectory(t, q, omega, tensor, meta=meta)
 
 
-def _force_rows(force, axes, t0, q_body, w_body, translation, keys):
+def _force_rows(force, axes, t0, q_body, w_body, translation):
     if translation is None or force is None:
         return None
     if isinstance(force, _forces.ForceModel):
@@ -391,12 +390,7 @@ def _force_rows(force, axes, t0, q_body, w_body, translation, keys):
         def fn(t, q, w, r, v):
             return force(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
 
-    key = _torques.register_callback(fn)
-    keys.append(key)
-    row = np.zeros((1, _torques.ROW_SIZE))
-    row[0, 0] = _forces.F_CALLBACK
-    row[0, 1] = key
-    return row
+    return _rows.register_callback(fn, translation=True)
 
 
 def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),

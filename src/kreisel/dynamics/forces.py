@@ -10,20 +10,19 @@ accepted too (called back from the compiled loop, slower).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
-from numba import njit, objmode
+from numba import njit
 
 from .._validation import as_float_array
-from ._rows import RowModel, RowSum, row
-from .torques import _CALLBACKS, rotate_scalars
+from ..so3._kernels import _rotated as rotated
+from ._rows import RowModel, RowSum, row, sum_rows
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 
-F_SPACE, F_BODY, F_DRAG, F_CALLBACK = 0, 1, 2, 3
+F_SPACE, F_BODY, F_DRAG = 0, 1, 2
 
 _jit = njit(cache=True, nogil=True)
+_inline = njit(cache=True, nogil=True, inline="always")
 
 
 class ForceModel(RowModel):
@@ -153,53 +152,23 @@ def to_principal(rows, axes):
     return out
 
 
-def _call_registered(key, t, y):
-    q = y[3:7] / np.linalg.norm(y[3:7])
-    f = _CALLBACKS[int(key)](t, q, y[0:3].copy(), y[7:10].copy(), y[10:13].copy())
-    return np.ascontiguousarray(f, dtype=np.float64)
-
-
-@njit(cache=True)
-def _callback_force(key, t, y, scratch):
-    with objmode(f="float64[:]"):
-        f = _call_registered(key, t, y)
-    scratch[10] += f[0]
-    scratch[11] += f[1]
-    scratch[12] += f[2]
+@_inline
+def _force_term(rows, i, q0, q1, q2, q3, y):
+    """Space force of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, r, v)``."""
+    kind = int(rows[i, 0])
+    if kind == F_SPACE:
+        return rows[i, 1], rows[i, 2], rows[i, 3]
+    if kind == F_BODY:
+        return rotated(q0, q1, q2, q3, rows[i, 1], rows[i, 2], rows[i, 3])
+    if kind == F_DRAG:
+        return -rows[i, 1] * y[10], -rows[i, 1] * y[11], -rows[i, 1] * y[12]
+    return 0.0, 0.0, 0.0
 
 
 @_jit
 def evaluate_force(rows, t, y, scratch):
-    """Space force on the centre of mass for ``y = (ω′, q, r, v)`` into ``scratch[10:13]``."""
-    scratch[10] = 0.0
-    scratch[11] = 0.0
-    scratch[12] = 0.0
-    n = rows.shape[0]
-    if n == 0:
-        return
-    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
-    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
-    f0 = 0.0
-    f1 = 0.0
-    f2 = 0.0
-    for i in range(n):
-        kind = int(rows[i, 0])
-        if kind == F_SPACE:
-            f0 += rows[i, 1]
-            f1 += rows[i, 2]
-            f2 += rows[i, 3]
-        elif kind == F_BODY:
-            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 1], rows[i, 2], rows[i, 3], False)
-            f0 += v0
-            f1 += v1
-            f2 += v2
-        elif kind == F_DRAG:
-            f0 -= rows[i, 1] * y[10]
-            f1 -= rows[i, 1] * y[11]
-            f2 -= rows[i, 1] * y[12]
-    scratch[10] = f0
-    scratch[11] = f1
-    scratch[12] = f2
-    for i in range(n):
-        if int(rows[i, 0]) == F_CALLBACK:
-            _callback_force(rows[i, 1], t, y, scratch)
+    """Space force on the centre of mass (None: no force) for ``y = (ω′, q, r, v)`` into ``scratch[10:13]``."""
+    if rows is None:
+        scratch[10] = scratch[11] = scratch[12] = 0.0
+    else:
+        sum_rows(_force_term, rows, t, y, scratch, 10)

@@ -7,21 +7,21 @@ code. A plain Python callable ``torque(t, q, omega_body) -> (3,)`` is also
 accepted by :func:`kreisel.simulate`; it is called back from the compiled loop
 (through numba's object mode), which costs a few microseconds per evaluation.
 
-Table layout: one row of ``ROW_SIZE`` floats per model, ``row[0]`` the kind,
-``row[1:]`` its parameters, all in the frame the integrator works in (the
-principal frame of the body).
+Table layout (:mod:`kreisel.dynamics._rows`): one row of ``ROW_SIZE`` floats
+per model, ``row[0]`` the kind, ``row[1:]`` its parameters, all in the frame
+the integrator works in (the principal frame of the body).
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
-from numba import njit, objmode
+from numba import njit
 
 from .._validation import as_float_array
-from ._rows import ROW_SIZE, RowModel, RowSum, row
+from ..so3._kernels import _rotated as rotated
+from ._rows import RowModel, RowSum, row, sum_rows
 
 __all__ = [
     "TorqueModel",
@@ -32,9 +32,10 @@ __all__ = [
     "TorqueSum",
 ]
 
-BODY, SPACE, CROSS, DAMPING, CALLBACK = 0, 1, 2, 3, 4
+BODY, SPACE, CROSS, DAMPING = 0, 1, 2, 3
 
 _jit = njit(cache=True, nogil=True)
+_inline = njit(cache=True, nogil=True, inline="always")
 
 
 class TorqueModel(RowModel):
@@ -256,98 +257,34 @@ def to_principal(rows, axes):
     return out
 
 
-# Python callables are looked up by id from the compiled loop: a table row
-# carries only numbers, so the registry maps that number back to the function.
-_CALLBACKS = {}
-_IDS = itertools.count(1)
-
-
-def register_callback(function):
-    """Store a torque callable; return its id for a ``CALLBACK`` row."""
-    key = next(_IDS)
-    _CALLBACKS[key] = function
-    return key
-
-
-def release_callback(key):
-    _CALLBACKS.pop(key, None)
-
-
-def callback_row(key):
-    return row(CALLBACK, [key])
-
-
-def _call_registered(key, t, y):
-    q = y[3:7] / np.linalg.norm(y[3:7])
-    return np.ascontiguousarray(_CALLBACKS[int(key)](t, q, y[0:3].copy()), dtype=np.float64)
-
-
-@njit(cache=True)
-def _callback_torque(key, t, y, scratch):
-    with objmode(r="float64[:]"):
-        r = _call_registered(key, t, y)
-    scratch[7] += r[0]
-    scratch[8] += r[1]
-    scratch[9] += r[2]
-
-
-@_jit
-def rotate_scalars(q0, q1, q2, q3, x, y, z, inverse):
-    """R(q) v (or R(q)ᵀ v) on scalars, for a unit q: the formula of ``so3._kernels.qrotate``.
-
-    The integrators' innermost loops call this form so that no array views
-    (and their reference counting) are created per evaluation.
-    """
-    if inverse:
-        q1, q2, q3 = -q1, -q2, -q3
-    t0 = 2.0 * (q2 * z - q3 * y)
-    t1 = 2.0 * (q3 * x - q1 * z)
-    t2 = 2.0 * (q1 * y - q2 * x)
-    return (x + q0 * t0 + q2 * t2 - q3 * t1,
-            y + q0 * t1 + q3 * t0 - q1 * t2,
-            z + q0 * t2 + q1 * t1 - q2 * t0)
+@_inline
+def _torque_term(rows, i, q0, q1, q2, q3, y):
+    """Body torque of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, ...)``."""
+    kind = int(rows[i, 0])
+    if kind == BODY:
+        return rows[i, 1], rows[i, 2], rows[i, 3]
+    if kind == SPACE:
+        return rotated(q0, -q1, -q2, -q3, rows[i, 1], rows[i, 2], rows[i, 3])
+    if kind == CROSS:
+        a0, a1, a2 = rows[i, 1], rows[i, 2], rows[i, 3]
+        v0, v1, v2 = rotated(q0, -q1, -q2, -q3, rows[i, 4], rows[i, 5], rows[i, 6])
+        return a1 * v2 - a2 * v1, a2 * v0 - a0 * v2, a0 * v1 - a1 * v0
+    if kind == DAMPING:
+        w0, w1, w2 = y[0], y[1], y[2]
+        return (-(rows[i, 1] * w0 + rows[i, 2] * w1 + rows[i, 3] * w2),
+                -(rows[i, 4] * w0 + rows[i, 5] * w1 + rows[i, 6] * w2),
+                -(rows[i, 7] * w0 + rows[i, 8] * w1 + rows[i, 9] * w2))
+    return 0.0, 0.0, 0.0
 
 
 @_jit
 def evaluate_torque(rows, t, y, scratch):
-    """Body torque of the model table at the state ``y = (ω′, q, ...)`` into ``scratch[7:10]``."""
-    scratch[7] = 0.0
-    scratch[8] = 0.0
-    scratch[9] = 0.0
-    n = rows.shape[0]
-    if n == 0:
-        return
-    w0, w1, w2 = y[0], y[1], y[2]
-    # stage states of explicit Runge-Kutta methods are not exactly unit
-    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
-    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
-    m0 = 0.0
-    m1 = 0.0
-    m2 = 0.0
-    for i in range(n):
-        kind = int(rows[i, 0])
-        if kind == BODY:
-            m0 += rows[i, 1]
-            m1 += rows[i, 2]
-            m2 += rows[i, 3]
-        elif kind == SPACE:
-            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 1], rows[i, 2], rows[i, 3], True)
-            m0 += v0
-            m1 += v1
-            m2 += v2
-        elif kind == CROSS:
-            a0, a1, a2 = rows[i, 1], rows[i, 2], rows[i, 3]
-            v0, v1, v2 = rotate_scalars(q0, q1, q2, q3, rows[i, 4], rows[i, 5], rows[i, 6], True)
-            m0 += a1 * v2 - a2 * v1
-            m1 += a2 * v0 - a0 * v2
-            m2 += a0 * v1 - a1 * v0
-        elif kind == DAMPING:
-            m0 -= rows[i, 1] * w0 + rows[i, 2] * w1 + rows[i, 3] * w2
-            m1 -= rows[i, 4] * w0 + rows[i, 5] * w1 + rows[i, 6] * w2
-            m2 -= rows[i, 7] * w0 + rows[i, 8] * w1 + rows[i, 9] * w2
-    scratch[7] = m0
-    scratch[8] = m1
-    scratch[9] = m2
-    for i in range(n):
-        if int(rows[i, 0]) == CALLBACK:
-            _callback_torque(rows[i, 1], t, y, scratch)
+    """Body torque of the model table (None: no torque) at ``y = (ω′, q, ...)`` into ``scratch[7:10]``.
+
+    A separate (not inlined) function, so that numba compiles the None case
+    to three stores: inside inlined code it no longer prunes on argument types.
+    """
+    if rows is None:
+        scratch[7] = scratch[8] = scratch[9] = 0.0
+    else:
+        sum_rows(_torque_term, rows, t, y, scratch, 7)
