@@ -62,14 +62,16 @@ class LazyGufunc:
         Layout with literal sizes.
     parallel : numba dispatcher, optional
         ``njit(parallel=True, cache=True)`` loop ``g(in..., out)`` over
-        C-contiguous ``(n, *core)`` views of the inputs passed by the caller
-        (size carriers are not passed) and of the output, calling the same
-        per-element kernel as ``function``, on element views sliced as
-        ``a[i, ::1]`` / ``a[i, :, ::1]``: such slices have numba's layout
-        ``'A'``, the layout the gufunc passes too, so each cached kernel is
-        compiled for one signature only (two processes adding different
-        signatures to the same on-disk cache index at once can pair a
-        signature with the other's machine code). Used when the batch has at least
+        C-contiguous, writable ``(n, *core)`` views of the inputs passed by
+        the caller (size carriers are not passed) and of the output. Its body
+        reads the entries of element ``i`` as numbers, calls the same tuple
+        kernel as ``function`` and writes the returned tuple back: an element
+        slice ``a[i]`` passed to a compiled call would cost tens of ns to
+        build and make every thread update the reference count of the one
+        shared array. Read-only inputs are copied so that the loop keeps one
+        compiled signature (two processes adding different signatures to the
+        same on-disk cache index at once can pair a signature with the
+        other's machine code). Used when the batch has at least
         :data:`PARALLEL_THRESHOLD` elements and every input either has the
         full batch shape or, if its index is in ``shared``, no batch axes.
     shared : tuple of int
@@ -121,12 +123,16 @@ class LazyGufunc:
         if n < PARALLEL_THRESHOLD:
             return None
         flat = [
-            a if index in self._shared else np.ascontiguousarray(a).reshape(n, *core)
+            a if index in self._shared else _writable(np.ascontiguousarray(a)).reshape(n, *core)
             for index, (a, core) in enumerate(zip(args, self._cores))
         ]
         out = np.empty((*batch, *self._out))
         self._parallel(*flat, out.reshape(n, *self._out))
         return out
+
+
+def _writable(a):
+    return a if a.flags.writeable else a.copy()
 
 
 def gufunc(signatures, layout, parallel=None, shared=()):

@@ -1,10 +1,17 @@
 """Scalar quaternion kernels shared by every compiled loop in kreisel.
 
-These work on one element (1-D arrays of length 3 or 4) and are meant to be
-called from other numba functions: ``numba.guvectorize`` wrappers in
-:mod:`kreisel.so3` broadcast them over batches, and the integrators in
-:mod:`kreisel.dynamics` and :mod:`kreisel.nav` call them inside their time
-loops. Conventions: scalar-first Hamilton quaternions, ``R(q)`` of seed 二.4.
+Each element operation has one *tuple kernel*: it takes plain numbers and
+returns a tuple (``quat_product``, ``rotated``, ``quat_matrix``,
+``matrix_entries_quat``, ``rotvec_quat``, ``quat_rotvec``, ``quat_unit``).
+The serial gufuncs and the multi-core ``prange`` loops of :mod:`kreisel.so3`
+both read their arrays into these and write the tuples back, so no array
+slice is ever passed per element: a slice argument costs tens of ns to build,
+and in a parallel loop every thread would update the reference count of the
+one shared parent array. The array forms below (``qmul``, ``qrotate``,
+``quat_to_matrix``, ...) are thin shells over the tuple kernels for callers
+with per-element arrays, such as the integrators in :mod:`kreisel.dynamics`
+and :mod:`kreisel.nav`. Conventions: scalar-first Hamilton quaternions,
+``R(q)`` of seed 二.4.
 """
 
 from __future__ import annotations
@@ -16,29 +23,31 @@ from numba import njit
 _jit = njit(cache=True, fastmath=False, nogil=True)
 
 
-@_jit
-def qmul(p, q, out):
-    """Hamilton product ``out = p q`` (seed 二.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
-    p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
-    out[0] = p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3
-    out[1] = p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2
-    out[2] = p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1
-    out[3] = p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0
+# ---------------------------------------------------------------------------
+# Tuple kernels: one per element operation.
 
 
 @_jit
-def qnormalize(q):
-    """Scale ``q`` in place to unit norm."""
-    n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-    q[0] /= n
-    q[1] /= n
-    q[2] /= n
-    q[3] /= n
+def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
+    """Hamilton product ``p q`` (seed 二.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
+    return (
+        p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
+        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
+        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
+    )
 
 
 @_jit
-def _rotated(q0, q1, q2, q3, x, y, z):
+def quat_unit(q0, q1, q2, q3):
+    """``q / |q|``."""
+    n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    return q0 / n, q1 / n, q2 / n, q3 / n
+
+
+@_jit
+def rotated(q0, q1, q2, q3, x, y, z):
+    """``R(q) v`` for a unit quaternion, without forming the matrix."""
     # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
     t0 = 2.0 * (q2 * z - q3 * y)
     t1 = 2.0 * (q3 * x - q1 * z)
@@ -46,95 +55,57 @@ def _rotated(q0, q1, q2, q3, x, y, z):
     return x + q0 * t0 + q2 * t2 - q3 * t1, y + q0 * t1 + q3 * t0 - q1 * t2, z + q0 * t2 + q1 * t1 - q2 * t0
 
 
-@_jit
-def qrotate(q, v, out):
-    """``out = R(q) v`` for a unit quaternion, without forming the matrix (``out`` may be ``v``)."""
-    out[0], out[1], out[2] = _rotated(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
+#: The name the dynamics integrators import.
+_rotated = rotated
 
 
 @_jit
-def qrotate_inverse(q, v, out):
-    """``out = R(q)^T v`` for a unit quaternion, the rotation by its conjugate (``out`` may be ``v``)."""
-    out[0], out[1], out[2] = _rotated(q[0], -q[1], -q[2], -q[3], v[0], v[1], v[2])
-
-
-@_jit
-def quat_to_matrix(q, out):
-    """``out = R(q)`` exactly as printed in seed 二.4 (q need not be unit: it is scaled)."""
-    write_matrix(q[0], q[1], q[2], q[3], out)
-
-
-@_jit
-def rotvec_to_quat(psi, out):
-    """Exponential ``out = (cos(ψ/2), n sin(ψ/2))``, ψ = |psi|, with no sign flip.
-
-    sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
-    result is accurate to the last bit at tiny angles.
-    """
-    out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
-
-
-@_jit
-def quat_to_rotvec(q, out):
-    """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
-
-    Uses ψ = 2 atan2(|v|, |q0|) (well conditioned everywhere, including
-    ψ -> 0 and ψ -> π) after choosing the hemisphere q0 >= 0.
-    """
-    out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])
-
-
-# ---------------------------------------------------------------------------
-# Scalar helpers returning tuples: fused kernels (rotvec -> matrix, matrix ->
-# Euler angles, ...) chain them without allocating temporaries per element.
-
-
-@_jit
-def write_matrix(q0, q1, q2, q3, out):
-    """Write ``R(q)`` (seed 二.4) of a possibly non-unit quaternion into ``out``."""
+def quat_matrix(q0, q1, q2, q3):
+    """Entries of ``R(q)`` (seed 二.4) row by row, for a possibly non-unit quaternion."""
     s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    out[0, 0] = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s
-    out[0, 1] = 2.0 * (q1 * q2 - q0 * q3) * s
-    out[0, 2] = 2.0 * (q1 * q3 + q0 * q2) * s
-    out[1, 0] = 2.0 * (q1 * q2 + q0 * q3) * s
-    out[1, 1] = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * s
-    out[1, 2] = 2.0 * (q2 * q3 - q0 * q1) * s
-    out[2, 0] = 2.0 * (q1 * q3 - q0 * q2) * s
-    out[2, 1] = 2.0 * (q2 * q3 + q0 * q1) * s
-    out[2, 2] = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * s
+    return (
+        (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s,
+        2.0 * (q1 * q2 - q0 * q3) * s,
+        2.0 * (q1 * q3 + q0 * q2) * s,
+        2.0 * (q1 * q2 + q0 * q3) * s,
+        (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * s,
+        2.0 * (q2 * q3 - q0 * q1) * s,
+        2.0 * (q1 * q3 - q0 * q2) * s,
+        2.0 * (q2 * q3 + q0 * q1) * s,
+        (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * s,
+    )
 
 
 @_jit
-def matrix_quat(R):
-    """Unit quaternion with q0 >= 0 of a rotation matrix (Shepperd/Markley).
+def matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22):
+    """Unit quaternion with q0 >= 0 of a rotation matrix given row by row (Shepperd/Markley).
 
     The component with the largest square is taken from the diagonal and the
     others from sums/differences of off-diagonal pairs divided by it, so no
     digit is lost anywhere, including near ψ = π where the trace formula
-    fails. A slightly non-orthogonal ``R`` gives a nearby rotation after the
+    fails. A slightly non-orthogonal matrix gives a nearby rotation after the
     final normalisation.
     """
-    r00, r11, r22 = R[0, 0], R[1, 1], R[2, 2]
     tr = r00 + r11 + r22
     if tr >= r00 and tr >= r11 and tr >= r22:
         q0 = 1.0 + tr
-        q1 = R[2, 1] - R[1, 2]
-        q2 = R[0, 2] - R[2, 0]
-        q3 = R[1, 0] - R[0, 1]
+        q1 = r21 - r12
+        q2 = r02 - r20
+        q3 = r10 - r01
     elif r00 >= r11 and r00 >= r22:
-        q0 = R[2, 1] - R[1, 2]
+        q0 = r21 - r12
         q1 = 1.0 + r00 - r11 - r22
-        q2 = R[0, 1] + R[1, 0]
-        q3 = R[0, 2] + R[2, 0]
+        q2 = r01 + r10
+        q3 = r02 + r20
     elif r11 >= r22:
-        q0 = R[0, 2] - R[2, 0]
-        q1 = R[0, 1] + R[1, 0]
+        q0 = r02 - r20
+        q1 = r01 + r10
         q2 = 1.0 + r11 - r00 - r22
-        q3 = R[1, 2] + R[2, 1]
+        q3 = r12 + r21
     else:
-        q0 = R[1, 0] - R[0, 1]
-        q1 = R[0, 2] + R[2, 0]
-        q2 = R[1, 2] + R[2, 1]
+        q0 = r10 - r01
+        q1 = r02 + r20
+        q2 = r12 + r21
         q3 = 1.0 + r22 - r00 - r11
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     if q0 < 0.0:
@@ -144,7 +115,11 @@ def matrix_quat(R):
 
 @_jit
 def rotvec_quat(x, y, z):
-    """Tuple form of :func:`rotvec_to_quat` (exponential, no sign flip)."""
+    """Exponential ``(cos(ψ/2), n sin(ψ/2))``, ψ = |(x, y, z)|, with no sign flip.
+
+    sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
+    result is accurate to the last bit at tiny angles.
+    """
     a2 = x * x + y * y + z * z
     a = math.sqrt(a2)
     if a < 1e-4:
@@ -158,10 +133,11 @@ def rotvec_quat(x, y, z):
 
 @_jit
 def quat_rotvec(q0, q1, q2, q3):
-    """Tuple form of :func:`quat_to_rotvec`: log with |ψ| <= π, any nonzero norm.
+    """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
 
-    ψ = 2 atan2(|v|, |q0|) is well conditioned at every angle; the factor
-    ψ/|v| is expanded at small |v| where it tends to 2/q0.
+    ψ = 2 atan2(|v|, |q0|) (after choosing the hemisphere q0 >= 0) is well
+    conditioned at every angle, including ψ -> 0 and ψ -> π; the factor ψ/|v|
+    is expanded at small |v| where it tends to 2/q0.
     """
     if q0 < 0.0:
         q0, q1, q2, q3 = -q0, -q1, -q2, -q3
@@ -174,12 +150,63 @@ def quat_rotvec(q0, q1, q2, q3):
     return k * q1, k * q2, k * q3
 
 
+# ---------------------------------------------------------------------------
+# Array forms for callers holding one element in an array.
+
+
 @_jit
-def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
-    """Tuple form of the Hamilton product ``p q``."""
-    return (
-        p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
-    )
+def qmul(p, q, out):
+    """Hamilton product ``out = p q`` (``out`` may be ``p`` or ``q``)."""
+    out[0], out[1], out[2], out[3] = quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+
+
+@_jit
+def qnormalize(q):
+    """Scale ``q`` in place to unit norm."""
+    q[0], q[1], q[2], q[3] = quat_unit(q[0], q[1], q[2], q[3])
+
+
+@_jit
+def qrotate(q, v, out):
+    """``out = R(q) v`` for a unit quaternion, without forming the matrix (``out`` may be ``v``)."""
+    out[0], out[1], out[2] = rotated(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
+
+
+@_jit
+def qrotate_inverse(q, v, out):
+    """``out = R(q)^T v`` for a unit quaternion, the rotation by its conjugate (``out`` may be ``v``)."""
+    out[0], out[1], out[2] = rotated(q[0], -q[1], -q[2], -q[3], v[0], v[1], v[2])
+
+
+@_jit
+def write_matrix(q0, q1, q2, q3, out):
+    """Write ``R(q)`` (seed 二.4) of a possibly non-unit quaternion into ``out``."""
+    (
+        out[0, 0], out[0, 1], out[0, 2],
+        out[1, 0], out[1, 1], out[1, 2],
+        out[2, 0], out[2, 1], out[2, 2],
+    ) = quat_matrix(q0, q1, q2, q3)  # fmt: skip
+
+
+@_jit
+def quat_to_matrix(q, out):
+    """``out = R(q)`` exactly as printed in seed 二.4 (q need not be unit: it is scaled)."""
+    write_matrix(q[0], q[1], q[2], q[3], out)
+
+
+@_jit
+def matrix_quat(R):
+    """:func:`matrix_entries_quat` of a 3×3 array."""
+    return matrix_entries_quat(R[0, 0], R[0, 1], R[0, 2], R[1, 0], R[1, 1], R[1, 2], R[2, 0], R[2, 1], R[2, 2])
+
+
+@_jit
+def rotvec_to_quat(psi, out):
+    """``out`` = :func:`rotvec_quat` of ``psi``."""
+    out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
+
+
+@_jit
+def quat_to_rotvec(q, out):
+    """``out`` = :func:`quat_rotvec` of ``q``."""
+    out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])

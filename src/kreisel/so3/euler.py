@@ -81,100 +81,111 @@ def _intrinsic_axes(seq):
     """Axes of the equivalent intrinsic sequence and whether angles are reversed."""
     axes, intrinsic = parse_sequence(seq)
     if intrinsic:
-        return np.array(axes, dtype=np.int64), False
-    return np.array(axes[::-1], dtype=np.int64), True
+        return np.array(axes, dtype=np.int64), 0
+    return np.array(axes[::-1], dtype=np.int64), 1
+
+
+# Extrinsic sequences run as the equivalent intrinsic ones with the first and
+# third angles swapped (``reverse`` = 1), read and written in place of a
+# reversed copy. The axis indices and ``reverse`` are shared by the whole
+# batch (``shared=(1, 2)``).
 
 
 @k._jit
-def _euler_to_quat_one(angles, axes, out):
-    out[0], out[1], out[2], out[3] = _euler_quat(angles, axes)
+def _elementary(angle, axis):
+    h = 0.5 * angle
+    s = math.sin(h)
+    return math.cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0
 
 
 @k._jit
-def _euler_to_matrix_one(angles, axes, out):
-    q0, q1, q2, q3 = _euler_quat(angles, axes)
+def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
+    # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
+    if reverse:
+        alpha, gamma = gamma, alpha
+    a0, a1, a2, a3 = _elementary(alpha, axis0)
+    b0, b1, b2, b3 = _elementary(beta, axis1)
+    c0, c1, c2, c3 = _elementary(gamma, axis2)
+    r0, r1, r2, r3 = k.quat_product(a0, a1, a2, a3, b0, b1, b2, b3)
+    return k.quat_product(r0, r1, r2, r3, c0, c1, c2, c3)
+
+
+@k._jit
+def _euler_matrix(alpha, beta, gamma, axis0, axis1, axis2, reverse):
+    q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
+    return k.quat_matrix(q0, q1, q2, q3)
+
+
+@k._jit
+def _matrix_euler(r00, r01, r02, r10, r11, r12, r20, r21, r22, axis0, axis1, axis2, reverse):
+    q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
+    return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
+
+
+@njit(parallel=True, cache=True)
+def _euler_to_quat_parallel(angles, axes, reverse, out):
+    a0, a1, a2 = axes[0], axes[1], axes[2]
+    for i in prange(angles.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _euler_quat(
+            angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse
+        )
+
+
+@njit(parallel=True, cache=True)
+def _euler_to_matrix_parallel(angles, axes, reverse, out):
+    a0, a1, a2 = axes[0], axes[1], axes[2]
+    for i in prange(angles.shape[0]):
+        (
+            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
+            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
+            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
+        ) = _euler_matrix(angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse)  # fmt: skip
+
+
+@njit(parallel=True, cache=True)
+def _quat_to_euler_parallel(q, axes, reverse, out):
+    a0, a1, a2 = axes[0], axes[1], axes[2]
+    for i in prange(q.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q[i, 0], q[i, 1], q[i, 2], q[i, 3], a0, a1, a2, reverse)
+
+
+@njit(parallel=True, cache=True)
+def _matrix_to_euler_parallel(R, axes, reverse, out):
+    a0, a1, a2 = axes[0], axes[1], axes[2]
+    for i in prange(R.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _matrix_euler(
+            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2],
+            a0, a1, a2, reverse,
+        )  # fmt: skip
+
+
+@gufunc(["void(f8[:], i8[:], i8, f8[:], f8[:])"], "(3),(3),(),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1, 2))
+def _euler_to_quat(angles, axes, reverse, carrier4, out):
+    out[0], out[1], out[2], out[3] = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
+
+
+@gufunc(["void(f8[:], i8[:], i8, f8[:, :])"], "(3),(3),()->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1, 2))
+def _euler_to_matrix(angles, axes, reverse, out):
+    q0, q1, q2, q3 = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
     k.write_matrix(q0, q1, q2, q3, out)
 
 
-@k._jit
-def _quat_to_euler_one(q, axes, out):
-    _euler_angles(q[0], q[1], q[2], q[3], axes, out)
+@gufunc(["void(f8[:], i8[:], i8, f8[:])"], "(4),(3),()->(3)", parallel=_quat_to_euler_parallel, shared=(1, 2))
+def _quat_to_euler(q, axes, reverse, out):
+    out[0], out[1], out[2] = _euler_angles(q[0], q[1], q[2], q[3], axes[0], axes[1], axes[2], reverse)
 
 
-@k._jit
-def _matrix_to_euler_one(R, axes, out):
+@gufunc(["void(f8[:, :], i8[:], i8, f8[:])"], "(3,3),(3),()->(3)", parallel=_matrix_to_euler_parallel, shared=(1, 2))
+def _matrix_to_euler(R, axes, reverse, out):
     q0, q1, q2, q3 = k.matrix_quat(R)
-    _euler_angles(q0, q1, q2, q3, axes, out)
-
-
-# The axis indices are shared by the whole batch (``shared=(1,)``).
-
-
-@njit(parallel=True, cache=True)
-def _euler_to_quat_parallel(angles, axes, out):
-    for i in prange(angles.shape[0]):
-        _euler_to_quat_one(angles[i, ::1], axes[::1], out[i, ::1])
-
-
-@njit(parallel=True, cache=True)
-def _euler_to_matrix_parallel(angles, axes, out):
-    for i in prange(angles.shape[0]):
-        _euler_to_matrix_one(angles[i, ::1], axes[::1], out[i, :, ::1])
-
-
-@njit(parallel=True, cache=True)
-def _quat_to_euler_parallel(q, axes, out):
-    for i in prange(q.shape[0]):
-        _quat_to_euler_one(q[i, ::1], axes[::1], out[i, ::1])
-
-
-@njit(parallel=True, cache=True)
-def _matrix_to_euler_parallel(R, axes, out):
-    for i in prange(R.shape[0]):
-        _matrix_to_euler_one(R[i, :, ::1], axes[::1], out[i, ::1])
-
-
-@gufunc(["void(f8[:], i8[:], f8[:], f8[:])"], "(3),(3),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1,))
-def _euler_to_quat(angles, axes, carrier4, out):
-    _euler_to_quat_one(angles, axes, out)
-
-
-@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(3)->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1,))
-def _euler_to_matrix(angles, axes, out):
-    _euler_to_matrix_one(angles, axes, out)
-
-
-@gufunc(["void(f8[:], i8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_euler_parallel, shared=(1,))
-def _quat_to_euler(q, axes, out):
-    _quat_to_euler_one(q, axes, out)
-
-
-@gufunc(["void(f8[:, :], i8[:], f8[:])"], "(3,3),(3)->(3)", parallel=_matrix_to_euler_parallel, shared=(1,))
-def _matrix_to_euler(R, axes, out):
-    _matrix_to_euler_one(R, axes, out)
+    out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
 
 
 @k._jit
-def _euler_quat(angles, axes):
-    # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
-    r0, r1, r2, r3 = 1.0, 0.0, 0.0, 0.0
-    for i in range(3):
-        h = 0.5 * angles[i]
-        s = math.sin(h)
-        c = math.cos(h)
-        a = axes[i]
-        e1 = s if a == 0 else 0.0
-        e2 = s if a == 1 else 0.0
-        e3 = s if a == 2 else 0.0
-        r0, r1, r2, r3 = k.quat_product(r0, r1, r2, r3, c, e1, e2, e3)
-    return r0, r1, r2, r3
-
-
-@k._jit
-def _euler_angles(q0, q1, q2, q3, axes, out):
+def _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse):
     # Bernardes & Viollet's method is written for extrinsic sequences; the
     # intrinsic "ABC" is the extrinsic "cba", hence the reversed axes.
-    i, j, l = axes[2], axes[1], axes[0]
+    i, j, l = axis2, axis1, axis0
     proper = i == l
     if proper:
         l = 3 - i - j
@@ -208,9 +219,9 @@ def _euler_angles(q0, q1, q2, q3, axes, out):
     if not proper:
         first *= sign
         beta -= 0.5 * math.pi
-    out[0] = _wrap(first)
-    out[1] = beta
-    out[2] = _wrap(third)
+    if reverse:
+        return _wrap(third), beta, _wrap(first)
+    return _wrap(first), beta, _wrap(third)
 
 
 @k._jit
@@ -261,8 +272,7 @@ def euler_to_quat(seq, angles, degrees=False):
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
     axes, reverse = _intrinsic_axes(seq)
-    a = _angles_array(angles, degrees)
-    return _euler_to_quat(a[..., ::-1] if reverse else a, axes)
+    return _euler_to_quat(_angles_array(angles, degrees), axes, reverse)
 
 
 def euler_to_matrix(seq, angles, degrees=False):
@@ -277,14 +287,11 @@ def euler_to_matrix(seq, angles, degrees=False):
            [ 0.,  0.,  1.]])
     """
     axes, reverse = _intrinsic_axes(seq)
-    a = _angles_array(angles, degrees)
-    return _euler_to_matrix(a[..., ::-1] if reverse else a, axes)
+    return _euler_to_matrix(_angles_array(angles, degrees), axes, reverse)
 
 
-def _finish(angles, reverse, degrees):
-    if reverse:
-        angles = np.ascontiguousarray(angles[..., ::-1])
-    return np.rad2deg(angles) if degrees else angles
+def _finish(angles, degrees):
+    return np.rad2deg(angles, out=angles) if degrees else angles
 
 
 def quat_to_euler(seq, q, degrees=False):
@@ -304,7 +311,7 @@ def quat_to_euler(seq, q, degrees=False):
     """
     axes, reverse = _intrinsic_axes(seq)
     q = quaternion_array(q, "q")
-    return _finish(_quat_to_euler(q, axes), reverse, degrees)
+    return _finish(_quat_to_euler(q, axes, reverse), degrees)
 
 
 def matrix_to_euler(seq, R, degrees=False):
@@ -323,7 +330,7 @@ def matrix_to_euler(seq, R, degrees=False):
     """
     axes, reverse = _intrinsic_axes(seq)
     R = matrix_array(R, "R")
-    return _finish(_matrix_to_euler(R, axes), reverse, degrees)
+    return _finish(_matrix_to_euler(R, axes, reverse), degrees)
 
 
 def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):

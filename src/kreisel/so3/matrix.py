@@ -15,31 +15,32 @@ from ._gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quate
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
-@k._jit
-def _matrix_to_quat_one(R, out):
-    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
-
-
 @njit(parallel=True, cache=True)
 def _quat_to_matrix_parallel(q, out):
     for i in prange(q.shape[0]):
-        k.quat_to_matrix(q[i, ::1], out[i, :, ::1])
+        (
+            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
+            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
+            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
+        ) = k.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
 
 
 @njit(parallel=True, cache=True)
 def _matrix_to_quat_parallel(R, out):
     for i in prange(R.shape[0]):
-        _matrix_to_quat_one(R[i, :, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.matrix_entries_quat(
+            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
+        )
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)
 def _quat_to_matrix(q, carrier3, out):
-    k.quat_to_matrix(q, out)
+    k.write_matrix(q[0], q[1], q[2], q[3], out)
 
 
 @gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)", parallel=_matrix_to_quat_parallel)
 def _matrix_to_quat(R, carrier4, out):
-    _matrix_to_quat_one(R, out)
+    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
 
 
 def quat_to_matrix(q):

@@ -26,64 +26,79 @@ __all__ = [
 
 
 @k._jit
-def _normalized(q, out):
-    for i in range(4):
-        out[i] = q[i]
-    k.qnormalize(out)
+def _applied(q0, q1, q2, q3, x, y, z):
+    # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
+    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    c0 = q2 * z - q3 * y
+    c1 = q3 * x - q1 * z
+    c2 = q1 * y - q2 * x
+    d = q1 * x + q2 * y + q3 * z
+    s = q0 * q0 - q1 * q1 - q2 * q2 - q3 * q3
+    return (
+        (s * x + 2.0 * (d * q1 + q0 * c0)) / n2,
+        (s * y + 2.0 * (d * q2 + q0 * c1)) / n2,
+        (s * z + 2.0 * (d * q3 + q0 * c2)) / n2,
+    )
 
 
 @k._jit
-def _applied(q, v, out):
-    # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+def _inverted(q0, q1, q2, q3):
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-    c0 = q2 * v[2] - q3 * v[1]
-    c1 = q3 * v[0] - q1 * v[2]
-    c2 = q1 * v[1] - q2 * v[0]
-    d = q1 * v[0] + q2 * v[1] + q3 * v[2]
-    s = q0 * q0 - q1 * q1 - q2 * q2 - q3 * q3
-    out[0] = (s * v[0] + 2.0 * (d * q1 + q0 * c0)) / n2
-    out[1] = (s * v[1] + 2.0 * (d * q2 + q0 * c1)) / n2
-    out[2] = (s * v[2] + 2.0 * (d * q3 + q0 * c2)) / n2
+    return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
 
 
 @njit(parallel=True, cache=True)
 def _multiply_parallel(p, q, out):
     for i in prange(p.shape[0]):
-        k.qmul(p[i, ::1], q[i, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_product(
+            p[i, 0], p[i, 1], p[i, 2], p[i, 3], q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        )
 
 
 @njit(parallel=True, cache=True)
 def _normalize_parallel(q, out):
     for i in prange(q.shape[0]):
-        _normalized(q[i, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_unit(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @njit(parallel=True, cache=True)
-def _apply_parallel(q, v, out):
+def _inverse_parallel(q, out):
     for i in prange(q.shape[0]):
-        _applied(q[i, ::1], v[i, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
+
+
+@njit(parallel=True, cache=True)
+def _apply_parallel(q, v, sign, out):
+    # sign = -1 rotates by the conjugate: R(q)ᵀ v.
+    for i in prange(q.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _applied(
+            q[i, 0], sign * q[i, 1], sign * q[i, 2], sign * q[i, 3], v[i, 0], v[i, 1], v[i, 2]
+        )
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)
 def _multiply(p, q, out):
-    k.qmul(p, q, out)
+    out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_normalize_parallel)
 def _normalize(q, out):
-    _normalized(q, out)
+    out[0], out[1], out[2], out[3] = k.quat_unit(q[0], q[1], q[2], q[3])
 
 
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_apply_parallel)
-def _apply(q, v, out):
-    _applied(q, v, out)
+@gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_inverse_parallel)
+def _inverse(q, out):
+    out[0], out[1], out[2], out[3] = _inverted(q[0], q[1], q[2], q[3])
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(3),()->(3)", parallel=_apply_parallel, shared=(2,))
+def _apply(q, v, sign, out):
+    out[0], out[1], out[2] = _applied(q[0], sign * q[1], sign * q[2], sign * q[3], v[0], v[1], v[2])
 
 
 @njit(cache=True, nogil=True)
 def _multiply_one(p, q):
     out = np.empty(4)
-    # The tuple product: qmul itself stays compiled for the gufuncs' layout 'A' only.
     out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     finite = True
     for i in range(4):
@@ -93,7 +108,7 @@ def _multiply_one(p, q):
 
 def _is_single(x):
     # Writable arrays only: a read-only one would compile (and cache) a second
-    # signature of _multiply_one and of the shared kernel qmul.
+    # signature of _multiply_one.
     return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64 and x.flags.writeable
 
 
@@ -164,10 +179,7 @@ def quat_inverse(q):
     >>> quat_inverse([0.0, 0.0, 2.0, 0.0])
     array([ 0. , -0. , -0.5, -0. ])
     """
-    q = quaternion_array(q, "q")
-    out = quat_conjugate(q)
-    out /= np.einsum("...i,...i->...", q, q)[..., None]
-    return out
+    return _inverse(quaternion_array(q, "q"))
 
 
 def quat_normalize(q):
@@ -211,9 +223,7 @@ def quat_apply(q, v, inverse=False):
     """
     q = quaternion_array(q, "q")
     v = vector_array(v, "v")
-    if inverse:
-        q = q * np.array([1.0, -1.0, -1.0, -1.0])
-    return _apply(q, v)
+    return _apply(q, v, -1.0 if inverse else 1.0)
 
 
 def quat_identity(shape=()):

@@ -33,64 +33,67 @@ __all__ = [
 
 
 @k._jit
-def _quat_to_rotvec_one(q, out):
-    out[0], out[1], out[2] = k.quat_rotvec(q[0], q[1], q[2], q[3])
+def _rotvec_matrix(x, y, z):
+    q0, q1, q2, q3 = k.rotvec_quat(x, y, z)
+    return k.quat_matrix(q0, q1, q2, q3)
 
 
 @k._jit
-def _rotvec_to_matrix_one(psi, out):
-    q0, q1, q2, q3 = k.rotvec_quat(psi[0], psi[1], psi[2])
-    k.write_matrix(q0, q1, q2, q3, out)
-
-
-@k._jit
-def _matrix_to_rotvec_one(R, out):
-    q0, q1, q2, q3 = k.matrix_quat(R)
-    out[0], out[1], out[2] = k.quat_rotvec(q0, q1, q2, q3)
+def _matrix_rotvec(r00, r01, r02, r10, r11, r12, r20, r21, r22):
+    q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
+    return k.quat_rotvec(q0, q1, q2, q3)
 
 
 @njit(parallel=True, cache=True)
 def _rotvec_to_quat_parallel(psi, out):
     for i in prange(psi.shape[0]):
-        k.rotvec_to_quat(psi[i, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
 
 
 @njit(parallel=True, cache=True)
 def _quat_to_rotvec_parallel(q, out):
     for i in prange(q.shape[0]):
-        _quat_to_rotvec_one(q[i, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2] = k.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @njit(parallel=True, cache=True)
 def _rotvec_to_matrix_parallel(psi, out):
     for i in prange(psi.shape[0]):
-        _rotvec_to_matrix_one(psi[i, ::1], out[i, :, ::1])
+        (
+            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
+            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
+            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
+        ) = _rotvec_matrix(psi[i, 0], psi[i, 1], psi[i, 2])  # fmt: skip
 
 
 @njit(parallel=True, cache=True)
 def _matrix_to_rotvec_parallel(R, out):
     for i in prange(R.shape[0]):
-        _matrix_to_rotvec_one(R[i, :, ::1], out[i, ::1])
+        out[i, 0], out[i, 1], out[i, 2] = _matrix_rotvec(
+            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
+        )
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
 def _rotvec_to_quat(psi, carrier4, out):
-    k.rotvec_to_quat(psi, out)
+    out[0], out[1], out[2], out[3] = k.rotvec_quat(psi[0], psi[1], psi[2])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_rotvec_parallel)
 def _quat_to_rotvec(q, carrier3, out):
-    _quat_to_rotvec_one(q, out)
+    out[0], out[1], out[2] = k.quat_rotvec(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)", parallel=_rotvec_to_matrix_parallel)
 def _rotvec_to_matrix(psi, out):
-    _rotvec_to_matrix_one(psi, out)
+    q0, q1, q2, q3 = k.rotvec_quat(psi[0], psi[1], psi[2])
+    k.write_matrix(q0, q1, q2, q3, out)
 
 
 @gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)", parallel=_matrix_to_rotvec_parallel)
 def _matrix_to_rotvec(R, out):
-    _matrix_to_rotvec_one(R, out)
+    q0, q1, q2, q3 = k.matrix_quat(R)
+    out[0], out[1], out[2] = k.quat_rotvec(q0, q1, q2, q3)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
