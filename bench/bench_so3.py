@@ -1,23 +1,26 @@
-"""kreisel.so3 against scipy.spatial.transform on 10^6 rotations.
+"""kreisel.so3 against scipy.spatial.transform and numpy-quaternion on 10^6 rotations.
 
-For each batch operation: median wall time of kreisel and scipy (same
-process, same inputs), the speed-up, and the ratio to a "streaming copy"
-bound — ``np.copyto`` of buffers as large as the operation's input plus
-output, the least memory traffic any implementation needs. Plus the time of
-one single-rotation ``quat_multiply``. Writes ``bench/results/so3.md``.
+For each batch operation: median and best wall time of kreisel, scipy and
+(for composition, apply, quat -> matrix and rotvec -> quat) numpy-quaternion,
+timed in alternation on the same inputs in one process; the speed-ups; the
+ratio to a streaming copy of the operation's input and output (the least
+memory traffic any implementation needs); and kreisel's CPU time over wall
+time (about 2 when both cores work). Plus one single-rotation
+``quat_multiply``. Writes ``bench/results/so3.md`` (notes after the
+``_common.NOTES_MARKER`` line are kept).
 
 kreisel runs batches of at least ``PARALLEL_THRESHOLD`` rotations on all
-cores (numba ``prange``); scipy is single-threaded. The load average is
-recorded with the table because the machine may be shared.
+cores (numba ``prange``); scipy and numpy-quaternion are single-threaded.
+The peers get their inputs in their own conventions, converted before the
+timing (scipy scalar-last ``Rotation`` objects, numpy-quaternion arrays of
+``quaternion`` scalars); their outputs are left in their own types.
 """
 
 from __future__ import annotations
 
-import os
-import pathlib
-import time
-
 import numpy as np
+import quaternion as npq
+from _common import NOTES_MARKER, header, interleaved, load_average, markdown_table, median_time, streaming_copy, write_results
 from scipy.spatial.transform import Rotation as S
 
 import kreisel as kr
@@ -25,117 +28,119 @@ import kreisel as kr
 N = 1_000_000
 REPEATS = 5
 
-
-def median_time(fn, repeats=REPEATS):
-    fn()  # compile / warm caches
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times))
+#: Operations whose time is set by memory traffic (the goal: within 2x of the copy bound).
+MEMORY_BOUND = {"quat -> matrix", "matrix -> quat", "composition p q", "apply R(q) v", "inverse", "normalisation"}
 
 
-def copy_buffers(n_in, n_out):
-    """A run that streams ``n_in`` doubles in and ``n_out`` doubles out (two copies)."""
-    src_in, dst_in = np.random.rand(n_in), np.empty(n_in)
-    src_out, dst_out = np.random.rand(n_out), np.empty(n_out)
-
-    def run():
-        np.copyto(dst_in, src_in)
-        np.copyto(dst_out, src_out)
-
-    return run
-
-
-def interleaved_times(ours, theirs, copy, rounds=REPEATS):
-    """Median and best times of the three runs, taken in alternation.
-
-    On a shared machine the load drifts within seconds; alternating the
-    runs gives kreisel, scipy and the copy bound the same conditions, and
-    the best times are the least disturbed by other jobs.
-    """
-    runs = (ours, theirs, copy)
-    for fn in runs:
-        fn()  # compile / warm caches
-    times = [[], [], []]
-    for _ in range(rounds):
-        for fn, bucket in zip(runs, times):
-            t = time.perf_counter()
-            fn()
-            bucket.append(time.perf_counter() - t)
-    return [float(np.median(b)) for b in times], [min(b) for b in times]
-
-
-def main():
-    rng = np.random.default_rng(0)
+def _cases(rng):
     q = rng.normal(size=(N, 4))
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
     p = rng.normal(size=(N, 4))
     p /= np.linalg.norm(p, axis=-1, keepdims=True)
+    raw = 2.0 * rng.normal(size=(N, 4))  # not unit: for the normalisation
     R = kr.quat_to_matrix(q)
     psi = kr.quat_to_rotvec(q)
     euler = kr.quat_to_euler("ZXZ", q)
     v = rng.normal(size=(N, 3))
-    sq, sp = S.from_quat(q[:, [1, 2, 3, 0]]), S.from_quat(p[:, [1, 2, 3, 0]])
+    last = lambda x: np.ascontiguousarray(x[:, [1, 2, 3, 0]])  # noqa: E731
+    q_last, raw_last = last(q), last(raw)
+    sq, sp = S.from_quat(q_last), S.from_quat(last(p))
+    Q, P = npq.as_quat_array(q), npq.as_quat_array(p)
 
-    # name, kreisel, scipy, doubles in, doubles out per rotation
-    cases = [
-        ("quat -> matrix", lambda: kr.quat_to_matrix(q), lambda: S.from_quat(q[:, [1, 2, 3, 0]]).as_matrix(), 4, 9),
-        ("matrix -> quat", lambda: kr.matrix_to_quat(R), lambda: S.from_matrix(R).as_quat(), 9, 4),
-        ("rotvec -> matrix", lambda: kr.rotvec_to_matrix(psi), lambda: S.from_rotvec(psi).as_matrix(), 3, 9),
-        ("rotvec -> quat", lambda: kr.rotvec_to_quat(psi), lambda: S.from_rotvec(psi).as_quat(), 3, 4),
-        ("matrix -> rotvec", lambda: kr.matrix_to_rotvec(R), lambda: S.from_matrix(R).as_rotvec(), 9, 3),
-        ("Euler ZXZ -> matrix", lambda: kr.euler_to_matrix("ZXZ", euler), lambda: S.from_euler("ZXZ", euler).as_matrix(), 3, 9),
-        ("matrix -> Euler ZXZ", lambda: kr.matrix_to_euler("ZXZ", R), lambda: S.from_matrix(R).as_euler("ZXZ"), 9, 3),
-        ("composition p q", lambda: kr.quat_multiply(p, q), lambda: sp * sq, 8, 4),
-        ("apply R(q) v", lambda: kr.quat_apply(q, v), lambda: sq.apply(v), 7, 3),
+    def npq_apply():
+        return npq.as_vector_part(Q * npq.from_vector_part(v) * Q.conjugate())
+
+    # The peers agree with kreisel (elementwise apply: numpy-quaternion's
+    # rotate_vectors would rotate every vector by every rotation).
+    assert np.allclose(npq.as_float_array(P * Q), kr.quat_multiply(p, q), atol=1e-14)
+    assert np.allclose(npq_apply(), kr.quat_apply(q, v), atol=1e-14)
+    assert np.allclose(npq.as_rotation_matrix(Q), R, atol=1e-14)
+    assert np.allclose(npq.as_float_array(npq.from_rotation_vector(psi)), kr.rotvec_to_quat(psi), atol=1e-14)
+
+    # name, kreisel, scipy, numpy-quaternion or None, doubles in, doubles out per rotation
+    return [
+        ("quat -> matrix", lambda: kr.quat_to_matrix(q), lambda: S.from_quat(q_last).as_matrix(),
+         lambda: npq.as_rotation_matrix(Q), 4, 9),
+        ("matrix -> quat", lambda: kr.matrix_to_quat(R), lambda: S.from_matrix(R).as_quat(), None, 9, 4),
+        ("rotvec -> matrix", lambda: kr.rotvec_to_matrix(psi), lambda: S.from_rotvec(psi).as_matrix(), None, 3, 9),
+        ("rotvec -> quat", lambda: kr.rotvec_to_quat(psi), lambda: S.from_rotvec(psi).as_quat(),
+         lambda: npq.from_rotation_vector(psi), 3, 4),
+        ("matrix -> rotvec", lambda: kr.matrix_to_rotvec(R), lambda: S.from_matrix(R).as_rotvec(), None, 9, 3),
+        ("Euler ZXZ -> matrix", lambda: kr.euler_to_matrix("ZXZ", euler), lambda: S.from_euler("ZXZ", euler).as_matrix(),
+         None, 3, 9),
+        ("matrix -> Euler ZXZ", lambda: kr.matrix_to_euler("ZXZ", R), lambda: S.from_matrix(R).as_euler("ZXZ"), None, 9, 3),
+        ("composition p q", lambda: kr.quat_multiply(p, q), lambda: sp * sq, lambda: P * Q, 8, 4),
+        ("apply R(q) v", lambda: kr.quat_apply(q, v), lambda: sq.apply(v), npq_apply, 7, 3),
+        ("inverse", lambda: kr.quat_inverse(q), lambda: sq.inv(), None, 4, 4),
+        ("normalisation", lambda: kr.quat_normalize(raw), lambda: S.from_quat(raw_last), None, 4, 4),
     ]
-    load_before = os.getloadavg()
+
+
+def allocating_copy(n_in, n_out):
+    """The copy bound for a function that returns a new array: the output buffer is allocated per run.
+
+    In this VM a freshly allocated buffer of many MB often costs far more to
+    touch the first time than a reused one (the pages come back from the
+    host), and every call of kreisel, scipy or numpy-quaternion pays that too.
+    """
+    src_in, dst_in, src_out = np.random.rand(n_in), np.empty(n_in), np.random.rand(n_out)
+
+    def run():
+        np.copyto(dst_in, src_in)
+        return src_out.copy()
+
+    return run
+
+
+def _ms(t):
+    return f"{t * 1e3:.2f}"
+
+
+def main():
+    cases = _cases(np.random.default_rng(0))
+    load_before = load_average()
     rows = []
-    for name, ours, theirs, n_in, n_out in cases:
-        (t_ours, t_scipy, t_copy), best = interleaved_times(ours, theirs, copy_buffers(n_in * N, n_out * N))
-        rows.append((name, t_ours, t_scipy, t_copy, best))
-        print(f"{name:22s} kreisel {t_ours * 1e3:8.2f} ms  scipy {t_scipy * 1e3:8.1f} ms  copy {t_copy * 1e3:6.2f} ms", flush=True)
+    for name, ours, scipy_run, npq_run, n_in, n_out in cases:
+        copies = [streaming_copy(n_in * N, n_out * N), allocating_copy(n_in * N, n_out * N)]
+        runs = [ours, scipy_run, *copies] + ([npq_run] if npq_run else [])
+        t_ours, t_scipy, t_copy, t_new, *t_npq = interleaved(*runs, repeats=REPEATS)
+        npq_cells = [_ms(t_npq[0].median), f"{t_npq[0].median / t_ours.median:.1f}×"] if t_npq else ["", ""]
+        rows.append([
+            name + ("" if name in MEMORY_BOUND else " †"),
+            _ms(t_ours.median), _ms(t_scipy.median), f"{t_scipy.median / t_ours.median:.1f}×", *npq_cells,
+            _ms(t_copy.median), f"{t_ours.median / t_copy.median:.2f}", _ms(t_new.median), f"{t_ours.median / t_new.median:.2f}",
+            _ms(t_ours.best), f"{t_scipy.best / t_ours.best:.1f}×", f"{t_ours.best / t_copy.best:.2f}",
+            f"{t_ours.cpu_median / t_ours.median:.1f}",
+        ])
+        print(" | ".join(rows[-1]), flush=True)
 
     a, b = np.array([0.9, 0.1, 0.3, 0.2]), np.array([0.5, -0.5, 0.5, 0.5])
     sa, sb = S.from_quat(a[[1, 2, 3, 0]]), S.from_quat(b[[1, 2, 3, 0]])
     single = median_time(lambda: [kr.quat_multiply(a, b) for _ in range(1000)]) / 1000
     single_scipy = median_time(lambda: [(sa * sb).as_quat() for _ in range(1000)]) / 1000
-    load_after = os.getloadavg()
-    load = lambda la: "/".join(f"{x:.1f}" for x in la)  # noqa: E731
 
-    lines = [
-        "# kreisel.so3 vs scipy.spatial.transform",
-        "",
-        f"10^6 rotations, medians of {REPEATS} runs taken in alternation (kreisel, scipy, copy), one process, float64. "
-        f"scipy {__import__('scipy').__version__}, numpy {np.__version__}, numba {__import__('numba').__version__}. "
-        "Copy bound: `np.copyto` of input- and output-sized (preallocated) buffers; kreisel also allocates its output. "
-        f"{os.cpu_count()} cores, kreisel uses {__import__('numba').get_num_threads()} threads for batches. "
-        f"Load average (1/5/15 min) before: {load(load_before)}, after: {load(load_after)} "
-        "(a load above the core count means other jobs shared the CPUs and the times are inflated; "
-        "the best-of-runs columns are the least disturbed).",
-        "",
-        "| operation | kreisel (ms) | scipy (ms) | speed-up vs scipy | copy bound (ms) | kreisel / copy "
-        "| best kreisel (ms) | best speed-up | best kreisel / best copy |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
-    ]
-    for name, t_ours, t_scipy, t_copy, (b_ours, b_scipy, b_copy) in rows:
-        lines.append(
-            f"| {name} | {t_ours * 1e3:.2f} | {t_scipy * 1e3:.1f} | {t_scipy / t_ours:.1f}× | {t_copy * 1e3:.2f} | {t_ours / t_copy:.2f} "
-            f"| {b_ours * 1e3:.2f} | {b_scipy / b_ours:.1f}× | {b_ours / b_copy:.2f} |"
-        )
+    lines = header(
+        "kreisel.so3 vs scipy.spatial.transform and numpy-quaternion",
+        f"10^6 rotations, float64; medians and bests of {REPEATS} runs taken in alternation (kreisel, scipy, copies, "
+        f"numpy-quaternion {npq.__version__}) in one process. Copy bound: `np.copyto` of input- and output-sized "
+        "preallocated buffers; copy to new output: the same, but the output buffer is allocated per run, as every "
+        "function returning a new array must (in this VM first touches of fresh pages are slow and erratic). "
+        "kreisel CPU/wall: about 2 when both cores work. "
+        "† transcendental-bound (the others are memory-bound: goal within 2× of the copy bound).",
+        load_before=load_before,
+    )
+    lines += markdown_table(
+        ["operation", "kreisel (ms)", "scipy (ms)", "vs scipy", "numpy-quaternion (ms)", "vs numpy-quaternion",
+         "copy bound (ms)", "kreisel / copy", "copy to new output (ms)", "kreisel / copy to new", "best kreisel (ms)", "best vs scipy", "best kreisel / best copy",
+         "kreisel CPU / wall"],
+        rows, "l" + "r" * 13,
+    )
     lines += [
         "",
         f"Single call `quat_multiply` of two 4-vectors: kreisel {single * 1e6:.2f} µs, "
         f"scipy (`Rotation * Rotation`, then `as_quat`) {single_scipy * 1e6:.2f} µs.",
-        "",
     ]
-    text = "\n".join(lines)
-    print(text)
-    out = pathlib.Path(__file__).parent / "results" / "so3.md"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text)
+    write_results("so3", "\n".join(lines))
 
 
 if __name__ == "__main__":
