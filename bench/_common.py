@@ -174,8 +174,11 @@ def header(title: str | None = None, *notes: str, load_before: str | None = None
     load = f"before: {load_before}, after: {load_average()}" if load_before is not None else f"now: {load_average()}"
     lines = [f"# {title}", ""] if title else []
     lines += list(notes)
+    one_minute = [float(x.split("/")[0]) for x in (load_before, load_average()) if x and x != "n/a"]
+    busy = bool(one_minute) and max(one_minute) > os.cpu_count()
+    note = "above the core count: other jobs shared the CPUs" if busy else "below the core count: a quiet machine"
     lines.append(f"{machine()}; {versions()}; numba threads {numba.get_num_threads()}. "
-                 f"Load average (1/5/15 min) {load} (above the core count, other jobs shared the CPUs).")
+                 f"Load average (1/5/15 min) {load} ({note}).")
     return lines + [""]
 
 
