@@ -217,7 +217,8 @@ def markdown_tables_to_rst(text):
             title = line.lstrip("#").strip()
             out += ["", f"**{title}**", ""]
         else:
-            out.append(line.replace("`", "``"))
+            # a bare |x| in prose would be read as a reST substitution reference
+            out.append(line.replace("`", "``").replace("|", "\\|"))
     flush()
     return "\n".join(out) + "\n"
 
