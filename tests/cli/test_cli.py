@@ -170,6 +170,9 @@ theta0_deg = 34.0
     result = run("sweep", str(sweep_file), "--scheduler", "serial", "--plot", "map.png")
     assert result.exit_code == 0, result.output
     assert (tmp_path / "small.zarr").is_dir() and (tmp_path / "map.png").stat().st_size > 0
+    result = run("sweep", "lagrange_apex", "--scheduler", "serial", "-o", str(tmp_path / "bundled.nc"))
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "bundled.nc").is_file()
     bad = tmp_path / "bad.toml"
     bad.write_text(text.replace("mgl = 1.0", "mgl = 1.0\ncolour = 1"))
     result = run("sweep", str(bad), "--scheduler", "serial")

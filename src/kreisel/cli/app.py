@@ -179,7 +179,8 @@ def tour(
 
 @app.command()
 def sweep(
-    sweep_file: pathlib.Path = typer.Argument(..., help="Sweep TOML file (bundled: see kreisel.sweep.EXAMPLES)."),
+    sweep_file: pathlib.Path = typer.Argument(
+        ..., help="Sweep TOML file, or the name of a bundled sweep: tennis_racket, lagrange_apex, imu_monte_carlo."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Existing Dask scheduler, tcp://host:8786."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes of the local cluster."),
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="out.zarr | out.nc"),
@@ -187,8 +188,10 @@ def sweep(
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
     from .. import plot as plots
-    from ..sweep import SweepError, load_sweep_file, plot_sweep, run_sweep_file
+    from ..sweep import EXAMPLES, SweepError, example_path, load_sweep_file, plot_sweep, run_sweep_file
 
+    if not sweep_file.exists() and str(sweep_file) in EXAMPLES:
+        sweep_file = example_path(str(sweep_file))
     try:
         if output is None and load_sweep_file(sweep_file).output is None:
             # results (and the checkpoint that lets an interrupted run resume) go to the working directory
