@@ -6,7 +6,8 @@ import pathlib
 import tomllib
 from importlib import resources
 
-EXAMPLES = ("tennis_racket", "sleeping_top", "fast_top", "kovalevskaya", "foucault", "coning")
+EXAMPLES = ("tennis_racket", "symmetric_top", "lagrange_cusps", "lagrange_loops", "sleeping_top", "fast_top",
+            "kovalevskaya", "foucault", "coning")
 
 
 def example_path(name):
@@ -20,7 +21,7 @@ def example_path(name):
     >>> example_path("pendulum")
     Traceback (most recent call last):
         ...
-    ValueError: name must be one of tennis_racket, sleeping_top, fast_top, kovalevskaya, foucault, coning, got 'pendulum'
+    ValueError: name must be one of tennis_racket, symmetric_top, lagrange_cusps, lagrange_loops, sleeping_top, fast_top, kovalevskaya, foucault, coning, got 'pendulum'
     """
     if name not in EXAMPLES:
         raise ValueError(f"name must be one of {', '.join(EXAMPLES)}, got {name!r}")
