@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import earth, nav
-from ..dynamics import simulate
+from ..dynamics import Trajectory, simulate
 from ..dynamics.torques import ConstantTorque, GravityTorque, LinearDamping
 from ..inertia import RigidBody
 from ..so3 import quat_apply, quat_conjugate, quat_multiply, quat_to_rotvec
@@ -160,7 +160,7 @@ def summary(result):
     >>> lines[1].startswith("energy T = 1.0002 J, relative drift")
     True
     """
-    if hasattr(result, "drift"):
+    if isinstance(result, Trajectory):
         drift = result.drift()
         return [
             f"{len(result)} samples, t = {result.t[0]:g} … {result.t[-1]:g} s, method {result.meta.get('method', '?')}",

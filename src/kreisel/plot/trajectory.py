@@ -132,9 +132,7 @@ def herpolhode(traj):
     >>> bool(np.allclose(radius, radius[0]))
     True
     """
-    j = traj.angular_momentum_space if hasattr(traj, "angular_momentum_space") else None
-    if j is None:
-        j = quat_apply(traj.q, traj.angular_momentum_body)
+    j = traj.angular_momentum_space
     n = j[..., 0, :] / np.linalg.norm(j[..., 0, :], axis=-1, keepdims=True)
     w = traj.omega_space
     e1 = np.cross(n, [1.0, 0.0, 0.0])
