@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from .._validation import as_float_array
 from ..dynamics import GravityTorque, simulate
@@ -139,8 +139,10 @@ class _Quadrature:
         coefficients = (beta, -(alpha + a * a), 2.0 * a * b - beta, alpha - b * b)
         f = lambda u: ((coefficients[0] * u + coefficients[1]) * u + coefficients[2]) * u + coefficients[3]
         if udot0 != 0.0:
+            from scipy.optimize import brentq  # 0.13 s to import: only when a root must be searched for
+
             # f(u0) = u̇0² > 0 and f(±1) = −(b ∓ a)² <= 0 bracket one root on each side
-            root = optimize.brentq(f, -1.0, u0, xtol=1e-16, rtol=1e-15, maxiter=200)
+            root = brentq(f, -1.0, u0, xtol=1e-16, rtol=1e-15, maxiter=200)
         else:
             root = u0  # released at a turning point: u0 itself is a root
         # deflate f by (u − root): f = β (u − root)(u² + p u + r)
