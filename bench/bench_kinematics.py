@@ -1,8 +1,8 @@
 """Batch rate maps: kreisel's compiled kernels against vectorised numpy on 10^6 samples.
 
 The numpy references are the natural whole-array expressions of the same
-formulas (seed 三.5 Bortz equation with the same small-angle series; the
-seed's explicit ZXZ body inverse of 三.6 and the aerospace ZYX body inverse),
+formulas (Theory §3.5 Bortz equation with the same small-angle series; the
+chapter's explicit ZXZ body inverse of §3.6 and the aerospace ZYX body inverse),
 with the same NaN at gimbal lock. Each reference is checked against kreisel
 before timing. kreisel's times include its input validation. "one core"
 forces the serial gufunc; the default uses both cores for large batches.
@@ -36,7 +36,7 @@ def bortz_numpy(psi, w):
 
 
 def zxz_body_numpy(angles, w):
-    """Seed 三.6: φ̇ = (ω₁ sin ψ + ω₂ cos ψ)/sin θ, θ̇ = ω₁ cos ψ − ω₂ sin ψ, ψ̇ = ω₃ − cos θ φ̇."""
+    """Theory §3.6: φ̇ = (ω₁ sin ψ + ω₂ cos ψ)/sin θ, θ̇ = ω₁ cos ψ − ω₂ sin ψ, ψ̇ = ω₃ − cos θ φ̇."""
     theta, psi = angles[:, 1], angles[:, 2]
     s, c = np.sin(psi), np.cos(psi)
     st = np.sin(theta)

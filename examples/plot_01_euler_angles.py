@@ -1,5 +1,5 @@
 """
-Euler angles, quaternions and the nodal line (seed 二.3–二.4)
+Euler angles, quaternions and the nodal line (Theory §2.3–§2.4)
 ========================================================================
 
 The mechanics Euler angles (φ, θ, ψ) are the intrinsic sequence ``"ZXZ"``:

@@ -1,5 +1,5 @@
 """
-Gimbal lock (seed 二.3, 三.6)
+Gimbal lock (Theory §2.3, §3.6)
 ========================================
 
 For a fixed body angular velocity the ZXZ Euler rates grow like 1/sin θ as the

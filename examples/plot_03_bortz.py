@@ -1,5 +1,5 @@
 """
-The Bortz coefficient (seed 三.5)
+The Bortz coefficient (Theory §3.5)
 =============================================
 
 The body-frame rate of the rotation vector is the Bortz equation

@@ -1,5 +1,5 @@
 """
-Instantaneous centre and centrodes (seed 三.8)
+Instantaneous centre and centrodes (Theory §3.8)
 =========================================================
 
 A wheel of radius a rolling without slipping: its instantaneous centre is the

@@ -1,5 +1,5 @@
 """
-Inertia tensor, principal axes and the inertia ellipsoid (seed 四.1–四.3)
+Inertia tensor, principal axes and the inertia ellipsoid (Theory §4.1–§4.3)
 ==================================================================================
 
 A box turned into arbitrary axes has a full inertia tensor; its eigenvectors,

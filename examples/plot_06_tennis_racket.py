@@ -1,5 +1,5 @@
 """
-Tennis-racket theorem (seed 五.4)
+Tennis-racket theorem (Theory §5.4)
 ============================================
 
 The free (Euler) top I = (1, 2, 3) spun near each principal axis. Rotation about

@@ -1,5 +1,5 @@
 """
-Poinsot construction: polhode and herpolhode (seed 五.5–五.6)
+Poinsot construction: polhode and herpolhode (Theory §5.5–§5.6)
 ========================================================================
 
 ρ = ω/√(2T) lies on the inertia ellipsoid and the ellipsoid rolls without

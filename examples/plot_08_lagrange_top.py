@@ -1,5 +1,5 @@
 """
-Lagrange top: effective potential and apex loci (seed 六.2–六.5)
+Lagrange top: effective potential and apex loci (Theory §6.2–§6.5)
 ===========================================================================
 
 A heavy symmetric top released at θ0 = 0.6 rad with spin 10 rad/s and three

@@ -1,5 +1,5 @@
 """
-Kovalevskaya top (seed 七)
+Kovalevskaya top (Theory §7)
 =====================================
 
 With I1 = I2 = 2 I3 and the centre of mass in the equatorial plane the heavy

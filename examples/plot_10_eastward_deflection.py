@@ -1,8 +1,8 @@
 """
-Eastward deflection of a falling body (seed 八.3)
+Eastward deflection of a falling body (Theory §8.3)
 ============================================================
 
-The seed's example: a 100 m drop at Hefei (λ = 31.8584°, g = 9.7947 m/s²,
+The chapter's example: a 100 m drop at Hefei (λ = 31.8584°, g = 9.7947 m/s²,
 ω = 7.27221e-5 rad/s) lands (2/3) ω cos λ √(2h³/g) ≈ 0.0186 m east of the
 vertical. The analytic formula against a simulation of the full rotating-frame
 equations.

@@ -1,5 +1,5 @@
 """
-Foucault pendulum (seed 八.3)
+Foucault pendulum (Theory §8.3)
 ========================================
 
 The swing plane turns clockwise (seen from above) at ω sin λ in the northern

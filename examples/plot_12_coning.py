@@ -1,5 +1,5 @@
 """
-Strapdown attitude under coning (seed 三.3, 三.5)
+Strapdown attitude under coning (Theory §3.3, §3.5)
 ============================================================
 
 Gyro angle increments of a coning motion (half angle 1°, 1 Hz) integrated by

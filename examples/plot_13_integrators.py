@@ -1,5 +1,5 @@
 """
-Choosing an integrator: work–precision and conservation (seed 四.5)
+Choosing an integrator: work–precision and conservation (Theory §4.5)
 ===============================================================================
 
 Euler's equations of the free body I = (2, 1, 2/3) with m0 = (cos 1.1, 0,

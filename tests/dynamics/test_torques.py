@@ -94,7 +94,7 @@ def heavy_top_constants(tr, weight, lever):
                                            ("splitting", 1e-3, 1e-4), ("dmv", 1e-3, 1e-4),
                                            ("midpoint", 1e-3, 1e-4)])
 def test_heavy_symmetric_top_constants_of_motion(method, dt, tol):
-    # Lagrange top (seed 六): I1 = I2 about the pivot, centre of mass on the symmetry axis
+    # Lagrange top (Theory §6): I1 = I2 about the pivot, centre of mass on the symmetry axis
     weight, lever = 9.81 * 0.5, np.array([0.0, 0.0, 0.2])
     tilt = 0.6
     q0 = [np.cos(tilt / 2), np.sin(tilt / 2), 0.0, 0.0]

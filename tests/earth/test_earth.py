@@ -1,4 +1,4 @@
-"""Earth examples of seed 八.2–八.3 against the seed's numbers, closed forms and references."""
+"""Earth examples of Theory §8.2–§8.3 against the chapter's numbers, closed forms and references."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Moving-frame mechanics (seed 四.7, 八.1) against identities and an inertial-frame reference."""
+"""Moving-frame mechanics (Theory §4.7, §8.1) against identities and an inertial-frame reference."""
 
 import numpy as np
 import pytest

@@ -21,7 +21,7 @@ def point_cloud(rng, n=9):
 
 
 def direct_inertia(m, r):
-    """Σ m (r² 1 − r rᵀ) written out term by term (seed 四.1)."""
+    """Σ m (r² 1 − r rᵀ) written out term by term (Theory §4.1)."""
     out = np.zeros((3, 3))
     for mass, p in zip(m, r):
         out += mass * (p @ p * np.eye(3) - np.outer(p, p))
@@ -40,7 +40,7 @@ def test_points_matches_definition_and_batches():
 
 
 def test_kinetic_energy_identity():
-    # seed 四.1: Σ ½ m (ω × r)² = ½ ωᵀ I ω
+    # Theory §4.1: Σ ½ m (ω × r)² = ½ ωᵀ I ω
     rng = np.random.default_rng(1)
     m, r = point_cloud(rng)
     omega = rng.normal(size=3)
@@ -50,8 +50,8 @@ def test_kinetic_energy_identity():
 
 @settings(max_examples=50, deadline=None)
 @given(seeds)
-def test_parallel_axis_theorem(seed):
-    rng = np.random.default_rng(seed)
+def test_parallel_axis_theorem(chapter):
+    rng = np.random.default_rng(chapter)
     m, r = point_cloud(rng)
     com = m @ r / m.sum()
     I_cm = I.points(m, r - com)
@@ -71,8 +71,8 @@ def test_parallel_axis_broadcasts():
 
 @settings(max_examples=50, deadline=None)
 @given(seeds)
-def test_rotate_matches_rotated_point_cloud(seed):
-    rng = np.random.default_rng(seed)
+def test_rotate_matches_rotated_point_cloud(chapter):
+    rng = np.random.default_rng(chapter)
     m, r = point_cloud(rng)
     rotation = ScipyRotation.random(random_state=rng)
     R = rotation.as_matrix()
@@ -141,8 +141,8 @@ def test_principal_axes_of_constructed_tensors(case):
 
 @settings(max_examples=100, deadline=None)
 @given(seeds)
-def test_principal_axes_of_random_symmetric_matrices(seed):
-    rng = np.random.default_rng(seed)
+def test_principal_axes_of_random_symmetric_matrices(chapter):
+    rng = np.random.default_rng(chapter)
     A = rng.normal(size=(3, 3))
     tensor = A + A.T  # need not be physical: principal_axes is plain linear algebra
     moments, R = I.principal_axes(tensor)
@@ -213,7 +213,7 @@ def test_inertia_ellipsoid_surface_satisfies_equation():
     x = np.stack([e.x, e.y, e.z], axis=-1)
     assert x.shape == (9, 13, 3)
     np.testing.assert_allclose(np.einsum("pqi,ij,pqj->pq", x, tensor, x), 1.0, rtol=1e-13)
-    # the distance to the surface along n is 1/sqrt(I_n) (seed 四.3)
+    # the distance to the surface along n is 1/sqrt(I_n) (Theory §4.3)
     rho = np.linalg.norm(x, axis=-1)
     np.testing.assert_allclose(rho, 1.0 / np.sqrt(I.moment_about_axis(tensor, x)), rtol=1e-13)
     # semi-axes point along the principal axes

@@ -1,4 +1,4 @@
-"""Angular acceleration from second derivatives of every parameterisation (seed 三.9)."""
+"""Angular acceleration from second derivatives of every parameterisation (Theory §3.9)."""
 
 import itertools
 

@@ -1,4 +1,4 @@
-"""Euler kinematic equations, all 24 conventions (seed 三.6)."""
+"""Euler kinematic equations, all 24 conventions (Theory §3.6)."""
 
 import itertools
 import warnings
@@ -21,7 +21,7 @@ def _proper(seq):
 
 
 def _seed_zxz(phi, theta, psi):
-    """The seed's explicit ZXZ matrices: space, body and the inverse of the body one."""
+    """The chapter's explicit ZXZ matrices: space, body and the inverse of the body one."""
     s, c = np.sin, np.cos
     space = np.array([[0, c(phi), s(phi) * s(theta)], [0, s(phi), -c(phi) * s(theta)], [1, 0, c(theta)]])
     body = np.array([[s(theta) * s(psi), c(psi), 0], [s(theta) * c(psi), -s(psi), 0], [c(theta), 0, 1]])

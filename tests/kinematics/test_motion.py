@@ -1,4 +1,4 @@
-"""Point velocity and acceleration, relative derivative, five-term acceleration (seed 三.7, 三.9, 四.6–7)."""
+"""Point velocity and acceleration, relative derivative, five-term acceleration (Theory §3.7, §3.9, §4.6–7)."""
 
 import numpy as np
 import pytest
@@ -43,7 +43,7 @@ def test_body_fixed_point(path, ref):
 
 
 def test_relative_derivative(path, ref):
-    """B′ = dA′/dt + ω′ × A′ for A = R A′ (seed 四.6)."""
+    """B′ = dA′/dt + ω′ × A′ for A = R A′ (Theory §4.6)."""
 
     def A_space(t):
         return path.R(t) @ _body_point(t)
@@ -77,7 +77,7 @@ def test_moving_point_velocity_and_five_terms(path, ref):
     np.testing.assert_allclose(terms.coriolis, 2 * np.cross(omega, v_rel), atol=1e-15)
     np.testing.assert_allclose(terms.centripetal, np.cross(omega, np.cross(omega, r)), atol=1e-15)
     np.testing.assert_allclose(terms.tangential, np.cross(eps, r), atol=1e-15)
-    # body components: seed 四.7 derives the same five terms with primes
+    # body components: Theory §4.7 derives the same five terms with primes
     Rt = R.T
     body = five_term_acceleration(
         path.omega_body(t), path.epsilon_body(t), _body_point(t), Rt @ v_rel, Rt @ a_rel, Rt @ a_c

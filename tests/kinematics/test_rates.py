@@ -1,4 +1,4 @@
-"""Angular velocity from R and Ṙ, and quaternion kinematics (seed 三.1, 三.3)."""
+"""Angular velocity from R and Ṙ, and quaternion kinematics (Theory §3.1, §3.3)."""
 
 import numpy as np
 import pytest
@@ -36,7 +36,7 @@ def test_quaternion_rates_against_finite_differences(path, ref, t, frame):
 
 
 def test_quaternion_rate_seed_products():
-    """q̇ = ½ ω q (space) and ½ q ω′ (body) as Hamilton products (seed 三.3)."""
+    """q̇ = ½ ω q (space) and ½ q ω′ (body) as Hamilton products (Theory §3.3)."""
     rng = np.random.default_rng(1)
     q = kr.quat_normalize(rng.normal(size=(50, 4)))
     w = rng.normal(size=(50, 3))

@@ -1,4 +1,4 @@
-"""Rotation-vector kinematics: dexp, the Bortz equation, SO(3) Jacobians (seed 三.4–5)."""
+"""Rotation-vector kinematics: dexp, the Bortz equation, SO(3) Jacobians (Theory §3.4–5)."""
 
 import warnings
 from decimal import Decimal, localcontext
@@ -48,7 +48,7 @@ def _dexp_coefficients_decimal(psi):
 
 
 def _seed_space(psi, psidot):
-    """ω = ψ̇ + (1 − cos ψ)/ψ² ψ×ψ̇ + (ψ − sin ψ)/ψ³ ψ×(ψ×ψ̇), written as in seed 三.4."""
+    """ω = ψ̇ + (1 − cos ψ)/ψ² ψ×ψ̇ + (ψ − sin ψ)/ψ³ ψ×(ψ×ψ̇), written as in Theory §3.4."""
     a = np.linalg.norm(psi, axis=-1)[..., None]
     c = np.cross(psi, psidot)
     return psidot + (1 - np.cos(a)) / a**2 * c + (a - np.sin(a)) / a**3 * np.cross(psi, c)
@@ -61,7 +61,7 @@ def _seed_body(psi, psidot):
 
 
 def _seed_bortz(psi, omega_body):
-    """The Bortz equation with the seed's coefficient (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ)."""
+    """The Bortz equation with the chapter's coefficient (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ)."""
     a = np.linalg.norm(psi, axis=-1)[..., None]
     f = (2 * np.sin(a) - a * (1 + np.cos(a))) / (2 * a**2 * np.sin(a))
     c = np.cross(psi, omega_body)
@@ -86,10 +86,10 @@ def test_dexp_matches_the_seed_closed_forms():
 
 def test_bortz_equation_matches_the_seed_formula():
     rng = np.random.default_rng(4)
-    psi = _random_rotvecs(rng, 200, 0.5, 3.0)  # |sin ψ| ≥ 0.14: the seed's form is well conditioned here
+    psi = _random_rotvecs(rng, 200, 0.5, 3.0)  # |sin ψ| ≥ 0.14: the chapter's form is well conditioned here
     w = rng.normal(size=(200, 3))
     np.testing.assert_allclose(kr.rotvec_rate(psi, w, frame="body"), _seed_bortz(psi, w), atol=1e-13)
-    # space frame: ψ → −ψ in the body formula (seed 三.4 remark)
+    # space frame: ψ → −ψ in the body formula (Theory §3.4 remark)
     np.testing.assert_allclose(kr.rotvec_rate(psi, w), _seed_bortz(-psi, w), atol=1e-13)
 
 
@@ -134,7 +134,7 @@ def test_bortz_coefficient_against_high_precision():
 
 
 def test_bortz_series_is_the_seeds():
-    """1/12 + ψ²/720 + ψ⁴/30240 + O(ψ⁶) (seed 三.5)."""
+    """1/12 + ψ²/720 + ψ⁴/30240 + O(ψ⁶) (Theory §3.5)."""
     for psi in [1e-3, 1e-2, 5e-2]:
         f = kr.kinematics.bortz_coefficient(psi)
         assert abs(f - (1 / 12 + psi**2 / 720 + psi**4 / 30240)) <= psi**6 / 1209600 * 1.01 + 1e-17

@@ -1,4 +1,4 @@
-"""Screw axis of a twist, planar instantaneous centre and centrodes (seed 三.8)."""
+"""Screw axis of a twist, planar instantaneous centre and centrodes (Theory §3.8)."""
 
 import numpy as np
 import pytest
@@ -22,7 +22,7 @@ def test_screw_axis_properties():
     np.testing.assert_allclose(s.axial_velocity, s.pitch[:, None] * omega, atol=1e-15)
     np.testing.assert_allclose(np.einsum("ij,ij->i", s.point - c, omega), 0.0, atol=1e-12)  # nearest point
     np.testing.assert_allclose(np.linalg.norm(s.direction, axis=1), 1.0, atol=1e-15)
-    # the axis does not depend on the reference point (seed 三.7 corollary: same ω for every base point)
+    # the axis does not depend on the reference point (Theory §3.7 corollary: same ω for every base point)
     c2 = c + rng.normal(size=(200, 3))
     s2 = screw_axis(omega, point_velocity(omega, c2 - c, v), c2)
     np.testing.assert_allclose(s2.pitch, s.pitch, rtol=1e-11, atol=1e-12)
@@ -72,7 +72,7 @@ def _wheel(radius, speed):
 
 @pytest.mark.parametrize("sampled", [False, True])
 def test_rolling_wheel_centrodes(sampled):
-    """Space centrode: the ground; body centrode: the rim (seed 三.8, 例 rolling on a rail)."""
+    """Space centrode: the ground; body centrode: the rim (Theory §3.8, 例 rolling on a rail)."""
     radius, speed = 0.4, 1.5
     angle, centre = _wheel(radius, speed)
     t = np.linspace(0.0, 2.0, 41)

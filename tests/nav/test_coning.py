@@ -1,4 +1,4 @@
-"""Coning motion and the classical drift table (MATH.md §4)."""
+"""Coning motion and the classical drift table (Theory §3.5)."""
 
 import numpy as np
 import pytest
@@ -11,7 +11,7 @@ OMEGA = 2 * np.pi  # 1 Hz coning
 
 
 def body_rate(alpha, big_omega, t):
-    """ω′ of MATH.md §4, written out independently of the library."""
+    """ω′ of Theory §3.5, written out independently of the library."""
     t = np.asarray(t, float)
     return np.stack([np.full_like(t, -2 * big_omega * np.sin(alpha / 2) ** 2),
                      -big_omega * np.sin(alpha) * np.sin(big_omega * t),
@@ -33,7 +33,7 @@ def test_true_attitude_solves_the_quaternion_equation(quat):
     alpha, ts, n = np.radians(20.0), 0.01, 150
     m = nav.coning_motion(alpha, OMEGA, ts, n)
 
-    def rhs(t, q):  # seed 三.3: q̇ = ½ q ω′
+    def rhs(t, q):  # Theory §3.3: q̇ = ½ q ω′
         return 0.5 * quat.mul(q, np.concatenate([[0.0], body_rate(alpha, OMEGA, t)]))
 
     sol = solve_ivp(rhs, (0, m.t[-1]), m.q[0], method="DOP853", t_eval=m.t, rtol=1e-13, atol=1e-15)

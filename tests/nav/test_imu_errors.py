@@ -1,4 +1,4 @@
-"""Gyro error models: units, reproducibility and Allan-deviation signatures (MATH.md §4)."""
+"""Gyro error models: units, reproducibility and Allan-deviation signatures (Theory §3.5)."""
 
 from decimal import Decimal, getcontext
 

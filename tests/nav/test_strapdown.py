@@ -1,4 +1,4 @@
-"""Strapdown updates: increments and sampled rates (seed 三.3, 三.5)."""
+"""Strapdown updates: increments and sampled rates (Theory §3.3, §3.5)."""
 
 import numpy as np
 import pytest
@@ -96,7 +96,7 @@ def test_increments_bad_input():
 
 
 def test_bortz_coefficient_series_and_closed_form_agree():
-    # the switch at ψ = 0.1 is seamless, and ψ → 0 gives the seed's 1/12
+    # the switch at ψ = 0.1 is seamless, and ψ → 0 gives the chapter's 1/12
     below, above = bortz_coefficient(np.nextafter(1e-2, 0)), bortz_coefficient(1e-2)
     assert above == pytest.approx(below, rel=1e-15)
     assert bortz_coefficient(0.0) == 1 / 12

@@ -1,4 +1,4 @@
-"""Screw interpolation and body-point trajectories (seed 三.7, 三.9)."""
+"""Screw interpolation and body-point trajectories (Theory §3.7, §3.9)."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Change of base point (seed 一.3 corollary) and Chasles/Mozzi screws of finite displacements."""
+"""Change of base point (Theory §1.3 corollary) and Chasles/Mozzi screws of finite displacements."""
 
 import numpy as np
 import pytest
@@ -114,7 +114,7 @@ def test_from_screw_refuses_zero_axis_and_bad_shapes():
 
 def test_finite_screw_is_the_instantaneous_screw_of_the_uniform_motion():
     # T(s) = exp(s ξ) has the constant space twist ξ = (ω, v): v is the velocity of the
-    # space point at the origin (seed 三.8). Its instantaneous axis, found independently
+    # space point at the origin (Theory §3.8). Its instantaneous axis, found independently
     # by kreisel.kinematics.screw_axis, is the screw of the finite displacement T(1).
     from kreisel.kinematics import screw_axis
 

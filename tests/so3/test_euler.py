@@ -1,4 +1,4 @@
-"""Euler angles: the seed's ZXZ and ZYZ matrices, scipy for all 24 conventions, gimbal lock."""
+"""Euler angles: the chapter's ZXZ and ZYZ matrices, scipy for all 24 conventions, gimbal lock."""
 
 import numpy as np
 import pytest
@@ -16,7 +16,7 @@ def test_there_are_24_conventions():
 
 
 def test_seed_zxz_matrix(rng):
-    """R(φ, θ, ψ) = Rz(φ) Rx(θ) Rz(ψ) as printed in seed 二.3 (2)."""
+    """R(φ, θ, ψ) = Rz(φ) Rx(θ) Rz(ψ) as printed in Theory §2.3 (2)."""
     for phi, theta, psi in rng.uniform(-3, 3, size=(10, 3)):
         c, s = np.cos, np.sin
         expected = np.array(
@@ -30,7 +30,7 @@ def test_seed_zxz_matrix(rng):
 
 
 def test_seed_zyz_matrix(rng):
-    """Quantum-mechanics R(α, β, γ) = Rz(α) Ry(β) Rz(γ), seed 二.3 (2)."""
+    """Quantum-mechanics R(α, β, γ) = Rz(α) Ry(β) Rz(γ), Theory §2.3 (2)."""
     for a, b, g in rng.uniform(-3, 3, size=(10, 3)):
         c, s = np.cos, np.sin
         expected = np.array(
@@ -44,7 +44,7 @@ def test_seed_zyz_matrix(rng):
 
 
 def test_intrinsic_zxz_equals_body_axis_rotations():
-    """R_z''(ψ) R_x'(θ) R_z(φ) = R_z(φ) R_x(θ) R_z(ψ) (seed 二.3 (2)); extrinsic reverses the order."""
+    """R_z''(ψ) R_x'(θ) R_z(φ) = R_z(φ) R_x(θ) R_z(ψ) (Theory §2.3 (2)); extrinsic reverses the order."""
     phi, theta, psi = 0.4, 1.1, -2.0
     Rz = lambda a: kr.rotvec_to_matrix([0, 0, a])  # noqa: E731
     Rx = lambda a: kr.rotvec_to_matrix([a, 0, 0])  # noqa: E731

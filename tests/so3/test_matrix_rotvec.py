@@ -1,4 +1,4 @@
-"""Matrices, rotation vectors and the exponential map against the seed's explicit formulas."""
+"""Matrices, rotation vectors and the exponential map against the chapter's explicit formulas."""
 
 import numpy as np
 import pytest
@@ -11,7 +11,7 @@ import kreisel as kr
 
 
 def seed_rodrigues(psi):
-    """R(ψn) = 1 cos ψ + n nᵀ (1 - cos ψ) + X_n sin ψ, seed 二.2 (3)."""
+    """R(ψn) = 1 cos ψ + n nᵀ (1 - cos ψ) + X_n sin ψ, Theory §2.2 (3)."""
     angle = np.linalg.norm(psi)
     n = psi / angle
     Xn = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
@@ -19,7 +19,7 @@ def seed_rodrigues(psi):
 
 
 def seed_quat_matrix(q):
-    """R(q) as printed in seed 二.4 (unit q)."""
+    """R(q) as printed in Theory §2.4 (unit q)."""
     q0, q1, q2, q3 = q
     return np.array(
         [
@@ -78,7 +78,7 @@ def test_double_cover_and_full_turn():
 @settings(max_examples=200, deadline=None)
 @given(unit_quats, unit_quats)
 def test_homomorphism(p, q):
-    """R(pq) = R(p) R(q), seed 二.4."""
+    """R(pq) = R(p) R(q), Theory §2.4."""
     np.testing.assert_allclose(
         kr.quat_to_matrix(kr.quat_multiply(p, q)), kr.quat_to_matrix(p) @ kr.quat_to_matrix(q), atol=2e-15
     )
@@ -158,7 +158,7 @@ def test_orthonormalize_is_nearest_rotation(rng):
 
 
 def test_adjoint_identity(rng, random_quats):
-    """Q R(ψn) Qᵀ = R(ψ Q n), seed 二.2 (5)."""
+    """Q R(ψn) Qᵀ = R(ψ Q n), Theory §2.2 (5)."""
     Q = kr.quat_to_matrix(random_quats(30))
     psi = rng.normal(size=(30, 3))
     lhs = Q @ kr.rotvec_to_matrix(psi) @ np.swapaxes(Q, -1, -2)

@@ -1,4 +1,4 @@
-"""Quaternion algebra against the seed's product rule, scipy and algebraic identities."""
+"""Quaternion algebra against the chapter's product rule, scipy and algebraic identities."""
 
 import numpy as np
 import pytest
@@ -8,7 +8,7 @@ import kreisel as kr
 
 
 def seed_product(a, b):
-    """(a0 b0 - a.b, a0 b + b0 a + a x b), seed 二.4."""
+    """(a0 b0 - a.b, a0 b + b0 a + a x b), Theory §2.4."""
     a0, av, b0, bv = a[..., :1], a[..., 1:], b[..., :1], b[..., 1:]
     return np.concatenate(
         [a0 * b0 - np.sum(av * bv, axis=-1, keepdims=True), a0 * bv + b0 * av + np.cross(av, bv)], axis=-1
@@ -67,7 +67,7 @@ def test_apply_matches_scipy_and_inverse(rng, random_quats):
 
 
 def test_apply_agrees_with_conjugation(rng):
-    """q (r·i) q⁻¹ = (R r)·i, seed 二.4."""
+    """q (r·i) q⁻¹ = (R r)·i, Theory §2.4."""
     q = rng.normal(size=(10, 4))
     r = rng.normal(size=(10, 3))
     rq = np.concatenate([np.zeros((10, 1)), r], axis=-1)

@@ -1,4 +1,4 @@
-"""SU(2), Cayley–Klein, Euler parameters (seed appendix), Gibbs vectors and MRPs."""
+"""SU(2), Cayley–Klein, Euler parameters (Theory §A), Gibbs vectors and MRPs."""
 
 import numpy as np
 import pytest
@@ -11,7 +11,7 @@ SIGMA = np.array([[[0, 1], [1, 0]], [[0, -1j], [1j, 0]], [[1, 0], [0, -1]]])
 
 
 def seed_R_of_u(a, b):
-    """R(u) of seed appendix (1), u = [[a, b], [-b*, a*]]."""
+    """R(u) of Theory §A (1), u = [[a, b], [-b*, a*]]."""
     ac, bc = np.conj(a), np.conj(b)
     return np.real(
         np.array(
@@ -25,7 +25,7 @@ def seed_R_of_u(a, b):
 
 
 def seed_R_of_cayley_klein(al, be, ga, de):
-    """R(α, β, γ, δ) of seed appendix (3)."""
+    """R(α, β, γ, δ) of Theory §A (3)."""
     return np.real(
         np.array(
             [
@@ -77,7 +77,7 @@ def test_cayley_klein(random_quats):
 
 
 def test_euler_parameters_active_and_passive(random_quats):
-    """Seed appendix (2): e_j = -n_j sin(ψ/2); the printed matrix is R of e and Goldstein's passive A of q."""
+    """Theory §A (2): e_j = -n_j sin(ψ/2); the printed matrix is R of e and Goldstein's passive A of q."""
     q = random_quats(20)
     e = kr.quat_to_euler_parameters(q)
     np.testing.assert_allclose(e, q * [1, -1, -1, -1])

@@ -6,7 +6,7 @@ from scipy.integrate import solve_ivp
 
 
 def _quat_rotate_inverse(q, v):
-    # R(q)^T v written out from the rotation matrix of seed 二.4
+    # R(q)^T v written out from the rotation matrix of Theory §2.4
     q0, q1, q2, q3 = q
     R = np.array(
         [

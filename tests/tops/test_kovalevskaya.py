@@ -31,7 +31,7 @@ def test_four_integrals_conserved_along_independent_integration(reference):
 
 
 def test_euler_poisson_form_of_the_equations(reference):
-    # 2ṗ = qr, 2q̇ = −pr + cγ3, ṙ = −cγ2 (MATH.md §3), by differentiating the reference
+    # 2ṗ = qr, 2q̇ = −pr + cγ3, ṙ = −cγ2 (Theory §7), by differentiating the reference
     t = np.array([0.0, 1e-4, 2e-4])
     omega, q = reference(TOP.moments, OMEGA0, Q0, t, weight=TOP.mgl, lever=(1.0, 0.0, 0.0))
     gamma = quat_apply(q, [0.0, 0.0, 1.0], inverse=True)

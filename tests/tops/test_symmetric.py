@@ -12,12 +12,12 @@ def test_regular_precession_matches_seed_and_exact_free_top(reference, I1, I3, t
     J, phi0, psi0 = 1.7, 0.4, -0.9
     t = np.linspace(0.0, 15.0, 151)
     angles = top.euler_angles(t, J, theta0, phi0, psi0)
-    # seed 五.7 (3), written out
+    # Theory §5.7 (3), written out
     np.testing.assert_allclose(angles[:, 0], J * t / I1 + phi0, rtol=1e-15)
     np.testing.assert_allclose(angles[:, 1], theta0)
     np.testing.assert_allclose(angles[:, 2], -(I3 - I1) * J * np.cos(theta0) * t / (I1 * I3) + psi0, rtol=1e-14, atol=1e-15)
     tr = top.solve(t, J, theta0, phi0, psi0)
-    # seed 五.7 (4): ω in the body
+    # Theory §5.7 (4): ω in the body
     Omega = (I3 - I1) * J * np.cos(theta0) / (I1 * I3)
     body = np.stack(
         [
@@ -28,7 +28,7 @@ def test_regular_precession_matches_seed_and_exact_free_top(reference, I1, I3, t
         axis=-1,
     )
     np.testing.assert_allclose(tr.omega, body, atol=1e-14)
-    # seed 五.7 (5): ω in space
+    # Theory §5.7 (5): ω in space
     k = (I3 - I1) / (2 * I1 * I3) * J * np.sin(2 * theta0)
     space = np.stack(
         [

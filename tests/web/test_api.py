@@ -41,7 +41,7 @@ def test_free_body_run_conserves_and_reports_seed_quantities(client):
     seed = data["seed"]
     assert seed["J_norm"] == pytest.approx(np.sqrt(1e-4 + 4.0 + 9e-4), rel=1e-14)
     assert [s["kind"] for s in seed["stability"]] == ["stable", "unstable", "stable"]
-    # middle-axis growth rate sqrt((I2 - I1)(I3 - I2) / (I1 I3)) |omega| (seed 五.4)
+    # middle-axis growth rate sqrt((I2 - I1)(I3 - I2) / (I1 I3)) |omega| (Theory §5.4)
     assert seed["stability"][1]["growth_rate"] == pytest.approx(np.sqrt(1 / 3) * np.linalg.norm(omega[0]), rel=1e-12)
     assert seed["lagrange"] is None
     assert data["form"]["moments"] == TENNIS["moments"]
@@ -56,7 +56,7 @@ def test_heavy_top_energy_includes_gravity_and_turning_points(client):
     assert lagrange["apex_locus"] == "cusp"
     assert lagrange["theta_min_deg"] == pytest.approx(30.0, abs=1e-9)
     assert lagrange["theta_max_deg"] > 30.0
-    assert lagrange["sleeping_threshold_omega3"] == pytest.approx(4.0)  # omega3 > 2 sqrt(I1 mgl) / I3 (seed 六.6)
+    assert lagrange["sleeping_threshold_omega3"] == pytest.approx(4.0)  # omega3 > 2 sqrt(I1 mgl) / I3 (Theory §6.6)
     tilt = np.degrees(np.arccos(np.clip([2 * (q[0] ** 2 + q[3] ** 2) - 1 for q in data["q"]], -1, 1)))
     assert tilt.min() >= 30.0 - 1e-6 and tilt.max() <= lagrange["theta_max_deg"] + 1e-6
 

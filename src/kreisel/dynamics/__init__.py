@@ -1,7 +1,7 @@
-"""Dynamics: torque-driven rigid bodies, geometric integrators, trajectories (seed 四.4–7).
+"""Dynamics: torque-driven rigid bodies, geometric integrators, trajectories (Theory §4.4–7).
 
 :func:`simulate` integrates Euler's dynamic equations dJ′/dt + ω′ × J′ = M′
-(seed 四.5) with quaternion attitude under built-in torque models or any
+(Theory §4.5) with quaternion attitude under built-in torque models or any
 callable; :func:`simulate_batch` runs many bodies in parallel;
 :func:`simulate_6dof` adds the centre-of-mass translation. Every result is a
 :class:`Trajectory`.

@@ -1,6 +1,6 @@
 """Compiled integrators for Euler's dynamic equations with quaternion attitude.
 
-State ``y = (ω′1, ω′2, ω′3, q0, q1, q2, q3)`` in the principal frame (seed 四.5,
+State ``y = (ω′1, ω′2, ω′3, q0, q1, q2, q3)`` in the principal frame (Theory §4.5,
 principal-axis Euler equations), optionally followed by the centre of mass
 position and velocity ``(r, v)`` in space (13 components, the 6-DOF body).
 Every method is written once for one body; :func:`run` integrates one body

@@ -1,8 +1,8 @@
 """Torque-driven rigid body: :func:`simulate`, :func:`simulate_batch`, :func:`simulate_6dof`.
 
-Euler's dynamic equations in the body frame (seed 四.5),
+Euler's dynamic equations in the body frame (Theory §4.5),
 dJ′/dt + ω′ × J′ = M′, with the attitude carried by a unit quaternion,
-q̇ = ½ q ⊗ (0, ω′) (seed 三.3).
+q̇ = ½ q ⊗ (0, ω′) (Theory §3.3).
 
 Methods (``method=``):
 
@@ -310,7 +310,7 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
 
 def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
              allow_unphysical=False):
-    """Integrate Euler's dynamic equations with quaternion attitude (seed 四.4–5).
+    """Integrate Euler's dynamic equations with quaternion attitude (Theory §4.4–5).
 
     Parameters
     ----------
@@ -396,9 +396,9 @@ def _force_rows(force, axes, t0, q_body, w_body, translation):
 def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),
                   force=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
                   allow_unphysical=False):
-    """A free rigid body in six degrees of freedom: centre of mass and attitude (seed 四.4, 四.7).
+    """A free rigid body in six degrees of freedom: centre of mass and attitude (Theory §4.4, §4.7).
 
-    The centre of mass obeys m r̈ = F (space frame, seed 四.7 with r_C the
+    The centre of mass obeys m r̈ = F (space frame, Theory §4.7 with r_C the
     reference point); the rotation obeys Euler's equations about the centre of
     mass under ``torque``. Adaptive methods integrate all 13 states together;
     fixed-step methods advance the translation by velocity Verlet (second

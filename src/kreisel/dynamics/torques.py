@@ -1,4 +1,4 @@
-"""Torque models for :func:`kreisel.simulate` (seed 四.4: dJ/dt = M).
+"""Torque models for :func:`kreisel.simulate` (Theory §4.4: dJ/dt = M).
 
 Every built-in model is encoded as rows of a small float table that the
 compiled integrators read inside their time loop, so a simulation under
@@ -97,7 +97,7 @@ def _vector(x, name):
 
 
 class GravityTorque(TorqueModel):
-    """Uniform gravity on a body turning about a fixed pivot (heavy top, seed 六).
+    """Uniform gravity on a body turning about a fixed pivot (heavy top, Theory §6).
 
     Gravity points along space −z. The body torque about the pivot is
     ``M′ = lever × Rᵀ (0, 0, −weight)``.

@@ -16,7 +16,7 @@ class Trajectory:
 
     Arrays carry batch axes first, then time: ``q`` is ``(batch..., n, 4)``
     (body -> space, scalar first), ``omega`` is ``(batch..., n, 3)`` in body
-    components (seed 三.1, ω′).
+    components (Theory §3.1, ω′).
 
     Parameters
     ----------
@@ -81,22 +81,22 @@ class Trajectory:
 
     @property
     def angular_momentum_body(self):
-        """J′ = I ω′ in body components (seed 四.4)."""
+        """J′ = I ω′ in body components (Theory §4.4)."""
         return np.einsum("...ij,...j->...i", self._inertia_t(), self.omega)
 
     @property
     def energy(self):
-        """Rotational kinetic energy T = ½ ω′·I ω′ (seed 五.2)."""
+        """Rotational kinetic energy T = ½ ω′·I ω′ (Theory §5.2)."""
         return 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
 
     @property
     def omega_space(self):
-        """ω = R ω′ in space components (seed 三.1)."""
+        """ω = R ω′ in space components (Theory §3.1)."""
         return quat_apply(self.q, self.omega)
 
     @property
     def angular_momentum_space(self):
-        """J = R J′ in space components; constant for a free body (seed 四.4)."""
+        """J = R J′ in space components; constant for a free body (Theory §4.4)."""
         return quat_apply(self.q, self.angular_momentum_body)
 
     def angular_momentum(self, frame="space"):
@@ -105,7 +105,7 @@ class Trajectory:
         Examples
         --------
         For a free body J is fixed in space while J′ = R⁻¹ J wanders through the
-        body with the same length (seed 四.4):
+        body with the same length (Theory §4.4):
 
         >>> import kreisel as kr
         >>> tr = kr.simulate([1.0, 2.0, 3.0], np.linspace(0.0, 5.0, 6), [0.3, 0.2, 1.0])
@@ -120,7 +120,7 @@ class Trajectory:
         return self.angular_momentum_body if check_frame(frame) else self.angular_momentum_space
 
     def euler(self, seq, degrees=False):
-        """Euler angles of the attitude in any sequence, e.g. ``"ZXZ"`` (seed 二.3).
+        """Euler angles of the attitude in any sequence, e.g. ``"ZXZ"`` (Theory §2.3).
 
         Examples
         --------
@@ -133,7 +133,7 @@ class Trajectory:
         return quat_to_euler(seq, self.q, degrees=degrees)
 
     def drift(self):
-        """Drift of the free-body first integrals over the trajectory (seed 五.2).
+        """Drift of the free-body first integrals over the trajectory (Theory §5.2).
 
         Returns
         -------

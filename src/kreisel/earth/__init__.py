@@ -1,9 +1,9 @@
-"""The rotating Earth seen from the local East-North-Up frame (seed 八.2–八.3).
+"""The rotating Earth seen from the local East-North-Up frame (Theory §8.2–§8.3).
 
-Falling bodies (eastward deflection), shells (the seed's exercise) and the
-Foucault pendulum, each as the seed's analytic result and as a simulation of
+Falling bodies (eastward deflection), shells (the chapter's exercise) and the
+Foucault pendulum, each as the chapter's analytic result and as a simulation of
 the full rotating-frame equations. Every function takes ``omega=`` (default the
-sidereal rate :data:`OMEGA_EARTH`) so the seed's figures, which use
+sidereal rate :data:`OMEGA_EARTH`) so the chapter's figures, which use
 ω₀ = 7.27221e-5 rad/s, are reproduced exactly.
 """
 

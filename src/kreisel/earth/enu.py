@@ -1,4 +1,4 @@
-"""The local East-North-Up frame on the rotating Earth (seed 八.2)."""
+"""The local East-North-Up frame on the rotating Earth (Theory §8.2)."""
 
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ def check_omega(omega):
 
 
 def angular_velocity_enu(latitude_deg, omega=OMEGA_EARTH):
-    """Earth's angular velocity in the local ENU frame: ω (0, cos λ, sin λ) (seed 八.2).
+    """Earth's angular velocity in the local ENU frame: ω (0, cos λ, sin λ) (Theory §8.2).
 
     Parameters
     ----------

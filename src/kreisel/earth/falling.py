@@ -1,4 +1,4 @@
-"""Free fall and projectiles on the rotating Earth (seed 八.3: eastward deflection, the shell exercise).
+"""Free fall and projectiles on the rotating Earth (Theory §8.3: eastward deflection, the shell exercise).
 
 The model (used by every simulation here), in the local ENU frame whose origin
 O is on the ground and rotates with the Earth:
@@ -7,7 +7,7 @@ O is on the ground and rotates with the Earth:
 
 ``g`` is the *effective* local gravity at O, the plumb-line acceleration along
 -Up: it already contains the gravitational attraction, the centrifugal
-acceleration of O itself and the acceleration a0 of the origin (seed 八.2,
+acceleration of O itself and the acceleration a0 of the origin (Theory §8.2,
 "a0 ... 可归入当地重力加速度之中"), and λ is the latitude of that plumb line.
 What remains of the centrifugal force is its part relative to O,
 -ω×(ω×r), which vanishes at O and is kept in full, as is the Coriolis term.
@@ -42,9 +42,9 @@ def _positive(x, name, strict=True):
 
 
 def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
-    """Eastward deflection of a body dropped from rest, seed 八.3: (2/3) ω cos λ √(2h³/g).
+    """Eastward deflection of a body dropped from rest, Theory §8.3: (2/3) ω cos λ √(2h³/g).
 
-    First order in ω (the seed's Maupertuis solution); the same in both
+    First order in ω (the chapter's Maupertuis solution); the same in both
     hemispheres, zero at the poles.
 
     Parameters
@@ -65,7 +65,7 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
 
     Examples
     --------
-    The seed's 100 m mine shaft at Hefei:
+    The chapter's 100 m mine shaft at Hefei:
 
     >>> round(float(eastward_deflection(100.0, 31.8584, g=9.7947, omega=7.27221e-5)), 4)
     0.0186
@@ -212,7 +212,7 @@ def _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega):
 
 
 def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
-    """Deviation of a shell's impact point caused by the Earth's rotation (seed 八.3 exercise), simulated.
+    """Deviation of a shell's impact point caused by the Earth's rotation (Theory §8.3 exercise), simulated.
 
     The shell leaves the ground at the origin with the given muzzle speed,
     elevation and azimuth (no air drag), and is integrated under the full

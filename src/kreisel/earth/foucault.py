@@ -1,4 +1,4 @@
-"""The Foucault pendulum (seed 八.3): analytic period and a full spherical-pendulum simulation.
+"""The Foucault pendulum (Theory §8.3): analytic period and a full spherical-pendulum simulation.
 
 The simulated pendulum is the exact spherical pendulum in the rotating ENU
 frame (no small-angle or small-ω approximation): pivot at (0, 0, l), bob at
@@ -27,7 +27,7 @@ def foucault_precession_rate(latitude_deg, omega=OMEGA_EARTH):
     """Rate at which the swing plane turns, counter-clockwise positive: -ω sin λ (rad/s).
 
     Negative (clockwise seen from above) in the northern hemisphere, positive
-    in the southern, zero at the equator (seed 八.3).
+    in the southern, zero at the equator (Theory §8.3).
 
     Examples
     --------
@@ -39,7 +39,7 @@ def foucault_precession_rate(latitude_deg, omega=OMEGA_EARTH):
 
 
 def foucault_period(latitude_deg, omega=OMEGA_EARTH):
-    """Time for the swing plane to turn once, 2π/(ω |sin λ|), seconds (seed 八.3).
+    """Time for the swing plane to turn once, 2π/(ω |sin λ|), seconds (Theory §8.3).
 
     One sidereal day at the poles (with the sidereal ``omega``); at the equator
     the plane does not turn and the period is ``inf`` (returned as such, not
@@ -47,7 +47,7 @@ def foucault_period(latitude_deg, omega=OMEGA_EARTH):
 
     Examples
     --------
-    The seed's Hefei value, 45 h 28 min:
+    The chapter's Hefei value, 45 h 28 min:
 
     >>> T = float(foucault_period(31.8584, omega=7.27221e-5))
     >>> int(T // 3600), int(T % 3600 // 60)
@@ -207,7 +207,7 @@ def foucault_pendulum(
     rtol=1e-10,
     atol=1e-12,
 ):
-    """Simulate a Foucault pendulum and measure its swing plane (seed 八.3).
+    """Simulate a Foucault pendulum and measure its swing plane (Theory §8.3).
 
     The exact spherical pendulum in the rotating ENU frame (module note) is
     released from rest relative to the Earth and integrated by the compiled

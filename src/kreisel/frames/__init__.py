@@ -1,4 +1,4 @@
-"""Motion observed from moving, rotating frames (seed 四.7 and 八.1).
+"""Motion observed from moving, rotating frames (Theory §4.7 and §8.1).
 
 The five-term acceleration, the fictitious forces, the moving-frame Lagrangian
 and Hamiltonian, and a compiled simulator for a particle in a frame with known

@@ -1,4 +1,4 @@
-"""Simulation of a particle in a moving, rotating frame (seed 八.1, Lagrange equations).
+"""Simulation of a particle in a moving, rotating frame (Theory §8.1, Lagrange equations).
 
 m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r, integrated by the compiled
 adaptive DOP853 of :mod:`kreisel._dop853`.
@@ -141,12 +141,12 @@ class ParticleTrajectory:
 
     @property
     def momentum(self):
-        """Canonical momentum p = m (ṙ + ω×r) (seed 八.1)."""
+        """Canonical momentum p = m (ṙ + ω×r) (Theory §8.1)."""
         return canonical_momentum(self.r, self.v, self.omega, self.mass)
 
     @property
     def hamiltonian(self):
-        """H(r, p) of seed 八.1 along the motion (the Jacobi integral for constant ω, a0)."""
+        """H(r, p) of Theory §8.1 along the motion (the Jacobi integral for constant ω, a0)."""
         if self.potential is None:
             raise ValueError("the Hamiltonian needs the potential, unknown for a callable force")
         return hamiltonian(self.r, self.momentum, self.omega, self.a0, self.potential, self.mass)
@@ -168,7 +168,7 @@ def simulate_particle(
     atol=1e-12,
     max_step=np.inf,
 ):
-    """Integrate a particle's motion observed in a moving, rotating frame (seed 八.1).
+    """Integrate a particle's motion observed in a moving, rotating frame (Theory §8.1).
 
     Solves m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r (the Lagrange
     equations of :func:`kreisel.frames.lagrangian`) in the frame's components.

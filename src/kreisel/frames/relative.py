@@ -1,13 +1,13 @@
 """Kinematics and mechanics of a particle seen from a moving, rotating frame.
 
-Seed 四.7 (five-term acceleration) and seed 八.1 (Lagrangian and Hamiltonian of a
+Theory §4.7 (five-term acceleration) and Theory §8.1 (Lagrangian and Hamiltonian of a
 particle in a non-inertial frame). All vectors are components along the moving
 frame's axes unless a docstring says otherwise; every function broadcasts over
 leading axes.
 
-A note on seed 八.1. The seed's Lagrangian carries the translational term
+A note on Theory §8.1. The chapter's Lagrangian carries the translational term
 ``-m ṙ·a0``; its Euler–Lagrange equation would give a force ``+m ȧ0`` (a jerk),
-not the inertial force ``-m a0``. The seed's own identity
+not the inertial force ``-m a0``. The chapter's own identity
 ``(ṙ + ω×r)·v0 = d/dt(r·v0) - r·a0`` (v0, a0 the frame origin's velocity and
 acceleration, in moving-frame components) gives the translational potential
 ``m a0·r`` instead, as in Landau & Lifshitz §39. kreisel uses
@@ -45,7 +45,7 @@ __all__ = [
 AccelerationTerms = namedtuple(
     "AccelerationTerms", ["translational", "euler", "centripetal", "relative", "coriolis", "total"]
 )
-AccelerationTerms.__doc__ = """Five terms of the absolute acceleration (seed 四.7).
+AccelerationTerms.__doc__ = """Five terms of the absolute acceleration (Theory §4.7).
 
 translational (a_C), euler (ε×r), centripetal (ω×(ω×r)), relative (a_rel),
 coriolis (2 ω×v_rel) and their sum ``total``.
@@ -64,7 +64,7 @@ Coriolis terms cancel, since its absolute acceleration is zero:
 """
 
 InertialForces = namedtuple("InertialForces", ["translational", "coriolis", "centrifugal", "euler", "total"])
-InertialForces.__doc__ = """Fictitious (inertial) forces in a moving frame (seed 八.1).
+InertialForces.__doc__ = """Fictitious (inertial) forces in a moving frame (Theory §8.1).
 
 translational (-m a0), coriolis (-2m ω×ṙ), centrifugal (-m ω×(ω×r)),
 euler (-m ω̇×r) and their sum ``total``.
@@ -80,7 +80,7 @@ give exactly the centripetal force m r̈ = -m r of its apparent circle:
 """
 
 LagrangianTerms = namedtuple("LagrangianTerms", ["kinetic", "coriolis", "centrifugal", "translational", "potential"])
-LagrangianTerms.__doc__ = """Terms of L (seed 八.1), which is their sum.
+LagrangianTerms.__doc__ = """Terms of L (Theory §8.1), which is their sum.
 
 kinetic ½mṙ², coriolis m ṙ·(ω×r), centrifugal ½m(ω×r)², translational
 -m a0·r, potential -V.
@@ -96,7 +96,7 @@ inertial kinetic energy, zero:
 """
 
 HamiltonianTerms = namedtuple("HamiltonianTerms", ["kinetic", "coriolis", "translational", "potential"])
-HamiltonianTerms.__doc__ = """Terms of H(r, p) (seed 八.1), which is their sum.
+HamiltonianTerms.__doc__ = """Terms of H(r, p) (Theory §8.1), which is their sum.
 
 kinetic p²/2m, coriolis -p·(ω×r) (the generalised potential of the Coriolis
 and centrifugal forces), translational m a0·r, potential V.
@@ -130,7 +130,7 @@ def _dot(a, b):
 
 
 def absolute_velocity(v_origin, omega, r_rel, v_rel):
-    """Absolute velocity from the three terms of seed 四.7: v = v_C + v_rel + ω×r.
+    """Absolute velocity from the three terms of Theory §4.7: v = v_C + v_rel + ω×r.
 
     Parameters
     ----------
@@ -156,10 +156,10 @@ def absolute_velocity(v_origin, omega, r_rel, v_rel):
 
 
 def absolute_acceleration(a_origin, angular_acceleration, omega, r_rel, v_rel, a_rel):
-    """Absolute acceleration as the five terms of seed 四.7.
+    """Absolute acceleration as the five terms of Theory §4.7.
 
     a = a_C + ε×r + ω×(ω×r) + a_rel + 2 ω×v_rel, with every vector in the same
-    components (space components give the seed's formula after multiplying by
+    components (space components give the chapter's formula after multiplying by
     R(t); moving-frame components give the primed form).
 
     Parameters
@@ -198,7 +198,7 @@ def absolute_acceleration(a_origin, angular_acceleration, omega, r_rel, v_rel, a
 
 
 def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), mass=1.0):
-    """Fictitious forces on a particle observed in a moving frame (seed 八.1).
+    """Fictitious forces on a particle observed in a moving frame (Theory §8.1).
 
     m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r, all in moving-frame
     components; this returns the four inertial terms separately.
@@ -239,7 +239,7 @@ def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), 
 
 
 def canonical_momentum(r, v, omega, mass=1.0):
-    """Canonical momentum p = m (ṙ + ω×r) (seed 八.1): the inertial momentum minus m v0.
+    """Canonical momentum p = m (ṙ + ω×r) (Theory §8.1): the inertial momentum minus m v0.
 
     Examples
     --------
@@ -265,7 +265,7 @@ def velocity_from_momentum(r, p, omega, mass=1.0):
 
 
 def lagrangian_terms(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
-    """The terms of the moving-frame Lagrangian of seed 八.1 (see the module note on a0).
+    """The terms of the moving-frame Lagrangian of Theory §8.1 (see the module note on a0).
 
     Parameters
     ----------
@@ -300,7 +300,7 @@ def lagrangian_terms(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
 
 
 def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
-    """L = ½ m (ṙ + ω×r)² - m a0·r - V (seed 八.1), J.
+    """L = ½ m (ṙ + ω×r)² - m a0·r - V (Theory §8.1), J.
 
     Examples
     --------
@@ -311,7 +311,7 @@ def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
 
 
 def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
-    """The terms of H(r, p) = p²/2m - p·(ω×r) + m a0·r + V (seed 八.1).
+    """The terms of H(r, p) = p²/2m - p·(ω×r) + m a0·r + V (Theory §8.1).
 
     Parameters
     ----------
@@ -339,7 +339,7 @@ def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
 
 
 def hamiltonian(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
-    """H(r, p) of seed 八.1; conserved (the Jacobi integral) when ω, a0, V do not depend on t.
+    """H(r, p) of Theory §8.1; conserved (the Jacobi integral) when ω, a0, V do not depend on t.
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""Mass properties: inertia tensors, principal axes, inertia ellipsoid (seed 四.1–3).
+"""Mass properties: inertia tensors, principal axes, inertia ellipsoid (Theory §4.1–3).
 
 Tensors are ``(..., 3, 3)`` arrays in kg m², about the centre of mass unless a
 function says otherwise; every function broadcasts over leading axes.

@@ -17,7 +17,7 @@ def _fill_matrices(q, out):
 
 
 def quaternions_to_matrices(q):
-    """R(q) of seed 二.4 for a contiguous ``(n, 4)`` array of nonzero quaternions."""
+    """R(q) of Theory §2.4 for a contiguous ``(n, 4)`` array of nonzero quaternions."""
     out = np.empty((q.shape[0], 3, 3))
     _fill_matrices(q, out)
     return out

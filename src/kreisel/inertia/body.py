@@ -20,7 +20,7 @@ class RigidBody:
 
     The body axes have their origin at the reference point of the tensor —
     the centre of mass for a free body, the fixed point for a top with a
-    fixed point (seed 四.1, 四.4).
+    fixed point (Theory §4.1, §4.4).
 
     Parameters
     ----------
@@ -200,7 +200,7 @@ class RigidBody:
 # Per solid: what the example shows, the variables, the constructor's arguments after the
 # mass, the textbook moments (I_x, I_y, I_z) as an expression in those variables, and the
 # moments the constructor returns (rounded to 6 decimals), so each generated docstring
-# checks the body against its closed form (seed 四.1).
+# checks the body against its closed form (Theory §4.1).
 _SOLID_EXAMPLES = {
     "box": (
         "A 1 × 2 × 3 m box: each moment sums the squared edges across its axis",
@@ -269,7 +269,7 @@ def _solid_constructor(solid):
     constructor.__doc__ = f"""Rigid body of the homogeneous solid of :func:`kreisel.inertia.{name}`.
 
     Same arguments, body axes and reference point as that function; the body's
-    inertia tensor is the closed form given there (seed 四.1).
+    inertia tensor is the closed form given there (Theory §4.1).
 
     Examples
     --------

@@ -47,7 +47,7 @@ class MassProperties(NamedTuple):
     inertia: np.ndarray
 
     def about(self, point):
-        """Inertia tensor about ``point`` (same axes), by the parallel-axis theorem (seed 四.1).
+        """Inertia tensor about ``point`` (same axes), by the parallel-axis theorem (Theory §4.1).
 
         Examples
         --------
@@ -159,7 +159,7 @@ def combine(parts):
     """Mass properties of a body built from parts placed at poses.
 
     M = Σ m_i, C = Σ m_i c_i / M, I_C = Σ [R_i I_i R_iᵀ + m_i (d_i² 1 − d_i d_iᵀ)]
-    with d_i = c_i − C (parallel-axis theorem, seed 四.1).
+    with d_i = c_i − C (parallel-axis theorem, Theory §4.1).
 
     Parameters
     ----------

@@ -4,7 +4,7 @@ Each function returns the ``(..., 3, 3)`` tensor about the centre of mass (the
 cone can also be taken about its apex or base) in the body axes documented on
 it; bodies of revolution have their symmetry axis along z. Arguments
 broadcast over leading axes. Formulas are the textbook integrals of
-I = ∫ ρ (r² 1 − r rᵀ) dV (seed 四.1).
+I = ∫ ρ (r² 1 − r rᵀ) dV (Theory §4.1).
 """
 
 from __future__ import annotations

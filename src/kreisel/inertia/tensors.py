@@ -1,6 +1,6 @@
 """Inertia tensors as arrays: point sets, the parallel-axis theorem, rotation
 into other axes, principal axes, moments about an axis, radius of gyration and
-the inertia ellipsoid (seed 四.1–3).
+the inertia ellipsoid (Theory §4.1–3).
 
 Every function broadcasts over leading axes: a tensor is ``(..., 3, 3)``, a
 vector ``(..., 3)``, a mass ``(...)``.
@@ -47,7 +47,7 @@ def check_moments(moments, name="I", definite=False):
     """Refuse principal moments ``(..., 3)`` that no mass distribution has.
 
     A physical inertia tensor is positive semi-definite (definite unless all
-    mass lies on a line, seed 四.1) and its principal moments obey the triangle
+    mass lies on a line, Theory §4.1) and its principal moments obey the triangle
     inequalities I_i <= I_j + I_k (equality for a thin plate). Both are
     checked to within :data:`TOLERANCE` relative to the trace.
 
@@ -102,13 +102,13 @@ def _outer_term(mass, r):
 
 
 def second_moment_to_inertia(second_moment):
-    """Inertia I = tr(S) 1 − S from the second moment S = ∫ ρ r rᵀ dV (seed 四.1)."""
+    """Inertia I = tr(S) 1 − S from the second moment S = ∫ ρ r rᵀ dV (Theory §4.1)."""
     trace = np.trace(second_moment, axis1=-2, axis2=-1)
     return trace[..., None, None] * np.eye(3) - second_moment
 
 
 def points(masses, positions):
-    """Inertia tensor of point masses about the origin (seed 四.1).
+    """Inertia tensor of point masses about the origin (Theory §4.1).
 
     I = Σ_P m_P (r_P² 1 − r_P r_Pᵀ).
 
@@ -147,7 +147,7 @@ def points(masses, positions):
 
 
 def parallel_axis(I_cm, mass, r_c):
-    """Move an inertia tensor from the centre of mass to another point (seed 四.1).
+    """Move an inertia tensor from the centre of mass to another point (Theory §4.1).
 
     I = I_C + M (r_C² 1 − r_C r_Cᵀ), with r_C the centre of mass seen from
     the new reference point.
@@ -282,7 +282,7 @@ def rotate(I, rotation):
 
 
 def principal_axes(I):
-    """Principal moments and principal axes of an inertia tensor (seed 四.2).
+    """Principal moments and principal axes of an inertia tensor (Theory §4.2).
 
     Parameters
     ----------
@@ -333,7 +333,7 @@ def _unit(axis, name="axis"):
 
 
 def moment_about_axis(I, axis):
-    """Moment of inertia about an axis through the reference point: I_n = nᵀ I n (seed 四.3).
+    """Moment of inertia about an axis through the reference point: I_n = nᵀ I n (Theory §4.3).
 
     Parameters
     ----------
@@ -358,7 +358,7 @@ def moment_about_axis(I, axis):
 
 
 def radius_of_gyration(I, mass, axis):
-    """Radius of gyration k = sqrt(I_n / m) about an axis (seed 四.3).
+    """Radius of gyration k = sqrt(I_n / m) about an axis (Theory §4.3).
 
     Parameters
     ----------
@@ -389,7 +389,7 @@ def radius_of_gyration(I, mass, axis):
 
 
 class InertiaEllipsoid(NamedTuple):
-    """The surface xᵀ I x = 1 (seed 四.3): its semi-axes, axes and a sampled surface.
+    """The surface xᵀ I x = 1 (Theory §4.3): its semi-axes, axes and a sampled surface.
 
     Attributes
     ----------
@@ -423,7 +423,7 @@ class InertiaEllipsoid(NamedTuple):
 
 
 def inertia_ellipsoid(I, n_polar=25, n_azimuth=49):
-    """Inertia ellipsoid xᵀ I x = 1 of a tensor (seed 四.3).
+    """Inertia ellipsoid xᵀ I x = 1 of a tensor (Theory §4.3).
 
     A point at distance ρ along a unit direction n lies on the surface when
     ρ = 1/sqrt(I_n), I_n the moment about n.

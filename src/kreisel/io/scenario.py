@@ -11,9 +11,9 @@ Three kinds of scenario exist:
     ``mesh``), ``[initial]`` (``omega``, ``frame``, ``[initial.attitude]``),
     optional ``[[torque]]`` entries, ``[integration]``.
 ``kind = "foucault"``
-    ``[foucault]``: the Foucault pendulum of seed 八.3.
+    ``[foucault]``: the Foucault pendulum of Theory §8.3.
 ``kind = "coning"``
-    ``[coning]``: strapdown attitude under coning motion (seed 三.5).
+    ``[coning]``: strapdown attitude under coning motion (Theory §3.5).
 
 Examples
 --------

@@ -1,4 +1,4 @@
-"""Kinematics of a rigid body (seed 三 and 四.6–7).
+"""Kinematics of a rigid body (Theory §3 and §4.6–7).
 
 Every map between a parameterisation's rates and the angular velocity, in
 space (``frame="space"``, hat(ω) = Ṙ Rᵀ) or body components

@@ -40,7 +40,7 @@ def cross(ax, ay, az, bx, by, bz):
 
 @_jit
 def dexp_coefficients(angle):
-    """``A = (1 - cos ψ)/ψ²`` and ``B = (ψ - sin ψ)/ψ³`` of seed 三.4.
+    """``A = (1 - cos ψ)/ψ²`` and ``B = (ψ - sin ψ)/ψ³`` of Theory §3.4.
 
     A is evaluated as ½ (sin(ψ/2)/(ψ/2))², which has no cancellation; B
     from its series below ψ = 1.
@@ -73,7 +73,7 @@ def dexp_coefficient_slopes(angle):
 
 @_jit
 def bortz_coefficient(angle):
-    """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of seed 三.5, written as
+    """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of Theory §3.5, written as
     ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
     summed from its series 1/12 + ψ²/720 + ψ⁴/30240 + ... below ψ = 1."""
     if angle < _BORTZ_SERIES_BELOW:
@@ -115,7 +115,7 @@ def euler_columns(x0, x1, x2, code):
     ``code = (a, b, c, extrinsic, body)`` with (a, b, c) the axes of the
     intrinsic sequence equivalent to the user's one (an extrinsic "abc"
     with angles (α, β, γ) is the intrinsic "CBA" with (γ, β, α)); columns
-    are returned in that intrinsic order. Seed 三.6 for ZXZ, generally:
+    are returned in that intrinsic order. Theory §3.6 for ZXZ, generally:
     space  ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇,
     body   ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇.
     det M = c0·(c1×c2) is −sin β for proper Euler sequences and

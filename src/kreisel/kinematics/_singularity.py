@@ -1,8 +1,8 @@
 """Warnings for coordinate singularities of the rate maps.
 
 Angular velocity is always well defined; what can fail is the *rate of a
-parameterisation*: Euler-angle rates at gimbal lock (seed 二.3, 三.6) and
-rotation-vector rates where dexp⁻¹ has a pole, |ψ| = 2π, 4π, ... (seed 三.5).
+parameterisation*: Euler-angle rates at gimbal lock (Theory §2.3, §3.6) and
+rotation-vector rates where dexp⁻¹ has a pole, |ψ| = 2π, 4π, ... (Theory §3.5).
 There the affected entries are returned as NaN, never as a large wrong
 number, and one of these warnings is issued. Each rate function has a
 ``*_singular`` companion that returns the mask without warning.

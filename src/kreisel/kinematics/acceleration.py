@@ -1,4 +1,4 @@
-"""Angular acceleration ε = dω/dt from second derivatives of any parameterisation (seed 三.9).
+"""Angular acceleration ε = dω/dt from second derivatives of any parameterisation (Theory §3.9).
 
 Space and body components are related by ``ε′ = Rᵀ ε`` (the term Ṙᵀω
 vanishes because hat(ω)ᵀω = 0), so ``ε′ = dω′/dt`` as well.
@@ -116,7 +116,7 @@ def _rotvec_acceleration(psi, v, acc, sign, out):
 def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
     """Angular acceleration from a rotation vector and its first two derivatives.
 
-    Differentiates the dexp map of seed 三.4, ``ω = J(ψ) ψ̇``; the
+    Differentiates the dexp map of Theory §3.4, ``ω = J(ψ) ψ̇``; the
     coefficient derivatives are summed from their series at small ψ, so the
     result is accurate to a few ulp for all ψ.
 
@@ -140,7 +140,7 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
 
 
 def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="space", degrees=False):
-    """Angular acceleration from Euler angles and their first two derivatives (seed 三.6, 三.9).
+    """Angular acceleration from Euler angles and their first two derivatives (Theory §3.6, §3.9).
 
     With the rate-matrix columns c₀, c₁, c₂ in the order of the equivalent
     intrinsic sequence (outermost rotation first) and its rates r:

@@ -1,4 +1,4 @@
-"""Euler kinematic equations for all 24 conventions (seed 三.6).
+"""Euler kinematic equations for all 24 conventions (Theory §3.6).
 
 For the intrinsic sequence ``"ABC"`` with angles (α, β, γ),
 ``R = R_a(α) R_b(β) R_c(γ)`` and
@@ -6,7 +6,7 @@ For the intrinsic sequence ``"ABC"`` with angles (α, β, γ),
     ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇                  (space)
     ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇                 (body)
 
-(for ZXZ these are the seed's matrices); an extrinsic ``"abc"`` with
+(for ZXZ these are the chapter's matrices); an extrinsic ``"abc"`` with
 (α, β, γ) is the intrinsic ``"CBA"`` with (γ, β, α). The columns c₀, c₁, c₂
 of M (ω = M · rates) are unit vectors with c₁ orthogonal to the other two,
 so ``c₁ × c₂ ∥ c₀ − (c₀·c₂) c₂`` and the inverse has the cancellation-free
@@ -154,9 +154,9 @@ def _angles(angles, degrees, name="angles"):
 
 
 def euler_rate_matrix(seq, angles, frame="space", degrees=False):
-    """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (seed 三.6).
+    """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (Theory §3.6).
 
-    For ``"ZXZ"`` (φ, θ, ψ) the space matrix is the seed's
+    For ``"ZXZ"`` (φ, θ, ψ) the space matrix is the chapter's
     ``[[0, cos φ, sin φ sin θ], [0, sin φ, −cos φ sin θ], [1, 0, cos θ]]`` and
     the body matrix ``[[sin θ sin ψ, cos ψ, 0], [sin θ cos ψ, −sin ψ, 0], [cos θ, 0, 1]]``.
     Column j is the axis about which angle j turns, in ``frame`` components.
@@ -186,9 +186,9 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False):
 
 
 def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SINGULAR_TOL):
-    """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (seed 三.6).
+    """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (Theory §3.6).
 
-    For ``"ZXZ"`` body components this is the seed's
+    For ``"ZXZ"`` body components this is the chapter's
     ``[[sin ψ/sin θ, cos ψ/sin θ, 0], [cos ψ, −sin ψ, 0], [−cot θ sin ψ, −cot θ cos ψ, 1]]``.
     At gimbal lock (|det M| ≤ ``tol``) the first and third rows are NaN and
     a :class:`GimbalLockWarning` is issued; the middle row is always defined.
@@ -221,12 +221,12 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
 
 
 def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees=False):
-    """Angular velocity from Euler angles and their rates (seed 三.6, Euler kinematic equations).
+    """Angular velocity from Euler angles and their rates (Theory §3.6, Euler kinematic equations).
 
     Parameters
     ----------
     seq : str
-        Axis sequence, e.g. ``"ZXZ"`` for the seed's (φ, θ, ψ).
+        Axis sequence, e.g. ``"ZXZ"`` for the chapter's (φ, θ, ψ).
     angles, rates : array_like, shape (..., 3)
         Angles and their time derivatives (rad and rad/s, or deg and deg/s
         with ``degrees=True``); batch shapes broadcast.
@@ -252,7 +252,7 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
 
 
 def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_TOL):
-    """Euler-angle rates from the angular velocity (seed 三.6, inverted Euler kinematic equations).
+    """Euler-angle rates from the angular velocity (Theory §3.6, inverted Euler kinematic equations).
 
     At gimbal lock (|sin β| ≤ ``tol`` for proper Euler sequences, |cos β| ≤ ``tol``
     for Tait–Bryan) the first and third rates are NaN — only their sum or

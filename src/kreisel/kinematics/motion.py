@@ -1,4 +1,4 @@
-"""Velocity and acceleration of points of, and points moving on, a rigid body (seed 三.7, 三.9, 四.6–7).
+"""Velocity and acceleration of points of, and points moving on, a rigid body (Theory §3.7, §3.9, §4.6–7).
 
 All vectors must be given in one common set of components (space or
 body); the formulas are the same in both.
@@ -24,7 +24,7 @@ __all__ = [
 
 
 def point_velocity(omega, r, reference_velocity=0.0):
-    """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (seed 三.7).
+    """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (Theory §3.7).
 
     Parameters
     ----------
@@ -48,7 +48,7 @@ def point_velocity(omega, r, reference_velocity=0.0):
 
 
 def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
-    """Acceleration of a body-fixed point (seed 三.9).
+    """Acceleration of a body-fixed point (Theory §3.9).
 
     ``a_P = a_C + ε × r_CP + ω × (ω × r_CP)``: translational, rotational
     (tangential) and centripetal (axipetal, 向轴) transport accelerations.
@@ -75,7 +75,7 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
 
 
 def relative_derivative(omega, vector, relative_rate):
-    """Rate of change of a vector from its rate relative to the body (seed 四.6).
+    """Rate of change of a vector from its rate relative to the body (Theory §4.6).
 
     ``B′ = dA′/dt + ω′ × A′``: the components of B = dA/dt on the body axes
     from the time derivative of A's body components. In space components
@@ -106,7 +106,7 @@ def relative_derivative(omega, vector, relative_rate):
 
 
 class VelocityTerms(NamedTuple):
-    """Absolute velocity of a point moving on a body, term by term (seed 四.7).
+    """Absolute velocity of a point moving on a body, term by term (Theory §4.7).
 
     Examples
     --------
@@ -129,7 +129,7 @@ class VelocityTerms(NamedTuple):
 
 
 class AccelerationTerms(NamedTuple):
-    """Absolute acceleration of a point moving on a body, term by term (seed 四.7).
+    """Absolute acceleration of a point moving on a body, term by term (Theory §4.7).
 
     Examples
     --------
@@ -161,7 +161,7 @@ def _as_vector(value):
 
 
 def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
-    """Velocity of a point moving relative to a body: ``v_P = v_C + v_CP + ω × r_CP`` (seed 四.7).
+    """Velocity of a point moving relative to a body: ``v_P = v_C + v_CP + ω × r_CP`` (Theory §4.7).
 
     Parameters
     ----------
@@ -194,7 +194,7 @@ def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
 
 
 def five_term_acceleration(omega, epsilon, r, relative_velocity, relative_acceleration, reference_acceleration=0.0):
-    """Acceleration of a point moving relative to a body, as five named terms (seed 四.7).
+    """Acceleration of a point moving relative to a body, as five named terms (Theory §4.7).
 
     ``a_P = a_C + ε × r_CP + ω × (ω × r_CP) + a_CP + 2 ω × v_CP``:
     translational, tangential (rotational transport), centripetal, relative

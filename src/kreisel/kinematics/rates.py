@@ -1,4 +1,4 @@
-"""Angular velocity from the rotation matrix and from quaternions (seed 三.1–3).
+"""Angular velocity from the rotation matrix and from quaternions (Theory §3.1–3).
 
 ``hat(ω) = Ṙ Rᵀ`` (space components), ``hat(ω′) = Rᵀ Ṙ`` (body components),
 ``q̇ = ½ ω q = ½ q ω′``.
@@ -24,10 +24,10 @@ def _skew_part_vee(A):
 
 
 def angular_velocity(R, Rdot, frame="space"):
-    """Angular velocity from the rotation matrix and its time derivative (seed 三.1).
+    """Angular velocity from the rotation matrix and its time derivative (Theory §3.1).
 
     ``hat(ω) = Ṙ Rᵀ`` in space components, ``hat(ω′) = Rᵀ Ṙ`` in body
-    components (seed 三.6). The antisymmetric part is taken, so for inexact
+    components (Theory §3.6). The antisymmetric part is taken, so for inexact
     data (e.g. finite differences) the result is the least-squares ω.
 
     Parameters
@@ -88,7 +88,7 @@ def _quat_angular_velocity(q, qd, sign, carrier3, out):
 
 
 def quat_rate(q, omega, frame="space"):
-    """Quaternion rate from the angular velocity (seed 三.3).
+    """Quaternion rate from the angular velocity (Theory §3.3).
 
     ``q̇ = ½ ω q`` with space components, ``q̇ = ½ q ω′`` with body
     components (pure quaternions ω = (0, ω)); the latter is the attitude
@@ -118,7 +118,7 @@ def quat_rate(q, omega, frame="space"):
 
 
 def angular_velocity_from_quat_rate(q, qdot, frame="space"):
-    """Angular velocity from a quaternion and its rate (seed 三.3).
+    """Angular velocity from a quaternion and its rate (Theory §3.3).
 
     ``ω = 2 q̇ q*`` (space) and ``ω′ = 2 q* q̇`` (body), taking the vector
     part; ``q*`` is replaced by ``q⁻¹ = q*/|q|²`` so that non-unit

@@ -1,12 +1,12 @@
 """Rotation-vector kinematics: the dexp map, the Bortz equation, SO(3) Jacobians.
 
-With ``R = exp(ψ·X)`` (seed 三.4),
+With ``R = exp(ψ·X)`` (Theory §3.4),
 
     ω  = ψ̇ + A ψ×ψ̇ + B ψ×(ψ×ψ̇)  = J_l(ψ) ψ̇      (space components)
     ω′ = ψ̇ − A ψ×ψ̇ + B ψ×(ψ×ψ̇)  = J_r(ψ) ψ̇      (body components)
 
 with ``A = (1 − cos ψ)/ψ²``, ``B = (ψ − sin ψ)/ψ³``, and the inverses
-(seed 三.5; the body one is the Bortz equation)
+(Theory §3.5; the body one is the Bortz equation)
 
     ψ̇ = ω′ + ½ ψ×ω′ + f ψ×(ψ×ω′) = J_r⁻¹ ω′,   ψ̇ = ω − ½ ψ×ω + f ψ×(ψ×ω) = J_l⁻¹ ω,
 
@@ -133,7 +133,7 @@ def _dexp_inverse_matrix(psi, sign, tol, out):
 
 
 def bortz_coefficient(angle):
-    """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (seed 三.5).
+    """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (Theory §3.5).
 
     Evaluated as ``(1 − (ψ/2) cot(ψ/2))/ψ²``, which is the same function
     without the removable singularity at ψ = π, and from its Maclaurin
@@ -165,7 +165,7 @@ def bortz_coefficient(angle):
 
 
 def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
-    """Angular velocity from a rotation vector and its rate, the dexp map (seed 三.4).
+    """Angular velocity from a rotation vector and its rate, the dexp map (Theory §3.4).
 
     ``ω = ((e^{ψ·X} − 1)/(ψ·X)) ψ̇ = ψ̇ + A ψ×ψ̇ + B ψ×(ψ×ψ̇)`` (space),
     ``ω′ = ((1 − e^{−ψ·X})/(ψ·X)) ψ̇ = ψ̇ − A ψ×ψ̇ + B ψ×(ψ×ψ̇)`` (body), with
@@ -192,7 +192,7 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
 
 
 def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
-    """Rotation-vector rate from the angular velocity: dexp⁻¹ (seed 三.5).
+    """Rotation-vector rate from the angular velocity: dexp⁻¹ (Theory §3.5).
 
     With body components this is the Bortz equation
     ``ψ̇ = ω′ + ½ ψ×ω′ + f ψ×(ψ×ω′)``; with space components
@@ -265,7 +265,7 @@ def _jacobian_inverse(psi, sign, tol):
 
 
 def left_jacobian(psi):
-    """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (seed 三.4).
+    """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
 
     ``J_l = 1 + A hat(ψ) + B hat(ψ)²`` maps ψ̇ to the space angular velocity,
     ``ω = J_l(ψ) ψ̇``; also ``exp(ψ + δ) ≈ exp(J_l δ) exp(ψ)``.
@@ -291,7 +291,7 @@ def left_jacobian(psi):
 def right_jacobian(psi):
     """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
 
-    Maps ψ̇ to the body angular velocity, ``ω′ = J_r(ψ) ψ̇`` (seed 三.4).
+    Maps ψ̇ to the body angular velocity, ``ω′ = J_r(ψ) ψ̇`` (Theory §3.4).
 
     Parameters
     ----------
@@ -335,7 +335,7 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL):
 
 
 def right_jacobian_inverse(psi, tol=SINGULAR_TOL):
-    """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (seed 三.5).
+    """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (Theory §3.5).
 
     ``ψ̇ = J_r⁻¹(ψ) ω′`` (body components). Singular at |ψ| = 2πk.
 

@@ -1,4 +1,4 @@
-"""Instantaneous motion: screw axis (Chasles/Mozzi), planar instantaneous centre and centrodes (seed 三.8).
+"""Instantaneous motion: screw axis (Chasles/Mozzi), planar instantaneous centre and centrodes (Theory §3.8).
 
 At any instant a rigid motion with angular velocity ω and reference-point
 velocity v_C is a translation (ω = 0), a rotation about an instantaneous
@@ -43,7 +43,7 @@ class ScrewAxis(NamedTuple):
 
 
 def screw_axis(omega, velocity, point=0.0, rtol=1e-12, omega_atol=0.0):
-    """Classify the instantaneous motion and find its screw axis (seed 三.8, Chasles/Mozzi).
+    """Classify the instantaneous motion and find its screw axis (Theory §3.8, Chasles/Mozzi).
 
     Parameters
     ----------
@@ -107,7 +107,7 @@ def _planar(x, name, shape_tail):
 
 
 def instantaneous_centre(omega, velocity, point=0.0):
-    """Instantaneous centre of a planar motion (seed 三.8).
+    """Instantaneous centre of a planar motion (Theory §3.8).
 
     For ω ≠ 0 the point with zero velocity is unique:
     ``r_I = r_C + ẑ × v_C / ω = r_C + (−v_y, v_x)/ω``.
@@ -201,7 +201,7 @@ def _sampled(value, rate, t, name, time_axis):
 
 
 def centrodes(t, angle, position, angle_rate=None, velocity=None):
-    """Space and body centrodes (polodes) of a planar motion (seed 三.8).
+    """Space and body centrodes (polodes) of a planar motion (Theory §3.8).
 
     The body pose at time t is its angle θ(t) (counter-clockwise) and the
     position r_C(t) of a body reference point; the instantaneous centre

@@ -1,4 +1,4 @@
-"""Strapdown attitude from gyro data (seed 三.3, 三.5; MATH.md §4).
+"""Strapdown attitude from gyro data (Theory §3.3, §3.5; Theory §3.5).
 
 Attitude from angle increments with the optimal coning correction, from
 sampled rates (q̇ = ½ q ω′ or the Bortz equation), the exact coning motion

@@ -94,7 +94,7 @@ def integrate_increments(q0, dtheta, k, out):
 
 @_jit
 def _quat_derivative(q, w0, w1, w2, out):
-    """``out = ½ q ⊗ (0, ω′)`` (seed 三.3)."""
+    """``out = ½ q ⊗ (0, ω′)`` (Theory §3.3)."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
     out[0] = 0.5 * (-q1 * w0 - q2 * w1 - q3 * w2)
     out[1] = 0.5 * (q0 * w0 + q2 * w2 - q3 * w1)
@@ -104,7 +104,7 @@ def _quat_derivative(q, w0, w1, w2, out):
 
 @_jit
 def bortz_coefficient(angle2):
-    """(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ) from ψ², seed 三.5.
+    """(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ) from ψ², Theory §3.5.
 
     The closed form cancels catastrophically at small ψ, so below ψ = 0.1
     its series 1/12 + ψ²/720 + ψ⁴/30240 + ψ⁶/1209600 is used (the next term is
@@ -118,7 +118,7 @@ def bortz_coefficient(angle2):
 
 @_jit
 def _bortz_rate(p, w0, w1, w2, out):
-    """``out = ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)`` (Bortz equation, seed 三.5)."""
+    """``out = ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)`` (Bortz equation, Theory §3.5)."""
     c = bortz_coefficient(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
     x0 = p[1] * w2 - p[2] * w1
     x1 = p[2] * w0 - p[0] * w2

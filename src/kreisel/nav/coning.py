@@ -1,4 +1,4 @@
-"""Coning motion: the classical test of strapdown attitude algorithms (MATH.md §4).
+"""Coning motion: the classical test of strapdown attitude algorithms (Theory §3.5).
 
 A body whose axis x sweeps a cone of half angle α at rate Ω has body rate
 ω′ = (−2Ω sin²(α/2), −Ω sin α sin Ωt, Ω sin α cos Ωt). Its attitude returns
@@ -19,7 +19,7 @@ from .._validation import as_float_array
 
 __all__ = ["ConingMotion", "coning_motion", "coning_drift", "coning_coefficients"]
 
-# compressed optimal coefficients k_i of δφ = (Σ_{i<N} k_i Δθ_i) × Δθ_N (MATH.md §4)
+# compressed optimal coefficients k_i of δφ = (Σ_{i<N} k_i Δθ_i) × Δθ_N (Theory §3.5)
 _CONING_COEFFICIENTS = {
     1: (),
     2: (2.0 / 3.0,),
@@ -32,7 +32,7 @@ def coning_coefficients(samples_per_update):
     """Coefficients k_i of the optimal N-sample coning correction, compressed form.
 
     The correction added to the summed increments of one update is
-    δφ = (Σ_{i<N} k_i Δθ_i) × Δθ_N (MATH.md §4).
+    δφ = (Σ_{i<N} k_i Δθ_i) × Δθ_N (Theory §3.5).
 
     Parameters
     ----------
@@ -121,7 +121,7 @@ def _positive_scalars(**kwargs):
 
 
 def coning_motion(half_angle, rate, sample_time, n_samples):
-    """Exact coning motion sampled for a gyro simulation (MATH.md §4, seed 三.3).
+    """Exact coning motion sampled for a gyro simulation (Theory §3.5, Theory §3.3).
 
     The attitude is q(t) = (cos(α/2), 0, sin(α/2) cos Ωt, sin(α/2) sin Ωt), so
     q̇ = ½ q ω′ with ω′ = (−2Ω sin²(α/2), −Ω sin α sin Ωt, Ω sin α cos Ωt), and
@@ -182,7 +182,7 @@ def _double_factorial_odd(n):
 
 
 def coning_drift(half_angle, rate, sample_time, samples_per_update):
-    """Classical coning drift rate of the optimal N-sample algorithm (MATH.md §4).
+    """Classical coning drift rate of the optimal N-sample algorithm (Theory §3.5).
 
     ε_N = α² Ω λ^(2N) N! / (2^(N+1) (2N+1)!!), λ = Ω T_s: N = 1 gives
     α²Ωλ²/12, N = 2 α²Ωλ⁴/60, N = 3 α²Ωλ⁶/280, N = 4 α²Ωλ⁸/1260. The

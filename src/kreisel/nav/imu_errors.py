@@ -1,4 +1,4 @@
-"""Gyro error models for simulation and their Allan-deviation signatures (MATH.md §4).
+"""Gyro error models for simulation and their Allan-deviation signatures (Theory §3.5).
 
 Datasheets quote gyro noise in navigation units; the model works in SI:
 
@@ -56,7 +56,7 @@ class GyroErrorModel:
         b_{k+1} = e^{−Δt/T_c} b_k + σ √(1 − e^{−2Δt/T_c}) w′_k   (b stationary from k = 0),
         r_{k+1} = r_k + K √Δt w″_k,   r_0 = 0,
 
-    with independent standard normal w, w′, w″ (MATH.md §4). All parameters
+    with independent standard normal w, w′, w″ (Theory §3.5). All parameters
     are SI; :meth:`from_datasheet` takes the usual navigation units.
 
     Parameters
@@ -161,7 +161,7 @@ class GyroErrorModel:
         dt = _nonnegative(sample_time, "sample_time")
         if dt == 0:
             raise ValueError("sample_time must be positive")
-        rng = np.random.default_rng(seed)
+        rng = np.random.default_rng(chapter)
         size = (int(n_samples),) + tuple(shape)
         error = np.full(size, self.bias)
         if self.angle_random_walk > 0:

@@ -1,4 +1,4 @@
-"""Strapdown attitude: body-frame gyro data to attitude quaternions (seed 三.3, 三.5).
+"""Strapdown attitude: body-frame gyro data to attitude quaternions (Theory §3.3, §3.5).
 
 Two kinds of gyro exist and they need different algorithms:
 
@@ -61,9 +61,9 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
         φ = Σ Δθ_i + δφ,   δφ = (Σ_{i<N} k_i Δθ_i) × Δθ_N
 
     with k = (2/3) for N = 2, (9/20, 27/20) for N = 3 and (54/105, 92/105,
-    214/105) for N = 4 (MATH.md §4; δφ approximates the Bortz term ½∫ψ×ω′,
-    seed 三.5). Then q ← q ⊗ exp(φ/2), renormalised (the quaternion form of
-    q̇ = ½ q ω′, seed 三.3). Under coning of half angle α at rate Ω the result
+    214/105) for N = 4 (Theory §3.5; δφ approximates the Bortz term ½∫ψ×ω′,
+    Theory §3.5). Then q ← q ⊗ exp(φ/2), renormalised (the quaternion form of
+    q̇ = ½ q ω′, Theory §3.3). Under coning of half angle α at rate Ω the result
     drifts about −x of the body at :func:`coning_drift` (α²Ωλ²/12 for N = 1,
     α²Ωλ⁴/60 for N = 2, α²Ωλ⁶/280 for N = 3, λ = ΩT_s); the tests confirm
     this within 3 % (N = 4 within 15 % at α = 0.1°).
@@ -111,7 +111,7 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
 
 
 def attitude_from_rates(q0, t, omega_body, method="quaternion"):
-    """Attitude from sampled body rates of a rate-output gyro (seed 三.3, 三.5).
+    """Attitude from sampled body rates of a rate-output gyro (Theory §3.3, §3.5).
 
     ω′ is taken as linear between samples and integrated over each interval
     by classical RK4, either on q̇ = ½ q ω′ (``method="quaternion"``, then

@@ -14,7 +14,7 @@ from ..so3 import quat_apply
 
 
 def omega(traj, frame="body"):
-    """Components of the angular velocity against time (seed 三.1).
+    """Components of the angular velocity against time (Theory §3.1).
 
     Examples
     --------
@@ -36,7 +36,7 @@ def omega(traj, frame="body"):
 
 
 def energy(traj):
-    """Relative drift of the energy T and of |J| (first integrals, seed 五.2).
+    """Relative drift of the energy T and of |J| (first integrals, Theory §5.2).
 
     Examples
     --------
@@ -63,11 +63,11 @@ def energy(traj):
 
 
 def euler(traj, seq="ZXZ", degrees=True):
-    """Euler angles in sequence ``seq`` against time (seed 二.3).
+    """Euler angles in sequence ``seq`` against time (Theory §2.3).
 
     Examples
     --------
-    The seed's mechanics angles (φ, θ, ψ) of a free symmetric top (I1 = I2),
+    The chapter's mechanics angles (φ, θ, ψ) of a free symmetric top (I1 = I2),
     in degrees unless ``degrees=False``:
 
     >>> import kreisel as kr, numpy as np
@@ -88,7 +88,7 @@ def euler(traj, seq="ZXZ", degrees=True):
 
 
 def polhode(traj):
-    """Path of ω′ in the body frame on the energy ellipsoid (seed 五.6).
+    """Path of ω′ in the body frame on the energy ellipsoid (Theory §5.6).
 
     Examples
     --------
@@ -119,7 +119,7 @@ def polhode(traj):
 
 
 def herpolhode(traj):
-    """Path of ω (space) projected on the invariable plane ⟂ J (seed 五.5).
+    """Path of ω (space) projected on the invariable plane ⟂ J (Theory §5.5).
 
     Examples
     --------
@@ -151,7 +151,7 @@ def herpolhode(traj):
 
 
 def apex(traj, axis=2):
-    """Locus of the body's symmetry axis on the unit sphere (seed 六.5).
+    """Locus of the body's symmetry axis on the unit sphere (Theory §6.5).
 
     Examples
     --------

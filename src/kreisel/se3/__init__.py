@@ -1,4 +1,4 @@
-"""Rigid displacements SE(3) (seed 一.3 Chasles' theorem, 三.7–8 point velocity and screw motion).
+"""Rigid displacements SE(3) (Theory §1.3 Chasles' theorem, §3.7–8 point velocity and screw motion).
 
 :class:`RigidTransform` holds batched poses (R, r_C); :func:`change_base_point`
 re-expresses a displacement about another body point (R unchanged);

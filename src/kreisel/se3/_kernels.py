@@ -1,7 +1,7 @@
 """Compiled per-pose kernels of :mod:`kreisel.se3`, broadcast as lazy gufuncs.
 
 A pose is stored as a unit quaternion ``q`` (scalar first) and a translation
-``t``: the displacement ``r -> R(q) r + t`` of seed 一.3. Everything here
+``t``: the displacement ``r -> R(q) r + t`` of Theory §1.3. Everything here
 works on one pose and is broadcast by :func:`numba.guvectorize`; the scalar
 quaternion algebra comes from :mod:`kreisel.so3._kernels`.
 """
@@ -59,7 +59,7 @@ def invert(q, t):
 
 @gufunc(_signature(4), "(4),(3),(3)->(3)")
 def apply(q, t, p, out):
-    """r_P = R r′_CP + r_C (seed 一.3, Chasles)."""
+    """r_P = R r′_CP + r_C (Theory §1.3, Chasles)."""
     k.qrotate(q, p, out)
     out[0] += t[0]
     out[1] += t[1]

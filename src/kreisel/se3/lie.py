@@ -3,9 +3,9 @@
 Twists (exponential coordinates) are ``ξ = (ω, v)``, **rotation part
 first**, with ``ξ^ = [[hat ω, v], [0, 0]]`` and ``T = exp(ξ^)``. This is the
 order of scipy's ``RigidTransform.as_exp_coords``. The rotation part is the
-rotation vector ψ = ω of seed 二.2; the translation part ``v`` is the
+rotation vector ψ = ω of Theory §2.2; the translation part ``v`` is the
 velocity of the body point passing through the origin during the uniform
-screw motion ``exp(s ξ^)`` that reaches ``T`` at ``s = 1`` (seed 三.8), so
+screw motion ``exp(s ξ^)`` that reaches ``T`` at ``s = 1`` (Theory §3.8), so
 ``r_C = J_l(ω) v`` with the SO(3) left Jacobian.
 
 Jacobians follow the left/right perturbation convention:
@@ -116,14 +116,14 @@ def se3_vee(matrix):
 def exp(xi):
     """``(q, r_C)`` of ``exp(ξ^)`` for validated twists ``(..., 6)``."""
     omega, v = _split(xi)
-    # r_C = J_l(ω) v is the dexp map ψ̇ -> ω (space) of seed 三.4, applied to v
+    # r_C = J_l(ω) v is the dexp map ψ̇ -> ω (space) of Theory §3.4, applied to v
     return rotvec_to_quat(omega), angular_velocity_from_rotvec_rate(omega, v, frame="space")
 
 
 def log(quat, translation):
     """Twists ``(ω, v)`` with ``|ω| <= π`` of poses given as unit quaternions and translations."""
     omega = quat_to_rotvec(quat)
-    # v = J_l(ω)⁻¹ r_C: the inverse dexp map of seed 三.5 (no pole for |ω| <= π)
+    # v = J_l(ω)⁻¹ r_C: the inverse dexp map of Theory §3.5 (no pole for |ω| <= π)
     v = rotvec_rate(omega, translation, frame="space")
     return np.concatenate([omega, v], axis=-1)
 

@@ -33,7 +33,7 @@ def sclerp(start, end, fraction):
     The body moves from ``start`` to ``end`` along the single screw motion
     (constant twist in body components) that joins them: the rotation is
     SLERP, and every body point moves on a helix about the fixed screw axis
-    of the relative displacement (seed 三.8 in finite form). Equivalent to
+    of the relative displacement (Theory §3.8 in finite form). Equivalent to
     dual-quaternion ScLERP for the relative rotation angle ≤ π.
 
     Parameters
@@ -121,11 +121,11 @@ def _continuous(q):
 
 
 def point_trajectory(body_point, t=None, rotation=None, translation=None, trajectory=None):
-    """Path, velocity and acceleration of a body point of a moving rigid body (seed 三.7, 三.9).
+    """Path, velocity and acceleration of a body point of a moving rigid body (Theory §3.7, §3.9).
 
     ``r_P = R r′_CP + r_C``, ``v_P = ω × r_CP + v_C`` and
     ``a_P = ε × r_CP + ω × (ω × r_CP) + a_C`` (rotational, centripetal and
-    translational transport terms of seed 三.9), with ``r_CP = R r′_CP``.
+    translational transport terms of Theory §3.9), with ``r_CP = R r′_CP``.
     ``v_C``, ``a_C``, ω and ε are taken from the samples by five-point finite
     differences on the (possibly non-uniform) time grid, ends included:
     errors O(Δt⁴) for velocities and O(Δt³) for accelerations (exact for

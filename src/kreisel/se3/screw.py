@@ -1,7 +1,7 @@
 """Chasles/Mozzi screws of finite displacements, and the change of base point.
 
-Seed 一.3: a displacement is a rotation about a base point plus that point's
-translation, and moving the base point leaves R unchanged. Seed 三.8 shows
+Theory §1.3: a displacement is a rotation about a base point plus that point's
+translation, and moving the base point leaves R unchanged. Theory §3.8 shows
 that a suitable base point makes the velocity parallel to ω (screw axis);
 the same holds for finite displacements (Chasles/Mozzi): every rigid
 displacement is a rotation by ``angle`` about a line ``point + λ axis``
@@ -127,7 +127,7 @@ def screw_pose(axis, point, angle, translation=0.0):
 
 
 def change_base_point(transform, offset):
-    """The same displacement described about another body point (seed 一.3, corollary).
+    """The same displacement described about another body point (Theory §1.3, corollary).
 
     With base point C, ``r_P = R r′_CP + r_C``. Taking instead the body
     point A with body components ``r′_CA = offset`` (relative to C) as the

@@ -1,9 +1,9 @@
 """Rigid displacements (R, r_C) as batched objects: :class:`RigidTransform`.
 
-Seed 一.3 (Chasles' theorem): every body point P moves as
+Theory §1.3 (Chasles' theorem): every body point P moves as
 ``r_P = R r′_CP + r_C``: a rotation ``R`` about the base point C followed by
 the translation ``r_C`` of C. A :class:`RigidTransform` stores that pair as a
-unit quaternion (scalar first, ``R = R(q)`` of seed 二.4) and a translation.
+unit quaternion (scalar first, ``R = R(q)`` of Theory §2.4) and a translation.
 """
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ def _batch_shape(shape):
 
 
 class RigidTransform:
-    """Rigid displacements ``r -> R r + r_C`` (seed 一.3), batched like numpy arrays.
+    """Rigid displacements ``r -> R r + r_C`` (Theory §1.3), batched like numpy arrays.
 
     The rotation ``R`` maps body components to space components and ``r_C``
     is the space position of the base point C, so a body point with body
@@ -479,7 +479,7 @@ class RigidTransform:
         return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
 
     def apply(self, points, inverse=False):
-        """Move points: ``R r + r_C`` (seed 一.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
+        """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
 
         Parameters
         ----------

@@ -1,13 +1,13 @@
-"""Rotation group SO(3) (seed 一, 二 and the appendix): every representation of a
+"""Rotation group SO(3) (Theory §1, §2 and the appendix): every representation of a
 rotation, conversions between them, the exponential map and the ``Rotation`` class.
 
 Conventions: scalar-first Hamilton quaternions, active rotations with ``R``
 mapping body to space components, rotation vectors with |ψ| <= π from logs,
 uppercase Euler sequences intrinsic and lowercase extrinsic.
 
-Modules: :mod:`.quaternion` (algebra, seed 二.4), :mod:`.matrix` (DCM, 二.1),
-:mod:`.rotvec` (generators, exp/log, BCH, adjoint action, 二.2),
-:mod:`.euler` (二.3), :mod:`.su2` (SU(2), Cayley–Klein, Euler parameters,
+Modules: :mod:`.quaternion` (algebra, Theory §2.4), :mod:`.matrix` (DCM, §2.1),
+:mod:`.rotvec` (generators, exp/log, BCH, adjoint action, §2.2),
+:mod:`.euler` (§2.3), :mod:`.su2` (SU(2), Cayley–Klein, Euler parameters,
 appendix), :mod:`.rodrigues` (Gibbs vector, MRPs), :mod:`.interpolation`
 (slerp, mean), :mod:`.rotation` (the ``Rotation`` class).
 """

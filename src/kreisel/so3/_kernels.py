@@ -11,7 +11,7 @@ one shared parent array. The array forms below (``qmul``, ``qrotate``,
 ``quat_to_matrix``, ...) are thin shells over the tuple kernels for callers
 with per-element arrays, such as the integrators in :mod:`kreisel.dynamics`
 and :mod:`kreisel.nav`. Conventions: scalar-first Hamilton quaternions,
-``R(q)`` of seed 二.4.
+``R(q)`` of Theory §2.4.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ _jit = njit(cache=True, fastmath=False, nogil=True)
 
 @_jit
 def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
-    """Hamilton product ``p q`` (seed 二.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
+    """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
     return (
         p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
         p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
@@ -61,7 +61,7 @@ _rotated = rotated
 
 @_jit
 def quat_matrix(q0, q1, q2, q3):
-    """Entries of ``R(q)`` (seed 二.4) row by row, for a possibly non-unit quaternion."""
+    """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit quaternion."""
     s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     return (
         (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s,
@@ -180,7 +180,7 @@ def qrotate_inverse(q, v, out):
 
 @_jit
 def write_matrix(q0, q1, q2, q3, out):
-    """Write ``R(q)`` (seed 二.4) of a possibly non-unit quaternion into ``out``."""
+    """Write ``R(q)`` (Theory §2.4) of a possibly non-unit quaternion into ``out``."""
     (
         out[0, 0], out[0, 1], out[0, 2],
         out[1, 0], out[1, 1], out[1, 2],
@@ -190,7 +190,7 @@ def write_matrix(q0, q1, q2, q3, out):
 
 @_jit
 def quat_to_matrix(q, out):
-    """``out = R(q)`` exactly as printed in seed 二.4 (q need not be unit: it is scaled)."""
+    """``out = R(q)`` exactly as printed in Theory §2.4 (q need not be unit: it is scaled)."""
     write_matrix(q[0], q[1], q[2], q[3], out)
 
 

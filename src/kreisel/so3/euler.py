@@ -1,12 +1,12 @@
-"""Euler angles in all 12 axis sequences, intrinsic and extrinsic (seed 二.3).
+"""Euler angles in all 12 axis sequences, intrinsic and extrinsic (Theory §2.3).
 
 A sequence is three letters from ``xyz`` with no two adjacent equal;
 uppercase means intrinsic (rotations about the moving axes), lowercase
 extrinsic (about the fixed axes), as in scipy. Intrinsic ``"ABC"`` with
 angles (α, β, γ) is ``R = R_A(α) R_B(β) R_C(γ)``; extrinsic ``"abc"`` is
-``R = R_c(γ) R_b(β) R_a(α)``. The seed's mechanics angles (φ, θ, ψ) are
+``R = R_c(γ) R_b(β) R_a(α)``. The chapter's mechanics angles (φ, θ, ψ) are
 ``"ZXZ"``: ``R = R_z(φ) R_x(θ) R_z(ψ)``; the quantum-mechanics (α, β, γ) are
-``"ZYZ"``; the seed's Tait–Bryan angles are ``"XYZ"``.
+``"ZYZ"``; the chapter's Tait–Bryan angles are ``"XYZ"``.
 
 Angles from a rotation use the direct half-angle quaternion method
 (Bernardes & Viollet 2022): the middle angle is 2 atan2 of two half-angle
@@ -250,7 +250,7 @@ def _angles_array(angles, degrees):
 
 
 def euler_to_quat(seq, angles, degrees=False):
-    """Quaternion of Euler angles in any of the 24 conventions (seed 二.3).
+    """Quaternion of Euler angles in any of the 24 conventions (Theory §2.3).
 
     Parameters
     ----------
@@ -276,7 +276,7 @@ def euler_to_quat(seq, angles, degrees=False):
 
 
 def euler_to_matrix(seq, angles, degrees=False):
-    """Rotation matrix of Euler angles, e.g. the seed's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
+    """Rotation matrix of Euler angles, e.g. the chapter's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
 
     Examples
     --------
@@ -336,7 +336,7 @@ def matrix_to_euler(seq, R, degrees=False):
 def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):
     """Which Euler-angle triples are within ``tolerance`` of gimbal lock.
 
-    Gimbal lock (seed 二.3 (3)) is a middle angle of 0 or π for proper Euler
+    Gimbal lock (Theory §2.3 (3)) is a middle angle of 0 or π for proper Euler
     sequences and ±π/2 for Tait–Bryan sequences: the first and third axes
     coincide and only the sum or difference of the outer angles is defined.
 

@@ -1,7 +1,7 @@
-"""Rotation matrices (direction cosine matrices, seed 一 and 二.1) and quaternions.
+"""Rotation matrices (direction cosine matrices, Theory §1 and §2.1) and quaternions.
 
 ``R`` maps body components to space components, ``a = R a′``; ``RᵀR = 1`` and
-``det R = 1`` (seed 二.1 (1)–(2)).
+``det R = 1`` (Theory §2.1 (1)–(2)).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ def _matrix_to_quat(R, carrier4, out):
 
 
 def quat_to_matrix(q):
-    """Rotation matrix ``R(q)`` exactly as in seed 二.4, for nonzero quaternions.
+    """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
     ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
     ``R(q) = R(-q)``.
@@ -99,7 +99,7 @@ def orthonormalize(R):
 
     Uses the SVD ``R = U S Vᵀ`` and returns ``U diag(1, 1, ±1) Vᵀ`` with the
     sign making the determinant +1 — the re-orthonormalisation a DCM needs
-    after accumulating rounding errors (seed 二.4 (2) ②).
+    after accumulating rounding errors (Theory §2.4 (2) ②).
 
     Parameters
     ----------

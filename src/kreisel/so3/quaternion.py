@@ -1,8 +1,8 @@
-"""Quaternion algebra (seed 二.4 and appendix (4)): scalar-first Hamilton quaternions.
+"""Quaternion algebra (Theory §2.4 and appendix (4)): scalar-first Hamilton quaternions.
 
 A quaternion ``q = q0 + q1 i1 + q2 i2 + q3 i3`` is stored as ``[q0, q1, q2, q3]``
 with ``i_j i_k = -δ_jk + ε_jkl i_l``. Unit quaternions act on vectors by
-``r -> q r q⁻¹`` (active rotation, ``R(q)`` of seed 二.4); ``q`` and ``-q``
+``r -> q r q⁻¹`` (active rotation, ``R(q)`` of Theory §2.4); ``q`` and ``-q``
 give the same rotation (double cover).
 """
 
@@ -113,7 +113,7 @@ def _is_single(x):
 
 
 def quat_multiply(p, q):
-    """Hamilton product ``p q`` (seed 二.4), broadcasting over leading axes.
+    """Hamilton product ``p q`` (Theory §2.4), broadcasting over leading axes.
 
     ``R(p q) = R(p) R(q)``: the product first applies ``q``, then ``p``.
 
@@ -146,7 +146,7 @@ def quat_multiply(p, q):
 
 
 def quat_conjugate(q):
-    """Conjugate ``q* = q0 - q·i`` (seed 二.4); the inverse rotation for unit ``q``.
+    """Conjugate ``q* = q0 - q·i`` (Theory §2.4); the inverse rotation for unit ``q``.
 
     Examples
     --------
@@ -172,7 +172,7 @@ def quat_norm(q):
 
 
 def quat_inverse(q):
-    """Inverse ``q⁻¹ = q* / |q|²`` (seed 二.4) of nonzero quaternions.
+    """Inverse ``q⁻¹ = q* / |q|²`` (Theory §2.4) of nonzero quaternions.
 
     Examples
     --------
@@ -183,7 +183,7 @@ def quat_inverse(q):
 
 
 def quat_normalize(q):
-    """Scale nonzero quaternions to unit norm (the renormalisation of seed 二.4 (2) ②).
+    """Scale nonzero quaternions to unit norm (the renormalisation of Theory §2.4 (2) ②).
 
     Raises ``ValueError`` for zero or non-finite input rather than returning NaN.
 

@@ -1,4 +1,4 @@
-"""The ``Rotation`` object: a batch of rotations with every representation (seed 一, 二, appendix).
+"""The ``Rotation`` object: a batch of rotations with every representation (Theory §1, §2, appendix).
 
 A ``Rotation`` holds unit quaternions (scalar first) of any batch shape and
 converts to and from all representations of :mod:`kreisel.so3`. ``a * b``
@@ -126,7 +126,7 @@ class Rotation:
 
         Examples
         --------
-        The seed's mechanics angles (φ, θ, ψ) are the intrinsic sequence ``"ZXZ"``,
+        The chapter's mechanics angles (φ, θ, ψ) are the intrinsic sequence ``"ZXZ"``,
         R = Rz(φ) Rx(θ) Rz(ψ):
 
         >>> import numpy as np
@@ -171,11 +171,11 @@ class Rotation:
 
     @classmethod
     def from_euler_parameters(cls, e):
-        """From the seed's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`).
+        """From the chapter's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`).
 
         Examples
         --------
-        The seed's Euler parameters are the conjugate quaternion (passive sign of the vector part):
+        The chapter's Euler parameters are the conjugate quaternion (passive sign of the vector part):
 
         >>> import numpy as np
         >>> r = Rotation.from_euler_parameters([np.sqrt(0.5), 0.0, 0.0, -np.sqrt(0.5)])
@@ -365,7 +365,7 @@ class Rotation:
         return _su2.quat_to_cayley_klein(self._q)
 
     def as_euler_parameters(self):
-        """Euler parameters of the seed appendix (2), ``e = q*``.
+        """Euler parameters of the Theory §A (2), ``e = q*``.
 
         Examples
         --------

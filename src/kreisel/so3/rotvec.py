@@ -1,8 +1,8 @@
-"""Rotation vectors, generators and the exponential map (seed 二.2).
+"""Rotation vectors, generators and the exponential map (Theory §2.2).
 
-The rotation vector ψ = ψ n (the seed's "Rodrigues parameters" or angular
+The rotation vector ψ = ψ n (the chapter's "Rodrigues parameters" or angular
 displacement) parametrises ``R(ψ) = exp(ψ_j X_j)`` with the generators
-``X_j`` of seed 二.2 (2), ``(X_j)_kl = -ε_jkl``. Logarithms return |ψ| <= π.
+``X_j`` of Theory §2.2 (2), ``(X_j)_kl = -ε_jkl``. Logarithms return |ψ| <= π.
 """
 
 from __future__ import annotations
@@ -105,7 +105,7 @@ def _compose_rotvec(a, b, out):
 
 
 def generators():
-    """The generators ``X_1, X_2, X_3`` of seed 二.2 (2), shape (3, 3, 3).
+    """The generators ``X_1, X_2, X_3`` of Theory §2.2 (2), shape (3, 3, 3).
 
     ``(X_j)_kl = -ε_jkl``; ``[X_j, X_k] = ε_jkl X_l`` and ``R(ψ) = exp(ψ_j X_j)``.
 
@@ -120,7 +120,7 @@ def generators():
 
 
 def hat(v):
-    """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of seed 二.2 (3)).
+    """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
     Parameters
     ----------
@@ -164,7 +164,7 @@ def vee(A):
 
 
 def rotvec_to_matrix(psi):
-    """Exponential map ``R(ψ) = exp(ψ·X)`` (seed 二.2 (3), Rodrigues' formula).
+    """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
     Evaluated through the half-angle quaternion so that every entry is
     accurate to rounding for all |ψ| (series for sin(ψ/2)/ψ below 1e-4).
@@ -205,7 +205,7 @@ def matrix_to_rotvec(R):
 
 
 def rotvec_to_quat(psi):
-    """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (seed appendix (4)).
+    """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (Theory §A (4)).
 
     No sign flip: ψ = 2π n gives ``q = -1`` — the double cover SU(2) → SO(3).
 
@@ -277,7 +277,7 @@ def axis_angle_to_rotvec(axis, angle, degrees=False):
 def compose_rotvec(a, b):
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
-    Rotation vectors do not add (seed 二.2 (4)); this is the closed form the
+    Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
     BCH series (:func:`bch`) approximates, computed through quaternions.
 
     Examples
@@ -300,7 +300,7 @@ def _bernoulli_even(n_max):
 
 
 def bch(a, b, order=3):
-    """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (seed 二.2 (4)).
+    """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (Theory §2.2 (4)).
 
     ``a + b + [a, b]/2 + [a - b, [a, b]]/12 + …`` truncated after the terms of
     total degree ``order``, with ``[a, b] = a × b`` in so(3). The terms are
@@ -351,7 +351,7 @@ def _compositions(n, parts):
 def adjoint_action(Q, psi):
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
-    Implements the identity of seed 二.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
+    Implements the identity of Theory §2.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
     axis turns as a vector and the angle is unchanged (equivalently
     ``Q (ψ·X) Qᵀ = (Qψ)·X``).
 

@@ -1,6 +1,6 @@
-"""SU(2), Cayley–Klein parameters and Goldstein's Euler parameters (seed appendix).
+"""SU(2), Cayley–Klein parameters and Goldstein's Euler parameters (Theory §A).
 
-The homomorphism SU(2) → SO(3) (seed appendix (1)): ``u(ψ) = exp(-i σ·ψ/2)``
+The homomorphism SU(2) → SO(3) (Theory §A (1)): ``u(ψ) = exp(-i σ·ψ/2)``
 acts by ``u (r·σ) u⁻¹ = (R(u) r)·σ``, and ``i_j <-> -i σ_j`` identifies it
 with the unit quaternions (appendix (4)):
 
@@ -56,7 +56,7 @@ def _quat_from_ab(a, b, name):
 
 
 def quat_to_su2(q):
-    """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (seed appendix (1), (4)).
+    """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (Theory §A (1), (4)).
 
     Parameters
     ----------
@@ -101,7 +101,7 @@ def su2_to_quat(u):
 
 
 def quat_to_cayley_klein(q):
-    """Cayley–Klein parameters ``(α, β, γ, δ)`` = the entries of ``u`` (seed appendix (3)).
+    """Cayley–Klein parameters ``(α, β, γ, δ)`` = the entries of ``u`` (Theory §A (3)).
 
     ``u = [[α, β], [γ, δ]]`` with ``δ = α*``, ``γ = -β*``, ``αδ - βγ = 1``.
 
@@ -131,7 +131,7 @@ def cayley_klein_to_quat(ck):
 
 
 def quat_to_euler_parameters(q):
-    """Euler parameters ``(e0, e1, e2, e3)`` as defined in the seed appendix (2).
+    """Euler parameters ``(e0, e1, e2, e3)`` as defined in the Theory §A (2).
 
     ``e0 = cos(ψ/2)``, ``e_j = -n_j sin(ψ/2)``, i.e. ``e = q*/|q|``. The
     printed matrix :func:`euler_parameters_to_matrix` of these parameters is
@@ -164,9 +164,9 @@ def euler_parameters_to_quat(e):
 
 
 def euler_parameters_to_matrix(e):
-    """The matrix printed in seed appendix (2) (Goldstein's ``A``) of Euler parameters.
+    """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
-    ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the seed's
+    ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
     ``e = q*`` it is the active ``R(q)``; with Goldstein's ``e = q`` it is the
     passive ``A = R(q)ᵀ``. ``e`` is normalised first.
 

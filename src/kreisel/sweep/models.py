@@ -16,7 +16,7 @@ import numpy as np
 APEX_LOCUS_KINDS = ("monotone", "cusp", "loop")
 
 
-# ---- tennis-racket stability map (seed 五.4) ----------------------------------------------------
+# ---- tennis-racket stability map (Theory §5.4) ----------------------------------------------------
 def _first_middle_axis_zero(trajectory):
     """Time of the first sign change of ω2 on each body, by cubic Hermite interpolation.
 
@@ -53,7 +53,7 @@ def _first_middle_axis_zero(trajectory):
 
 def tennis_racket_flip(middle_moment, tilt_deg, *, I1=1.0, I3=2.0, spin=1.0, t_end=60.0, n_samples=1201,
                        method="dop853", dt=None, exact=True):
-    """Flip time of a body spun near its middle axis (Dzhanibekov effect, seed 五.4).
+    """Flip time of a body spun near its middle axis (Dzhanibekov effect, Theory §5.4).
 
     The body (I1, I2 = ``middle_moment``, I3) starts with ω′ = spin (sin τ, cos τ, 0),
     τ = ``tilt_deg``: ω3 = 0 puts ω2 at an extremum, so the first zero of ω2
@@ -134,9 +134,9 @@ def plot_tennis_racket(dataset):
     return fig
 
 
-# ---- Lagrange-top apex locus (seed 六.5) -----------------------------------------------------------
+# ---- Lagrange-top apex locus (Theory §6.5) -----------------------------------------------------------
 def lagrange_apex_locus(phi_dot, psi_dot, *, I1=1.0, I3=0.5, mgl=1.0, theta0_deg=60.0):
-    """Shape of the apex locus of a heavy symmetric top released at θ0 with θ̇ = 0 (seed 六.5).
+    """Shape of the apex locus of a heavy symmetric top released at θ0 with θ̇ = 0 (Theory §6.5).
 
     ``kind`` codes :data:`APEX_LOCUS_KINDS` (0 monotone, 1 cusp, 2 loop) from
     :meth:`kreisel.LagrangeTop.apex_locus_kind`; ``theta_min_deg`` and
@@ -202,7 +202,7 @@ def plot_lagrange_apex_locus(dataset):
     return fig
 
 
-# ---- attitude error under IMU noise (seed 三.5, MATH.md §4) ---------------------------------------------
+# ---- attitude error under IMU noise (Theory §3.5, Theory §3.5) ---------------------------------------------
 def imu_attitude_error(angle_random_walk, trial, *, bias_instability=0.0, correlation_time=100.0,
                        half_angle_deg=1.0, coning_rate_hz=1.0, sample_time=0.01, duration=60.0,
                        samples_per_update=2, seed=0):
@@ -237,7 +237,7 @@ def imu_attitude_error(angle_random_walk, trial, *, bias_instability=0.0, correl
     for i, (arw, k) in enumerate(zip(angle_random_walk, trial)):
         model = GyroErrorModel.from_datasheet(angle_random_walk=arw, bias_instability=bias_instability,
                                               correlation_time=correlation_time if bias_instability > 0 else None)
-        entropy = [int(seed), int(k), int(np.float64(arw).view(np.uint64))]
+        entropy = [int(chapter), int(k), int(np.float64(arw).view(np.uint64))]
         dtheta[i] = model.corrupt_increments(motion.dtheta, sample_time, seed=np.random.SeedSequence(entropy))
     q = attitude_from_increments(motion.q[0], dtheta, samples_per_update)[:, -1]
     true = motion.q[-1]

@@ -1,4 +1,4 @@
-"""tops layer of kreisel: the Euler, symmetric, Lagrange and Kovalevskaya tops (seed 五–七).
+"""tops layer of kreisel: the Euler, symmetric, Lagrange and Kovalevskaya tops (Theory §5–§7).
 
 Exact solutions (no time stepping) by elliptic functions and integrals of the
 third kind (:mod:`._elliptic`, built on Carlson's integrals), the stability and

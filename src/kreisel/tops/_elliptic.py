@@ -7,8 +7,8 @@ past ``pi/2`` (DLMF 19.2.10 analogue for Pi). Parameter convention as scipy's
 
     Pi(phi, n | m) = integral_0^phi dtheta / ((1 - n sin^2 theta) sqrt(1 - m sin^2 theta)).
 
-Used by the exact free top (precession angle, MATH.md section 1) and by the
-Lagrange top quadrature (MATH.md section 2).
+Used by the exact free top (precession angle, Theory §5.3) and by the
+Lagrange top quadrature (Theory §6.3).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The free (Euler) top solved exactly: ω by Jacobi elliptic functions, attitude by Π.
 
-Seed 五.1–五.4 (Euler's equations, first integrals, elliptic solution,
-tennis-racket theorem); formulas of MATH.md section 1 (Landau–Lifshitz §37
+Theory §5.1–§5.4 (Euler's equations, first integrals, elliptic solution,
+tennis-racket theorem); formulas of Theory §5.3 (Landau–Lifshitz §37
 form of ω(t); precession angle by the incomplete elliptic integral of the
 third kind). Nothing here steps in time: every sample is evaluated directly,
 so errors do not grow with t.
@@ -53,7 +53,7 @@ def _zxz_quat_from_half_angles(cos_half_theta, sin_half_theta, half_sum, half_di
 
 @dataclass(frozen=True)
 class SteadyRotation:
-    """Linear stability of the steady rotation about one principal axis (seed 五.4).
+    """Linear stability of the steady rotation about one principal axis (Theory §5.4).
 
     Attributes
     ----------
@@ -113,7 +113,7 @@ class _Steady:
 
 
 class _Symmetric:
-    """Regular precession of a symmetric body, closed form (seed 五.7).
+    """Regular precession of a symmetric body, closed form (Theory §5.7).
 
     R(t) = exp(t J/I⊥ · X) R0 exp(t c e_k · X), c = ω_k (1 − I_k/I⊥): precession at
     J/I⊥ about the fixed angular momentum, spin at −c relative to it about the
@@ -145,7 +145,7 @@ class _Symmetric:
 class _Asymmetric:
     """I1 < I2 < I3 (sorted, right-handed frame), ω not along a principal axis.
 
-    MATH.md section 1: case A (J² > 2TI2, about axis 3), case B (J² < 2TI2,
+    Theory §5.3: case A (J² > 2TI2, about axis 3), case B (J² < 2TI2,
     about axis 1) and the separatrix J² = 2TI2. Differences D1 = J² − 2TI1,
     D2 = J² − 2TI2, D3 = 2TI3 − J² are formed from ω directly so that m and
     1 − m keep full relative accuracy near the separatrix.
@@ -228,7 +228,7 @@ class _Asymmetric:
         return np.stack([self.sign * self.a1 * dn, self.a2 * sn, self.sign * self.a3 * cn], axis=-1)
 
     def _precession(self, t):
-        """φ(t) − φ(0): J t/I3 + J(I3 − I1)/(I1 I3 λ)·ΔΠ(am u, −ñ | m) (MATH.md §1)."""
+        """φ(t) − φ(0): J t/I3 + J(I3 − I1)/(I1 I3 λ)·ΔΠ(am u, −ñ | m) (Theory §5.3)."""
         I1, _, I3 = self.moments
         scale = self.momentum * (I3 - I1) / (I1 * I3 * self.lam)
         if self.case == "S":
@@ -278,7 +278,7 @@ class _Asymmetric:
 
 
 class EulerTop:
-    """The free rigid body with principal moments ``I1, I2, I3`` (seed 五, Euler top).
+    """The free rigid body with principal moments ``I1, I2, I3`` (Theory §5, Euler top).
 
     Moments may be given in any order and may coincide (symmetric and
     spherical bodies); internally they are sorted by a proper rotation of the
@@ -318,7 +318,7 @@ class EulerTop:
 
     # ---- first integrals -------------------------------------------------------------
     def energy(self, omega):
-        """Kinetic energy T = ½ Σ I_i ω_i² for body ω (seed 五.2), broadcast over ``omega``.
+        """Kinetic energy T = ½ Σ I_i ω_i² for body ω (Theory §5.2), broadcast over ``omega``.
 
         Examples
         --------
@@ -338,7 +338,7 @@ class EulerTop:
         return 0.5 * np.sum(self.moments * omega**2, axis=-1)
 
     def angular_momentum(self, omega):
-        """|J| = √(Σ I_i² ω_i²) for body ω (seed 五.2).
+        """|J| = √(Σ I_i² ω_i²) for body ω (Theory §5.2).
 
         Examples
         --------
@@ -413,7 +413,7 @@ class EulerTop:
         """Time between two successive flips of a body spun near its middle axis, seconds.
 
         Half the period of ω: the middle-axis component ω_mid ∝ sn(λt + u0)
-        reverses every 2K(m)/λ (Dzhanibekov effect, seed 五.4). Near the
+        reverses every 2K(m)/λ (Dzhanibekov effect, Theory §5.4). Near the
         separatrix, 1 − m → 0 and 2K/λ ≈ ln(16/(1 − m))/λ grows logarithmically.
 
         Examples
@@ -431,7 +431,7 @@ class EulerTop:
 
     # ---- stability (tennis-racket theorem) ------------------------------------------
     def steady_rotations(self, spin=1.0):
-        """Stability of steady rotation at rate ``spin`` about each principal axis (seed 五.4).
+        """Stability of steady rotation at rate ``spin`` about each principal axis (Theory §5.4).
 
         The linearised Euler equations about ω = Ω e_k give
         ω̈_i = −Ω² (I_k − I_i)(I_k − I_j)/(I_i I_j) ω_i for the two other axes:
@@ -477,7 +477,7 @@ class EulerTop:
         Body ω(t) by Jacobi elliptic functions (both regimes, the separatrix,
         symmetric and spherical bodies), attitude with J along space z given by
         cos θ = I3 ω3/J, ψ = atan2(I1 ω1, I2 ω2) and φ(t) from the incomplete
-        elliptic integral of the third kind (MATH.md §1), then a constant rotation
+        elliptic integral of the third kind (Theory §5.3), then a constant rotation
         carrying z to the actual direction of J and matching ``q0`` at t = 0.
 
         Parameters

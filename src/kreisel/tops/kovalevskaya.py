@@ -1,7 +1,7 @@
-"""The Kovalevskaya top (seed 七): I1 = I2 = 2 I3, centre of mass in the equatorial plane.
+"""The Kovalevskaya top (Theory §7): I1 = I2 = 2 I3, centre of mass in the equatorial plane.
 
 Body axes: centre of mass at l e1; γ = the upward vertical in body components,
-γ = Rᵀ e_z; ω = (p, q, r); c = mgl/I3. Euler–Poisson equations (MATH.md §3):
+γ = Rᵀ e_z; ω = (p, q, r); c = mgl/I3. Euler–Poisson equations (Theory §7):
 2ṗ = qr, 2q̇ = −pr + cγ3, ṙ = −cγ2, γ̇ = γ × ω. Four integrals: the energy,
 the area integral J·γ, the geometric |γ|² = 1 and Kovalevskaya's
 

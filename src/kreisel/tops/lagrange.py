@@ -1,9 +1,9 @@
-"""The heavy symmetric (Lagrange) top (seed 六): integrals, V_eff, nutation, apex locus, exact solution.
+"""The heavy symmetric (Lagrange) top (Theory §6): integrals, V_eff, nutation, apex locus, exact solution.
 
 Gravity along space −z; centre of mass on the body's third axis at distance
 l from the pivot; I1 = I2 about the pivot, I3 about the symmetry axis; state
-as the seed's ZXZ angles (φ, θ, ψ) and their rates. With u = cos θ,
-a = J3/I1, b = Jz/I1, α = (2E − J3²/I3)/I1, β = 2mgl/I1 (MATH.md §2):
+as the chapter's ZXZ angles (φ, θ, ψ) and their rates. With u = cos θ,
+a = J3/I1, b = Jz/I1, α = (2E − J3²/I3)/I1, β = 2mgl/I1 (Theory §6.3):
 
     u̇² = f(u) = (1 − u²)(α − βu) − (b − au)² = β(u − u1)(u − u2)(u − u3),
 
@@ -34,7 +34,7 @@ ELECTRON_MASS = 9.1093837139e-31  # kg (CODATA 2022)
 
 @dataclass(frozen=True)
 class LagrangeConstants:
-    """Conserved quantities of the Lagrange top (seed 六.2).
+    """Conserved quantities of the Lagrange top (Theory §6.2).
 
     Attributes
     ----------
@@ -67,7 +67,7 @@ class LagrangeConstants:
 
 @dataclass(frozen=True)
 class FastTop:
-    """Fast top released from rest at θ0 with spin ω3 (seed 六.7): approximations and exact values.
+    """Fast top released from rest at θ0 with spin ω3 (Theory §6.7): approximations and exact values.
 
     Attributes
     ----------
@@ -88,7 +88,7 @@ class FastTop:
     --------
     Released from rest at θ0 = 0.8 with J3 = I3 ω3 = 100 (I1 = 1, mgl = 1): the
     nutation is tiny (~2 I1 mgl sin²θ0/J3²) and fast (~J3/I1), the precession slow
-    (~mgl/J3); the seed's estimates agree with the exact values to O(mgl I1/J3²):
+    (~mgl/J3); the chapter's estimates agree with the exact values to O(mgl I1/J3²):
 
     >>> ft = LagrangeTop(1.0, 0.5, 1.0).fast_top(0.8, 200.0)
     >>> round(float(ft.approx_nutation_amplitude), 9), round(ft.exact_nutation_amplitude, 9)
@@ -106,7 +106,7 @@ class FastTop:
 
 
 def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTRON_MASS):
-    """Larmor precession rate eB/(2m) of an orbiting charge (seed 六.8), rad/s.
+    """Larmor precession rate eB/(2m) of an orbiting charge (Theory §6.8), rad/s.
 
     The magnetic energy V = −μ·B = μB cos θ has the form of the top's mgl cos θ,
     so the fast-top mean precession mgl/J3 becomes μB/J with μ = e ω a²/2 and
@@ -126,7 +126,7 @@ def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTR
 
 
 class _Quadrature:
-    """Roots of f(u) and the elliptic solution for one initial state (MATH.md §2)."""
+    """Roots of f(u) and the elliptic solution for one initial state (Theory §6.3)."""
 
     def __init__(self, top, constants, u0, udot0):
         I1 = top.I1
@@ -207,7 +207,7 @@ class _Quadrature:
 
 
 class LagrangeTop:
-    """Heavy symmetric top on a fixed pivot (seed 六, Lagrange top).
+    """Heavy symmetric top on a fixed pivot (Theory §6, Lagrange top).
 
     Parameters
     ----------
@@ -250,7 +250,7 @@ class LagrangeTop:
         return euler0, rates0
 
     def constants(self, euler0, rates0):
-        """J3, Jz and E of the state (seed 六.2).
+        """J3, Jz and E of the state (Theory §6.2).
 
         Examples
         --------
@@ -270,7 +270,7 @@ class LagrangeTop:
         return LagrangeConstants(float(J3), float(Jz), float(E))
 
     def effective_potential(self, theta, J3, Jz):
-        """V_eff(θ) = (Jz − J3 cos θ)²/(2 I1 sin²θ) + mgl cos θ + J3²/(2 I3) (seed 六.2).
+        """V_eff(θ) = (Jz − J3 cos θ)²/(2 I1 sin²θ) + mgl cos θ + J3²/(2 I3) (Theory §6.2).
 
         Examples
         --------
@@ -294,7 +294,7 @@ class LagrangeTop:
 
     # ---- nutation and the apex ------------------------------------------------------
     def turning_points(self, euler0, rates0):
-        """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (seed 六.4).
+        """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (Theory §6.4).
 
         Examples
         --------
@@ -314,7 +314,7 @@ class LagrangeTop:
         return float(np.arccos(quad.u2)), float(np.arccos(quad.u1))
 
     def cubic_roots(self, euler0, rates0):
-        """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (seed 六.4).
+        """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (Theory §6.4).
 
         Examples
         --------
@@ -331,7 +331,7 @@ class LagrangeTop:
         return quad.u1, quad.u2, quad.u3
 
     def apex_locus_kind(self, euler0, rates0, rtol=1e-9):
-        """Shape of the path of the symmetry axis on the unit sphere (seed 六.5).
+        """Shape of the path of the symmetry axis on the unit sphere (Theory §6.5).
 
         φ̇ = (b − a u)/(1 − u²) has the sign of b − a u: ``"monotone"`` if it keeps
         one sign on [u1, u2], ``"cusp"`` if it vanishes at a turning point
@@ -359,7 +359,7 @@ class LagrangeTop:
 
         Examples
         --------
-        A fast top (J3 = 100, I1 = 1) nods with nearly the period 2π I1/J3 (seed 六.7):
+        A fast top (J3 = 100, I1 = 1) nods with nearly the period 2π I1/J3 (Theory §6.7):
 
         >>> import numpy as np
         >>> top = LagrangeTop(1.0, 0.5, 1.0)
@@ -427,7 +427,7 @@ class LagrangeTop:
         return float(2.0 * np.sqrt(self.I1 * self.mgl) / self.I3)
 
     def sleeping_top_stable(self, omega3):
-        """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (seed 六.6).
+        """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (Theory §6.6).
 
         Examples
         --------
@@ -441,7 +441,7 @@ class LagrangeTop:
         return J3 * J3 > 4.0 * self.I1 * self.mgl
 
     def fast_top(self, theta0, omega3):
-        """Fast top released from rest at θ0 with spin ω3: seed 六.7 estimates against the exact motion.
+        """Fast top released from rest at θ0 with spin ω3: Theory §6.7 estimates against the exact motion.
 
         Examples
         --------
@@ -471,7 +471,7 @@ class LagrangeTop:
         return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
 
     def solve(self, t, euler0, rates0):
-        """Exact motion by quadrature (MATH.md §2): u(t) by sn², φ and ψ by Π.
+        """Exact motion by quadrature (Theory §6.3): u(t) by sn², φ and ψ by Π.
 
         Parameters
         ----------

@@ -1,4 +1,4 @@
-"""Poinsot's construction of the free top (seed 五.5–五.6): polhode, herpolhode, invariable plane."""
+"""Poinsot's construction of the free top (Theory §5.5–§5.6): polhode, herpolhode, invariable plane."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ class PoinsotGeometry:
     polhode : (n, 3) ndarray
         r = ω/√(2T) in body axes: the contact point on the inertia ellipsoid
         I1 x² + I2 y² + I3 z² = 1, which also lies on I1²x² + I2²y² + I3²z² = J²/(2T)
-        (intersection of the energy and momentum ellipsoids, seed 五.6).
+        (intersection of the energy and momentum ellipsoids, Theory §5.6).
     herpolhode : (n, 2) ndarray
         The same point in space, in coordinates of the invariable plane
         (perpendicular to J; its x axis is the space direction of the
@@ -34,7 +34,7 @@ class PoinsotGeometry:
     plane_normal : (3,) ndarray
         Unit vector along the space angular momentum.
     plane_distance : float
-        √(2T)/|J|, the distance of the invariable plane from the fixed point (seed 五.5 ii).
+        √(2T)/|J|, the distance of the invariable plane from the fixed point (Theory §5.5 ii).
     inertia_ellipsoid_axes : (3,) ndarray
         Semi-axes 1/√I_i of the inertia ellipsoid (body axes as given).
 

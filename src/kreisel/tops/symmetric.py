@@ -1,4 +1,4 @@
-"""The symmetric free top I1 = I2: regular precession and the body and space cones (seed 五.7)."""
+"""The symmetric free top I1 = I2: regular precession and the body and space cones (Theory §5.7)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ __all__ = ["SymmetricTop", "Cones"]
 
 @dataclass(frozen=True)
 class Cones:
-    """Body and space cones of a symmetric free top (seed 五.7 (6) and its exercise 1).
+    """Body and space cones of a symmetric free top (Theory §5.7 (6) and its exercise 1).
 
     Attributes
     ----------
@@ -71,7 +71,7 @@ class Cones:
 class SymmetricTop:
     """Free symmetric top with transverse moment ``I1`` (= I2) and axial moment ``I3``.
 
-    Closed-form regular precession of seed 五.7 with the angular momentum J
+    Closed-form regular precession of Theory §5.7 with the angular momentum J
     along space z: φ = J t/I1 + φ0, θ = θ0, ψ = −(I3 − I1) J cos θ0 t/(I1 I3) + ψ0.
 
     Parameters
@@ -108,7 +108,7 @@ class SymmetricTop:
     def precession_rate(self, J):
         """φ̇ = J/I1: rate of the symmetry axis (and of ω) about J in space, rad/s.
 
-        Independent of I3 and of the tilt θ0 (seed 五.7).
+        Independent of I3 and of the tilt θ0 (Theory §5.7).
 
         Examples
         --------
@@ -138,7 +138,7 @@ class SymmetricTop:
         return (self.I3 - self.I1) * J * np.cos(theta0) / (self.I1 * self.I3)
 
     def euler_angles(self, t, J, theta0, phi0=0.0, psi0=0.0):
-        """ZXZ angles (φ, θ, ψ) at times ``t``, shape (n, 3) (seed 五.7 (3)).
+        """ZXZ angles (φ, θ, ψ) at times ``t``, shape (n, 3) (Theory §5.7 (3)).
 
         Examples
         --------
@@ -156,7 +156,7 @@ class SymmetricTop:
         return np.stack([phi, np.full_like(t, theta0), psi], axis=-1)
 
     def angular_velocity(self, t, J, theta0, phi0=0.0, psi0=0.0, frame="body"):
-        """ω at times ``t`` from the seed's closed forms (seed 五.7 (4) body, (5) space).
+        """ω at times ``t`` from the chapter's closed forms (Theory §5.7 (4) body, (5) space).
 
         Body: ω1 = (J sin θ0/I1) sin ψ, ω2 = (J sin θ0/I1) cos ψ, ω3 = J cos θ0/I3;
         space: ω = J/I1 e_z + (1/I3 − 1/I1) J cos θ0 e3 with e3 the symmetry axis.

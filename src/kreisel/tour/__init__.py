@@ -1,7 +1,7 @@
 """The executable chapter: every demonstration of the seed, checked and reported.
 
 :func:`run_tour` runs one section per seed section, each computing the
-seed's numbers with kreisel, comparing them with the seed's (or an
+chapter's numbers with kreisel, comparing them with the chapter's (or an
 independent reference) and drawing its figures, then writes a
 self-contained ``index.html``.
 """

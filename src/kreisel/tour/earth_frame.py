@@ -1,4 +1,4 @@
-"""Tour sections for seed 八: the eastward deflection and the Foucault pendulum."""
+"""Tour sections for Theory §8: the eastward deflection and the Foucault pendulum."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from matplotlib.figure import Figure
 from .. import earth
 from .report import Check, Section
 
-# the seed's figures for Hefei
+# the chapter's figures for Hefei
 _LATITUDE, _G, _OMEGA = 31.8584, 9.7947, 7.27221e-5
 
 
@@ -29,11 +29,11 @@ def eastward_deflection(quick):
     ax2.plot(latitudes, 1e3 * earth.eastward_deflection(100.0, latitudes, g=_G, omega=_OMEGA))
     ax2.set(xlabel="latitude (°)", ylabel="deflection of a 100 m drop (mm)", title="largest at the equator, zero at the poles")
     return Section(
-        "Eastward deflection of a falling body", "八.3",
+        "Eastward deflection of a falling body", "§8.3",
         "A body dropped from rest at height h in the rotating Earth frame lands east of the foot of the "
-        "vertical by (2/3) ω cos λ √(2h³/g) (Coriolis force, first order in ω). The seed's example: 100 m "
+        "vertical by (2/3) ω cos λ √(2h³/g) (Coriolis force, first order in ω). The chapter's example: 100 m "
         "at Hefei (λ = 31.8584°, g = 9.7947 m/s², ω = 7.27221e-5 rad/s) gives 0.0186 m.",
-        [Check.close("analytic deflection of the 100 m drop (m)", analytic, 0.0186, atol=5e-5, source="seed"),
+        [Check.close("analytic deflection of the 100 m drop (m)", analytic, 0.0186, atol=5e-5, source="chapter"),
          Check.close("simulated deflection (m)", float(east), analytic, rtol=1e-2, source="analytic"),
          Check.close("scaling exponent of the deflection with h", float(slope), 1.5, atol=1e-3, source="h^(3/2)"),
          Check.below("deflection at the pole (m)", abs(float(earth.eastward_deflection(100.0, 90.0))), 1e-18)],
@@ -58,7 +58,7 @@ def foucault_pendulum(quick):
     ax.set(xlabel="t (min)", ylabel="swing-plane azimuth change (°)", title="10 m pendulum, measured at each maximal excursion")
     ax.legend(fontsize=8)
     return Section(
-        "Foucault pendulum", "八.3",
+        "Foucault pendulum", "§8.3",
         "In the Earth frame the swing plane of a pendulum turns clockwise (seen from above) at ω sin λ in "
         "the northern hemisphere and counter-clockwise in the southern. kreisel integrates the spherical "
         "pendulum in the rotating frame and measures the azimuth of the swing at each maximal excursion; "

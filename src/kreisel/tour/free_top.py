@@ -1,4 +1,4 @@
-"""Tour sections for seed 四.1–3 and 五: inertia ellipsoid, tennis racket, Poinsot, symmetric top."""
+"""Tour sections for Theory §4.1–3 and §5: inertia ellipsoid, tennis racket, Poinsot, symmetric top."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def inertia_ellipsoid(quick):
     ax.set_box_aspect(np.ptp(np.stack([ellipsoid.x.ravel(), ellipsoid.y.ravel(), ellipsoid.z.ravel()]), axis=1))
     ax.set_title("inertia ellipsoid xᵀ I x = 1 of a turned box")
     return Section(
-        "Inertia tensor and the inertia ellipsoid", "四.1–3",
+        "Inertia tensor and the inertia ellipsoid", "§4.1–3",
         "The inertia tensor of a box with edges (a, b, c) is diagonal in the edge axes with "
         "I = m(b² + c²)/12 and cyclic. Turned into other axes it is full; its eigenvectors, the principal "
         "axes, recover the edges, and the inertia ellipsoid xᵀ I x = 1 has semi-axes 1/√I_k along them "
@@ -79,7 +79,7 @@ def tennis_racket(quick):
     j_error = np.max(np.abs(late.angular_momentum_space[1] - late.angular_momentum_space[0])) / np.linalg.norm(
         late.angular_momentum_space[0])
     return Section(
-        "Tennis-racket theorem and the Dzhanibekov flip", "五.4",
+        "Tennis-racket theorem and the Dzhanibekov flip", "§5.4",
         "Steady rotation about the axes of largest and smallest moment is stable; about the middle axis a "
         "small perturbation grows exponentially and the body flips over again and again (Dzhanibekov "
         "effect). kreisel's Euler top is the exact elliptic-function solution, so the flip time "
@@ -128,7 +128,7 @@ def poinsot_construction(quick):
     ax2.set_aspect("equal")
     ax2.set_title("herpolhode on the invariable plane")
     return Section(
-        "Poinsot construction", "五.5–6",
+        "Poinsot construction", "§5.5–6",
         "The point ρ = ω/√(2T) lies on the inertia ellipsoid ρᵀ I ρ = 1, whose tangent plane there is "
         "normal to J and at the fixed distance √(2T)/|J| from the fixed point: the ellipsoid rolls without "
         "slipping on this invariable plane. ρ traces the polhode on the ellipsoid (closed curves around "
@@ -165,13 +165,13 @@ def symmetric_top_cones(quick):
     ax.legend(loc="upper left", fontsize=8)
     ax.set_title("regular precession of an oblate top (I3 = 2 I1)")
     return Section(
-        "Symmetric top: regular precession, body and space cones", "五.7",
-        "For I1 = I2 the seed's closed form is φ = J t/I1 + φ0, θ = θ0, ψ = −(I3 − I1) J cos θ0 t/(I1 I3) + ψ0. "
+        "Symmetric top: regular precession, body and space cones", "§5.7",
+        "For I1 = I2 the chapter's closed form is φ = J t/I1 + φ0, θ = θ0, ψ = −(I3 − I1) J cos θ0 t/(I1 I3) + ψ0. "
         "ω lies in the plane of J and e3 and sweeps the space cone about J while it sweeps the body cone "
         "about e3. For an oblate top (I3 > I1) the body cone rolls with its inside on the space cone, in "
         "the same sense; for a prolate top the cones touch outside and turn in opposite senses.",
         [Check.below("closed form vs general elliptic solution, max |Δq|", float(np.max(dq)), 1e-12),
-         Check.close("ψ̇ measured (rad/s)", float(psi_rate), seed_psi_rate, rtol=1e-10, source="seed 五.7"),
+         Check.close("ψ̇ measured (rad/s)", float(psi_rate), seed_psi_rate, rtol=1e-10, source="Theory §5.7"),
          Check.equal("oblate: cones", (oblate.relation, oblate.same_sense), ("space cone inside body cone", True)),
          Check.equal("prolate: cones", (prolate.relation, prolate.same_sense),
                      ("body cone outside space cone", False))],

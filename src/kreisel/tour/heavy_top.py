@@ -1,4 +1,4 @@
-"""Tour sections for seed 六–七: Lagrange top, fast and sleeping top, Kovalevskaya top."""
+"""Tour sections for Theory §6–§7: Lagrange top, fast and sleeping top, Kovalevskaya top."""
 
 from __future__ import annotations
 
@@ -58,7 +58,7 @@ def lagrange_top(quick):
     ax0.set_title("V_eff(θ) and energy E (dotted)")
     ax0.legend(fontsize=8)
     return Section(
-        "Lagrange top: effective potential and apex loci", "六.2–5",
+        "Lagrange top: effective potential and apex loci", "§6.2–5",
         "With J3 = I3 ω3 and Jz conserved, θ moves in the effective potential V_eff(θ) between the two "
         "roots u1, u2 of the cubic f(u) = u̇². φ̇ = (b − a u)/(1 − u²) keeps its sign (monotone precession), "
         "vanishes at a turning point (cusps: released with θ̇ = φ̇ = 0) or changes sign inside the range "
@@ -95,7 +95,7 @@ def fast_and_sleeping_top(quick):
     ax.set(xlabel="spin ω3 (rad/s)", ylabel="mean precession rate (rad/s)", title="fast top released from rest at θ0 = 0.6 rad")
     ax.legend()
     return Section(
-        "Fast top and sleeping top", "六.6–7",
+        "Fast top and sleeping top", "§6.6–7",
         "A top released from rest with a large spin nutates with small amplitude 2 I1 m g l sin²θ0/J3² "
         "at frequency J3/I1 and precesses on average at m g l/(I3 ω3). An upright (sleeping) top is stable "
         "when J3² > 4 I1 m g l.",
@@ -108,7 +108,7 @@ def fast_and_sleeping_top(quick):
          Check.equal("stable just above / unstable just below the threshold",
                      (bool(_TOP.sleeping_top_stable(1.01 * threshold)), bool(_TOP.sleeping_top_stable(0.99 * threshold))),
                      (True, False))],
-        [(fig, "Mean precession rate of the fast top: exact against the seed's approximation.")],
+        [(fig, "Mean precession rate of the fast top: exact against the chapter's approximation.")],
     )
 
 
@@ -124,7 +124,7 @@ def kovalevskaya_top(quick):
     ax.plot(t, traj.omega, linewidth=0.8)
     ax.set(xlabel="t (s)", ylabel="ω′ (rad/s)", title=f"Kovalevskaya top: K = {K[0]:.6f} conserved to {np.ptp(K) / abs(K[0]):.1e}")
     return Section(
-        "Kovalevskaya top", "七",
+        "Kovalevskaya top", "§7",
         "With I1 = I2 = 2 I3 and the centre of mass in the equatorial plane the heavy top has a fourth "
         "integral, Kovalevskaya's K = (p² − q² − cγ1)² + (2pq − cγ2)², c = m g l/I3. kreisel integrates the "
         "motion and checks K along with the energy, the vertical angular momentum and |γ| = 1.",

@@ -1,4 +1,4 @@
-"""Tour section for seed 四.5: choosing an integrator for Euler's equations."""
+"""Tour section for Theory §4.5: choosing an integrator for Euler's equations."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from matplotlib.figure import Figure
 from ..dynamics import simulate
 from .report import Check, Section
 
-# Hairer–Lubich–Wanner's free rigid body (MATH.md §5)
+# Hairer–Lubich–Wanner's free rigid body (Theory §4.5)
 _MOMENTS = np.array([2.0, 1.0, 2.0 / 3.0])
 _OMEGA0 = np.array([np.cos(1.1), 0.0, np.sin(1.1)]) / _MOMENTS
 _FIXED = ("splitting", "splitting4", "dmv", "rkmk4", "midpoint", "rk4")
@@ -58,7 +58,7 @@ def work_precision(quick):
     ax2.set(xlabel="t", ylabel="relative energy error", title="energy error along the run, h = 0.1")
     ax2.legend(fontsize=7, ncol=2)
     return Section(
-        "Choosing an integrator", "四.5",
+        "Choosing an integrator", "§4.5",
         "Euler's equations of the free body, I = (2, 1, 2/3), m0 = (cos 1.1, 0, sin 1.1) (Hairer, Lubich and "
         "Wanner's test). The Lie–Poisson splitting methods and the discrete Moser–Veselov map keep |m| to "
         "round-off and their energy error bounded without drift; the implicit midpoint rule keeps the "

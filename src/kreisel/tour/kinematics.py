@@ -1,4 +1,4 @@
-"""Tour sections for seed 三: instantaneous centre and centrodes, the Bortz coefficient."""
+"""Tour sections for Theory §3: instantaneous centre and centrodes, the Bortz coefficient."""
 
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ def rolling_wheel_centrodes(quick):
     travel_error = np.max(np.abs(wheel.space[:, 0] - speed * t))
     body_radius = np.linalg.norm(wheel.body, axis=-1)
     return Section(
-        "Instantaneous centre and centrodes", "三.8",
+        "Instantaneous centre and centrodes", "§3.8",
         "In plane motion the point of zero velocity r_I = r_C + ẑ × v_C/ω is the instantaneous centre. "
         "For a wheel rolling without slipping it is the contact point: the space centrode is the ground "
         "line and the body centrode the rim. For a ladder sliding between wall and floor the space "
@@ -83,7 +83,7 @@ def bortz_coefficient(quick):
     ax.set(xlabel="ψ (rad)", ylabel="coefficient", title="Bortz equation: ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)")
     ax.legend(fontsize=8)
     return Section(
-        "The Bortz coefficient", "三.5",
+        "The Bortz coefficient", "§3.5",
         "The body-frame rotation-vector rate (the Bortz equation) has the coefficient "
         "c(ψ) = (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ) = 1/12 + ψ²/720 + …, singular at ψ = 2π. "
         "The closed form loses every digit to cancellation as ψ → 0; kreisel switches to the series.",

@@ -1,4 +1,4 @@
-"""Tour section for seed 三.3/三.5: strapdown attitude under coning."""
+"""Tour section for Theory §3.3, §3.5: strapdown attitude under coning."""
 
 from __future__ import annotations
 
@@ -50,7 +50,7 @@ def coning_drift(quick):
     ax.set(xlabel="λ = Ω T_s", ylabel="drift rate (rad/s)", title="coning α = 1°, Ω = 2π rad/s: N-sample updates")
     ax.legend(fontsize=7, ncol=2)
     return Section(
-        "Strapdown attitude and coning drift", "三.3, 三.5",
+        "Strapdown attitude and coning drift", "§3.3, §3.5",
         "A strapdown system turns gyro angle increments into attitude: q ← q ⊗ exp(φ/2) with the update "
         "rotation vector φ = ΣΔθ + δφ. Under coning motion the body rate is not along a fixed axis, and "
         "the optimal N-sample coning correction (from the Bortz equation) leaves a drift "

@@ -15,7 +15,7 @@ class Check:
     """One number kreisel computed, next to the value it must reproduce.
 
     ``ok`` is decided by the section (relative or absolute tolerance, or an
-    inequality); ``expected`` is shown as given, e.g. ``"0.0186 m (seed)"``.
+    inequality); ``expected`` is shown as given, e.g. ``"0.0186 m (chapter)"``.
     """
 
     label: str
@@ -88,7 +88,7 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
         "</style></head><body>",
         f"<h1>{html.escape(title)}</h1>",
         f"<p>{passed} of {len(sections)} sections pass. Each section computes the chapter's results with "
-        "kreisel and checks them against the seed's numbers or an independent reference.</p>",
+        "kreisel and checks them against the chapter's numbers or an independent reference.</p>",
         "<table><tr><th>section</th><th>seed</th><th>checks</th><th>time</th></tr>",
     ]
     for i, s in enumerate(sections):
@@ -97,7 +97,7 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
                      f"<td>{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}</td><td>{s.seconds:.1f} s</td></tr>")
     parts.append("</table>")
     for i, s in enumerate(sections):
-        parts.append(f"<section id='s{i}'><h2>{html.escape(s.title)} <small>(seed {html.escape(s.seed)})</small></h2>")
+        parts.append(f"<section id='s{i}'><h2>{html.escape(s.title)} <small>(Theory {html.escape(s.seed)})</small></h2>")
         parts.append(f"<p>{s.text}</p>")
         if s.error:
             parts.append(f"<p class='fail'>error: {html.escape(s.error)}</p>")

@@ -1,4 +1,4 @@
-"""Tour sections for seed 二: Euler angles, gimbal lock, quaternion renormalisation."""
+"""Tour sections for Theory §2: Euler angles, gimbal lock, quaternion renormalisation."""
 
 from __future__ import annotations
 
@@ -56,11 +56,11 @@ def euler_angles_and_nodal_line(quick):
     ax.set_title("ZXZ (φ, θ, ψ) = (40°, 35°, 25°)")
 
     return Section(
-        "Euler angles and the nodal line", "二.3",
+        "Euler angles and the nodal line", "§2.3",
         "The mechanics Euler angles (φ, θ, ψ) are the intrinsic sequence ZXZ: R = Rz(φ) Rx(θ) Rz(ψ). "
         "The body x′y′ plane meets the space xy plane along the nodal line N = Rz(φ) e_x. All 24 "
         "sequences (12 axis orders, intrinsic and extrinsic) agree with scipy.",
-        [Check.below("|R − Rz(φ)Rx(θ)Rz(ψ)| (seed's product)", np.max(np.abs(R - seed_R)), 1e-15),
+        [Check.below("|R − Rz(φ)Rx(θ)Rz(ψ)| (chapter's product)", np.max(np.abs(R - seed_R)), 1e-15),
          Check.below("angles recovered from R (rad)", np.max(np.abs(back - [phi, theta, psi])), 1e-14),
          Check.below("max |R − scipy R| over 24 conventions", worst, 1e-14)],
         [(fig, "Space axes (grey) and body axes (colour) for ZXZ angles; the dashed line is the line of nodes.")],
@@ -93,7 +93,7 @@ def gimbal_lock(quick):
     ax.set(xlabel="θ (rad)", ylabel="rate", title="ZXZ Euler rates blow up like 1/sin θ; quaternion rates do not")
     ax.legend()
     return Section(
-        "Gimbal lock", "二.3, 三.6",
+        "Gimbal lock", "§2.3, §3.6",
         "At θ = 0 or π the ZXZ angles φ and ψ rotate about the same axis and only φ ± ψ is defined. "
         "Euler rates for a fixed ω diverge like 1/sin θ, and at the singular point kreisel returns NaN "
         "with a GimbalLockWarning rather than a wrong finite number. The quaternion rate q̇ = ½ q ω′ "
@@ -148,7 +148,7 @@ def quaternion_renormalisation(quick):
     ax.set(xlabel="t (s)", ylabel="| |q| − 1 |  or  |RᵀR − 1|", title="RK4 attitude integration, h = 0.01 s")
     ax.legend()
     return Section(
-        "Quaternion renormalisation vs DCM drift", "二.4(2)",
+        "Quaternion renormalisation vs DCM drift", "§2.4(2)",
         "Integrating the attitude numerically lets a quaternion leave the unit sphere and a DCM leave SO(3). "
         "The quaternion is repaired by one division by its norm after each step; the DCM needs the nearest "
         "rotation (polar decomposition / SVD). Both repairs hold the error at round-off.",

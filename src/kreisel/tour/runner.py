@@ -14,7 +14,7 @@ from .._fileio import atomic_output
 from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, rotations
 from .report import Section, render_html
 
-# in the order of the seed chapter: 二, 三 (with its navigation remarks), 四, 五, 六, 七, 八
+# in the order of the chapter: §2, §3 (with its navigation remarks), §4, §5, §6, §7, §8
 SECTIONS = (
     *rotations.SECTIONS,
     *kinematics.SECTIONS,
@@ -68,7 +68,7 @@ def run_tour(out_dir="tour", quick=False, console=None):
     with atomic_output(index) as tmp:
         tmp.write_text(render_html(sections), encoding="utf-8")
     table = Table(title="kreisel tour")
-    for name in ("section", "seed", "checks", "time"):
+    for name in ("section", "theory", "checks", "time"):
         table.add_column(name)
     for s in sections:
         mark = "[green]pass[/]" if s.ok else "[red]FAIL[/]"

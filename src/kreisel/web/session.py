@@ -129,7 +129,7 @@ class Solver:
 
     ``exact=False`` integrates with :func:`kreisel.simulate` from the state given at the stretch's first
     time; ``exact=True`` evaluates the closed form of the free top (:meth:`kreisel.tops.EulerTop.solve`,
-    seed 五.3), which needs no state: every sample depends on its time only.
+    Theory §5.3), which needs no state: every sample depends on its time only.
     """
 
     def __init__(self, scenario, exact=False):
@@ -196,7 +196,7 @@ def samples(traj, gravity):
     potential = np.zeros_like(kinetic)
     if gravity is not None:
         weight, lever = gravity
-        # gravity along space -z: V = m g (R l)_z about the pivot (seed 六.1)
+        # gravity along space -z: V = m g (R l)_z about the pivot (Theory §6.1)
         potential = weight * quat_apply(traj.q, lever)[:, 2]
     J = traj.angular_momentum_space
     return {"t": traj.t, "q": traj.q, "omega": traj.omega, "omega_space": traj.omega_space, "J": J,
@@ -226,7 +226,7 @@ def rigid_body_result(scenario, traj):
 
 
 def seed_quantities(traj, gravity):
-    """T, J, stability of the principal axes and, for a Lagrange top, the nutation range (seed 五, 六)."""
+    """T, J, stability of the principal axes and, for a Lagrange top, the nutation range (Theory §5, §6)."""
     from ..inertia import principal_axes
 
     moments, axes = principal_axes(traj.inertia)
@@ -270,7 +270,7 @@ def _lagrange(traj, gravity):
 
 
 def foucault_result(scenario):
-    """JSON-ready samples of a Foucault run: swing-plane azimuth and tilt at each turning point (seed 八.3).
+    """JSON-ready samples of a Foucault run: swing-plane azimuth and tilt at each turning point (Theory §8.3).
 
     Calls :func:`kreisel.earth.foucault_pendulum` directly: the viewer wants the Jacobi integral at start
     and end only, which the io layer's dataset does not carry.
