@@ -45,3 +45,23 @@ def check_frame(frame):
     if frame not in FRAMES:
         raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
     return frame == "body"
+
+
+def batch_shape(shape, name="shape"):
+    """Return ``shape`` (``None``, a non-negative int or a sequence of them) as a tuple.
+
+    Floats such as ``2.5`` (or ``2.0``), strings and negative sizes raise
+    ``ValueError`` naming the argument, instead of numpy's ``TypeError``.
+    """
+    if shape is None:
+        return ()
+    items = (shape,) if np.ndim(shape) == 0 else shape
+    try:
+        items = tuple(items)
+    except TypeError:
+        items = None
+    if items is None or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) for n in items):
+        raise ValueError(f"{name} must be None, a non-negative int or a tuple of them, got {shape!r}")
+    if any(n < 0 for n in items):
+        raise ValueError(f"{name} must have non-negative entries, got {shape!r}")
+    return tuple(int(n) for n in items)

@@ -114,3 +114,80 @@ def test_bad_input():
     with pytest.raises(ValueError, match="seq"):
         Rotation.from_euler("xYz", [0, 0, 0])
     assert kr.Rotation is Rotation
+
+
+# -- regressions (issue: rotations a scipy user can switch to) ----------------
+
+
+def test_composition_stays_on_the_unit_sphere():
+    # rs -> rs r rs squares the norm error every round without renormalisation
+    # (|q| - 1 reached 0.36 after 50 rounds, then overflowed).
+    r, rs = Rotation.random(rng=0), Rotation.random(rng=1)
+    batch_r, batch_rs = Rotation.random(5, rng=2), Rotation.random(5, rng=3)
+    for _ in range(80):
+        rs = rs * r * rs
+        batch_rs = batch_rs * batch_r * batch_rs
+    assert abs(np.linalg.norm(rs.as_quat()) - 1.0) < 4e-16
+    np.testing.assert_allclose(np.linalg.norm(batch_rs.as_quat(), axis=-1), 1.0, atol=4e-16)
+    # Renormalising does not move the rotation: same matrix as the plain product.
+    a, b = Rotation.random(100, rng=4), Rotation.random(100, rng=5)
+    np.testing.assert_allclose((a * b).as_quat(), kr.quat_multiply(a.as_quat(), b.as_quat()), atol=4e-16)
+
+
+@pytest.mark.parametrize(
+    "q",
+    [[0.0, 0.6, -0.8, 0.0], [0.0, 0.0, -1.0, 0.0], [0.0, 0.0, 0.0, -1.0], [0.0, -0.0, 0.6, 0.8], [-0.6, 0.0, 0.8, 0.0]],
+)
+def test_canonical_quaternion_is_unique_for_half_turns(q):
+    q = np.array(q)
+    a = Rotation.from_quat(q).as_quat(canonical=True)
+    b = Rotation.from_quat(-q).as_quat(canonical=True)
+    assert a.tobytes() == b.tobytes()
+    first = a[np.flatnonzero(a)[0]]
+    assert first > 0
+    # scipy's canonical form is the same quaternion (scalar last there).
+    np.testing.assert_array_equal(S.from_quat(q, scalar_first=True).as_quat(canonical=True, scalar_first=True), a)
+
+
+def test_canonical_quaternion_batch():
+    q = np.array([[0.0, -0.6, 0.8, 0.0], [-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, -1.0]])
+    np.testing.assert_array_equal(
+        Rotation.from_quat(q).as_quat(canonical=True), [[0.0, 0.6, -0.8, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
+    )
+
+
+@pytest.mark.parametrize("width", [3, 5, 7, 8])
+@pytest.mark.parametrize("scalar_first", [True, False])
+def test_quaternion_width_is_checked_before_reordering(width, scalar_first):
+    x = np.ones((2, width))
+    with pytest.raises(ValueError, match=r"quat must have shape \(\.\.\., 4\)"):
+        Rotation.from_quat(x, scalar_first=scalar_first)
+    with pytest.raises(ValueError, match=r"\(\.\.\., 4\)"):
+        Rotation(x)
+
+
+def test_mean_of_no_rotations_is_refused():
+    with pytest.raises(ValueError, match="empty"):
+        Rotation.identity(0).mean()
+    with pytest.raises(ValueError, match="empty"):
+        kr.quat_mean(np.zeros((0, 4)))
+
+
+@pytest.mark.parametrize("shape", [2.5, 2.0, (2, 1.5), "3", (-1,), [True]])
+def test_shape_arguments_are_checked(shape):
+    for make in (Rotation.identity, Rotation.random, kr.quat_identity, kr.RigidTransform.identity):
+        with pytest.raises(ValueError, match="shape"):
+            make(shape)
+
+
+def test_random_matches_scipy_seeds():
+    for seed in (0, 1, 123):
+        np.testing.assert_allclose(
+            Rotation.random((3, 2), rng=seed).as_quat(scalar_first=False),
+            S.random(shape=(3, 2), rng=seed).as_quat(),
+            rtol=0,
+            atol=3e-16,
+        )
+        np.testing.assert_allclose(
+            Rotation.random(rng=seed).as_quat(), S.random(rng=seed).as_quat(scalar_first=True), rtol=0, atol=3e-16
+        )

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, batch_shape
 from ..so3 import (
     Rotation,
     matrix_to_quat,
@@ -56,20 +56,6 @@ def rotation_to_quat(rotation, name="rotation"):
     raise ValueError(
         f"{name} must be a Rotation, rotation matrices (..., 3, 3) or quaternions (..., 4), got shape {a.shape}"
     )
-
-
-def _batch_shape(shape):
-    if shape is None:
-        return ()
-    if isinstance(shape, (int, np.integer)):
-        shape = (int(shape),)
-    try:
-        shape = tuple(int(n) for n in shape)
-    except TypeError as exc:
-        raise TypeError(f"shape must be None, an int or a tuple of ints, got {shape!r}") from exc
-    if any(n < 0 for n in shape):
-        raise ValueError(f"shape must have non-negative entries, got {shape}")
-    return shape
 
 
 class RigidTransform:
@@ -175,7 +161,7 @@ class RigidTransform:
         >>> RigidTransform.identity(3).shape
         (3,)
         """
-        shape = _batch_shape(shape)
+        shape = batch_shape(shape)
         quat = np.zeros(shape + (4,))
         quat[..., 0] = 1.0
         return cls._from_arrays(quat, np.zeros(shape + (3,)))
@@ -198,7 +184,7 @@ class RigidTransform:
         >>> len(RigidTransform.random(5, rng=0))
         5
         """
-        shape = _batch_shape(shape)
+        shape = batch_shape(shape)
         rng = np.random.default_rng(rng)
         rotation = Rotation.random(shape, rng=rng)
         translation = translation_scale * rng.standard_normal(shape + (3,))

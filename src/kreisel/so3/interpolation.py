@@ -84,6 +84,8 @@ def quat_mean(q, weights=None, axis=-2):
     if q.ndim < 2:
         raise ValueError(f"q must have shape (..., n, 4) with a sample axis, got {q.shape}")
     q = np.moveaxis(q, axis, -2)
+    if q.shape[-2] == 0:
+        raise ValueError("q must hold at least one rotation along axis: the mean of an empty set is undefined")
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     if weights is None:
         w = np.ones(q.shape[:-1])

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from .._validation import batch_shape
 from . import _kernels as k
 from ._gufunc import gufunc, quaternion_array, vector_array
 
@@ -55,6 +56,20 @@ def _multiply_parallel(p, q, out):
         )
 
 
+@k._jit
+def _unit_product(p0, p1, p2, p3, q0, q1, q2, q3):
+    r0, r1, r2, r3 = k.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+    return k.quat_unit(r0, r1, r2, r3)
+
+
+@njit(parallel=True, cache=True)
+def _compose_parallel(p, q, out):
+    for i in prange(p.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _unit_product(
+            p[i, 0], p[i, 1], p[i, 2], p[i, 3], q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        )
+
+
 @njit(parallel=True, cache=True)
 def _normalize_parallel(q, out):
     for i in prange(q.shape[0]):
@@ -81,6 +96,11 @@ def _multiply(p, q, out):
     out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
+@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_compose_parallel)
+def _compose(p, q, out):
+    out[0], out[1], out[2], out[3] = _unit_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+
+
 @gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_normalize_parallel)
 def _normalize(q, out):
     out[0], out[1], out[2], out[3] = k.quat_unit(q[0], q[1], q[2], q[3])
@@ -104,6 +124,24 @@ def _multiply_one(p, q):
     for i in range(4):
         finite = finite and abs(out[i]) <= 1.7976931348623157e308
     return out, finite
+
+
+@njit(cache=True, nogil=True)
+def _compose_one(p, q):
+    out = np.empty(4)
+    out[0], out[1], out[2], out[3] = _unit_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+    return out
+
+
+def compose_unit(p, q):
+    """Unit product ``(p q) / |p q|`` of validated unit quaternions (no input checks).
+
+    The renormalisation keeps long chains of compositions on the unit sphere:
+    the rounding of each product would otherwise accumulate in ``|q| - 1``.
+    """
+    if _is_single(p) and _is_single(q):
+        return _compose_one(p, q)
+    return _compose(p, q)
 
 
 def _is_single(x):
@@ -235,7 +273,6 @@ def quat_identity(shape=()):
     array([[1., 0., 0., 0.],
            [1., 0., 0., 0.]])
     """
-    shape = (shape,) if np.ndim(shape) == 0 else tuple(shape)
-    out = np.zeros((*shape, 4))
+    out = np.zeros((*batch_shape(shape), 4))
     out[..., 0] = 1.0
     return out

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validation import as_float_array, batch_shape
 from . import euler as _euler
 from . import interpolation as _interp
 from . import matrix as _matrix
@@ -20,9 +21,21 @@ from . import su2 as _su2
 __all__ = ["Rotation"]
 
 
-def _scalar_first(q, scalar_first):
-    q = np.asarray(q, dtype=np.float64)
+def _scalar_first(q, scalar_first, name="quat"):
+    # The width is checked before any reordering: q[..., [3, 0, 1, 2]] of a
+    # (..., 5) array would silently become a rotation.
+    q = as_float_array(q, name, (4,), finite=False)
     return q if scalar_first else q[..., [3, 0, 1, 2]]
+
+
+def canonical_quat(q):
+    """The sign of ``q`` with ``q0 > 0``, or, for half turns (``q0 = 0``), the first nonzero component > 0.
+
+    ``q`` and ``-q`` give the same result, so the canonical quaternion is unique.
+    """
+    q = np.asarray(q)
+    first = np.take_along_axis(q, np.argmax(q != 0.0, axis=-1)[..., None], axis=-1)
+    return np.where(first < 0.0, -q, q) + 0.0  # + 0.0 turns -0.0 into 0.0: bitwise unique
 
 
 class Rotation:
@@ -245,21 +258,34 @@ class Rotation:
     def random(cls, shape=(), rng=None):
         """Rotations uniform on SO(3) (Haar measure): normalised 4-D Gaussians.
 
-        ``rng`` is a seed or a ``numpy.random.Generator``.
+        The same seed gives the same rotations as scipy's ``Rotation.random``:
+        the Gaussian draws are read in scipy's scalar-last order, and
+        :meth:`as_quat` returns them scalar first.
+
+        Parameters
+        ----------
+        shape : None, int or tuple of int
+            Batch shape (``()`` or ``None``: a single rotation).
+        rng : None, int or numpy.random.Generator
+            Seed or generator, as for ``numpy.random.default_rng``.
 
         Examples
         --------
         >>> Rotation.random(5, rng=1).shape
         (5,)
+        >>> from scipy.spatial.transform import Rotation as ScipyRotation
+        >>> bool(Rotation.random(5, rng=1).approx_equal(Rotation.from_scipy(ScipyRotation.random(5, rng=1))).all())
+        True
         """
+        shape = batch_shape(shape)
         rng = np.random.default_rng(rng)
-        shape = (shape,) if np.ndim(shape) == 0 else tuple(shape)
-        q = rng.standard_normal((*shape, 4))
+        # scipy reads the same Gaussian draws as scalar-last quaternions.
+        q = rng.standard_normal((*shape, 4))[..., [3, 0, 1, 2]]
         return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
 
     # -- representations ----------------------------------------------------
     def as_quat(self, canonical=False, scalar_first=True):
-        """Unit quaternions; ``canonical=True`` picks the sign with q0 >= 0.
+        """Unit quaternions; ``canonical=True`` picks the unique sign (q0 > 0, else first nonzero > 0).
 
         Examples
         --------
@@ -267,13 +293,16 @@ class Rotation:
 
         >>> r = Rotation.from_quat([-0.6, 0.0, 0.8, 0.0])
         >>> r.as_quat(canonical=True).tolist()
-        [0.6, -0.0, -0.8, -0.0]
+        [0.6, 0.0, -0.8, 0.0]
+
+        A half turn (q0 = 0) is made unique by its first nonzero component:
+
+        >>> Rotation.from_quat([0.0, 0.0, -0.6, 0.8]).as_quat(canonical=True).tolist()
+        [0.0, 0.0, 0.6, -0.8]
         >>> r.as_quat(scalar_first=False).tolist()
         [0.0, 0.8, 0.0, -0.6]
         """
-        q = self._q
-        if canonical:
-            q = np.where(q[..., :1] < 0.0, -q, q)
+        q = canonical_quat(self._q) if canonical else self._q
         return np.array(q if scalar_first else q[..., [1, 2, 3, 0]])
 
     def as_matrix(self):
@@ -422,7 +451,7 @@ class Rotation:
     def __mul__(self, other):
         if not isinstance(other, Rotation):
             return NotImplemented
-        return Rotation._wrap(_quat.quat_multiply(self._q, other._q))
+        return Rotation._wrap(_quat.compose_unit(self._q, other._q))
 
     def inv(self):
         """Inverse rotations.
@@ -479,6 +508,8 @@ class Rotation:
         """
         if self._q.ndim < 2:
             raise ValueError("mean needs a batch of rotations")
+        if self._q.shape[0] == 0:
+            raise ValueError("mean of an empty set of rotations is undefined")
         return Rotation._wrap(_interp.quat_mean(self._q, weights, axis=0))
 
     def slerp(self, other, t):
