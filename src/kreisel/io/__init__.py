@@ -1,6 +1,7 @@
-"""Files in and out: scenario TOML files, result files, bundled examples."""
+"""Files in and out: scenario TOML files, result files, bundled examples, gyroscope recordings."""
 
 from .bundled import EXAMPLES, copy_example, example_path
+from .gyro import GyroFileError, GyroRecording, read_gyro
 from .results import ResultError, load_trajectory, save_result
 from .run import run_scenario, summary
 from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
@@ -8,4 +9,4 @@ from .schema import SchemaError
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_trajectory", "save_result",
            "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
-           "SchemaError"]
+           "SchemaError", "GyroFileError", "GyroRecording", "read_gyro"]

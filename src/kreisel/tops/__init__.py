@@ -4,11 +4,12 @@ Exact solutions (no time stepping) by elliptic functions and integrals of the
 third kind (:mod:`._elliptic`, built on Carlson's integrals), the stability and
 Poinsot geometry of the free top, regular precession and the body and space
 cones, the Lagrange top's integrals, nutation and apex locus, and the
-Kovalevskaya integral.
+Kovalevskaya integral; the free top fitted to gyroscope recordings.
 """
 
 from ._elliptic import complete_elliptic_pi, elliptic_pi
 from .euler_top import EulerTop, SteadyRotation
+from .fitting import FreeRotationFit, NotFreeRotationWarning, fit_free_rotation
 from .kovalevskaya import KovalevskayaIntegrals, KovalevskayaTop
 from .poinsot import PoinsotGeometry, poinsot
 from .lagrange import FastTop, LagrangeConstants, LagrangeTop, larmor_precession_rate
@@ -17,6 +18,9 @@ from .symmetric import Cones, SymmetricTop
 __all__ = [
     "EulerTop",
     "SteadyRotation",
+    "fit_free_rotation",
+    "FreeRotationFit",
+    "NotFreeRotationWarning",
     "poinsot",
     "PoinsotGeometry",
     "SymmetricTop",

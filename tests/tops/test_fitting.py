@@ -1,0 +1,178 @@
+"""fit_free_rotation: synthetic gyroscope recordings with known moments, ω0, bias and noise."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+from kreisel.tops.fitting import NotFreeRotationWarning
+
+PHONE = np.array([71.0**2 + 8.0**2, 146.0**2 + 8.0**2, 146.0**2 + 71.0**2])  # 146 x 71 x 8 mm slab
+
+
+def recording(moments, omega0, *, seed=0, n=600, noise=0.05, bias=(0.0, 0.0, 0.0), rate=400.0, t_start=3.0):
+    """Irregular samples (±40 % jitter about 1/rate) of the exact ω plus noise and bias."""
+    rng = np.random.default_rng(seed)
+    t = t_start + np.cumsum(rng.uniform(0.6, 1.4, n) / rate)
+    omega = kr.EulerTop(*moments).omega(t - t[0], omega0)
+    return t, omega + np.asarray(bias) + rng.normal(0.0, noise, omega.shape)
+
+
+def normalised(moments):
+    moments = np.asarray(moments, dtype=float)
+    return moments / moments.max()
+
+
+def assert_within(value, truth, stderr, k=4.0):
+    assert np.all(np.abs(np.asarray(value) - truth) <= k * np.asarray(stderr) + 1e-12), (value, truth, stderr)
+
+
+@pytest.mark.parametrize(
+    "omega0, regime",
+    [([0.6, 12.0, 0.8], "about_largest_axis"), ([0.9, 12.0, 0.4], "about_smallest_axis")],
+)
+def test_phone_recovered_within_statistical_error_in_both_regimes(omega0, regime):
+    t, omega = recording(PHONE, omega0, seed=1, bias=(0.02, -0.03, 0.015))
+    fit = kr.fit_free_rotation(t, omega, bias=True)
+    truth = normalised(PHONE)
+    assert kr.EulerTop(*PHONE).regime(omega0) == regime
+    assert fit.regime == regime and fit.free_rotation
+    assert fit.intermediate_axis == 1
+    assert_within(fit.moments, truth, fit.moments_stderr)
+    assert np.all(fit.moments_stderr[:2] / truth[:2] < 0.01)  # ratios to ~1 %
+    assert fit.moments_stderr[2] == 0.0 and fit.moments[2] == 1.0
+    assert_within(fit.omega0, omega0, fit.omega0_stderr)
+    assert_within(fit.bias, [0.02, -0.03, 0.015], fit.bias_stderr)
+    assert fit.rms == pytest.approx(0.05, rel=0.1)
+    assert fit.t0 == t[0]
+    assert np.sign(fit.separatrix_distance) == (1 if regime == "about_largest_axis" else -1)
+
+
+@pytest.mark.parametrize("order, signs", [((1, 2, 0), (1, 1, 1)), ((2, 0, 1), (1, -1, -1)), ((0, 2, 1), (1, 1, -1))])
+def test_sensor_axes_permuted(order, signs):
+    """The same motion seen by a (right-handed) sensor whose x, y, z are the body's ±axes `order`."""
+    order, signs = list(order), np.array(signs, dtype=float)
+    omega0 = np.array([0.5, 11.0, 0.7])
+    t, omega = recording(PHONE, omega0, seed=2)
+    fit = kr.fit_free_rotation(t, omega[:, order] * signs)
+    assert_within(fit.moments, normalised(PHONE[order]), fit.moments_stderr)
+    assert_within(fit.omega0, omega0[order] * signs, fit.omega0_stderr)
+    assert fit.intermediate_axis == order.index(1)
+
+
+def test_generic_body_and_no_noise_exact():
+    t = np.linspace(0.0, 2.0, 400)
+    moments, omega0 = np.array([3.0, 1.0, 2.5]), np.array([1.5, -0.8, 2.0])
+    fit = kr.fit_free_rotation(t, kr.EulerTop(*moments).omega(t, omega0))
+    np.testing.assert_allclose(fit.moments, normalised(moments), rtol=1e-7)
+    np.testing.assert_allclose(fit.omega0, omega0, rtol=1e-7)
+    assert fit.rms < 1e-7
+    np.testing.assert_allclose(fit.predict(t), fit.omega, atol=1e-6)
+
+
+def test_standard_errors_are_calibrated():
+    """Over independent noise draws, (estimate − truth)/stderr has unit variance."""
+    truth, omega0 = normalised(PHONE), np.array([0.6, 12.0, 0.8])
+    z = []
+    for seed in range(12):
+        t, omega = recording(PHONE, omega0, seed=100 + seed, n=400)
+        fit = kr.fit_free_rotation(t, omega)
+        z.append((fit.moments[:2] - truth[:2]) / fit.moments_stderr[:2])
+        z.append((fit.omega0 - omega0) / fit.omega0_stderr)
+    z = np.concatenate(z)
+    assert 0.5 < np.mean(z**2) < 2.0  # chi² / dof with 60 dof: well inside
+
+
+def test_misaligned_principal_axes():
+    rotation = kr.rotvec_to_matrix(np.radians([3.0, -4.0, 2.0]))
+    omega0 = np.array([0.6, 12.0, 0.8])
+    t, omega = recording(PHONE, omega0, seed=4, noise=0.0)
+    sensor = omega @ rotation.T  # principal components -> sensor components
+    plain = kr.fit_free_rotation(t, sensor + np.random.default_rng(5).normal(0, 0.05, omega.shape))
+    aligned = kr.fit_free_rotation(t, sensor + np.random.default_rng(5).normal(0, 0.05, omega.shape), align=True)
+    assert aligned.rms < plain.rms
+    assert aligned.rms == pytest.approx(0.05, rel=0.1)
+    assert_within(aligned.moments, normalised(PHONE), aligned.moments_stderr)
+    np.testing.assert_allclose(aligned.axes, rotation, atol=3e-3)
+    assert aligned.misalignment == pytest.approx(np.radians(np.sqrt(29.0)), abs=3e-3)
+    np.testing.assert_allclose(aligned.omega0, rotation @ omega0, atol=4 * aligned.omega0_stderr.max())
+
+
+def test_window_cuts_throw_and_catch():
+    t, omega = recording(PHONE, [0.6, 12.0, 0.8], seed=6, n=800)
+    hand = (t < t[100]) | (t > t[700])
+    omega[hand] = np.random.default_rng(7).normal(0.0, 5.0, (hand.sum(), 3))
+    with pytest.warns(NotFreeRotationWarning, match="not a free rotation"):
+        assert not kr.fit_free_rotation(t, omega).free_rotation
+    fit = kr.fit_free_rotation(t, omega, window=(t[100], t[700]))
+    assert fit.free_rotation and fit.t0 == t[100] and fit.t.size == 601
+    assert_within(fit.moments, normalised(PHONE), fit.moments_stderr)
+    with pytest.warns(NotFreeRotationWarning):  # open end: the catch is back in
+        assert kr.fit_free_rotation(t, omega, window=(t[100], None)).t[-1] == t[-1]
+
+
+def test_first_integrals_constant_with_fitted_moments():
+    t, omega = recording(PHONE, [0.6, 12.0, 0.8], seed=8)
+    fit = kr.fit_free_rotation(t, omega)
+    energy, momentum = fit.first_integrals()
+    # the spread is what 0.05 rad/s of noise on ~12 rad/s produces: ~2 × 0.05/12 relative
+    assert np.std(energy) / np.mean(energy) < 0.02
+    assert np.std(momentum) / np.mean(momentum) < 0.01
+    exact = kr.fit_free_rotation(t, kr.EulerTop(*PHONE).omega(t - t[0], [0.6, 12.0, 0.8]))
+    energy, momentum = exact.first_integrals()
+    np.testing.assert_allclose(energy, energy[0], rtol=1e-8)
+    np.testing.assert_allclose(momentum, momentum[0], rtol=1e-8)
+
+
+def test_not_free_rotation_gets_a_message():
+    t = np.linspace(0.0, 2.0, 500)
+    driven = np.column_stack([8 * np.sin(5 * t), 6 * np.cos(3 * t) + 2 * t, 5 * t * np.sin(9 * t)])
+    with pytest.warns(NotFreeRotationWarning, match="not a free rotation") as record:
+        fit = kr.fit_free_rotation(t, driven)
+    assert not fit.free_rotation and fit.message == str(record[0].message)
+
+
+def test_steady_spin_leaves_ratios_undetermined():
+    t = np.linspace(0.0, 2.0, 500)
+    spin = np.tile([0.0, 0.0, 10.0], (500, 1)) + np.random.default_rng(9).normal(0, 0.05, (500, 3))
+    with pytest.warns(NotFreeRotationWarning, match="not determined|not a free rotation"):
+        fit = kr.fit_free_rotation(t, spin)
+    assert not fit.free_rotation
+
+
+def test_free_rotation_emits_no_warning():
+    t, omega = recording(PHONE, [0.6, 12.0, 0.8], seed=10)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert kr.fit_free_rotation(t, omega).free_rotation
+
+
+@pytest.mark.parametrize(
+    "t, omega, kwargs, match",
+    [
+        (np.zeros((5, 2)), np.zeros((5, 3)), {}, "t must be one-dimensional"),
+        (np.arange(30.0), np.zeros((30, 2)), {}, r"omega must have shape \(n, 3\)"),
+        (np.arange(30.0), np.zeros((29, 3)), {}, r"omega must have shape \(n, 3\)"),
+        (np.arange(30.0), np.full((30, 3), np.nan), {}, "omega must be finite"),
+        (np.r_[np.arange(29.0), np.inf], np.ones((30, 3)), {}, "t must be finite"),
+        (np.r_[np.arange(15.0), np.arange(15.0)], np.ones((30, 3)), {}, "strictly increasing"),
+        (np.r_[0.0, 0.0, np.arange(1.0, 29.0)], np.ones((30, 3)), {}, r"strictly increasing \(t\[1\]"),
+        (np.arange(14.0), np.ones((14, 3)), {}, "too few samples: 14"),
+        (np.arange(20.0), np.ones((20, 3)), {"bias": True, "align": True}, "needs at least 21"),
+        (np.arange(100.0), np.ones((100, 3)), {"window": (50.0, 60.0)}, "too few samples: 11"),
+        (np.arange(100.0), np.ones((100, 3)), {"window": (5.0, 1.0)}, "t_start < t_stop"),
+        (np.arange(100.0), np.ones((100, 3)), {"window": 5.0}, r"window must be \(t_start, t_stop\)"),
+    ],
+)
+def test_refusals(t, omega, kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        kr.fit_free_rotation(t, omega, **kwargs)
+
+
+def test_predict_validates_and_includes_bias():
+    t, omega = recording(PHONE, [0.6, 12.0, 0.8], seed=11, bias=(0.1, 0.0, -0.1))
+    fit = kr.fit_free_rotation(t, omega, bias=True)
+    np.testing.assert_allclose(fit.predict(t) - fit.bias, fit.top.omega(t - t[0], fit.omega0), atol=1e-12)
+    with pytest.raises(ValueError, match="one-dimensional"):
+        fit.predict(np.zeros((2, 2)))
