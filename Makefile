@@ -37,7 +37,12 @@ $(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
 bench: $(VENV)/.installed-bench
 	$(PY) bench/run_all.py
 
-docs: $(VENV)/.installed-docs
+# MathJax, served with the pages so that they render equations offline
+docs/node_modules/.installed: docs/package.json docs/package-lock.json
+	cd docs && npm ci --no-audit --no-fund
+	touch $@
+
+docs: $(VENV)/.installed-docs docs/node_modules/.installed
 	MPLBACKEND=Agg $(PY) -m sphinx -b html -W --keep-going docs docs/_build/html
 
 clean:

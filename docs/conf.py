@@ -21,6 +21,7 @@ import kreisel  # noqa: E402
 HERE = pathlib.Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE / "_ext"))
 
 project = "kreisel"
 author = "the kreisel developers"
@@ -35,13 +36,19 @@ extensions = [
     "sphinx.ext.viewcode",
     "numpydoc",
     "sphinx_gallery.gen_gallery",
+    "theory_citations",
 ]
 
+# Equations are numbered by theory section: (5.12) is the twelfth of section 5.
+numfig = True
+math_numfig = True
+numfig_secnum_depth = 1
+math_eqref_format = "({number})"
+
 templates_path = ["_templates"]
-exclude_patterns = ["_build", "_generated", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
+exclude_patterns = ["_build", "_generated", "node_modules", "sg_execution_times.rst", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
                     "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
 html_theme = "pydata_sphinx_theme"
-html_static_path = ["_static"]
 html_title = f"kreisel {release}"
 html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
 html_last_updated_fmt = None
@@ -54,11 +61,29 @@ numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 
-# MathJax is loaded by the reader's browser (from its CDN) at view time; nothing is
-# fetched while building.  A copy shipped in _static/mathjax is preferred when present.
-_local_mathjax = HERE / "_static" / "mathjax" / "tex-chtml.js"
-if _local_mathjax.exists():
-    mathjax_path = "mathjax/tex-chtml.js"
+# MathJax is served with the pages (docs/package.json pins it; `npm ci` in docs/ installs it),
+# so that no page loads anything from the internet.
+_MATHJAX = HERE / "node_modules" / "mathjax" / "es5"
+
+
+def _bundle_mathjax():
+    """Copy the parts of MathJax the pages use (TeX input, CommonHTML output, its fonts)."""
+    import shutil
+
+    if not (_MATHJAX / "tex-chtml.js").exists():
+        raise RuntimeError("MathJax is missing: run `npm ci --no-audit --no-fund` in docs/ "
+                           "(`make docs` does it) so that the docs render equations offline")
+    target = HERE / "_generated" / "static" / "mathjax"
+    fonts = target / "output" / "chtml" / "fonts" / "woff-v2"
+    fonts.mkdir(parents=True, exist_ok=True)
+    shutil.copy2(_MATHJAX / "tex-chtml.js", target / "tex-chtml.js")
+    for font in (_MATHJAX / "output" / "chtml" / "fonts" / "woff-v2").iterdir():
+        shutil.copy2(font, fonts / font.name)
+
+
+_bundle_mathjax()
+html_static_path = ["_static", "_generated/static"]
+mathjax_path = "mathjax/tex-chtml.js"
 
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples"),
@@ -72,6 +97,8 @@ sphinx_gallery_conf = {
     "reset_modules": ("matplotlib",),
     "min_reported_time": 1,
     "plot_gallery": "True",
+    # the timing page loads jQuery and DataTables from CDNs; the docs load nothing from the internet
+    "write_computation_times": False,
 }
 
 # --------------------------------------------------------------------------------------------
