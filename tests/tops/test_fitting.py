@@ -8,7 +8,7 @@ import pytest
 import kreisel as kr
 from kreisel.tops.fitting import NotFreeRotationWarning
 
-PHONE = np.array([71.0**2 + 8.0**2, 146.0**2 + 8.0**2, 146.0**2 + 71.0**2])  # 146 x 71 x 8 mm slab
+PHONE = np.array([71.0**2 + 8.0**2, 146.0**2 + 8.0**2, 146.0**2 + 71.0**2])  # 146 x 71 x 8 mm slab, x along 146
 
 
 def recording(moments, omega0, *, seed=0, n=600, noise=0.05, bias=(0.0, 0.0, 0.0), rate=400.0, t_start=3.0):

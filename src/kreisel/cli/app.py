@@ -209,6 +209,62 @@ def sweep(
 
 
 @app.command()
+def fit(
+    recording: pathlib.Path = typer.Argument(
+        ..., help="Gyroscope recording: phyphox CSV, export folder or zip, or a table t ωx ωy ωz; "
+                  "'phone_toss' is a bundled example."),
+    start: Optional[float] = typer.Option(None, "--start", help="Fit from this time on, s (as in the file)."),
+    stop: Optional[float] = typer.Option(None, "--stop", help="Fit up to this time, s."),
+    bias: bool = typer.Option(False, "--bias", help="Also fit a constant gyroscope offset."),
+    align: bool = typer.Option(False, "--align", help="Also fit the rotation from sensor to principal axes."),
+    plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Draw data, fit and residuals: fit.png | .svg | .pdf"),
+    json_file: Optional[pathlib.Path] = typer.Option(None, "--json", help="Write the results as JSON."),
+):
+    """Fit the free (Euler) top to a gyroscope recording: moment ratios, ω0, bias, regime."""
+    import json
+    import warnings
+
+    from .._fileio import atomic_output
+    from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
+    from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
+    from .fit import as_dict, summary
+
+    if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
+        usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
+    for option, target in (("--plot", plot_file), ("--json", json_file)):
+        if target is not None and not target.parent.is_dir():
+            usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
+    if not recording.exists() and str(recording) in RECORDINGS:
+        recording = recording_path(str(recording))
+    try:
+        data = read_gyro(recording)
+    except OSError as exc:
+        usage_error(f"cannot read {recording} ({exc.strerror or exc})")
+    except GyroFileError as exc:
+        usage_error(str(exc))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotFreeRotationWarning)  # the summary reports it
+        try:
+            result = fit_free_rotation(data.t, data.omega, bias=bias, align=align,
+                                       window=None if start is None and stop is None else (start, stop))
+        except ValueError as exc:
+            usage_error(f"{recording}: {exc}")
+    for line in summary(result):
+        (out if result.free_rotation else err).print(line, soft_wrap=True)
+    if plot_file is not None:
+        from .. import plot as plots
+
+        plots.save(plots.gyro_fit(result), plot_file)
+        out.print(f"wrote {plot_file}")
+    if json_file is not None:
+        with atomic_output(json_file) as tmp:
+            tmp.write_text(json.dumps(as_dict(result), indent=2) + "\n", encoding="utf-8")
+        out.print(f"wrote {json_file}")
+    if not result.free_rotation:
+        raise typer.Exit(1)
+
+
+@app.command()
 def serve(
     scenario: Optional[pathlib.Path] = typer.Argument(None, help="Scenario TOML to open in the viewer."),
     host: str = typer.Option("127.0.0.1", "--host", help="Interface to bind (loopback by default)."),

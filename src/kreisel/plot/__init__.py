@@ -9,9 +9,10 @@ from __future__ import annotations
 import pathlib
 
 from .._fileio import atomic_output
+from .fit import gyro_fit
 from .trajectory import KINDS, apex, energy, euler, herpolhode, omega, polhode
 
-__all__ = ["KINDS", "apex", "energy", "euler", "herpolhode", "omega", "polhode", "save"]
+__all__ = ["KINDS", "apex", "energy", "euler", "gyro_fit", "herpolhode", "omega", "polhode", "save"]
 
 _FORMATS = {".png", ".svg", ".pdf"}
 

@@ -1,0 +1,48 @@
+"""Figure of a free-top fit to a gyroscope recording (:func:`kreisel.fit_free_rotation`)."""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+
+_COLORS = ("tab:blue", "tab:orange", "tab:green")
+
+
+def gyro_fit(fit, title=None):
+    """Measured ω (points) against the fitted free-top ω (curves), residuals underneath.
+
+    Parameters
+    ----------
+    fit : FreeRotationFit
+        Result of :func:`kreisel.fit_free_rotation`.
+    title : str, optional
+        Figure title; by default the fitted moment ratios and the RMS.
+
+    Examples
+    --------
+    >>> import numpy as np, kreisel as kr
+    >>> t = np.linspace(0.0, 1.0, 300)
+    >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
+    >>> fig = gyro_fit(fit)
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['ω (rad/s)', 'residual (rad/s)']
+    """
+    dense = np.linspace(fit.t[0], fit.t[-1], max(1000, 4 * fit.t.size))
+    curve = fit.predict(dense)
+    residuals = fit.residuals
+    fig = Figure(figsize=(8, 5.6), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1.3))
+    marker = 2.0 if fit.t.size > 300 else 4.0
+    for k, (name, color) in enumerate(zip("xyz", _COLORS)):
+        top.plot(fit.t, fit.omega[:, k], ".", ms=marker, color=color, alpha=0.5, label=f"measured ω{name}")
+        top.plot(dense, curve[:, k], "-", lw=1.4, color=color, label=f"fitted ω{name}")
+        bottom.plot(fit.t, residuals[:, k], ".", ms=marker, color=color, alpha=0.6)
+    bottom.axhline(0.0, color="0.3", lw=0.8)
+    bottom.axhspan(-fit.rms, fit.rms, color="0.85", zorder=0, label=f"± RMS = {fit.rms:.3g} rad/s")
+    ratios = " : ".join(f"{m:.4f}" for m in fit.moments)
+    top.set(ylabel="ω (rad/s)",
+            title=title or f"free-top fit: I_x : I_y : I_z = {ratios} (largest = 1)")
+    top.legend(loc="best", ncols=3, fontsize="small")
+    bottom.set(xlabel="t (s)", ylabel="residual (rad/s)")
+    bottom.legend(loc="upper right", fontsize="small")
+    return fig

@@ -1,0 +1,64 @@
+"""``kreisel fit``: summary, plot, JSON, window, and the error paths (exit status 2)."""
+
+import json
+
+import numpy as np
+from PIL import Image
+from typer.testing import CliRunner
+
+import kreisel as kr
+from kreisel.cli import app
+
+runner = CliRunner()
+
+
+def run(*args):
+    return runner.invoke(app, list(args))
+
+
+def test_fit_bundled_recording_with_plot_and_json(tmp_path):
+    plot, record = tmp_path / "fit.png", tmp_path / "fit.json"
+    result = run("fit", "phone_toss", "--bias", "--plot", str(plot), "--json", str(record))
+    assert result.exit_code == 0, result.output
+    for text in ("I_x = 0.81", "I_z = 1 (reference)", "ω0 at t = 4.2731 s", "gyro bias", "residual RMS 0.05",
+                 "intermediate axis x", "energy T with the fitted moments", "|J| with the fitted moments"):
+        assert text in result.stdout, text
+    assert Image.open(plot).size[0] > 500
+    data = json.loads(record.read_text())
+    truth = np.diag(kr.inertia.box(1.0, (0.071, 0.146, 0.008)))
+    np.testing.assert_allclose(data["moments"], truth / truth.max(), atol=4 * max(data["moments_stderr"]))
+    assert data["intermediate_axis"] == "x" and data["free_rotation"] and len(data["bias"]) == 3
+
+
+def test_fit_window_of_a_longer_table(tmp_path):
+    moments = np.array([0.2, 0.8, 1.0])
+    t = np.linspace(0.0, 3.0, 1200)
+    omega = kr.EulerTop(*moments).omega(t - 1.0, [0.4, 12.0, 0.3])
+    omega[(t < 1.0) | (t > 2.0)] = np.random.default_rng(0).normal(0.0, 4.0, (np.sum((t < 1.0) | (t > 2.0)), 3))
+    path = tmp_path / "long.txt"
+    np.savetxt(path, np.column_stack([t, omega]), header="t wx wy wz")
+    whole = run("fit", str(path))
+    assert whole.exit_code == 1 and "not a free rotation" in whole.output
+    cut = run("fit", str(path), "--start", "1.0", "--stop", "2.0", "--json", str(tmp_path / "cut.json"))
+    assert cut.exit_code == 0, cut.output
+    np.testing.assert_allclose(json.loads((tmp_path / "cut.json").read_text())["moments"], moments, atol=1e-6)
+
+
+def test_fit_errors_exit_2_with_one_line(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("0 1 2 3\n0.1 1 oops 3\n")
+    short = tmp_path / "short.csv"
+    np.savetxt(short, np.column_stack([np.arange(5.0), np.ones((5, 3))]))
+    cases = [
+        (("fit", str(tmp_path / "missing.csv")), "cannot read"),
+        (("fit", str(bad)), "line 2: not a number: 'oops'"),
+        (("fit", str(short)), "too few samples"),
+        (("fit", "phone_toss", "--start", "9", "--stop", "1"), "t_start < t_stop"),
+        (("fit", "phone_toss", "--plot", str(tmp_path / "fit.gif")), "--plot: unsupported output"),
+        (("fit", "phone_toss", "--json", str(tmp_path / "nowhere" / "a.json")), "--json: directory"),
+    ]
+    for args, message in cases:
+        result = run(*args)
+        assert result.exit_code == 2, (args, result.output)
+        assert message in result.output and result.output.strip().count("\n") == 0, result.output
+        assert "Traceback" not in result.output
