@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import as_float_array, batch_shape
+from . import alignment as _alignment
 from . import euler as _euler
 from . import interpolation as _interp
 from . import matrix as _matrix
@@ -239,6 +240,56 @@ class Rotation:
         True
         """
         return cls.from_quat(rotation.as_quat(), scalar_first=False)
+
+    @classmethod
+    def align_vectors(cls, a, b, weights=None, return_sensitivity=False):
+        """The rotation ``R`` with ``a ≈ R b`` in the weighted least-squares sense (Wahba's problem).
+
+        scipy's ``Rotation.align_vectors``: same loss ``½ Σ w |a - R b|²``,
+        the shortest-arc rotation for a single vector pair, exact alignment
+        of the one pair with ``weights = inf`` (TRIAD for two vectors), the
+        root sum squared distance and Markley's sensitivity matrix. Solved by
+        Davenport's q-method in compiled code (see :mod:`kreisel.so3.alignment`
+        for the background). As a kreisel extension, ``a`` and ``b`` may carry
+        batch axes, ``(..., n, 3)``: every problem is solved at once.
+
+        Parameters
+        ----------
+        a, b : array_like, shape (n, 3), (3,) or (..., n, 3)
+            Vectors in frame A and the same vectors observed in frame B.
+        weights : array_like, shape (n,) or (..., n), optional
+            Non-negative; at most one ``inf`` per problem.
+        return_sensitivity : bool
+            Also return the sensitivity matrix (not for an infinite weight or
+            a single pair).
+
+        Returns
+        -------
+        rotation : Rotation
+            Batch shape ``a.shape[:-2]`` (a single rotation for ``(n, 3)``).
+        rssd : float or ndarray
+            ``sqrt(Σ w |a - R b|²)`` over the finite-weight pairs.
+        sensitivity : ndarray, shape (..., 3, 3)
+            With ``return_sensitivity=True``.
+
+        Examples
+        --------
+        Star-tracker style: three catalogue directions and the same stars seen
+        from the body fix the attitude:
+
+        >>> import numpy as np
+        >>> truth = Rotation.from_euler("ZYX", [30, 20, 10], degrees=True)
+        >>> catalogue = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.6, 0.8]])
+        >>> seen = truth.apply(catalogue, inverse=True)
+        >>> r, rssd = Rotation.align_vectors(catalogue, seen)
+        >>> bool(r.approx_equal(truth)), rssd < 1e-15
+        (True, True)
+        """
+        a_shape = np.shape(a)
+        out = _alignment.align_vectors(a, b, weights, return_sensitivity)
+        rotation = cls._wrap(out[0])
+        rssd = float(out[1]) if len(a_shape) <= 2 else out[1]
+        return (rotation, rssd, *out[2:])
 
     @classmethod
     def identity(cls, shape=()):
