@@ -64,9 +64,9 @@ def test_convert_reads_rows_from_stdin_and_prints_complex_su2():
     (("--from", "euler", "--to", "quat", "1", "2", "3"), "euler:SEQ"),
     (("--from", "spinor", "--to", "quat", "1", "2", "3"), "unknown representation"),
     (("--from", "quat", "--to", "matrix", "1", "2", "3"), "takes 4 numbers"),
-    (("--from", "quat", "--to", "matrix", "0", "0", "0", "0"), "invalid rotation"),
+    (("--from", "quat", "--to", "matrix", "0", "0", "0", "0"), "invalid quat"),
     (("--from", "euler:XYX", "--to", "quat", "--degrees", "1", "2", "3"), None),
-    (("--from", "euler:xYz", "--to", "quat", "1", "2", "3"), "invalid rotation"),
+    (("--from", "euler:xYz", "--to", "quat", "1", "2", "3"), "all uppercase (intrinsic) or all lowercase"),
 ])
 def test_convert_usage_errors_exit_2(args, message):
     result = run("convert", *args)
@@ -114,7 +114,7 @@ def test_simulate_and_plot_errors(tmp_path):
     result = run("simulate", str(bad))
     assert result.exit_code == 2 and "integration.speed: unknown key" in result.output
     result = run("simulate", str(tmp_path / "absent.toml"))
-    assert result.exit_code == 2 and "cannot read" in result.output
+    assert result.exit_code == 2 and "absent.toml: no such file" in result.output
     result = run("simulate", str(bad), "-o", str(tmp_path / "x.json"))
     assert result.exit_code == 2 and "unsupported output" in result.output
     junk = tmp_path / "junk.nc"

@@ -57,7 +57,7 @@ def test_syntax_error_and_missing_file(tmp_path):
     bad.write_text("[body\nmoments = 1")
     with pytest.raises(ScenarioError, match="bad.toml"):
         load_scenario(bad)
-    with pytest.raises(ScenarioError, match="cannot read"):
+    with pytest.raises(ScenarioError, match="absent.toml: no such file, and no bundled scenario of that name"):
         load_scenario(tmp_path / "absent.toml")
 
 

@@ -12,6 +12,7 @@ from typing import List, Optional
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from .. import __version__
 
@@ -28,8 +29,18 @@ out = Console(highlight=False)
 
 def usage_error(message):
     """Print ``message`` as one line and exit with status 2."""
-    err.print(f"[bold red]error:[/] {message}", soft_wrap=True)
+    error_line(message)
     raise typer.Exit(2)
+
+
+def say(text):
+    """Print ``text`` on standard output as it is (brackets are text, not rich markup)."""
+    out.print(escape(str(text)), soft_wrap=True)
+
+
+def error_line(message):
+    """Print ``message`` on standard error after a red "error:"; its brackets are text, not rich markup."""
+    err.print(f"[bold red]error:[/] {escape(str(message))}", soft_wrap=True)
 
 
 def _version(value: bool):
@@ -46,42 +57,75 @@ def main(
     """kreisel: the rigid-body chapter as software."""
 
 
-@app.command()
+_CONVERT_HELP = (
+    "Convert rotations between representations, e.g. --from euler:ZXZ --to quat 30 45 60 --degrees "
+    "(negative numbers as they are: -30 45 60).\n\n"
+    "Numbers per rotation, in and out: quat q0 q1 q2 q3, scalar first (--scalar-last: x y z w); "
+    "matrix 9 numbers, row-major (R maps body to space); rotvec, gibbs, mrp x y z; "
+    "axis_angle x y z angle (the axis, then the angle); euler:SEQ three angles in the order of SEQ "
+    "(uppercase intrinsic, lowercase extrinsic); su2 and cayley_klein (output only) complex numbers.\n\n"
+)
+
+
+@app.command(help=_CONVERT_HELP, context_settings={"ignore_unknown_options": True})
 def convert(
-    values: Optional[List[float]] = typer.Argument(None, help="Numbers of one rotation; none: read rows from stdin."),
-    source: str = typer.Option(..., "--from", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
-    target: str = typer.Option(..., "--to", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
+    values: Optional[List[str]] = typer.Argument(
+        None, metavar="NUMBERS", help="Numbers of one rotation; none: rows from --input or standard input.",
+        show_default=False),
+    source: List[str] = typer.Option(..., "--from", metavar="REPR", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
+    target: List[str] = typer.Option(
+        ..., "--to", metavar="REPR", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
     degrees: bool = typer.Option(False, "--degrees", help="Angles in degrees (euler, axis_angle, rotvec)."),
-    input_file: Optional[pathlib.Path] = typer.Option(None, "--input", "-i", help="CSV or whitespace file, one rotation a row."),
+    scalar_last: bool = typer.Option(False, "--scalar-last", help="Quaternions in and out as x y z w."),
+    input_file: Optional[pathlib.Path] = typer.Option(
+        None, "--input", "-i", help="CSV or whitespace file, one rotation a row; a first line of names is skipped."),
 ):
-    """Convert rotations between representations, e.g. --from euler:ZXZ --to quat 30 45 60 --degrees."""
-    from .convert import ConversionError, format_rows, read_rows
+    from .convert import ConversionError, format_rows, parse_representation, read_rows, width
     from .convert import convert as run
 
+    for option, given in (("--from", source), ("--to", target)):
+        if len(given) > 1:
+            usage_error(f"{option} given {len(given)} times ({', '.join(given)}); give it once")
+    if values and input_file is not None:
+        usage_error("give the numbers of a rotation or --input FILE, not both")
     try:
+        name, _ = parse_representation(source[0], "--from")
+        parse_representation(target[0], "--to")
         if values:
-            rows = [list(values)]
-        elif input_file is not None:
-            try:
-                rows = read_rows(input_file.read_text(encoding="utf-8"))
-            except OSError as exc:
-                usage_error(f"--input: cannot read {input_file} ({exc.strerror})")
+            lines, rows = None, [[_number(value) for value in values]]
         else:
-            rows = read_rows(sys.stdin.read())
+            lines, rows = read_rows(_read_input(input_file), width(name))
         if not rows:
-            usage_error("no rotation given (pass numbers or rows on stdin)")
-        result = run(source, target, rows, degrees=degrees)
+            usage_error("no rotation given (pass numbers, --input FILE or rows on standard input)")
+        result = run(source[0], target[0], rows, degrees=degrees, scalar_last=scalar_last, lines=lines)
     except ConversionError as exc:
         usage_error(str(exc))
-    except ValueError as exc:
-        usage_error(f"invalid rotation: {exc}")
     for line in format_rows(result):
         typer.echo(line)
 
 
+def _number(text):
+    try:
+        return float(text)
+    except ValueError:
+        usage_error(f"no such option: {text}" if text.startswith("-") else f"not a number: {text!r}")
+
+
+def _read_input(path):
+    """Text of ``path`` (standard input when None); a usage error if it cannot be read as text."""
+    if path is None:
+        return sys.stdin.read()
+    try:
+        return path.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        usage_error(f"--input: cannot read {path} ({exc.strerror})")
+    except UnicodeDecodeError:
+        usage_error(f"--input: {path} is not a text file; expected rows of numbers (CSV or whitespace-separated)")
+
+
 @app.command()
 def simulate(
-    scenario: pathlib.Path = typer.Argument(..., help="Scenario TOML file (see `kreisel examples`)."),
+    scenario: str = typer.Argument(..., help="Scenario TOML file, or the name of a bundled one (`kreisel examples`)."),
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="traj.nc | .csv | .parquet"),
 ):
     """Run a scenario file and report its first integrals."""
@@ -95,13 +139,16 @@ def simulate(
         spec = load_scenario(scenario)
     except ScenarioError as exc:
         usage_error(str(exc))
-    with err.status(f"simulating {spec.title} ..."):
-        result = run_scenario(spec)
+    try:
+        with err.status(escape(f"simulating {spec.title} ...")):
+            result = run_scenario(spec)
+    except ValueError as exc:
+        usage_error(f"{spec.path or scenario}: cannot run: {exc}")
     for line in summary(result):
-        out.print(line)
+        say(line)
     if output is not None:
         save_result(result, output)
-        out.print(f"wrote {output}")
+        say(f"wrote {output}")
 
 
 @app.command()
@@ -122,7 +169,7 @@ def plot(
         plots.save(fig, output)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))
-    out.print(f"wrote {output}")
+    say(f"wrote {output}")
 
 
 @app.command()
@@ -141,28 +188,29 @@ def animate(
         run(traj, output, frames=frames, fps=fps)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))
-    out.print(f"wrote {output}")
+    say(f"wrote {output}")
 
 
 @app.command()
 def examples(
     name: Optional[str] = typer.Argument(None, help="Example to copy out; none: list them."),
     directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
+    force: bool = typer.Option(False, "--force", help="Replace an existing file of the same name."),
 ):
     """List the bundled scenario files, or copy one out to edit."""
-    from ..io.bundled import EXAMPLES, copy_example, describe
+    from ..io.bundled import EXAMPLES, copy_example, describe, suggestion
 
     if name is None:
         for example, text in describe().items():
-            out.print(f"[bold]{example:<16}[/] {text}")
+            out.print(f"[bold]{example:<16}[/] {escape(text)}")
         return
     if name not in EXAMPLES:
-        usage_error(f"unknown example {name!r} (expected one of {', '.join(EXAMPLES)})")
+        usage_error(f"no bundled example {name!r}{suggestion(name, EXAMPLES)}")
     try:
-        path = copy_example(name, directory)
+        path = copy_example(name, directory, force=force)
     except (FileExistsError, ValueError) as exc:
         usage_error(str(exc))
-    out.print(f"wrote {path}")
+    say(f"wrote {path}")
 
 
 @app.command()
@@ -188,9 +236,13 @@ def sweep(
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
     from .. import plot as plots
+    from ..io.bundled import suggestion
     from ..sweep import EXAMPLES, SweepError, example_path, load_sweep_file, plot_sweep, run_sweep_file
 
-    if not sweep_file.exists() and str(sweep_file) in EXAMPLES:
+    if not sweep_file.exists():
+        if str(sweep_file) not in EXAMPLES:
+            usage_error(f"{sweep_file}: no such file, and no bundled sweep of that name"
+                        f"{suggestion(sweep_file, EXAMPLES)}")
         sweep_file = example_path(str(sweep_file))
     try:
         if output is None and load_sweep_file(sweep_file).output is None:
@@ -198,14 +250,14 @@ def sweep(
             output = pathlib.Path(f"{sweep_file.stem}.zarr")
         dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output, console=err)
     except SweepError as exc:
-        err.print(f"[bold red]error:[/] {exc}", soft_wrap=True)
+        error_line(exc)
         raise typer.Exit(1)
     except ValueError as exc:
         usage_error(str(exc))
-    out.print(f"{dict(dataset.sizes)} points" + (f", wrote {output}" if output else ""))
+    say(f"{dict(dataset.sizes)} points" + (f", wrote {output}" if output else ""))
     if plot_file is not None:
         plots.save(plot_sweep(dataset), plot_file)
-        out.print(f"wrote {plot_file}")
+        say(f"wrote {plot_file}")
 
 
 @app.command()

@@ -13,6 +13,7 @@ import io
 
 import numpy as np
 
+from ..so3.euler import parse_sequence
 from ..so3.rotation import Rotation
 
 # name -> numbers per rotation on input; None: complex, output only
@@ -43,49 +44,120 @@ def parse_representation(text, option):
     if (name == "euler") != bool(seq):
         raise ConversionError(f"{option}: give the Euler sequence as euler:SEQ, e.g. euler:ZXZ"
                               if name == "euler" else f"{option}: {name!r} takes no ':' suffix")
+    if seq:
+        try:
+            parse_sequence(seq)
+        except ValueError as exc:
+            raise ConversionError(f"{option} {text}: {exc} (uppercase: intrinsic, lowercase: extrinsic)") from None
     return name, seq
 
 
-def read_rows(text):
-    """Rows of numbers from CSV or whitespace-separated text (comment lines start with #)."""
-    rows = []
+def width(name):
+    """Numbers per rotation that representation ``name`` reads (None: it is output only)."""
+    return _REPRESENTATIONS[name]
+
+
+def read_rows(text, width=None):
+    r"""Rows of numbers from CSV or whitespace-separated text, with their line numbers.
+
+    Comment lines start with ``#``; a first line of column names (``phi,theta,psi``)
+    is skipped. With ``width``, every row must hold that many numbers.
+
+    Returns
+    -------
+    lines : list of int
+        Line number (from 1) of each row.
+    rows : list of list of float
+
+    Examples
+    --------
+    >>> read_rows("phi, theta, psi\n30, 45, 60\n\n0 90 0\n", width=3)
+    ([2, 4], [[30.0, 45.0, 60.0], [0.0, 90.0, 0.0]])
+    >>> read_rows("1 2 3\n4 5\n", width=3)
+    Traceback (most recent call last):
+        ...
+    kreisel.cli.convert.ConversionError: input line 2: expected 3 numbers per rotation, got 2
+    """
+    if "\x00" in text:
+        raise ConversionError("input: not a text file (it contains NUL bytes); expected rows of numbers")
+    lines, rows = [], []
     for number, line in enumerate(io.StringIO(text), start=1):
         line = line.strip()
         if not line or line.startswith("#"):
             continue
-        fields = next(csv.reader([line])) if "," in line else line.split()
+        fields = [f.strip() for f in (next(csv.reader([line])) if "," in line else line.split())]
         try:
-            rows.append([float(f) for f in fields if f.strip()])
+            values = [float(f) for f in fields if f]
         except ValueError:
-            raise ConversionError(f"input line {number}: not a row of numbers: {line!r}") from None
-    return rows
+            if not rows and not any(_is_number(f) for f in fields):
+                continue  # a header line of column names
+            raise ConversionError(f"input line {number}: not a row of numbers: {line[:60]!r}") from None
+        if width is not None and len(values) != width:
+            raise ConversionError(f"input line {number}: expected {width} numbers per rotation, got {len(values)}")
+        lines.append(number)
+        rows.append(values)
+    return lines, rows
 
 
-def convert(source, target, rows, degrees=False):
+def _is_number(text):
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     """Convert ``rows`` (a list of equal-length number lists) between representations.
 
     Returns an array with one output row per input row (complex for ``su2``
-    and ``cayley_klein``).
+    and ``cayley_klein``). ``scalar_last`` reads and writes quaternions as
+    ``[x, y, z, w]`` instead of kreisel's ``[w, x, y, z]``. ``lines`` (the
+    input line of each row) lets an invalid rotation be reported by its line.
 
     Examples
     --------
     >>> convert("euler:ZXZ", "quat", [[90, 0, 0]], degrees=True).round(6)
     array([[0.707107, 0.      , 0.      , 0.707107]])
+    >>> convert("euler:ZXZ", "quat", [[90, 0, 0]], degrees=True, scalar_last=True).round(6)
+    array([[0.      , 0.      , 0.707107, 0.707107]])
+    >>> convert("quat", "matrix", [[1, 0, 0, 0], [0, 0, 0, 0]], lines=[3, 4])
+    Traceback (most recent call last):
+        ...
+    kreisel.cli.convert.ConversionError: input line 4: invalid quat: q must be nonzero quaternions (a zero quaternion is not a rotation)
     """
     src, src_seq = parse_representation(source, "--from")
     dst, dst_seq = parse_representation(target, "--to")
-    width = _REPRESENTATIONS[src]
-    if width is None:
+    count = _REPRESENTATIONS[src]
+    if count is None:
         raise ConversionError(f"--from: {src} has complex entries; convert from a real representation")
     values = np.asarray(rows, dtype=np.float64)
-    if values.ndim != 2 or values.shape[1] != width:
+    if values.ndim != 2 or values.shape[1] != count:
         got = values.shape[1] if values.ndim == 2 else "ragged rows of"
-        raise ConversionError(f"--from {source} takes {width} numbers per rotation, got {got} numbers")
+        raise ConversionError(f"--from {source} takes {count} numbers per rotation, got {got} numbers")
     if src == "matrix":
         values = values.reshape(-1, 3, 3)
-    rotation = _from(src, src_seq, values, degrees)
+    if src == "quat" and scalar_last:
+        values = np.roll(values, 1, axis=-1)
+    try:
+        rotation = _from(src, src_seq, values, degrees)
+    except ValueError as exc:
+        raise ConversionError(_first_invalid(src, src_seq, values, degrees, lines, exc)) from None
     out = _as(rotation, dst, dst_seq, degrees)
+    if dst == "quat" and scalar_last:
+        out = np.roll(out, -1, axis=-1)
     return out.reshape(out.shape[0], -1)
+
+
+def _first_invalid(name, seq, values, degrees, lines, batch_error):
+    """Message naming the first row that ``_from`` refuses (and its input line)."""
+    for index in range(len(values)):
+        try:
+            _from(name, seq, values[index:index + 1], degrees)
+        except ValueError as exc:
+            where = f"input line {lines[index]}: " if lines is not None and len(values) > 1 else ""
+            return f"{where}invalid {name}: {exc}"
+    return f"invalid {name}: {batch_error}"
 
 
 def _from(name, seq, values, degrees):

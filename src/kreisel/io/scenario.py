@@ -35,6 +35,7 @@ from __future__ import annotations
 import dataclasses
 import pathlib
 
+from .bundled import scenario_path
 from .schema import Document, Key, SchemaError, read_text
 
 
@@ -141,7 +142,12 @@ class Scenario:
 
 
 def load_scenario(path):
-    """Read and validate a scenario file; see the module docstring for the schema.
+    """Read and validate a scenario file or bundled scenario; see the module docstring for the schema.
+
+    ``path`` is a file, or the name of a bundled scenario (``kreisel examples``
+    lists them) when no file of that name exists. This and
+    :func:`parse_scenario` are the one place scenarios are checked: the
+    command line and the viewer both call them.
 
     Raises
     ------
@@ -159,7 +165,13 @@ def load_scenario(path):
     ('rigid_body', 'Tennis racket (Dzhanibekov) flips', 'tennis_racket.toml')
     >>> scenario.data["body"]["moments"].tolist(), scenario.data["initial"]["frame"]
     ([1.0, 2.0, 3.0], 'body')
+    >>> load_scenario("fast_top").title
+    'Fast top'
     """
+    try:
+        path = scenario_path(path)
+    except FileNotFoundError as exc:
+        raise ScenarioError(str(exc)) from None
     return parse_scenario(read_text(path, ScenarioError, "scenario"), path)
 
 
@@ -188,6 +200,9 @@ def parse_scenario(text, path=None):
     document = Document(text, path, ScenarioError)
     data = document.table(_SCHEMA)
     kind = data["kind"]
+    if not document.raw:
+        raise ScenarioError(f"{document.label}: the file is empty; a scenario needs [body], [initial] and "
+                            "[integration] tables (`kreisel examples NAME` copies a complete one)")
     for name in _REQUIRED_TABLES[kind]:
         if name not in data:
             raise ScenarioError(f"{document.label}: kind = {kind!r} needs a [{name}] table")
@@ -196,12 +211,17 @@ def parse_scenario(text, path=None):
         if spec.kind in ("table", "tables") and name in data and name not in allowed:
             raise ScenarioError(f"{document.label}: [{name}] does not belong to a scenario of kind = {kind!r}")
     if kind == "rigid_body":
-        _check_body(document, data["body"])
+        _check_body(document, data["body"], path)
         if data["initial"].get("attitude"):
-            document.exactly_one(data["initial"]["attitude"], ("quat", "rotvec", "matrix", "euler"),
-                                 ("initial", "attitude"))
+            _check_attitude(document, data["initial"]["attitude"])
         for index, entry in enumerate(data.get("torque", [])):
             _check_torque(document, entry, ("torque", index))
+        _check_integration(document, data["integration"])
+    elif kind == "foucault":
+        _check_foucault(document, data["foucault"])
+    elif kind == "coning" and data["coning"]["half_angle_deg"] >= 90.0:
+        document.fail(("coning", "half_angle_deg"),
+                      f"expected a half-angle below 90 degrees, got {data['coning']['half_angle_deg']:g}")
     return Scenario(kind, data, pathlib.Path(path) if path is not None else None)
 
 
@@ -211,19 +231,92 @@ _TORQUE_NEEDS = {"gravity": ("weight", "lever"), "constant_body": ("torque",), "
                  "damping": ("coefficient",)}
 
 
-def _check_body(document, body):
+def _check_body(document, body, path):
     source = document.exactly_one(body, ("moments", "tensor", "shape", "mesh"), ("body",))
+    if source == "mesh":
+        mesh = pathlib.Path(path).parent / body["mesh"] if path is not None else pathlib.Path(body["mesh"])
+        if not mesh.is_file():
+            document.fail(("body", "mesh"), f"expected a mesh file, but {str(mesh)!r} does not exist")
+        return
+    from ..inertia import RigidBody
+
     if source == "shape":
-        for name in _SHAPE_NEEDS[body["shape"]]:
+        needs = _SHAPE_NEEDS[body["shape"]]
+        for name in needs:
             if name not in body:
                 document.fail(("body", "shape"), f"shape {body['shape']!r} needs body.{name}")
-    if source in ("moments", "tensor"):
-        from ..inertia import RigidBody
-
         try:
-            RigidBody(body[source], mass=body["mass"])
+            getattr(RigidBody, body["shape"])(body["mass"], *(body[name] for name in needs))
         except ValueError as exc:
-            document.fail(("body", source), f"not a physical rigid body: {exc}")
+            document.fail(("body", needs[0]), f"not a physical {body['shape'].replace('_', ' ')}: {exc}")
+        return
+    try:
+        RigidBody(body[source], mass=body["mass"])
+    except ValueError as exc:
+        document.fail(("body", source), f"not a physical rigid body: {exc}")
+
+
+_ATTITUDE_EXPECTED = {
+    "quat": "a nonzero quaternion [q0, q1, q2, q3], scalar first (it is normalised)",
+    "matrix": "a rotation matrix (orthonormal rows, determinant +1), body -> space",
+    "rotvec": "a rotation vector in radians",
+    "euler": "Euler angles",
+}
+
+
+def _check_attitude(document, attitude):
+    """Convert the attitude as the run will, so that every value the run would refuse is refused here."""
+    from ..so3.euler import parse_sequence
+    from ..so3.rotation import Rotation
+
+    key = ("initial", "attitude")
+    source = document.exactly_one(attitude, ("quat", "rotvec", "matrix", "euler"), key)
+    if source != "euler":
+        for name in ("seq", "degrees"):
+            if name in document.raw.get("initial", {}).get("attitude", {}):
+                document.fail(key + (name,), f"only used with euler, not with {source}")
+    if source == "euler":
+        try:
+            parse_sequence(attitude["seq"])
+        except ValueError as exc:
+            document.fail(key + ("seq",), "expected an Euler sequence of 3 letters x, y, z, all uppercase "
+                                          "(intrinsic) or all lowercase (extrinsic), no axis twice in a row "
+                                          f"(e.g. 'ZXZ', 'xyz'): {_reason(exc)}")
+    try:
+        if source == "euler":
+            Rotation.from_euler(attitude["seq"], attitude["euler"], degrees=attitude["degrees"])
+        elif source == "quat":
+            Rotation.from_quat(attitude["quat"])
+        elif source == "matrix":
+            Rotation.from_matrix(attitude["matrix"])
+        else:
+            Rotation.from_rotvec(attitude["rotvec"])
+    except ValueError as exc:
+        document.fail(key + (source,), f"expected {_ATTITUDE_EXPECTED[source]}: {_reason(exc)}")
+
+
+def _reason(exc):
+    """The library's message without its argument name, which the scenario key replaces."""
+    text = str(exc)
+    first, _, rest = text.partition(" ")
+    return rest if rest and first.isidentifier() and rest.startswith(("must", "may", "has", "is")) else text
+
+
+def _check_integration(document, grid):
+    from ..dynamics.engine import ADAPTIVE
+
+    method = grid.get("method", "dop853")
+    if method in ADAPTIVE and "dt" in grid:
+        document.fail(("integration", "dt"), f"only used by fixed-step methods; {method!r} chooses its own steps")
+    if method not in ADAPTIVE and "dt" not in grid:
+        document.fail(("integration", "method"), f"method {method!r} is fixed-step: give integration.dt (seconds)")
+
+
+def _check_foucault(document, spec):
+    if not -90.0 <= spec["latitude_deg"] <= 90.0:
+        document.fail(("foucault", "latitude_deg"), f"expected a latitude in [-90, 90] degrees, got {spec['latitude_deg']:g}")
+    if spec["amplitude"] >= 1.5707963267948966:
+        document.fail(("foucault", "amplitude"), f"expected an angle below pi/2 rad, got {spec['amplitude']:g}")
 
 
 def _check_torque(document, entry, key):

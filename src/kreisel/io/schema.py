@@ -126,9 +126,11 @@ def read_text(path, error, what):
     kreisel.io.schema.SchemaError: /no/such/recipe.toml: cannot read recipe (No such file or directory)
     """
     try:
-        return pathlib.Path(path).read_text(encoding="utf-8")
+        return pathlib.Path(path).read_text(encoding="utf-8-sig")  # -sig: a byte-order mark is not TOML
     except OSError as exc:
         raise error(f"{path}: cannot read {what} ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise error(f"{path}: not a text file (byte {exc.start} is not UTF-8); expected a TOML {what}") from None
 
 
 class Document:
@@ -169,10 +171,16 @@ class Document:
     def __init__(self, text, path=None, error=SchemaError):
         self.error = error
         self.label = str(path) if path is not None else error.unnamed
+        text = text.removeprefix("\ufeff")
         try:
             self.raw = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
-            raise error(f"{self.label}: {exc}") from None
+            # the parser says "what (at line L, column C)": put the line where every other message has it
+            match = re.fullmatch(r"(.*) \(at line (\d+), column (\d+)\)", str(exc))
+            where, what = (f":{match[2]}", f"{match[1]} (column {match[3]})") if match else ("", str(exc))
+            raise error(f"{self.label}{where}: TOML syntax error: {what}") from None
+        except RecursionError:
+            raise error(f"{self.label}: arrays or tables nested too deeply to read") from None
         self._lines = _key_lines(text)
 
     def line_of(self, key):

@@ -313,7 +313,9 @@ class _Reporter:
             if self.bar is not None:
                 self.bar.update(self.task, completed=self.done)
         elif self.bar is not None:
-            self.bar.console.print(f"[yellow]chunk {chunk}: {event}[/yellow] {message}")
+            from rich.markup import escape
+
+            self.bar.console.print(f"[yellow]chunk {chunk}: {event}[/yellow] {escape(str(message))}")
         if self.callback is not None:
             self.callback(SweepProgress(event, chunk, self.done, self.total, message))
 

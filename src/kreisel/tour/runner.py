@@ -7,6 +7,7 @@ import time
 import traceback
 
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
@@ -72,13 +73,14 @@ def run_tour(out_dir="tour", quick=False, console=None):
         table.add_column(name)
     for s in sections:
         mark = "[green]pass[/]" if s.ok else "[red]FAIL[/]"
-        table.add_row(s.title, s.seed, f"{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}", f"{s.seconds:.1f} s")
+        table.add_row(escape(s.title), escape(s.seed), f"{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}",
+                      f"{s.seconds:.1f} s")
     console.print(table)
     for s in sections:
         for c in s.checks:
             if not c.ok:
-                console.print(f"[red]✗[/] {s.title}: {c.label} = {c.value} (expected {c.expected})")
+                console.print("[red]✗[/] " + escape(f"{s.title}: {c.label} = {c.value} (expected {c.expected})"))
         if s.error:
-            console.print(f"[red]✗[/] {s.title}: {s.error}")
-    console.print(f"report: {index}")
+            console.print("[red]✗[/] " + escape(f"{s.title}: {s.error}"))
+    console.print(escape(f"report: {index}"))
     return all(s.ok for s in sections)

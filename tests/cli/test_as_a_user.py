@@ -1,0 +1,142 @@
+"""The ``kreisel`` command run as a user runs it: a subprocess, real files, exit status and standard error."""
+
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+
+SRC = pathlib.Path(kr.__file__).resolve().parents[1]
+
+GOOD = """\
+title = "short racket"
+[body]
+moments = [1.0, 2.0, 3.0]
+[initial]
+omega = [0.01, 1.0, 0.01]
+[initial.attitude]
+ATTITUDE
+[integration]
+t_end = 2.0
+n_samples = 21
+"""
+
+
+def kreisel(*args, cwd=None, stdin=None):
+    """Run ``python -m kreisel ARGS``; the completed process (text output)."""
+    env = dict(os.environ, PYTHONPATH=str(SRC), COLUMNS="200")
+    return subprocess.run([sys.executable, "-m", "kreisel", *map(str, args)], cwd=cwd, env=env, input=stdin,
+                          capture_output=True, text=True, timeout=600)
+
+
+def usage_error(process, *fragments):
+    """Exit status 2, one error line naming every fragment, no traceback."""
+    assert process.returncode == 2, (process.stdout, process.stderr)
+    assert "Traceback" not in process.stderr
+    lines = process.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), process.stderr
+    for fragment in fragments:
+        assert fragment in lines[0], (fragment, lines[0])
+
+
+@pytest.mark.parametrize("attitude, line, key, expected", [
+    ('seq = "ZXQ"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "letters x, y, z"),
+    ('seq = "ZZX"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "no axis twice in a row"),
+    ("quat = [0, 0, 0, 0]", 7, "initial.attitude.quat", "a nonzero quaternion"),
+    ("matrix = [[1, 0, 0], [0, 2, 0], [0, 0, 1]]", 7, "initial.attitude.matrix", "a rotation matrix"),
+    ('quat = [1, 0, 0, 0]\nseq = "ZXZ"', 8, "initial.attitude.seq", "only used with euler"),
+])
+def test_bad_attitude_values_are_named_before_the_run(tmp_path, attitude, line, key, expected):
+    scenario = tmp_path / "spin.toml"
+    scenario.write_text(GOOD.replace("ATTITUDE", attitude))
+    usage_error(kreisel("simulate", scenario), f"spin.toml:{line}: {key}: expected" if "only" not in expected
+                else f"spin.toml:{line}: {key}: {expected}", expected)
+
+
+def test_scenario_file_defects_are_one_clear_line(tmp_path):
+    good = GOOD.replace("ATTITUDE", "quat = [1, 0, 0, 0]")
+    files = {
+        "bom.toml": ("\ufeff" + good, None),
+        "empty.toml": ("", "the file is empty; a scenario needs [body], [initial] and [integration] tables"),
+        "deep.toml": ("a = " + "[" * 5000 + "]" * 5000 + "\n", "nested too deeply"),
+        "syntax.toml": (good.replace("t_end = 2.0", "t_end = = 2.0"), "syntax.toml:9: TOML syntax error"),
+        "fixed.toml": (good.replace("t_end = 2.0", "t_end = 2.0\nmethod = 'rk4'"), "give integration.dt"),
+    }
+    for name, (text, message) in files.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+        process = kreisel("simulate", name, cwd=tmp_path)
+        if message is None:
+            assert process.returncode == 0, process.stderr
+        else:
+            usage_error(process, f"{name}", message)
+    (tmp_path / "binary.toml").write_bytes(b"\x89PNG\r\n\x1a\n\x00\xff")
+    usage_error(kreisel("simulate", "binary.toml", cwd=tmp_path), "binary.toml: not a text file")
+
+
+def test_bundled_scenario_names_work_and_typos_get_the_nearest_name(tmp_path):
+    process = kreisel("simulate", "tennis_racket", cwd=tmp_path)
+    assert process.returncode == 0, process.stderr
+    assert "2001 samples" in process.stdout
+    usage_error(kreisel("simulate", "tenis_racket", cwd=tmp_path), "tenis_racket: no such file",
+                "did you mean 'tennis_racket'?")
+    usage_error(kreisel("sweep", "lagrange_apx", cwd=tmp_path), "did you mean 'lagrange_apex'?")
+
+
+def test_examples_copy_twice_needs_force(tmp_path):
+    assert kreisel("examples", "fast_top", cwd=tmp_path).returncode == 0
+    (tmp_path / "fast_top.toml").write_text("# my edits\n")
+    usage_error(kreisel("examples", "fast_top", cwd=tmp_path), "fast_top.toml already exists", "--force")
+    assert (tmp_path / "fast_top.toml").read_text() == "# my edits\n"
+    assert kreisel("examples", "fast_top", "--force", cwd=tmp_path).returncode == 0
+    assert (tmp_path / "fast_top.toml").read_text() == kr.io.example_path("fast_top").read_text()
+    usage_error(kreisel("examples", "fast_tp", cwd=tmp_path), "did you mean 'fast_top'?")
+
+
+def numbers(text):
+    return np.array([[float(x) for x in line.split()] for line in text.strip().splitlines()])
+
+
+def test_convert_takes_negative_numbers_as_typed():
+    process = kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degrees")
+    assert process.returncode == 0, process.stderr
+    np.testing.assert_allclose(numbers(process.stdout)[0], kr.euler_to_quat("ZXZ", [-30, 45, 60], degrees=True),
+                               atol=1e-9)
+    process = kreisel("convert", "--from", "rotvec", "--to", "quat", "--scalar-last", "-1e-3", "0", "-.5")
+    assert process.returncode == 0, process.stderr
+    np.testing.assert_allclose(numbers(process.stdout)[0], np.roll(kr.rotvec_to_quat([-1e-3, 0, -0.5]), -1),
+                               atol=1e-9)
+    usage_error(kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degree"),
+                "no such option: --degree")
+
+
+def test_convert_input_files(tmp_path):
+    angles = tmp_path / "angles.csv"
+    angles.write_text("phi,theta,psi\n30,45,60\n-10,20,-30\n")
+    process = kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "--degrees", "-i", angles)
+    assert process.returncode == 0, process.stderr
+    np.testing.assert_allclose(numbers(process.stdout),
+                               kr.euler_to_quat("ZXZ", [[30, 45, 60], [-10, 20, -30]], degrees=True), atol=1e-9)
+    ragged = tmp_path / "ragged.csv"
+    ragged.write_text("30,45,60\n# a comment\n1,2\n")
+    usage_error(kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-i", ragged),
+                "input line 3: expected 3 numbers per rotation, got 2")
+    quats = tmp_path / "q.txt"
+    quats.write_text("1 0 0 0\n0 0 0 0\n")
+    usage_error(kreisel("convert", "--from", "quat", "--to", "matrix", "-i", quats), "input line 2: invalid quat")
+    binary = tmp_path / "data.bin"
+    binary.write_bytes(bytes(range(256)))
+    usage_error(kreisel("convert", "--from", "quat", "--to", "matrix", "-i", binary), "not a text file")
+    usage_error(kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-i", angles, "1", "2", "3"),
+                "not both")
+    usage_error(kreisel("convert", "--from", "quat", "--to", "matrix", "--to", "rotvec", "1", "0", "0", "0"),
+                "--to given 2 times")
+
+
+def test_convert_help_states_the_layouts():
+    text = " ".join(kreisel("convert", "--help").stdout.split())
+    for phrase in ("scalar first", "--scalar-last", "row-major", "the axis, then the angle", "-30 45 60"):
+        assert phrase in text, phrase
