@@ -16,8 +16,8 @@ import numpy as np
 from _common import header, load_average, markdown_table, median_time, write_results
 
 import kreisel as kr
-from kreisel.kinematics._series import BORTZ_SERIES, BORTZ_SERIES_BELOW
-from kreisel.so3 import _gufunc
+from kreisel._compiled.series import BORTZ_SERIES, BORTZ_SERIES_BELOW
+from kreisel._compiled import gufunc as _gufunc
 
 N = 1_000_000
 TOL = 1e-8

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import kreisel as kr
-from kreisel.so3 import _gufunc
+from kreisel._compiled import gufunc as _gufunc
 
 N = 37
 

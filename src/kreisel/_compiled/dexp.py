@@ -2,18 +2,16 @@
 
 They take and return plain floats and tuples so that the gufunc loops in
 this package (and integrators in higher layers) can inline them without
-allocating. Conventions as in :mod:`kreisel.so3._kernels`.
+allocating. Conventions as in :mod:`kreisel._compiled.kernels`.
 """
 
 from __future__ import annotations
 
 import math
 
-from numba import njit
+from . import cached
+from . import series as s
 
-from . import _series as s
-
-_jit = njit(cache=True, nogil=True)
 
 _BORTZ_SERIES = s.BORTZ_SERIES
 _BORTZ_SERIES_BELOW = s.BORTZ_SERIES_BELOW
@@ -24,7 +22,7 @@ _SINE_REMAINDER_SLOPE_SERIES = s.SINE_REMAINDER_SLOPE_SERIES
 _SLOPE_SERIES_BELOW = s.SLOPE_SERIES_BELOW
 
 
-@_jit
+@cached
 def horner(coefficients, x):
     """Polynomial with ``coefficients`` highest order first, at ``x``."""
     acc = 0.0
@@ -33,12 +31,12 @@ def horner(coefficients, x):
     return acc
 
 
-@_jit
+@cached
 def cross(ax, ay, az, bx, by, bz):
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
 
 
-@_jit
+@cached
 def dexp_coefficients(angle):
     """``A = (1 - cos ψ)/ψ²`` and ``B = (ψ - sin ψ)/ψ³`` of Theory §3.4.
 
@@ -57,7 +55,7 @@ def dexp_coefficients(angle):
     return a, b
 
 
-@_jit
+@cached
 def dexp_coefficient_slopes(angle):
     """``A'(ψ)/ψ`` and ``B'(ψ)/ψ`` for the time derivative of the dexp matrix."""
     if angle < _SLOPE_SERIES_BELOW:
@@ -71,7 +69,7 @@ def dexp_coefficient_slopes(angle):
     return da, db
 
 
-@_jit
+@cached
 def bortz_coefficient(angle):
     """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of Theory §3.5, written as
     ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
@@ -82,13 +80,13 @@ def bortz_coefficient(angle):
     return (1.0 - h * math.cos(h) / math.sin(h)) / (angle * angle)
 
 
-@_jit
+@cached
 def rotvec_singular(angle, tol):
     """True where dexp⁻¹ has a pole: |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``."""
     return angle > math.pi and abs(math.sin(0.5 * angle)) <= tol
 
 
-@_jit
+@cached
 def axis_rotate(k, c, s, x, y, z):
     """Active rotation of (x, y, z) about coordinate axis ``k`` by the angle with cosine c, sine s."""
     if k == 0:
@@ -98,7 +96,7 @@ def axis_rotate(k, c, s, x, y, z):
     return c * x - s * y, s * x + c * y, z
 
 
-@_jit
+@cached
 def unit(k):
     if k == 0:
         return 1.0, 0.0, 0.0
@@ -107,7 +105,7 @@ def unit(k):
     return 0.0, 0.0, 1.0
 
 
-@_jit
+@cached
 def euler_columns(x0, x1, x2, code):
     """Columns of the Euler-rate matrix M (ω = M · rates) and det M.
 

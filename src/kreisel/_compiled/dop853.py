@@ -26,7 +26,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from . import cached, generic
 
 OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
 MESSAGES = {
@@ -42,8 +43,6 @@ _MAX_FACTOR = 10.0
 _ERROR_EXPONENT = -1.0 / 8.0
 _EPS = 2.220446049250313e-16
 
-_cached = njit(cache=True, nogil=True)
-_generic = njit(nogil=True, inline="always")  # takes ``rhs`` as an argument: see the module note
 
 _TABLES = []
 
@@ -65,7 +64,7 @@ def check_status(status, messages=MESSAGES):
         raise RuntimeError(f"integration failed: {messages[int(status)]}")
 
 
-@_generic
+@generic
 def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     """Starting step of Hairer's algorithm (scipy's ``select_initial_step``), at most ``span``."""
     ny = y.size
@@ -94,7 +93,7 @@ def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     return min(100.0 * h0, h1, span)
 
 
-@_generic
+@generic
 def stages(rhs, args, t, y, h, first, last, tables, k, tmp):
     """Stages ``first … last-1``: k_s = f(t + c_s h, y + h Σ_r a_sr k_r)."""
     A, C = tables[0], tables[2]
@@ -108,7 +107,7 @@ def stages(rhs, args, t, y, h, first, last, tables, k, tmp):
         rhs(t + C[s] * h, tmp, args, k, s * ny)
 
 
-@_generic
+@generic
 def attempt(rhs, args, t, y, h, tables, k, tmp, y_new):
     """One step of size ``h`` from ``(t, y)`` with ``k[:ny] = f(t, y)``: ``y_new`` and its slope (stage 12)."""
     ny = y.size
@@ -122,7 +121,7 @@ def attempt(rhs, args, t, y, h, tables, k, tmp, y_new):
     rhs(t + h, y_new, args, k, N_STAGES * ny)
 
 
-@_cached
+@cached
 def error_norm(y, y_new, h, k, E3, E5, rtol, atol):
     """Hairer's combined 5th/3rd-order error estimate, scaled RMS; ``inf`` when not finite."""
     ny = y.size
@@ -143,19 +142,19 @@ def error_norm(y, y_new, h, k, E3, E5, rtol, atol):
     return err if math.isfinite(err) else np.inf
 
 
-@_generic
+@generic
 def too_small(h, t):
     """Whether ``h`` fell below round-off at ``t`` (the integration then stops with ``STEP_TOO_SMALL``)."""
     return h < 10.0 * _EPS * max(abs(t), 1e-300)
 
 
-@_generic
+@generic
 def shrunk(h, err):
     """The step to retry after a rejected step ``h`` with error norm ``err`` ≥ 1."""
     return h * max(_MIN_FACTOR, _SAFETY * err**_ERROR_EXPONENT)
 
 
-@_generic
+@generic
 def next_step(h, err, rejected, clipped, h_natural):
     """The step to try after accepting ``h`` (error norm ``err`` < 1).
 
@@ -169,7 +168,7 @@ def next_step(h, err, rejected, clipped, h_natural):
     return max(h * factor, h_natural) if clipped else h * factor
 
 
-@_generic
+@generic
 def advance(rhs, args, t, y, h, t_end, max_step, rtol, atol, tables, k, tmp, y_new):
     """One accepted step from ``t`` towards ``t_end`` (never past it), trying ``h`` first.
 
@@ -193,7 +192,7 @@ def advance(rhs, args, t, y, h, t_end, max_step, rtol, atol, tables, k, tmp, y_n
         rejected = True
 
 
-@_generic
+@generic
 def dense_coefficients(rhs, args, t, y, y_new, h, tables, k, tmp, dense):
     """Three extra stages and the (7, ny) coefficients of the 7th-order interpolant of the last step."""
     ny = y.size
@@ -211,7 +210,7 @@ def dense_coefficients(rhs, args, t, y, y_new, h, tables, k, tmp, dense):
             dense[3 + p, i] = h * acc
 
 
-@_cached
+@cached
 def interpolate(dense, y, x, out):
     """``out`` = the state at the fraction ``x`` ∈ [0, 1] of the step that starts at ``y``."""
     for i in range(y.size):
@@ -222,7 +221,7 @@ def interpolate(dense, y, x, out):
         out[i] = v + y[i]
 
 
-@_generic
+@generic
 def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_outputs):
     """Write the state at every sorted time ``t_out`` (``t_out[0]`` the initial time) into ``out``.
 

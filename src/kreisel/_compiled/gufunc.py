@@ -19,9 +19,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import guvectorize, njit, prange
+from numba import guvectorize, prange
 
 from .._validation import as_float_array
+from . import cached, parallel
 
 #: Nearly orthogonal matrices (max |RᵀR - 1| below this) are projected onto
 #: SO(3); farther ones are refused as "not a rotation".
@@ -140,7 +141,7 @@ def gufunc(signatures, layout, parallel=None, shared=()):
     return lambda function: LazyGufunc(function, signatures, layout, parallel, shared)
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _smallest_quat_norm2(flat, start, stop):
     # One pass, no temporaries: the batch checks must stay cheap next to the
     # memory-bound kernels they guard. NaN compares false, so it is mapped to -1.
@@ -154,7 +155,7 @@ def _smallest_quat_norm2(flat, start, stop):
     return smallest
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _all_finite(flat, start, stop):
     for i in range(start, stop):
         x = flat[i]
@@ -168,7 +169,7 @@ def _all_finite(flat, start, stop):
 _CHUNK = 36 * 4096
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _smallest_quat_norm2_parallel(flat, chunk):
     pieces = (flat.size + chunk - 1) // chunk
     smallest = np.empty(pieces)
@@ -177,7 +178,7 @@ def _smallest_quat_norm2_parallel(flat, chunk):
     return smallest.min()
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _all_finite_parallel(flat, chunk):
     pieces = (flat.size + chunk - 1) // chunk
     finite = np.empty(pieces, dtype=np.bool_)
@@ -223,7 +224,7 @@ def vector_array(v, name, length=3):
     return finite_array(v, name, (length,))
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _orthogonality_defect(flat, start, stop):
     # Largest |RᵀR - 1| entry and smallest determinant over flat[start:stop].
     # max() and min() may drop NaN, so the sum of all defects (NaN or inf
@@ -250,7 +251,7 @@ def _orthogonality_defect(flat, start, stop):
     return worst, smallest_det
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _orthogonality_defect_parallel(flat, chunk):
     pieces = (flat.size + chunk - 1) // chunk
     worst = np.empty(pieces)

@@ -18,16 +18,14 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
-_jit = njit(cache=True, fastmath=False, nogil=True)
+from . import cached
 
 
 # ---------------------------------------------------------------------------
 # Tuple kernels: one per element operation.
 
 
-@_jit
+@cached
 def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
     """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
     return (
@@ -38,14 +36,14 @@ def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
     )
 
 
-@_jit
+@cached
 def quat_unit(q0, q1, q2, q3):
     """``q / |q|``."""
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     return q0 / n, q1 / n, q2 / n, q3 / n
 
 
-@_jit
+@cached
 def rotated(q0, q1, q2, q3, x, y, z):
     """``R(q) v`` for a unit quaternion, without forming the matrix."""
     # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
@@ -59,7 +57,7 @@ def rotated(q0, q1, q2, q3, x, y, z):
 _rotated = rotated
 
 
-@_jit
+@cached
 def quat_matrix(q0, q1, q2, q3):
     """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit quaternion."""
     s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
@@ -76,7 +74,7 @@ def quat_matrix(q0, q1, q2, q3):
     )
 
 
-@_jit
+@cached
 def matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22):
     """Unit quaternion with q0 >= 0 of a rotation matrix given row by row (Shepperd/Markley).
 
@@ -113,7 +111,7 @@ def matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22):
     return q0 / n, q1 / n, q2 / n, q3 / n
 
 
-@_jit
+@cached
 def rotvec_quat(x, y, z):
     """Exponential ``(cos(ψ/2), n sin(ψ/2))``, ψ = |(x, y, z)|, with no sign flip.
 
@@ -131,7 +129,7 @@ def rotvec_quat(x, y, z):
     return c, s * x, s * y, s * z
 
 
-@_jit
+@cached
 def quat_rotvec(q0, q1, q2, q3):
     """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
 
@@ -154,31 +152,31 @@ def quat_rotvec(q0, q1, q2, q3):
 # Array forms for callers holding one element in an array.
 
 
-@_jit
+@cached
 def qmul(p, q, out):
     """Hamilton product ``out = p q`` (``out`` may be ``p`` or ``q``)."""
     out[0], out[1], out[2], out[3] = quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
-@_jit
+@cached
 def qnormalize(q):
     """Scale ``q`` in place to unit norm."""
     q[0], q[1], q[2], q[3] = quat_unit(q[0], q[1], q[2], q[3])
 
 
-@_jit
+@cached
 def qrotate(q, v, out):
     """``out = R(q) v`` for a unit quaternion, without forming the matrix (``out`` may be ``v``)."""
     out[0], out[1], out[2] = rotated(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
 
 
-@_jit
+@cached
 def qrotate_inverse(q, v, out):
     """``out = R(q)^T v`` for a unit quaternion, the rotation by its conjugate (``out`` may be ``v``)."""
     out[0], out[1], out[2] = rotated(q[0], -q[1], -q[2], -q[3], v[0], v[1], v[2])
 
 
-@_jit
+@cached
 def write_matrix(q0, q1, q2, q3, out):
     """Write ``R(q)`` (Theory §2.4) of a possibly non-unit quaternion into ``out``."""
     (
@@ -188,25 +186,25 @@ def write_matrix(q0, q1, q2, q3, out):
     ) = quat_matrix(q0, q1, q2, q3)  # fmt: skip
 
 
-@_jit
+@cached
 def quat_to_matrix(q, out):
     """``out = R(q)`` exactly as printed in Theory §2.4 (q need not be unit: it is scaled)."""
     write_matrix(q[0], q[1], q[2], q[3], out)
 
 
-@_jit
+@cached
 def matrix_quat(R):
     """:func:`matrix_entries_quat` of a 3×3 array."""
     return matrix_entries_quat(R[0, 0], R[0, 1], R[0, 2], R[1, 0], R[1, 1], R[1, 2], R[2, 0], R[2, 1], R[2, 2])
 
 
-@_jit
+@cached
 def rotvec_to_quat(psi, out):
     """``out`` = :func:`rotvec_quat` of ``psi``."""
     out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
 
 
-@_jit
+@cached
 def quat_to_rotvec(q, out):
     """``out`` = :func:`quat_rotvec` of ``q``."""
     out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])

@@ -16,18 +16,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from .._dop853 import NOT_FINITE, OK, integrate
-from ..so3._kernels import _rotated as rotated
-from ..so3._kernels import qnormalize, quat_product, rotvec_quat
+from .._compiled import cached, inlined, parallel
+from .._compiled.dop853 import NOT_FINITE, OK, integrate
+from .._compiled.kernels import _rotated as rotated
+from .._compiled.kernels import qnormalize, quat_product, rotvec_quat
 from ._rows import CALLBACK
 from .forces import evaluate_force
 from .torques import DAMPING, evaluate_torque
-
-_jit = njit(cache=True, nogil=True)
-# the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
-_inline = njit(cache=True, nogil=True, inline="always")
 
 # method ids (the public names live in engine.METHODS)
 DOP853, SPLITTING, SPLITTING4, DMV, RKMK4, MIDPOINT, RK4 = 0, 1, 2, 3, 4, 5, 6
@@ -41,7 +38,8 @@ _EPS = 2.220446049250313e-16
 _MAX_ITER = 100
 
 
-@_inline
+# the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
+@inlined
 def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
     """dy[offset:offset+ny] = Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m.
 
@@ -70,9 +68,9 @@ def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
             dy[offset + 10 + k] = scratch[10 + k] / mass
 
 
-@_inline
+@inlined
 def _model_rhs(t, y, model, dy, offset):
-    """:func:`rhs` in the calling convention of :mod:`kreisel._dop853`; ``model = (inertia, mass, rows, frows, scratch)``."""
+    """:func:`rhs` in the calling convention of :mod:`kreisel._compiled.dop853`; ``model = (inertia, mass, rows, frows, scratch)``."""
     rhs(t, y, y.size, model[0], model[1], model[2], model[3], dy, offset, model[4])
 
 
@@ -81,7 +79,7 @@ def _model_rhs(t, y, model, dy, offset):
 # Workspace: five flat arrays a, b, c, d, e of length 16 passed down from the driver.
 
 
-@_jit
+@cached
 def _quat_times_axis(y, k, c, s):
     """q ← q ⊗ (c, s e_k) for q = y[3:7]: a body-axis rotation applied on the right."""
     i = (k + 1) % 3
@@ -93,7 +91,7 @@ def _quat_times_axis(y, k, c, s):
     y[4 + j] = c * qj - s * qi
 
 
-@_jit
+@cached
 def _axis_flow(k, h, inertia, m, y):
     """Exact flow of H_k = m_k²/(2 I_k): m turns about body axis k by −h ω_k, q by +h ω_k."""
     i = (k + 1) % 3
@@ -111,7 +109,7 @@ def _axis_flow(k, h, inertia, m, y):
     _quat_times_axis(y, k, c2, s2)
 
 
-@_jit
+@cached
 def _strang_free(h, inertia, y, m):
     # symmetric, hence second order; each flow keeps |m| and the space J exactly.
     # The flows act on m = I ω′ so that ω′ <-> m round trips happen once per step.
@@ -126,7 +124,7 @@ def _strang_free(h, inertia, y, m):
         y[a] = m[a] / inertia[a]
 
 
-@_jit
+@cached
 def _strang_run(h, n, weights, inertia, y, m):
     """``n`` free steps, each a composition of Strang steps of sizes ``weights·h``.
 
@@ -149,7 +147,7 @@ def _strang_run(h, n, weights, inertia, y, m):
         y[a] = m[a] / inertia[a]
 
 
-@_jit
+@cached
 def _kick(t, h, inertia, rows, y, scratch):
     """Explicit kick ω′ += h I⁻¹ M′(t, q, ω′): the exact flow when M′ does not depend on ω′."""
     evaluate_torque(rows, t, y, scratch)
@@ -157,7 +155,7 @@ def _kick(t, h, inertia, rows, y, scratch):
         y[a] += h * scratch[7 + a] / inertia[a]
 
 
-@_jit
+@cached
 def _depends_on_omega(rows):
     for i in range(rows.shape[0]):
         kind = int(rows[i, 0])
@@ -166,7 +164,7 @@ def _depends_on_omega(rows):
     return False
 
 
-@_jit
+@cached
 def _iterate_omega(y, n0, n1, n2, size, previous):
     """Store the fixed-point iterate ω′ = n; return (converged, change).
 
@@ -178,7 +176,7 @@ def _iterate_omega(y, n0, n1, n2, size, previous):
     return change <= 4.0 * _EPS * size or (change >= previous and change <= 1e-13 * size), change
 
 
-@_jit
+@cached
 def _closing_kick(t, h, inertia, rows, y, scratch):
     """Implicit kick ω′_new = ω′ + h I⁻¹ M′(t, q, ω′_new), the adjoint of :func:`_kick`.
 
@@ -202,7 +200,7 @@ def _closing_kick(t, h, inertia, rows, y, scratch):
     return NO_CONVERGENCE
 
 
-@_jit
+@cached
 def _dmv_free(h, inertia, y):
     """Discrete Moser-Veselov step: solve h m = 2 q0 I v + 2 v × I v for Ω = (q0, v)."""
     m0 = inertia[0] * y[0]
@@ -239,7 +237,7 @@ def _dmv_free(h, inertia, y):
     return OK
 
 
-@_jit
+@cached
 def _kick_drift_kick(method, t, h, inertia, rows, y, m, scratch):
     if rows is not None:
         _kick(t, 0.5 * h, inertia, rows, y, scratch)
@@ -253,7 +251,7 @@ def _kick_drift_kick(method, t, h, inertia, rows, y, m, scratch):
     return status
 
 
-@_jit
+@cached
 def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
     """Classical RK4 on (ω′, q); ``k`` holds the four stages at offsets 0, 7, 14, 21."""
     for i in range(7):
@@ -269,7 +267,7 @@ def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
     qnormalize(y[3:7])
 
 
-@_jit
+@cached
 def _dexpinv_right(u0, u1, u2, f0, f1, f2):
     """Body-frame (right-trivialised) dexp⁻¹: u̇ = f + ½ u × f + (1/12) u × (u × f) + O(u⁴ f)."""
     c0 = u1 * f2 - u2 * f1
@@ -281,14 +279,14 @@ def _dexpinv_right(u0, u1, u2, f0, f1, f2):
     return f0 + 0.5 * c0 + d0 / 12.0, f1 + 0.5 * c1 + d1 / 12.0, f2 + 0.5 * c2 + d2 / 12.0
 
 
-@_jit
+@cached
 def _group_stage(src, u0, u1, u2, dst):
     """dst[3:7] = src[3:7] ⊗ exp(u): the Lie-group stage point of RKMK."""
     e0, e1, e2, e3 = rotvec_quat(u0, u1, u2)
     dst[3], dst[4], dst[5], dst[6] = quat_product(src[3], src[4], src[5], src[6], e0, e1, e2, e3)
 
 
-@_jit
+@cached
 def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
     """Runge-Kutta-Munthe-Kaas with the classical RK4 tableau on SO(3) × R³.
 
@@ -318,7 +316,7 @@ def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
     qnormalize(y[3:7])
 
 
-@_jit
+@cached
 def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
     """Implicit midpoint on (ω′, q), solved by fixed-point iteration to round-off.
 
@@ -352,7 +350,7 @@ def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
     return NO_CONVERGENCE
 
 
-@_jit
+@cached
 def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
     if method == SPLITTING or method == DMV:
         return _kick_drift_kick(method, t, h, inertia, rows, y, wa, scratch)
@@ -372,7 +370,7 @@ def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
     return _midpoint(t, h, inertia, rows, y, wa, wb, scratch)
 
 
-@_jit
+@cached
 def _advance(method, t0, h, n, inertia, rows, y, wa, wb, wc, wd, scratch):
     """``n`` rotation steps from ``t0``: one loop per method keeps the dispatch out of the hot loop."""
     if method == RK4:
@@ -393,7 +391,7 @@ def _advance(method, t0, h, n, inertia, rows, y, wa, wb, wc, wd, scratch):
     return OK
 
 
-@_jit
+@cached
 def _translation_kick(t, h, mass, frows, y, scratch):
     if frows is None:
         return
@@ -402,7 +400,7 @@ def _translation_kick(t, h, mass, frows, y, scratch):
         y[10 + k] += h * scratch[10 + k] / mass
 
 
-@_jit
+@cached
 def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
     """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps."""
     ny = y0.size
@@ -433,14 +431,14 @@ def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
     return OK
 
 
-@_jit
+@cached
 def _dop853_run(t_out, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
     # its own function, not inlined into run: LLVM optimises the stage loop better alone
     model = (inertia, mass, rows, frows, np.empty(13))
     return integrate(_model_rhs, model, t_out, y0, rtol, atol, np.inf, tables, out, False)
 
 
-@_jit
+@cached
 def run(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
     """One body: dispatch to DOP853 or a fixed-step method."""
     if method == DOP853:
@@ -448,7 +446,7 @@ def run(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, o
     return fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out)
 
 
-@njit(cache=True, parallel=True)
+@parallel
 def run_batch(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, out, status):
     """Many bodies, one per ``prange`` iteration: the same code as :func:`run`."""
     for b in prange(y0.shape[0]):

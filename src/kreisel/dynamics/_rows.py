@@ -14,14 +14,12 @@ import itertools
 import math
 
 import numpy as np
-from numba import njit, objmode
+from numba import objmode
+
+from .._compiled import cached, generic
 
 ROW_SIZE = 10
 CALLBACK = -1  # the kind of a row that calls a registered Python function (the same in every family)
-
-# takes the family's ``term`` as an argument: inlined into a cached kernel of each family,
-# for the reason given in kreisel._dop853 (a compiled function argument cannot be cached)
-_generic = njit(nogil=True, inline="always")
 
 
 def row(kind, *vectors):
@@ -104,7 +102,7 @@ def _call_registered(key, t, y):
     return np.ascontiguousarray(function(*args), dtype=np.float64)
 
 
-@njit(cache=True)
+@cached
 def _callback_into(key, t, y, scratch, at):
     with objmode(r="float64[:]"):
         r = _call_registered(key, t, y)
@@ -113,7 +111,9 @@ def _callback_into(key, t, y, scratch, at):
     scratch[at + 2] += r[2]
 
 
-@_generic
+# takes the family's ``term`` as an argument: inlined into a cached kernel of each family,
+# for the reason given in kreisel._compiled.dop853 (a compiled function argument cannot be cached)
+@generic
 def sum_rows(term, rows, t, y, scratch, at):
     """``scratch[at:at+3]`` = Σ ``term(rows, i, q, y)`` over the rows, then the callables' values.
 

@@ -45,7 +45,7 @@ import operator
 
 import numpy as np
 
-from .. import _dop853
+from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from . import _integrators as _k

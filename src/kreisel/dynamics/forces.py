@@ -11,18 +11,15 @@ accepted too (called back from the compiled loop, slower).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from .._compiled import cached, inlined
+from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ..so3._kernels import _rotated as rotated
 from ._rows import RowModel, RowSum, row, sum_rows
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 
 F_SPACE, F_BODY, F_DRAG = 0, 1, 2
-
-_jit = njit(cache=True, nogil=True)
-_inline = njit(cache=True, nogil=True, inline="always")
 
 
 class ForceModel(RowModel):
@@ -69,7 +66,6 @@ class ForceModel(RowModel):
         [[0.0, 0.0], [1.0, 0.0], [2.0, 0.2]]
         """
         raise NotImplementedError
-
 
 
 class ConstantForce(ForceModel):
@@ -152,7 +148,7 @@ def to_principal(rows, axes):
     return out
 
 
-@_inline
+@inlined
 def _force_term(rows, i, q0, q1, q2, q3, y):
     """Space force of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, r, v)``."""
     kind = int(rows[i, 0])
@@ -165,7 +161,7 @@ def _force_term(rows, i, q0, q1, q2, q3, y):
     return 0.0, 0.0, 0.0
 
 
-@_jit
+@cached
 def evaluate_force(rows, t, y, scratch):
     """Space force on the centre of mass (None: no force) for ``y = (ω′, q, r, v)`` into ``scratch[10:13]``."""
     if rows is None:

@@ -17,10 +17,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._compiled import cached, inlined
+from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ..so3._kernels import _rotated as rotated
 from ._rows import RowModel, RowSum, row, sum_rows
 
 __all__ = [
@@ -33,9 +33,6 @@ __all__ = [
 ]
 
 BODY, SPACE, CROSS, DAMPING = 0, 1, 2, 3
-
-_jit = njit(cache=True, nogil=True)
-_inline = njit(cache=True, nogil=True, inline="always")
 
 
 class TorqueModel(RowModel):
@@ -257,7 +254,7 @@ def to_principal(rows, axes):
     return out
 
 
-@_inline
+@inlined
 def _torque_term(rows, i, q0, q1, q2, q3, y):
     """Body torque of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, ...)``."""
     kind = int(rows[i, 0])
@@ -277,7 +274,7 @@ def _torque_term(rows, i, q0, q1, q2, q3, y):
     return 0.0, 0.0, 0.0
 
 
-@_jit
+@cached
 def evaluate_torque(rows, t, y, scratch):
     """Body torque of the model table (None: no torque) at ``y = (ω′, q, ...)`` into ``scratch[7:10]``.
 

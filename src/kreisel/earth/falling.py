@@ -19,9 +19,9 @@ does not change the east offset at first order).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from .. import _dop853
+from .._compiled import cached
+from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from ..frames.particle import _NPAR, _FIELD, _W, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
@@ -77,7 +77,7 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     return (2.0 / 3.0) * w * c * np.sqrt(2.0 * h**3 / g)
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _land_kernel(p, y0, rtol, atol, max_step, tables):
     """Integrate :func:`builtin_rhs` from t = 0 until the height ``y[2]`` comes down through zero.
 

@@ -14,9 +14,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from .. import _dop853
+from .._compiled import cached
+from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
@@ -60,11 +60,11 @@ def foucault_period(latitude_deg, omega=OMEGA_EARTH):
         return np.where(rate > 0, 2.0 * np.pi / np.where(rate > 0, rate, 1.0), np.inf)[()]
 
 
-@njit(cache=True, nogil=True)
+@cached
 def pendulum_rhs(t, y, p, out, offset):
     """Spherical pendulum in a frame turning at constant ω: y = (u, u̇), p = (ω, g, l).
 
-    The right-hand side of :mod:`kreisel._dop853`: dy/dt into ``out[offset:offset + 6]``.
+    The right-hand side of :mod:`kreisel._compiled.dop853`: dy/dt into ``out[offset:offset + 6]``.
     """
     wx, wy, wz, g, length = p[0], p[1], p[2], p[3], p[4]
     ux, uy, uz, vx, vy, vz = y[0], y[1], y[2], y[3], y[4], y[5]
@@ -85,7 +85,7 @@ def pendulum_rhs(t, y, p, out, offset):
     out[offset + 5] = (fz - fu * uz) / length - vv * uz
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _swing(p, y0, duration, rtol, atol, max_step, capacity, tables):
     """Integrate to ``duration`` recording each maximum of the horizontal excursion.
 

@@ -1,7 +1,7 @@
 """Simulation of a particle in a moving, rotating frame (Theory §8.1, Lagrange equations).
 
 m r̈ = F - m a0 - 2m ω×ṙ - m ω×(ω×r) - m ω̇×r, integrated by the compiled
-adaptive DOP853 of :mod:`kreisel._dop853`.
+adaptive DOP853 of :mod:`kreisel._compiled.dop853`.
 """
 
 from __future__ import annotations
@@ -9,7 +9,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .. import _dop853
+from .._compiled import cached
+from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from .relative import canonical_momentum, hamiltonian
 
@@ -19,14 +20,14 @@ __all__ = ["ParticleTrajectory", "simulate_particle"]
 _W, _WDOT, _A0, _FIELD, _SPRING, _T0, _NPAR = 0, 3, 6, 9, 12, 13, 14
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _cross_into(a, b, out):
     out[0] = a[1] * b[2] - a[2] * b[1]
     out[1] = a[2] * b[0] - a[0] * b[2]
     out[2] = a[0] * b[1] - a[1] * b[0]
 
 
-@njit(cache=True, nogil=True)
+@cached
 def relative_acceleration(r, v, w, wdot, a0, specific_force, out, offset):
     """``out[offset:offset + 3] = f - a0 - 2 ω×v - ω×(ω×r) - ω̇×r`` for a specific force ``f`` (force per mass)."""
     c = np.empty(3)
@@ -41,11 +42,11 @@ def relative_acceleration(r, v, w, wdot, a0, specific_force, out, offset):
         out[offset + i] = specific_force[i] - a0[i] - 2.0 * c[i] - wwr[i] - er[i]
 
 
-@njit(cache=True, nogil=True)
+@cached
 def builtin_rhs(t, y, p, out, offset):
     """Particle with ω(t) = ω0 + ω̇ (t - t0), constant a0, uniform field and isotropic spring.
 
-    The right-hand side of :mod:`kreisel._dop853`: dy/dt into ``out[offset:offset + 6]``.
+    The right-hand side of :mod:`kreisel._compiled.dop853`: dy/dt into ``out[offset:offset + 6]``.
     """
     w = np.empty(3)
     f = np.empty(3)
@@ -57,9 +58,9 @@ def builtin_rhs(t, y, p, out, offset):
     relative_acceleration(y[:3], y[3:], w, p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], f, out, offset + 3)
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _integrate_builtin(p, t, y0, rtol, atol, max_step, tables, out):
-    # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._dop853)
+    # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._compiled.dop853)
     return _dop853.integrate(builtin_rhs, p, t, y0, rtol, atol, max_step, tables, out, True)
 
 

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from ..so3._kernels import quat_to_matrix
+from .._compiled import cached
+from .._compiled.kernels import quat_to_matrix
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _fill_matrices(q, out):
     # Element slices with numba's layout 'A', as so3's gufuncs pass them: the
     # shared kernel is compiled (and cached on disk) for one signature only.

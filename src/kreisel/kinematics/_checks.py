@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compiled.gufunc import finite_array
 from .._validation import as_float_array, check_frame
-from ..so3._gufunc import finite_array
 
 
 def vectors(x, name, length=3):

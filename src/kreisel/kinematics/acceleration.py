@@ -10,11 +10,11 @@ import math
 
 import numpy as np
 
+from .._compiled import dexp as k
+from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
-from ..so3._gufunc import gufunc, quaternion_array
 from ..so3.euler import parse_sequence
-from . import _kernels as k
 from ._checks import batch_shape, frame_sign, matrix_batch, same_batch, vector_batch, vectors
 from .euler import _angles, euler_rate_matrix
 from .rates import _skew_part_vee

@@ -25,12 +25,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
+from .._compiled import dexp as k
+from .._compiled import cached, parallel
+from .._compiled.gufunc import gufunc
 from .._validation import check_frame
-from ..so3._gufunc import gufunc
 from ..so3.euler import parse_sequence
-from . import _kernels as k
 from ._checks import same_batch, tolerance, vectors
 from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
 
@@ -56,12 +57,12 @@ def _code(seq, frame):
 # passing arrays into a compiled call costs about as much as the kernel
 # itself, and in the parallel loops every thread would update the reference
 # count of the one shared code array.
-@k._jit
+@cached
 def _code_tuple(code):
     return code[0], code[1], code[2], code[3], code[4]
 
 
-@k._jit
+@cached
 def _omega_element(x0, x1, x2, r0, r1, r2, code):
     """ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order."""
     c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
@@ -74,7 +75,7 @@ def _omega_element(x0, x1, x2, r0, r1, r2, code):
     )
 
 
-@k._jit
+@cached
 def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
     """Rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2)."""
     c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
@@ -96,7 +97,7 @@ def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
 # _code_tuple is compiled for one signature.
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _omega_from_rates_parallel(angles, rates, code, out):
     code = _code_tuple(code[::1])
     for i in prange(angles.shape[0]):
@@ -105,7 +106,7 @@ def _omega_from_rates_parallel(angles, rates, code, out):
         )
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _rates_from_omega_parallel(angles, w, code, tol, out):
     code = _code_tuple(code[::1])
     for i in prange(angles.shape[0]):

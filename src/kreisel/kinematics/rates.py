@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
-from ..so3._gufunc import gufunc, quaternion_array
 from ._checks import frame_sign, matrix_batch, same_batch, vectors
 
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]

@@ -22,10 +22,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from ..so3._gufunc import gufunc
-from . import _kernels as k
+from .._compiled import dexp as k
+from .._compiled import cached, parallel
+from .._compiled.gufunc import gufunc
 from ._checks import frame_sign, tolerance, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning, warn_if_any
 
@@ -54,7 +55,7 @@ def _bortz(angle, out):
 
 
 # J v = v + sign A ψ×v + B ψ×(ψ×v): sign +1 is J_l (space), −1 is J_r (body)
-@k._jit
+@cached
 def _dexp_element(x, y, z, v0, v1, v2, sign):
     a, b = k.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
     cx, cy, cz = k.cross(x, y, z, v0, v1, v2)
@@ -64,7 +65,7 @@ def _dexp_element(x, y, z, v0, v1, v2, sign):
 
 
 # J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w), NaN at the poles |ψ| = 2πk
-@k._jit
+@cached
 def _dexp_inverse_element(x, y, z, w0, w1, w2, sign, tol):
     angle = math.sqrt(x * x + y * y + z * z)
     if k.rotvec_singular(angle, tol):
@@ -76,13 +77,13 @@ def _dexp_inverse_element(x, y, z, w0, w1, w2, sign, tol):
     return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _dexp_apply_parallel(psi, v, sign, out):
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _dexp_element(psi[i, 0], psi[i, 1], psi[i, 2], v[i, 0], v[i, 1], v[i, 2], sign)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _dexp_inverse_apply_parallel(psi, w, sign, tol, out):
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _dexp_inverse_element(
@@ -100,7 +101,7 @@ def _dexp_inverse_apply(psi, w, sign, tol, out):
     out[0], out[1], out[2] = _dexp_inverse_element(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
 
 
-@k._jit
+@cached
 def _write_matrix(x, y, z, linear, quadratic, out):
     # out = 1 + linear hat(ψ) + quadratic hat(ψ)², hat(ψ)² = ψψᵀ − |ψ|² 1
     n2 = x * x + y * y + z * z

@@ -2,7 +2,7 @@
 
 Every loop works on flattened batches, ``(B, n, 3)`` gyro data and ``(B, 4)``
 initial attitudes, and calls the scalar quaternion kernels of
-:mod:`kreisel.so3._kernels`. Nothing here is compiled at import time; the
+:mod:`kreisel._compiled.kernels`. Nothing here is compiled at import time; the
 first call compiles and caches to disk.
 """
 
@@ -11,14 +11,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from ..so3._kernels import qmul, qnormalize, rotvec_to_quat
-
-_jit = njit(cache=True, nogil=True)
+from .._compiled import cached
+from .._compiled.kernels import qmul, qnormalize, rotvec_to_quat
 
 
-@_jit
+@cached
 def _buffer():
     """A scratch 4-vector (or 3-vector in its first slots) with numba's layout 'A'.
 
@@ -29,7 +27,7 @@ def _buffer():
     return np.empty((1, 4))[0, ::1]
 
 
-@_jit
+@cached
 def _start(q0, b, q, out):
     """Load the normalised initial attitude of batch element ``b`` into ``q`` and ``out[b, 0]``."""
     for c in range(4):
@@ -39,7 +37,7 @@ def _start(q0, b, q, out):
         out[b, 0, c] = q[c]
 
 
-@_jit
+@cached
 def _advance(qn, q, out, b, j):
     """Renormalise the updated attitude ``qn`` (against drift), make it current and store it as sample ``j``."""
     qnormalize(qn)
@@ -48,7 +46,7 @@ def _advance(qn, q, out, b, j):
         out[b, j, c] = qn[c]
 
 
-@_jit
+@cached
 def integrate_increments(q0, dtheta, k, out):
     """Strapdown update from angle increments with the compressed coning correction.
 
@@ -92,7 +90,7 @@ def integrate_increments(q0, dtheta, k, out):
             _advance(qn, q, out, b, j + 1)
 
 
-@_jit
+@cached
 def _quat_derivative(q, w0, w1, w2, out):
     """``out = ½ q ⊗ (0, ω′)`` (Theory §3.3)."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -102,7 +100,7 @@ def _quat_derivative(q, w0, w1, w2, out):
     out[3] = 0.5 * (q0 * w2 + q1 * w1 - q2 * w0)
 
 
-@_jit
+@cached
 def bortz_coefficient(angle2):
     """(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ) from ψ², Theory §3.5.
 
@@ -116,7 +114,7 @@ def bortz_coefficient(angle2):
     return (2.0 * math.sin(a) - a * (1.0 + math.cos(a))) / (2.0 * angle2 * math.sin(a))
 
 
-@_jit
+@cached
 def _bortz_rate(p, w0, w1, w2, out):
     """``out = ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)`` (Bortz equation, Theory §3.5)."""
     c = bortz_coefficient(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
@@ -128,7 +126,7 @@ def _bortz_rate(p, w0, w1, w2, out):
     out[2] = w2 + 0.5 * x2 + c * (p[0] * x1 - p[1] * x0)
 
 
-@_jit
+@cached
 def integrate_rates(q0, t, omega, use_bortz, out):
     """Classical RK4 over each sample interval with ω′ linear between samples.
 

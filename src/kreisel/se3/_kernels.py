@@ -3,15 +3,15 @@
 A pose is stored as a unit quaternion ``q`` (scalar first) and a translation
 ``t``: the displacement ``r -> R(q) r + t`` of Theory §1.3. Everything here
 works on one pose and is broadcast by :func:`numba.guvectorize`; the scalar
-quaternion algebra comes from :mod:`kreisel.so3._kernels`.
+quaternion algebra comes from :mod:`kreisel._compiled.kernels`.
 """
 
 from __future__ import annotations
 
 import math
 
-from ..so3 import _kernels as k
-from ..so3._gufunc import gufunc
+from .._compiled import kernels as k
+from .._compiled.gufunc import gufunc
 
 _F8 = "f8[:]"
 

@@ -19,9 +19,9 @@ from ..so3 import (
     quat_normalize,
     quat_to_matrix,
 )
-from ..so3._gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
-from ._checks import finite_array
+from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from . import _kernels, lie
+from ._checks import finite_array
 from .screw import change_base_point, screw_parameters, screw_pose
 
 __all__ = ["RigidTransform"]

@@ -24,10 +24,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from . import _kernels as k
-from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array
+from .._compiled import kernels as k
+from .._compiled import cached, parallel
+from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 
 __all__ = [
     "parse_sequence",
@@ -91,14 +92,14 @@ def _intrinsic_axes(seq):
 # batch (``shared=(1, 2)``).
 
 
-@k._jit
+@cached
 def _elementary(angle, axis):
     h = 0.5 * angle
     s = math.sin(h)
     return math.cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0
 
 
-@k._jit
+@cached
 def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
     # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
     if reverse:
@@ -110,19 +111,19 @@ def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
     return k.quat_product(r0, r1, r2, r3, c0, c1, c2, c3)
 
 
-@k._jit
+@cached
 def _euler_matrix(alpha, beta, gamma, axis0, axis1, axis2, reverse):
     q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
     return k.quat_matrix(q0, q1, q2, q3)
 
 
-@k._jit
+@cached
 def _matrix_euler(r00, r01, r02, r10, r11, r12, r20, r21, r22, axis0, axis1, axis2, reverse):
     q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _euler_to_quat_parallel(angles, axes, reverse, out):
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(angles.shape[0]):
@@ -131,7 +132,7 @@ def _euler_to_quat_parallel(angles, axes, reverse, out):
         )
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _euler_to_matrix_parallel(angles, axes, reverse, out):
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(angles.shape[0]):
@@ -142,14 +143,14 @@ def _euler_to_matrix_parallel(angles, axes, reverse, out):
         ) = _euler_matrix(angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse)  # fmt: skip
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _quat_to_euler_parallel(q, axes, reverse, out):
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q[i, 0], q[i, 1], q[i, 2], q[i, 3], a0, a1, a2, reverse)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _matrix_to_euler_parallel(R, axes, reverse, out):
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(R.shape[0]):
@@ -181,7 +182,7 @@ def _matrix_to_euler(R, axes, reverse, out):
     out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
 
 
-@k._jit
+@cached
 def _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse):
     # Bernardes & Viollet's method is written for extrinsic sequences; the
     # intrinsic "ABC" is the extrinsic "cba", hence the reversed axes.
@@ -224,7 +225,7 @@ def _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse):
     return _wrap(first), beta, _wrap(third)
 
 
-@k._jit
+@cached
 def _pair_norm(a, b):
     # The pairs come from a unit quaternion (entries <= 2), so a² + b² cannot
     # overflow; only below ~1e-150 can it underflow, and there math.hypot
@@ -235,7 +236,7 @@ def _pair_norm(a, b):
     return math.hypot(a, b)
 
 
-@k._jit
+@cached
 def _wrap(x):
     if x > math.pi:
         return x - 2.0 * math.pi

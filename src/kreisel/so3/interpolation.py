@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._gufunc import finite_array, gufunc, quaternion_array
-from . import _kernels as k
+from .._compiled import kernels as k
+from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 
 __all__ = ["quat_slerp", "quat_mean"]
 

@@ -7,15 +7,16 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from . import _kernels as k
-from ._gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
+from .._compiled import kernels as k
+from .._compiled import parallel
+from .._compiled.gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
 
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _quat_to_matrix_parallel(q, out):
     for i in prange(q.shape[0]):
         (
@@ -25,7 +26,7 @@ def _quat_to_matrix_parallel(q, out):
         ) = k.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _matrix_to_quat_parallel(R, out):
     for i in prange(R.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.matrix_entries_quat(

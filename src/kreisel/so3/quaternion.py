@@ -9,11 +9,12 @@ give the same rotation (double cover).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
+from .._compiled import cached, parallel
+from .._compiled import kernels as k
+from .._compiled.gufunc import gufunc, quaternion_array, vector_array
 from .._validation import batch_shape
-from . import _kernels as k
-from ._gufunc import gufunc, quaternion_array, vector_array
 
 __all__ = [
     "quat_multiply",
@@ -26,7 +27,7 @@ __all__ = [
 ]
 
 
-@k._jit
+@cached
 def _applied(q0, q1, q2, q3, x, y, z):
     # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
@@ -42,13 +43,13 @@ def _applied(q0, q1, q2, q3, x, y, z):
     )
 
 
-@k._jit
+@cached
 def _inverted(q0, q1, q2, q3):
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
     return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _multiply_parallel(p, q, out):
     for i in prange(p.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_product(
@@ -56,13 +57,13 @@ def _multiply_parallel(p, q, out):
         )
 
 
-@k._jit
+@cached
 def _unit_product(p0, p1, p2, p3, q0, q1, q2, q3):
     r0, r1, r2, r3 = k.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
     return k.quat_unit(r0, r1, r2, r3)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _compose_parallel(p, q, out):
     for i in prange(p.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _unit_product(
@@ -70,19 +71,19 @@ def _compose_parallel(p, q, out):
         )
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _normalize_parallel(q, out):
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_unit(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _inverse_parallel(q, out):
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _apply_parallel(q, v, sign, out):
     # sign = -1 rotates by the conjugate: R(q)ᵀ v.
     for i in prange(q.shape[0]):
@@ -116,7 +117,7 @@ def _apply(q, v, sign, out):
     out[0], out[1], out[2] = _applied(q[0], sign * q[1], sign * q[2], sign * q[3], v[0], v[1], v[2])
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _multiply_one(p, q):
     out = np.empty(4)
     out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
@@ -126,7 +127,7 @@ def _multiply_one(p, q):
     return out, finite
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _compose_one(p, q):
     out = np.empty(4)
     out[0], out[1], out[2], out[3] = _unit_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])

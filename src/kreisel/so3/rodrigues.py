@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._gufunc import quaternion_array, vector_array
+from .._compiled.gufunc import quaternion_array, vector_array
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
 

@@ -11,10 +11,11 @@ import itertools
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from . import _kernels as k
-from ._gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
+from .._compiled import kernels as k
+from .._compiled import cached, parallel
+from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
 
 __all__ = [
     "generators",
@@ -32,31 +33,31 @@ __all__ = [
 ]
 
 
-@k._jit
+@cached
 def _rotvec_matrix(x, y, z):
     q0, q1, q2, q3 = k.rotvec_quat(x, y, z)
     return k.quat_matrix(q0, q1, q2, q3)
 
 
-@k._jit
+@cached
 def _matrix_rotvec(r00, r01, r02, r10, r11, r12, r20, r21, r22):
     q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return k.quat_rotvec(q0, q1, q2, q3)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _rotvec_to_quat_parallel(psi, out):
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _quat_to_rotvec_parallel(q, out):
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = k.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _rotvec_to_matrix_parallel(psi, out):
     for i in prange(psi.shape[0]):
         (
@@ -66,7 +67,7 @@ def _rotvec_to_matrix_parallel(psi, out):
         ) = _rotvec_matrix(psi[i, 0], psi[i, 1], psi[i, 2])  # fmt: skip
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _matrix_to_rotvec_parallel(R, out):
     for i in prange(R.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _matrix_rotvec(

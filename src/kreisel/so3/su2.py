@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compiled.gufunc import quaternion_array
 from .._validation import as_float_array
-from ._gufunc import quaternion_array
 
 __all__ = [
     "quat_to_su2",
