@@ -49,11 +49,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
+from .._compiled import cached, parallel
+from .._compiled import kernels as k
+from .._compiled.gufunc import PARALLEL_THRESHOLD
 from .._validation import as_float_array
-from . import _kernels as k
-from ._gufunc import PARALLEL_THRESHOLD
 
 __all__ = ["align_vectors"]
 
@@ -61,7 +62,7 @@ __all__ = ["align_vectors"]
 _WIDTH = 14
 
 
-@k._jit
+@cached
 def _jacobi_top_eigenvector(K):
     """Unit eigenvector of the largest eigenvalue of the symmetric 4×4 ``K`` (overwritten).
 
@@ -114,7 +115,7 @@ def _jacobi_top_eigenvector(K):
     return q0, q1, q2, q3
 
 
-@k._jit
+@cached
 def _shortest_arc(ax, ay, az, bx, by, bz):
     """Smallest rotation taking the unit vector b to the unit vector a (scipy's choice when antiparallel)."""
     # (1 + a·b, b × a) is 2 cos(θ/2) (cos(θ/2), n sin(θ/2)), the half-way quaternion.
@@ -147,7 +148,7 @@ def _shortest_arc(ax, ay, az, bx, by, bz):
     return k.quat_product(s0, s1, s2, s3, 0.0, ux, uy, uz)
 
 
-@k._jit
+@cached
 def _solve(a, b, w, i, primary, out):
     """Problem ``i`` of the batch into ``out[i]``; ``primary`` is the index of the infinite weight or -1."""
     n = a.shape[1]
@@ -206,7 +207,7 @@ def _solve(a, b, w, i, primary, out):
         _sensitivity(a, b, w, i, q0, q1, q2, q3, out)
 
 
-@k._jit
+@cached
 def _sensitivity(a, b, w, i, q0, q1, q2, q3, out):
     # M = Rᵀ B is symmetric with eigenvalues s₁, s₂, s₃' (the corrected singular
     # values); κ and ζ are its elementary symmetric functions.
@@ -238,13 +239,13 @@ def _sensitivity(a, b, w, i, q0, q1, q2, q3, out):
             out[i, 5 + 3 * r + c] = scale * ((kappa if r == c else 0.0) + bbt)
 
 
-@njit(cache=True, nogil=True)
+@cached
 def _solve_serial(a, b, w, primary, out):
     for i in range(a.shape[0]):
         _solve(a, b, w, i, primary[i], out)
 
 
-@njit(parallel=True, cache=True)
+@parallel
 def _solve_parallel(a, b, w, primary, out):
     for i in prange(a.shape[0]):
         _solve(a, b, w, i, primary[i], out)
