@@ -358,7 +358,11 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         throw and the catch are not free rotation). Either end may be None.
     align : bool
         Also fit the rotation between the sensor axes and the principal axes
-        (a phone's principal axes need not be its sensor axes).
+        (a phone's principal axes need not be its sensor axes). This needs a
+        recording that explores the polhode: during a single flip next to the
+        separatrix, ω′ stays close to one plane and a turn about the middle
+        axis trades off against the ratios; the fit then warns that the ratios
+        are not determined.
 
     Returns
     -------
@@ -444,8 +448,11 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         )
     elif not np.all(np.isfinite(relative)) or np.max(relative) > UNDETERMINED:
         free, message = False, (
-            "the moment ratios are not determined by the data: the body hardly tumbles "
-            "(toss it spinning about its middle axis)"
+            f"the moment ratios are not determined by the data (standard error up to "
+            f"{100 * np.nanmax(np.r_[relative, np.inf if np.isnan(relative).any() else 0.0]):.3g} %): "
+            + ("the fitted axis rotation trades off against them (a single flip near the separatrix "
+               "cannot tell them apart; fit without align)" if align else
+               "the body hardly tumbles (toss it spinning about its middle axis)")
         )
     else:
         free, message = True, (
