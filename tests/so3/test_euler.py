@@ -5,6 +5,7 @@ import pytest
 from scipy.spatial.transform import Rotation as S
 
 import kreisel as kr
+from kreisel import Rotation
 
 PROPER = ["xyx", "xzx", "yxy", "yzy", "zxz", "zyz"]
 TAIT_BRYAN = ["xyz", "xzy", "yxz", "yzx", "zxy", "zyx"]
@@ -127,12 +128,17 @@ def test_parse_sequence():
     )
 
 
-@pytest.mark.parametrize("bad", ["xYz", "XY", "XYZX", "XXY", "xyy", "abc", "", 3, "XYW"])
+@pytest.mark.parametrize("bad", ["xYz", "XYZX", "XXY", "xyy", "abc", "", 3, "XYW", "Xy", "XX", "w"])
 def test_malformed_sequences_are_refused(bad):
     with pytest.raises(ValueError, match="seq"):
         kr.parse_sequence(bad)
     with pytest.raises(ValueError, match="seq"):
         kr.euler_to_matrix(bad, [0.1, 0.2, 0.3])
+
+
+def test_parse_sequence_is_for_three_axes_only():
+    with pytest.raises(ValueError, match="seq"):
+        kr.parse_sequence("XY")
 
 
 def test_bad_angles_are_refused():
@@ -146,3 +152,59 @@ def test_broadcasting():
     angles = np.zeros((2, 5, 3))
     assert kr.euler_to_matrix("XYZ", angles).shape == (2, 5, 3, 3)
     assert kr.matrix_to_euler("zyx", np.broadcast_to(np.eye(3), (4, 3, 3))).shape == (4, 3)
+
+
+SHORT_SEQUENCES = ["x", "Y", "z", "XY", "XZ", "YX", "YZ", "ZX", "ZY", "xy", "xz", "yx", "yz", "zx", "zy"]
+
+
+@pytest.mark.parametrize("seq", SHORT_SEQUENCES)
+def test_short_sequences_match_scipy_and_invert_exactly(rng, seq):
+    angles = rng.uniform(-np.pi, np.pi, size=(200, len(seq)))
+    angles[:3, -1] = [0.0, np.pi, -np.pi / 2]  # edges: axes aligned, half turns
+    if len(seq) == 2:
+        angles[3:6, 0] = [0.0, np.pi, -np.pi / 2]
+    q = kr.euler_to_quat(seq, angles)
+    np.testing.assert_allclose(kr.quat_to_matrix(q), S.from_euler(seq, angles).as_matrix(), atol=1e-15)
+    np.testing.assert_allclose(kr.euler_to_matrix(seq, angles), S.from_euler(seq, angles).as_matrix(), atol=1e-15)
+    # Composition of elementary rotations, as the sequence says (an independent reference).
+    axes = ["xyz".index(c) for c in seq.lower()]
+    factors = [Rotation.from_rotvec(np.eye(3)[a] * angles[:, [i]]) for i, a in enumerate(axes)]
+    product = factors[0]
+    for f in factors[1:]:
+        product = product * f if seq.isupper() else f * product
+    np.testing.assert_allclose(product.as_matrix(), kr.quat_to_matrix(q), atol=1e-15)
+    back = kr.quat_to_euler(seq, q)
+    np.testing.assert_allclose(kr.euler_to_matrix(seq, back), kr.quat_to_matrix(q), atol=1e-15)
+    wrapped = np.angle(np.exp(1j * (back - angles)))
+    np.testing.assert_allclose(wrapped, 0.0, atol=1e-14)
+    np.testing.assert_allclose(kr.matrix_to_euler(seq, kr.quat_to_matrix(q)), back, atol=1e-14)
+    r = Rotation.from_euler(seq, np.rad2deg(angles), degrees=True)
+    np.testing.assert_allclose(r.as_euler(seq, degrees=True), np.rad2deg(back), atol=1e-12)
+
+
+def test_short_sequences_refuse_rotations_they_cannot_represent():
+    q = kr.euler_to_quat("ZXY", [0.1, 0.2, 1e-6])
+    with pytest.raises(ValueError, match="seq 'ZX'"):
+        kr.quat_to_euler("ZX", q)
+    with pytest.raises(ValueError, match="seq 'z'"):
+        Rotation.from_quat(q).as_euler("z")
+    with pytest.raises(ValueError, match=r"angles must have shape \(\.\.\., 2\)"):
+        kr.euler_to_quat("ZX", [0.1, 0.2, 0.3])
+    # One axis: a scalar is one rotation, (..., 1) a batch, as in scipy.
+    assert kr.euler_to_quat("z", 0.3).shape == (4,)
+    assert Rotation.from_euler("z", [[0.1], [0.2]]).shape == (2,)
+
+
+def test_as_euler_warns_at_gimbal_lock_only_on_request():
+    import warnings
+
+    locked = Rotation.from_euler("ZYX", [[0.3, np.pi / 2, 0.1], [0.3, 0.2, 0.1]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        angles = locked.as_euler("ZYX")
+    np.testing.assert_allclose(Rotation.from_euler("ZYX", angles).as_matrix(), locked.as_matrix(), atol=1e-15)
+    with pytest.warns(kr.GimbalLockWarning, match="1 of 2"):
+        locked.as_euler("ZYX", suppress_warnings=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        locked[1].as_euler("ZYX", suppress_warnings=False)

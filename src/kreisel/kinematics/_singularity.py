@@ -12,19 +12,14 @@ from __future__ import annotations
 
 import warnings
 
+# Defined in so3 so that Rotation.as_euler can issue it too; re-exported here.
+from ..so3.euler import GimbalLockWarning, KinematicSingularityWarning  # noqa: F401
+
 #: Default singularity threshold on the determinant of the rate map
 #: (|sin β| or |cos β| for Euler angles, |sin(ψ/2)| for rotation vectors).
 #: Away from it the rates are returned with relative error ≲ 1e-16/|det|,
 #: i.e. at worst ~1e-8.
 SINGULAR_TOL = 1e-8
-
-
-class KinematicSingularityWarning(UserWarning):
-    """A parameterisation rate was requested where the parameterisation is singular."""
-
-
-class GimbalLockWarning(KinematicSingularityWarning):
-    """Euler-angle rates requested at gimbal lock: the first and third rates are NaN."""
 
 
 class RotationVectorSingularityWarning(KinematicSingularityWarning):

@@ -1,5 +1,10 @@
 """Euler angles in all 12 axis sequences, intrinsic and extrinsic (Theory §2.3).
 
+The conversions also take scipy's one- and two-axis sequences (``"y"``,
+``"ZX"``): ``"ZX"`` with angles (α, β) is ``R_z(α) R_x(β)``. Such a sequence
+covers only part of SO(3); converting a rotation outside that part to it
+raises ``ValueError`` instead of dropping the remainder.
+
 A sequence is three letters from ``xyz`` with no two adjacent equal;
 uppercase means intrinsic (rotations about the moving axes), lowercase
 extrinsic (about the fixed axes), as in scipy. Intrinsic ``"ABC"`` with
@@ -29,6 +34,7 @@ from numba import prange
 from .._compiled import kernels as k
 from .._compiled import cached, parallel
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
+from . import matrix as _matrix
 
 __all__ = [
     "parse_sequence",
@@ -40,6 +46,19 @@ __all__ = [
 ]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
+
+
+class KinematicSingularityWarning(UserWarning):
+    """A parameterisation rate was requested where the parameterisation is singular."""
+
+
+class GimbalLockWarning(KinematicSingularityWarning):
+    """Euler angles at gimbal lock: only the sum or difference of the outer angles is determined.
+
+    Issued by the Euler-rate maps of :mod:`kreisel.kinematics` (whose first
+    and third rates are then NaN) and, on request, by
+    ``Rotation.as_euler(..., suppress_warnings=False)``.
+    """
 
 
 def parse_sequence(seq):
@@ -76,6 +95,76 @@ def parse_sequence(seq):
     if lower[0] == lower[1] or lower[1] == lower[2]:
         raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
     return tuple(_AXES[c] for c in lower), seq.isupper()
+
+
+def _short_sequence(seq):
+    """``(axes, intrinsic)`` for a one- or two-axis sequence, None for a three-letter one."""
+    if not isinstance(seq, str) or len(seq) not in (1, 2):
+        return None
+    if not (seq.isupper() or seq.islower()) or any(c not in _AXES for c in seq.lower()):
+        raise ValueError(f"seq must be 1-3 letters of x, y, z, all uppercase or all lowercase, got {seq!r}")
+    if len(seq) == 2 and seq[0] == seq[1]:
+        raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
+    return tuple(_AXES[c] for c in seq.lower()), seq.isupper()
+
+
+def _padded(seq):
+    """Three-letter sequence equal to ``seq`` when the appended angles are 0."""
+    axes = [_AXES[c] for c in seq.lower()]
+    while len(axes) < 3:
+        axes.append(3 - axes[-1] - axes[-2] if len(axes) == 2 else (axes[0] + 1) % 3)
+    full = "".join("xyz"[a] for a in axes)
+    return full.upper() if seq.isupper() else full
+
+
+def _short_angles(angles, count, degrees):
+    """Angles ``(..., count)`` of a short sequence, zero-padded to ``(..., 3)``.
+
+    For one axis a scalar is one rotation, as in scipy.
+    """
+    if count == 1 and np.ndim(angles) == 0:
+        angles = [angles]
+    a = finite_array(angles, "angles", (count,))
+    out = np.zeros((*a.shape[:-1], 3))
+    out[..., :count] = np.deg2rad(a) if degrees else a
+    return out
+
+
+#: Largest departure from a short sequence's set of rotations that counts as
+#: rounding: |q0 q_C - q_A q_B| for two axes, |(q_B, q_C)| for one (about
+#: half the angle to the nearest rotation of the set).
+SHORT_SEQUENCE_TOLERANCE = 1e-10
+
+
+def _short_sequence_angles(seq, axes, intrinsic, q):
+    """Angles of a one- or two-axis sequence; refuses rotations it cannot represent."""
+    if not intrinsic:
+        # Extrinsic "ab" is intrinsic "BA" with the angles reversed.
+        return _short_sequence_angles(seq, axes[::-1], True, q)[..., ::-1]
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    q0 = q[..., 0]
+    qa = q[..., 1 + axes[0]]
+    if len(axes) == 1:
+        others = [1 + j for j in range(3) if j != axes[0]]
+        defect = np.hypot(q[..., others[0]], q[..., others[1]])
+        angles = (2.0 * np.arctan2(qa, q0))[..., None]
+    else:
+        # q_A(α) q_B(β) = (cα cβ, sα cβ e_A + cα sβ e_B + sα sβ e_A × e_B) in half angles:
+        # each angle is the phase of whichever of its two pairs is the larger.
+        c = 3 - axes[0] - axes[1]
+        sign = 1.0 if (axes[1] - axes[0]) % 3 == 1 else -1.0
+        qb, qc = q[..., 1 + axes[1]], sign * q[..., 1 + c]
+        defect = np.abs(q0 * qc - qa * qb)
+        cos_pair = np.hypot(q0, qa) >= np.hypot(qb, qc)
+        alpha = np.where(cos_pair, np.arctan2(qa, q0), np.arctan2(qc, qb))
+        beta = np.where(np.hypot(q0, qb) >= np.hypot(qa, qc), np.arctan2(qb, q0), np.arctan2(qc, qa))
+        angles = 2.0 * np.stack([alpha, beta], axis=-1)
+    if defect.size and not np.max(defect) <= SHORT_SEQUENCE_TOLERANCE:
+        raise ValueError(
+            f"the rotation is not of the form of seq {seq!r} (max departure {np.max(defect):.3g}); "
+            "use a three-axis sequence"
+        )
+    return np.where(angles > np.pi, angles - 2.0 * np.pi, np.where(angles < -np.pi, angles + 2.0 * np.pi, angles))
 
 
 def _intrinsic_axes(seq):
@@ -245,9 +334,13 @@ def _wrap(x):
     return x
 
 
-def _angles_array(angles, degrees):
+def _angles_array(seq, angles, degrees):
+    """The sequence and angles ``(..., 3)`` in radians; short sequences are padded."""
+    short = _short_sequence(seq)
+    if short is not None:
+        return _padded(seq), _short_angles(angles, len(seq), degrees)
     a = finite_array(angles, "angles", (3,))
-    return np.deg2rad(a) if degrees else a
+    return seq, (np.deg2rad(a) if degrees else a)
 
 
 def euler_to_quat(seq, angles, degrees=False):
@@ -266,14 +359,18 @@ def euler_to_quat(seq, angles, degrees=False):
         Unit quaternions; the sign is that of the product of the three
         elementary half-angle quaternions (not canonicalised).
 
+    One- and two-axis sequences (``"y"``, ``"ZX"``) take angles ``(..., 1)``
+    (or a scalar) and ``(..., 2)``.
+
     Examples
     --------
     >>> import numpy as np
     >>> np.round(euler_to_quat("ZXZ", [90.0, 0.0, 0.0], degrees=True), 12)
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
+    seq, angles = _angles_array(seq, angles, degrees)
     axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_quat(_angles_array(angles, degrees), axes, reverse)
+    return _euler_to_quat(angles, axes, reverse)
 
 
 def euler_to_matrix(seq, angles, degrees=False):
@@ -287,8 +384,9 @@ def euler_to_matrix(seq, angles, degrees=False):
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
+    seq, angles = _angles_array(seq, angles, degrees)
     axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_matrix(_angles_array(angles, degrees), axes, reverse)
+    return _euler_to_matrix(angles, axes, reverse)
 
 
 def _finish(angles, degrees):
@@ -303,15 +401,24 @@ def quat_to_euler(seq, q, degrees=False):
     ones. The rotation rebuilt from the angles matches ``q`` to rounding even
     at and near gimbal lock (see :func:`gimbal_lock`).
 
+    One- and two-axis sequences return ``(..., 1)`` and ``(..., 2)`` angles in
+    [-π, π], unique and exact everywhere; a rotation that the sequence cannot
+    represent (departure above ``SHORT_SEQUENCE_TOLERANCE``) raises ``ValueError``.
+
     Examples
     --------
     >>> import numpy as np
     >>> q = euler_to_quat("ZXZ", [0.3, 0.2, 0.1])
     >>> np.round(quat_to_euler("ZXZ", q), 12)
     array([0.3, 0.2, 0.1])
+    >>> np.round(quat_to_euler("ZX", euler_to_quat("ZX", [0.3, -2.0])), 12)
+    array([ 0.3, -2. ])
     """
-    axes, reverse = _intrinsic_axes(seq)
     q = quaternion_array(q, "q")
+    short = _short_sequence(seq)
+    if short is not None:
+        return _finish(_short_sequence_angles(seq, *short, q), degrees)
+    axes, reverse = _intrinsic_axes(seq)
     return _finish(_quat_to_euler(q, axes, reverse), degrees)
 
 
@@ -329,8 +436,11 @@ def matrix_to_euler(seq, R, degrees=False):
     >>> np.round(matrix_to_euler("ZXZ", R), 12)
     array([0.3, 0.2, 0.1])
     """
-    axes, reverse = _intrinsic_axes(seq)
     R = matrix_array(R, "R")
+    short = _short_sequence(seq)
+    if short is not None:
+        return _finish(_short_sequence_angles(seq, *short, _matrix._matrix_to_quat(R)), degrees)
+    axes, reverse = _intrinsic_axes(seq)
     return _finish(_matrix_to_euler(R, axes, reverse), degrees)
 
 

@@ -7,6 +7,8 @@ composes (``b`` first, then ``a``): ``(a * b).as_matrix() == a.as_matrix() @ b.a
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._validation import as_float_array, batch_shape
@@ -27,6 +29,21 @@ def _scalar_first(q, scalar_first, name="quat"):
     # (..., 5) array would silently become a rotation.
     q = as_float_array(q, name, (4,), finite=False)
     return q if scalar_first else q[..., [3, 0, 1, 2]]
+
+
+#: Distance of the middle angle from gimbal lock below which
+#: ``suppress_warnings=False`` warns, radians (scipy's threshold).
+_GIMBAL_TOLERANCE = 1e-7
+
+
+def _warn_gimbal_lock(mask):
+    if np.any(mask):
+        warnings.warn(
+            f"gimbal lock in {int(np.sum(mask))} of {np.size(mask)} rotations: the first and third angles are "
+            "not unique (the third intrinsic angle is set to 0; the rotation is reproduced exactly)",
+            _euler.GimbalLockWarning,
+            stacklevel=3,
+        )
 
 
 def canonical_quat(q):
@@ -398,8 +415,16 @@ class Rotation:
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
-    def as_euler(self, seq, degrees=False):
-        """Euler angles (exact through gimbal lock).
+    def as_euler(self, seq, degrees=False, *, suppress_warnings=True):
+        """Euler angles, exact through gimbal lock (any 1-, 2- or 3-axis sequence).
+
+        Unlike scipy, no warning is issued by default at gimbal lock: the
+        angles returned there are exact (the rotation rebuilt from them
+        matches to rounding), with the third intrinsic (first extrinsic) angle
+        set to 0 where only a sum or difference is defined. Pass
+        ``suppress_warnings=False`` (scipy's default) to get a
+        :class:`~kreisel.kinematics.GimbalLockWarning` for rotations within
+        1e-7 rad of gimbal lock, where the outer angles are not unique.
 
         Examples
         --------
@@ -410,8 +435,17 @@ class Rotation:
         >>> phi, theta, psi = r.as_euler("ZXZ", degrees=True)
         >>> round(float(phi + psi), 9), round(float(theta), 9)
         (50.0, 0.0)
+        >>> import warnings
+        >>> with warnings.catch_warnings(record=True) as caught:
+        ...     warnings.simplefilter("always")
+        ...     _ = r.as_euler("ZXZ", suppress_warnings=False)
+        >>> caught[0].category.__name__
+        'GimbalLockWarning'
         """
-        return _euler.quat_to_euler(seq, self._q, degrees=degrees)
+        angles = _euler.quat_to_euler(seq, self._q, degrees=degrees)
+        if not suppress_warnings and len(seq) == 3:
+            _warn_gimbal_lock(_euler.gimbal_lock(seq, angles, degrees=degrees, tolerance=_GIMBAL_TOLERANCE))
+        return angles
 
     def as_su2(self):
         """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign).
