@@ -22,7 +22,7 @@ from sphinx.util import logging
 
 logger = logging.getLogger(__name__)
 
-CITATION = re.compile(r"Theory §(?P<section>[1-8]|A)(?:\.(?P<subsection>\d+))?(?: ?\((?P<paragraph>\d+)\))?")
+CITATION = re.compile(r"Theory §(?P<section>\d+|A\b)(?:\.(?P<subsection>\d+))?(?: ?\((?P<paragraph>\d+)\))?")
 
 _SKIP = (nodes.literal, nodes.literal_block, nodes.reference, nodes.math, nodes.math_block, nodes.raw,
          nodes.comment, nodes.target, nodes.title, addnodes.pending_xref, addnodes.desc_signature)

@@ -1,4 +1,4 @@
-"""kreisel — rigid-body mechanics after the chapter in ``seed/`` (刚体力学).
+"""kreisel — rigid-body mechanics after a lecture chapter on rigid-body mechanics (see the Theory pages of the docs).
 
 Layers, each depending only on the ones before it::
 

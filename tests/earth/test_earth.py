@@ -8,7 +8,7 @@ from scipy.linalg import expm
 import kreisel as kr
 
 E = kr.earth
-SEED_OMEGA = 7.27221e-5
+CHAPTER_OMEGA = 7.27221e-5
 HEFEI = 31.8584
 HEFEI_G = 9.7947
 
@@ -17,9 +17,9 @@ def test_contract_constant():
     assert E.OMEGA_EARTH == 7.2921159e-5
 
 
-def test_seed_hefei_drop_analytic_and_simulated():
-    analytic = E.eastward_deflection(100.0, HEFEI, g=HEFEI_G, omega=SEED_OMEGA)
-    east, north = E.simulate_drop(100.0, HEFEI, g=HEFEI_G, omega=SEED_OMEGA)
+def test_chapter_hefei_drop_analytic_and_simulated():
+    analytic = E.eastward_deflection(100.0, HEFEI, g=HEFEI_G, omega=CHAPTER_OMEGA)
+    east, north = E.simulate_drop(100.0, HEFEI, g=HEFEI_G, omega=CHAPTER_OMEGA)
     assert round(float(analytic), 4) == 0.0186
     assert round(float(east), 4) == 0.0186
     # east has no O(ω²) correction: only the O(ω³) remainder separates them
@@ -27,8 +27,8 @@ def test_seed_hefei_drop_analytic_and_simulated():
     assert -1e-5 < north < 0  # second-order southward drift in the north
 
 
-def test_seed_hefei_foucault_period():
-    T = float(E.foucault_period(HEFEI, omega=SEED_OMEGA))
+def test_chapter_hefei_foucault_period():
+    T = float(E.foucault_period(HEFEI, omega=CHAPTER_OMEGA))
     hours, minutes = divmod(T / 60.0, 60.0)
     assert (int(hours), int(minutes)) == (45, 28)
 
@@ -137,7 +137,7 @@ def test_vertical_shot_lands_west(lat):
 
 
 # Foucault pendulum: a 1 m pendulum (period 2 s) on a fast planet, ω = 0.02 rad/s,
-# so that a few hundred swings show the precession; the seed-scale run uses
+# so that a few hundred swings show the precession; the chapter-scale run uses
 # the real rate with a 10 m pendulum over 2 hours.
 FAST = 0.02
 
@@ -161,11 +161,11 @@ def test_foucault_equator_does_not_precess():
 
 
 def test_foucault_hefei_real_rate():
-    res = E.foucault_pendulum(10.0, HEFEI, 7200.0, 0.05, g=HEFEI_G, omega=SEED_OMEGA)
-    expected = E.foucault_precession_rate(HEFEI, omega=SEED_OMEGA)
+    res = E.foucault_pendulum(10.0, HEFEI, 7200.0, 0.05, g=HEFEI_G, omega=CHAPTER_OMEGA)
+    expected = E.foucault_precession_rate(HEFEI, omega=CHAPTER_OMEGA)
     assert res.precession_rate == pytest.approx(expected, rel=0.02)
     turn_time = 2 * np.pi / abs(res.precession_rate)
-    assert turn_time == pytest.approx(float(E.foucault_period(HEFEI, omega=SEED_OMEGA)), rel=0.02)
+    assert turn_time == pytest.approx(float(E.foucault_period(HEFEI, omega=CHAPTER_OMEGA)), rel=0.02)
 
 
 def test_foucault_period_broadcasts_and_validates():

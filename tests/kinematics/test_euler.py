@@ -20,7 +20,7 @@ def _proper(seq):
     return seq[0].lower() == seq[2].lower()
 
 
-def _seed_zxz(phi, theta, psi):
+def _chapter_zxz(phi, theta, psi):
     """The chapter's explicit ZXZ matrices: space, body and the inverse of the body one."""
     s, c = np.sin, np.cos
     space = np.array([[0, c(phi), s(phi) * s(theta)], [0, s(phi), -c(phi) * s(theta)], [1, 0, c(theta)]])
@@ -36,8 +36,8 @@ def _seed_zxz(phi, theta, psi):
 
 
 @pytest.mark.parametrize("angles", [(0.3, 0.8, -1.2), (2.5, 2.9, 0.4), (-1.0, 0.05, 3.0)])
-def test_zxz_matrices_are_the_seeds(angles):
-    space, body, body_inverse = _seed_zxz(*angles)
+def test_zxz_matrices_are_the_chapters(angles):
+    space, body, body_inverse = _chapter_zxz(*angles)
     np.testing.assert_allclose(kr.kinematics.euler_rate_matrix("ZXZ", angles), space, atol=1e-15)
     np.testing.assert_allclose(kr.kinematics.euler_rate_matrix("ZXZ", angles, frame="body"), body, atol=1e-15)
     np.testing.assert_allclose(

@@ -35,7 +35,7 @@ def test_quaternion_rates_against_finite_differences(path, ref, t, frame):
     np.testing.assert_allclose(kr.angular_velocity_from_quat_rate(q, qdot, frame=frame), omega, rtol=0, atol=1e-13)
 
 
-def test_quaternion_rate_seed_products():
+def test_quaternion_rate_chapter_products():
     """q̇ = ½ ω q (space) and ½ q ω′ (body) as Hamilton products (Theory §3.3)."""
     rng = np.random.default_rng(1)
     q = kr.quat_normalize(rng.normal(size=(50, 4)))

@@ -47,20 +47,20 @@ def _dexp_coefficients_decimal(psi):
         return float((1 - c) / (x * x)), float((x - s) / (x * x * x))
 
 
-def _seed_space(psi, psidot):
+def _chapter_space(psi, psidot):
     """ω = ψ̇ + (1 − cos ψ)/ψ² ψ×ψ̇ + (ψ − sin ψ)/ψ³ ψ×(ψ×ψ̇), written as in Theory §3.4."""
     a = np.linalg.norm(psi, axis=-1)[..., None]
     c = np.cross(psi, psidot)
     return psidot + (1 - np.cos(a)) / a**2 * c + (a - np.sin(a)) / a**3 * np.cross(psi, c)
 
 
-def _seed_body(psi, psidot):
+def _chapter_body(psi, psidot):
     a = np.linalg.norm(psi, axis=-1)[..., None]
     c = np.cross(psi, psidot)
     return psidot - (1 - np.cos(a)) / a**2 * c + (a - np.sin(a)) / a**3 * np.cross(psi, c)
 
 
-def _seed_bortz(psi, omega_body):
+def _chapter_bortz(psi, omega_body):
     """The Bortz equation with the chapter's coefficient (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ)."""
     a = np.linalg.norm(psi, axis=-1)[..., None]
     f = (2 * np.sin(a) - a * (1 + np.cos(a))) / (2 * a**2 * np.sin(a))
@@ -74,23 +74,23 @@ def _random_rotvecs(rng, n, low, high):
     return axis * rng.uniform(low, high, size=(n, 1))
 
 
-def test_dexp_matches_the_seed_closed_forms():
+def test_dexp_matches_the_chapter_closed_forms():
     rng = np.random.default_rng(3)
     psi = _random_rotvecs(rng, 200, 0.5, 6.0)
     psidot = rng.normal(size=(200, 3))
-    np.testing.assert_allclose(kr.angular_velocity_from_rotvec_rate(psi, psidot), _seed_space(psi, psidot), atol=1e-14)
+    np.testing.assert_allclose(kr.angular_velocity_from_rotvec_rate(psi, psidot), _chapter_space(psi, psidot), atol=1e-14)
     np.testing.assert_allclose(
-        kr.angular_velocity_from_rotvec_rate(psi, psidot, frame="body"), _seed_body(psi, psidot), atol=1e-14
+        kr.angular_velocity_from_rotvec_rate(psi, psidot, frame="body"), _chapter_body(psi, psidot), atol=1e-14
     )
 
 
-def test_bortz_equation_matches_the_seed_formula():
+def test_bortz_equation_matches_the_chapter_formula():
     rng = np.random.default_rng(4)
     psi = _random_rotvecs(rng, 200, 0.5, 3.0)  # |sin ψ| ≥ 0.14: the chapter's form is well conditioned here
     w = rng.normal(size=(200, 3))
-    np.testing.assert_allclose(kr.rotvec_rate(psi, w, frame="body"), _seed_bortz(psi, w), atol=1e-13)
+    np.testing.assert_allclose(kr.rotvec_rate(psi, w, frame="body"), _chapter_bortz(psi, w), atol=1e-13)
     # space frame: ψ → −ψ in the body formula (Theory §3.4 remark)
-    np.testing.assert_allclose(kr.rotvec_rate(psi, w), _seed_bortz(-psi, w), atol=1e-13)
+    np.testing.assert_allclose(kr.rotvec_rate(psi, w), _chapter_bortz(-psi, w), atol=1e-13)
 
 
 @pytest.mark.parametrize("t", [0.2, 0.7])
@@ -133,7 +133,7 @@ def test_bortz_coefficient_against_high_precision():
     assert kr.kinematics.bortz_coefficient(np.pi) == pytest.approx(1 / np.pi**2, rel=1e-15)
 
 
-def test_bortz_series_is_the_seeds():
+def test_bortz_series_is_the_chapters():
     """1/12 + ψ²/720 + ψ⁴/30240 + O(ψ⁶) (Theory §3.5)."""
     for psi in [1e-3, 1e-2, 5e-2]:
         f = kr.kinematics.bortz_coefficient(psi)

@@ -16,7 +16,7 @@ def test_there_are_24_conventions():
     assert len(set(ALL_SEQUENCES)) == 24
 
 
-def test_seed_zxz_matrix(rng):
+def test_chapter_zxz_matrix(rng):
     """R(φ, θ, ψ) = Rz(φ) Rx(θ) Rz(ψ) as printed in Theory §2.3 (2)."""
     for phi, theta, psi in rng.uniform(-3, 3, size=(10, 3)):
         c, s = np.cos, np.sin
@@ -30,7 +30,7 @@ def test_seed_zxz_matrix(rng):
         np.testing.assert_allclose(kr.euler_to_matrix("ZXZ", [phi, theta, psi]), expected, atol=1e-15)
 
 
-def test_seed_zyz_matrix(rng):
+def test_chapter_zyz_matrix(rng):
     """Quantum-mechanics R(α, β, γ) = Rz(α) Ry(β) Rz(γ), Theory §2.3 (2)."""
     for a, b, g in rng.uniform(-3, 3, size=(10, 3)):
         c, s = np.cos, np.sin

@@ -10,7 +10,7 @@ from scipy.spatial.transform import Rotation as S
 import kreisel as kr
 
 
-def seed_rodrigues(psi):
+def chapter_rodrigues(psi):
     """R(ψn) = 1 cos ψ + n nᵀ (1 - cos ψ) + X_n sin ψ, Theory §2.2 (3)."""
     angle = np.linalg.norm(psi)
     n = psi / angle
@@ -18,7 +18,7 @@ def seed_rodrigues(psi):
     return np.eye(3) * np.cos(angle) + np.outer(n, n) * (1 - np.cos(angle)) + Xn * np.sin(angle)
 
 
-def seed_quat_matrix(q):
+def chapter_quat_matrix(q):
     """R(q) as printed in Theory §2.4 (unit q)."""
     q0, q1, q2, q3 = q
     return np.array(
@@ -37,14 +37,14 @@ unit_quats = arrays(np.float64, 4, elements=st.floats(-1, 1)).filter(lambda q: n
 rotvecs = arrays(np.float64, 3, elements=st.floats(-3.0, 3.0)).filter(lambda p: np.linalg.norm(p) < 3.1)
 
 
-def test_rotvec_to_matrix_is_seed_rodrigues(rng):
+def test_rotvec_to_matrix_is_chapter_rodrigues(rng):
     for psi in rng.normal(size=(20, 3)) * 2:
-        np.testing.assert_allclose(kr.rotvec_to_matrix(psi), seed_rodrigues(psi), atol=2e-15)
+        np.testing.assert_allclose(kr.rotvec_to_matrix(psi), chapter_rodrigues(psi), atol=2e-15)
 
 
-def test_quat_to_matrix_is_seed_formula(random_quats):
+def test_quat_to_matrix_is_chapter_formula(random_quats):
     for q in random_quats(20):
-        np.testing.assert_allclose(kr.quat_to_matrix(q), seed_quat_matrix(q), atol=1e-15)
+        np.testing.assert_allclose(kr.quat_to_matrix(q), chapter_quat_matrix(q), atol=1e-15)
 
 
 def test_generators_and_hat_vee(rng):
@@ -122,7 +122,7 @@ def test_log_near_pi_keeps_all_digits(delta):
     """arccos((tr R - 1)/2) loses half the digits near π; Shepperd + atan2 does not."""
     n = np.array([2.0, -3.0, 6.0]) / 7.0
     angle = np.pi - delta
-    R = seed_rodrigues(angle * n)
+    R = chapter_rodrigues(angle * n)
     psi = kr.matrix_to_rotvec(R)
     err = min(np.linalg.norm(psi - angle * n), np.linalg.norm(psi + angle * n))
     assert err < 2e-15
@@ -186,7 +186,7 @@ def test_bch_error_scales_with_order(rng, order):
     assert errors[0] / errors[1] == pytest.approx(2.0 ** (order + 1), rel=0.2)
 
 
-def test_bch_low_orders_are_seed_formula(rng):
+def test_bch_low_orders_are_chapter_formula(rng):
     a, b = rng.normal(size=(2, 3))
     c = np.cross(a, b)
     np.testing.assert_allclose(kr.bch(a, b, order=3), a + b + c / 2 + np.cross(a - b, c) / 12, atol=1e-15)

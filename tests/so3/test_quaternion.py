@@ -7,7 +7,7 @@ from scipy.spatial.transform import Rotation as S
 import kreisel as kr
 
 
-def seed_product(a, b):
+def chapter_product(a, b):
     """(a0 b0 - a.b, a0 b + b0 a + a x b), Theory §2.4."""
     a0, av, b0, bv = a[..., :1], a[..., 1:], b[..., :1], b[..., 1:]
     return np.concatenate(
@@ -25,12 +25,12 @@ def test_units_multiply_as_hamilton():
         assert np.array_equal(kr.quat_multiply(u, u), -e[0])
 
 
-def test_multiply_matches_seed_formula_and_broadcasts(rng):
+def test_multiply_matches_chapter_formula_and_broadcasts(rng):
     p = rng.normal(size=(5, 1, 4))
     q = rng.normal(size=(3, 4))
     out = kr.quat_multiply(p, q)
     assert out.shape == (5, 3, 4)
-    np.testing.assert_allclose(out, seed_product(p, q), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(out, chapter_product(p, q), rtol=0, atol=1e-14)
 
 
 def test_multiply_is_associative_and_norm_multiplicative(rng):

@@ -10,7 +10,7 @@ import kreisel as kr
 SIGMA = np.array([[[0, 1], [1, 0]], [[0, -1j], [1j, 0]], [[1, 0], [0, -1]]])
 
 
-def seed_R_of_u(a, b):
+def chapter_R_of_u(a, b):
     """R(u) of Theory §A (1), u = [[a, b], [-b*, a*]]."""
     ac, bc = np.conj(a), np.conj(b)
     return np.real(
@@ -24,7 +24,7 @@ def seed_R_of_u(a, b):
     )
 
 
-def seed_R_of_cayley_klein(al, be, ga, de):
+def chapter_R_of_cayley_klein(al, be, ga, de):
     """R(α, β, γ, δ) of Theory §A (3)."""
     return np.real(
         np.array(
@@ -43,13 +43,13 @@ def test_su2_is_exponential_of_pauli(rng):
         np.testing.assert_allclose(u, expm(-0.5j * np.einsum("j,jab->ab", psi, SIGMA)), atol=1e-15)
 
 
-def test_su2_acts_by_conjugation_and_matches_seed_matrix(random_quats, rng):
+def test_su2_acts_by_conjugation_and_matches_chapter_matrix(random_quats, rng):
     for q in random_quats(20):
         u = kr.quat_to_su2(q)
         R = kr.quat_to_matrix(q)
         np.testing.assert_allclose(u @ u.conj().T, np.eye(2), atol=1e-15)
         assert np.linalg.det(u) == pytest.approx(1.0, abs=1e-15)
-        np.testing.assert_allclose(seed_R_of_u(u[0, 0], u[0, 1]), R, atol=2e-15)
+        np.testing.assert_allclose(chapter_R_of_u(u[0, 0], u[0, 1]), R, atol=2e-15)
         r = rng.normal(size=3)
         lhs = u @ np.einsum("j,jab->ab", r, SIGMA) @ u.conj().T
         np.testing.assert_allclose(lhs, np.einsum("j,jab->ab", R @ r, SIGMA), atol=1e-14)
@@ -72,7 +72,7 @@ def test_cayley_klein(random_quats):
     np.testing.assert_allclose(ga, -be.conj(), atol=0)
     np.testing.assert_allclose(al * de - be * ga, 1.0, atol=1e-15)
     for i in range(20):
-        np.testing.assert_allclose(seed_R_of_cayley_klein(*ck[i]), kr.quat_to_matrix(q[i]), atol=2e-15)
+        np.testing.assert_allclose(chapter_R_of_cayley_klein(*ck[i]), kr.quat_to_matrix(q[i]), atol=2e-15)
     np.testing.assert_allclose(kr.cayley_klein_to_quat(ck), q, atol=1e-15)
 
 

@@ -150,7 +150,7 @@ def test_tennis_racket_theorem(reference, moments):
             assert top.omega_period(omega0) == pytest.approx(2 * np.pi / steady[k].wobble_frequency, rel=1e-9)
 
 
-def test_symmetric_and_spherical_stability_follow_the_seed():
+def test_symmetric_and_spherical_stability_follow_the_chapter():
     assert [s.kind for s in kr.EulerTop(1.0, 1.0, 3.0).steady_rotations()] == ["neutral", "neutral", "stable"]
     assert [s.kind for s in kr.EulerTop(2.0, 2.0, 2.0).steady_rotations()] == ["neutral"] * 3
 

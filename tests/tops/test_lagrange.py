@@ -148,7 +148,7 @@ def test_sleeping_top_threshold(reference):
 
 
 @pytest.mark.parametrize("theta0", [0.5, 1.3])
-def test_fast_top_approaches_seed_estimates(theta0):
+def test_fast_top_approaches_chapter_estimates(theta0):
     errors = []
     for omega3 in (50.0, 100.0, 200.0):
         ft = TOP.fast_top(theta0, omega3)

@@ -7,7 +7,7 @@ from kreisel.so3 import quat_apply
 
 @pytest.mark.parametrize("I1, I3", [(1.0, 2.0), (2.0, 1.0), (1.5, 0.3)])
 @pytest.mark.parametrize("theta0", [0.3, 1.2, 2.5])
-def test_regular_precession_matches_seed_and_exact_free_top(reference, I1, I3, theta0):
+def test_regular_precession_matches_chapter_and_exact_free_top(reference, I1, I3, theta0):
     top = kr.SymmetricTop(I1, I3)
     J, phi0, psi0 = 1.7, 0.4, -0.9
     t = np.linspace(0.0, 15.0, 151)

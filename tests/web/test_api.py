@@ -29,7 +29,7 @@ def test_presets_list_and_text(client):
     assert client.get("/api/presets/nope").status_code == 404
 
 
-def test_free_body_run_conserves_and_reports_seed_quantities(client):
+def test_free_body_run_conserves_and_reports_chapter_quantities(client):
     data = client.post("/api/run", json={"form": TENNIS}).json()
     t, q, omega = (np.array(data[k]) for k in ("t", "q", "omega"))
     assert t.shape == (201,) and q.shape == (201, 4) and omega.shape == (201, 3)

@@ -9,7 +9,7 @@ from .._validation import as_float_array
 __all__ = ["OMEGA_EARTH", "angular_velocity_enu", "enu_to_ecef_matrix"]
 
 OMEGA_EARTH = 7.2921159e-5
-"""Sidereal rotation rate of the Earth, rad/s (IERS). The seed uses 7.27221e-5 (2π per solar day)."""
+"""Sidereal rotation rate of the Earth, rad/s (IERS). Theory §8.2 uses 7.27221e-5 (2π per solar day)."""
 
 
 def latitude_cos_sin(latitude_deg, name="latitude_deg"):

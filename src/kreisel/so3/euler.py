@@ -349,7 +349,7 @@ def euler_to_quat(seq, angles, degrees=False):
     Parameters
     ----------
     seq : str
-        Axis sequence, e.g. ``"ZXZ"`` (seed mechanics angles φ, θ, ψ).
+        Axis sequence, e.g. ``"ZXZ"`` (the mechanics angles φ, θ, ψ of Theory §2.3).
     angles : array_like, shape (..., 3)
         Angles in the order of ``seq``; radians unless ``degrees=True``.
 

@@ -3,8 +3,8 @@
 Gibbs vector ``g = n tan(ψ/2) = q_v / q0`` (infinite at ψ = π); MRPs
 ``p = n tan(ψ/4) = q_v / (1 + q0)``, taken with q0 >= 0 so that |p| <= 1
 (the "shadow" set ``-p/|p|²`` describes the same rotation). Both are
-stereographic-type projections of the unit quaternion (appendix of the seed:
-"other parameters describing rigid-body motion").
+stereographic-type projections of the unit quaternion (Theory §A:
+other parameters describing rigid-body motion).
 """
 
 from __future__ import annotations

@@ -65,7 +65,7 @@ class SteadyRotation:
         ``"stable"`` (Lyapunov stable: extreme moment, or the symmetry axis of a
         symmetric top), ``"unstable"`` (middle moment: exponential growth) or
         ``"neutral"`` (a repeated moment: perturbations are not restored and
-        drift away linearly, which the seed counts as unstable).
+        drift away linearly, which Theory §5.4 counts as unstable).
     lyapunov_stable : bool
         ``kind == "stable"``.
     growth_rate : float
@@ -117,7 +117,7 @@ class _Symmetric:
 
     R(t) = exp(t J/I⊥ · X) R0 exp(t c e_k · X), c = ω_k (1 − I_k/I⊥): precession at
     J/I⊥ about the fixed angular momentum, spin at −c relative to it about the
-    symmetry axis k (seed: ψ̇ = −(I3 − I1) J cos θ0 / (I1 I3)).
+    symmetry axis k (Theory §5.7: ψ̇ = −(I3 − I1) J cos θ0 / (I1 I3)).
     """
 
     regime = "symmetric"

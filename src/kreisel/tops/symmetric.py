@@ -38,10 +38,10 @@ class Cones:
         the symmetry axis pointing towards J) in the same sense as it goes round
         the space cone about J: true for oblate, false for prolate bodies.
     space_rate : float
-        Angular rate of ω (and of e3) about J in space, J/I1 (seed: φ̇).
+        Angular rate of ω (and of e3) about J in space, J/I1 (Theory §5.7: φ̇).
     body_rate : float
         Angular rate of ω about the symmetry axis in the body,
-        Ω = (I3 − I1) J cos θ0 / (I1 I3) (seed: −ψ̇).
+        Ω = (I3 − I1) J cos θ0 / (I1 I3) (Theory §5.7: −ψ̇).
 
     Examples
     --------

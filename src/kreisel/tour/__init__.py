@@ -1,6 +1,6 @@
-"""The executable chapter: every demonstration of the seed, checked and reported.
+"""The executable chapter: every demonstration of the chapter, checked and reported.
 
-:func:`run_tour` runs one section per seed section, each computing the
+:func:`run_tour` runs one section per theory section, each computing the
 chapter's numbers with kreisel, comparing them with the chapter's (or an
 independent reference) and drawing its figures, then writes a
 self-contained ``index.html``.

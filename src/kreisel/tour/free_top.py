@@ -149,7 +149,7 @@ def symmetric_top_cones(quick):
     dq = np.min(np.stack([np.linalg.norm(closed.q - exact.q, axis=-1), np.linalg.norm(closed.q + exact.q, axis=-1)]), 0)
     angles = so3.quat_to_euler("ZXZ", closed.q)
     psi_rate = np.polyfit(t, np.unwrap(angles[:, 2]), 1)[0]
-    seed_psi_rate = -(I3 - I1) * J * np.cos(theta0) / (I1 * I3)
+    chapter_psi_rate = -(I3 - I1) * J * np.cos(theta0) / (I1 * I3)
     oblate, prolate = sym.cones(J, theta0), SymmetricTop(2.0, 1.0).cones(J, theta0)
 
     fig = Figure(figsize=(5.5, 5), layout="constrained")
@@ -171,7 +171,7 @@ def symmetric_top_cones(quick):
         "about e3. For an oblate top (I3 > I1) the body cone rolls with its inside on the space cone, in "
         "the same sense; for a prolate top the cones touch outside and turn in opposite senses.",
         [Check.below("closed form vs general elliptic solution, max |Δq|", float(np.max(dq)), 1e-12),
-         Check.close("ψ̇ measured (rad/s)", float(psi_rate), seed_psi_rate, rtol=1e-10, source="Theory §5.7"),
+         Check.close("ψ̇ measured (rad/s)", float(psi_rate), chapter_psi_rate, rtol=1e-10, source="Theory §5.7"),
          Check.equal("oblate: cones", (oblate.relation, oblate.same_sense), ("space cone inside body cone", True)),
          Check.equal("prolate: cones", (prolate.relation, prolate.same_sense),
                      ("body cone outside space cone", False))],

@@ -100,7 +100,7 @@ def fast_and_sleeping_top(quick):
         "at frequency J3/I1 and precesses on average at m g l/(I3 ω3). An upright (sleeping) top is stable "
         "when J3² > 4 I1 m g l.",
         [Check.close("mean precession at ω3 = 60 rad/s, measured from simulation (rad/s)", float(measured_rate),
-                     _TOP.mgl / (_TOP.I3 * spin), rtol=2e-2, source="m g l/(I3 ω3), seed"),
+                     _TOP.mgl / (_TOP.I3 * spin), rtol=2e-2, source="m g l/(I3 ω3), Theory §6.7"),
          Check.below("exact vs approximate precession at ω3 = 200 rad/s (relative)",
                      abs(exact_rates[-1] / approx_rates[-1] - 1), 1e-3),
          Check.close("sleeping-top threshold ω3 (rad/s)", float(threshold), 2 * np.sqrt(_TOP.I1 * _TOP.mgl) / _TOP.I3,

@@ -87,7 +87,7 @@ def bortz_coefficient(quick):
         "The body-frame rotation-vector rate (the Bortz equation) has the coefficient "
         "c(ψ) = (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ) = 1/12 + ψ²/720 + …, singular at ψ = 2π. "
         "The closed form loses every digit to cancellation as ψ → 0; kreisel switches to the series.",
-        [Check.close("c(0)", float(coefficient[0]), 1 / 12, rtol=1e-15, source="seed series"),
+        [Check.close("c(0)", float(coefficient[0]), 1 / 12, rtol=1e-15, source="Theory §3.5 series"),
          Check.below("max relative error vs series for ψ < 1e-3",
                      float(np.max(np.abs(coefficient[small] / series[small] - 1))), 1e-15),
          Check.below("max relative error vs closed form for ψ > 0.5",

@@ -47,7 +47,7 @@ class Check:
 
 @dataclasses.dataclass
 class Section:
-    """A tour section: what the seed says, what kreisel computed, and figures."""
+    """A tour section: what the theory says, what kreisel computed, and figures."""
 
     title: str
     seed: str
@@ -89,7 +89,7 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
         f"<h1>{html.escape(title)}</h1>",
         f"<p>{passed} of {len(sections)} sections pass. Each section computes the chapter's results with "
         "kreisel and checks them against the chapter's numbers or an independent reference.</p>",
-        "<table><tr><th>section</th><th>seed</th><th>checks</th><th>time</th></tr>",
+        "<table><tr><th>section</th><th>theory</th><th>checks</th><th>time</th></tr>",
     ]
     for i, s in enumerate(sections):
         mark = "<span class='pass'>pass</span>" if s.ok else "<span class='fail'>FAIL</span>"

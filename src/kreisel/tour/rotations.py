@@ -27,7 +27,7 @@ def euler_angles_and_nodal_line(quick):
     """Euler angles and the nodal line"""
     phi, theta, psi = np.deg2rad([40.0, 35.0, 25.0])
     R = so3.euler_to_matrix("ZXZ", [phi, theta, psi])
-    seed_R = _axis_rotation(2, phi) @ _axis_rotation(0, theta) @ _axis_rotation(2, psi)
+    chapter_R = _axis_rotation(2, phi) @ _axis_rotation(0, theta) @ _axis_rotation(2, psi)
     back = so3.matrix_to_euler("ZXZ", R)
     rng = np.random.default_rng(1)
     angles = rng.uniform(-np.pi, np.pi, (200 if quick else 2000, 3))
@@ -60,7 +60,7 @@ def euler_angles_and_nodal_line(quick):
         "The mechanics Euler angles (φ, θ, ψ) are the intrinsic sequence ZXZ: R = Rz(φ) Rx(θ) Rz(ψ). "
         "The body x′y′ plane meets the space xy plane along the nodal line N = Rz(φ) e_x. All 24 "
         "sequences (12 axis orders, intrinsic and extrinsic) agree with scipy.",
-        [Check.below("|R − Rz(φ)Rx(θ)Rz(ψ)| (chapter's product)", np.max(np.abs(R - seed_R)), 1e-15),
+        [Check.below("|R − Rz(φ)Rx(θ)Rz(ψ)| (chapter's product)", np.max(np.abs(R - chapter_R)), 1e-15),
          Check.below("angles recovered from R (rad)", np.max(np.abs(back - [phi, theta, psi])), 1e-14),
          Check.below("max |R − scipy R| over 24 conventions", worst, 1e-14)],
         [(fig, "Space axes (grey) and body axes (colour) for ZXZ angles; the dashed line is the line of nodes.")],

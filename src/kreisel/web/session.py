@@ -208,16 +208,16 @@ def _lists(arrays):
 
 
 def rigid_body_header(scenario, traj):
-    """Everything of a rigid-body run's JSON but the samples and the drift (seed quantities from ``traj[0]``)."""
+    """Everything of a rigid-body run's JSON but the samples and the drift (theory quantities from ``traj[0]``)."""
     gravity = _gravity(scenario)
     return {"kind": "rigid_body", "title": scenario.title, "method": traj.meta.get("method"),
             "inertia": traj.inertia.tolist(),
             "gravity": None if gravity is None else {"weight": gravity[0], "lever": gravity[1].tolist()},
-            "seed": seed_quantities(traj, gravity)}
+            "seed": theory_quantities(traj, gravity)}
 
 
 def rigid_body_result(scenario, traj):
-    """JSON-ready arrays and seed quantities of a rigid-body run."""
+    """JSON-ready arrays and theory quantities of a rigid-body run."""
     gravity = _gravity(scenario)
     arrays = samples(traj, gravity)
     drift = Drift()
@@ -225,7 +225,7 @@ def rigid_body_result(scenario, traj):
     return {**rigid_body_header(scenario, traj), **_lists(arrays), "drift": drift.summary(gravity is None)}
 
 
-def seed_quantities(traj, gravity):
+def theory_quantities(traj, gravity):
     """T, J, stability of the principal axes and, for a Lagrange top, the nutation range (Theory §5, §6)."""
     from ..inertia import principal_axes
 
