@@ -6,6 +6,8 @@ import numpy as np
 
 from .._validation import as_float_array
 from . import solids
+from .mesh import from_mesh
+from .properties import MassProperties, combine, from_points
 from .tensors import as_symmetric_tensor, check_moments, principal_axes
 
 
@@ -109,6 +111,19 @@ class RigidBody:
         return self._axes
 
     @property
+    def mass_properties(self):
+        """The body's :class:`~kreisel.inertia.MassProperties`: centre of mass at the body origin.
+
+        Examples
+        --------
+        >>> import kreisel as kr
+        >>> p = kr.RigidBody([1.0, 2.0, 3.0], mass=2.0).mass_properties
+        >>> p.mass, p.com.tolist(), p.inertia.diagonal().tolist()
+        (2.0, [0.0, 0.0, 0.0], [1.0, 2.0, 3.0])
+        """
+        return MassProperties(self._mass, np.zeros(3), self._inertia)
+
+    @property
     def is_principal(self):
         """Whether the body axes are principal axes (tensor exactly diagonal)."""
         return bool(np.count_nonzero(self._inertia - np.diag(np.diagonal(self._inertia))) == 0)
@@ -148,8 +163,6 @@ class RigidBody:
         >>> body.mass, body.principal_moments.round(12)
         (12.0, array([ 5., 10., 13.]))
         """
-        from .mesh import from_mesh
-
         return cls.from_properties(from_mesh(vertices, faces, density))
 
     @classmethod
@@ -167,8 +180,6 @@ class RigidBody:
         >>> dumbbell.principal_moments
         array([0.008, 2.008, 2.008])
         """
-        from .properties import combine
-
         return cls.from_properties(combine(parts))
 
     @classmethod
@@ -185,8 +196,6 @@ class RigidBody:
         >>> body.mass, body.inertia.diagonal().round(12).tolist()
         (4.0, [1.0, 2.0, 3.0])
         """
-        from .properties import from_points
-
         return cls.from_properties(from_points(masses, positions))
 
     def __repr__(self):

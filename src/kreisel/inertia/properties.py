@@ -129,10 +129,12 @@ def from_points(masses, positions):
 
 
 def _as_part(entry, index):
-    """(MassProperties, position, rotation) from one entry of ``combine``'s parts."""
-    from .body import RigidBody
+    """(MassProperties, position, rotation) from one entry of ``combine``'s parts.
 
-    if isinstance(entry, (MassProperties, RigidBody)):
+    A :class:`~kreisel.RigidBody` is recognised by its ``mass_properties``
+    (the body layer sits above this module).
+    """
+    if isinstance(entry, MassProperties) or hasattr(entry, "mass_properties"):
         item, position, rotation = entry, None, None
     elif isinstance(entry, tuple) and 2 <= len(entry) <= 3:
         item, position, rotation = (*entry, None)[:3]
@@ -141,9 +143,9 @@ def _as_part(entry, index):
             f"parts[{index}] must be a MassProperties, a RigidBody, or a tuple "
             "(part, position) / (part, position, rotation)"
         )
-    if isinstance(item, RigidBody):
-        item = MassProperties(item.mass, np.zeros(3), item.inertia)
-    elif not isinstance(item, MassProperties):
+    if hasattr(item, "mass_properties"):
+        item = item.mass_properties
+    if not isinstance(item, MassProperties):
         raise TypeError(f"parts[{index}] must hold a MassProperties or RigidBody, got {type(item).__name__}")
     mass = float(as_float_array(item.mass, f"parts[{index}].mass"))
     if mass == 0.0:

@@ -17,7 +17,7 @@ import numpy as np
 from ._checks import finite_array
 from .._validation import as_float_array
 
-__all__ = ["Screw", "change_base_point"]
+__all__ = ["Screw"]
 
 
 class Screw(NamedTuple):
@@ -125,41 +125,3 @@ def screw_pose(axis, point, angle, translation=0.0):
     t = -2.0 * w[..., None] * sp - 2.0 * np.cross(s, sp) + translation[..., None] * n
     return quat, t
 
-
-def change_base_point(transform, offset):
-    """The same displacement described about another body point (Theory §1.3, corollary).
-
-    With base point C, ``r_P = R r′_CP + r_C``. Taking instead the body
-    point A with body components ``r′_CA = offset`` (relative to C) as the
-    base point gives ``r_P = R r′_AP + r_A`` with the **same** R and
-    ``r_A = R r′_CA + r_C``. The result maps body components relative to A
-    to space positions; it equals ``transform * RigidTransform.from_translation(offset)``.
-
-    Parameters
-    ----------
-    transform : RigidTransform
-        Displacement described with base point C.
-    offset : array_like, shape (..., 3)
-        ``r′_CA``: body components of the new base point A, relative to C.
-
-    Returns
-    -------
-    RigidTransform
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from kreisel.se3 import RigidTransform
-    >>> T = RigidTransform.from_rotation_translation([0, 0, 0, 1], [1.0, 0.0, 0.0])  # 180° about z
-    >>> TA = change_base_point(T, [1.0, 0.0, 0.0])
-    >>> TA.translation                                   # where A went
-    array([0., 0., 0.])
-    >>> np.allclose(TA.as_quat(), T.as_quat())           # R unchanged
-    True
-    """
-    from .transform import RigidTransform
-
-    if not isinstance(transform, RigidTransform):
-        raise TypeError(f"transform must be a RigidTransform, got {type(transform).__name__}")
-    offset = finite_array(offset, "offset")
-    return RigidTransform._from_arrays(transform._quat, transform.apply(offset))

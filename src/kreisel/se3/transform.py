@@ -22,9 +22,9 @@ from ..so3 import (
 from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from . import _kernels, lie
 from ._checks import finite_array
-from .screw import change_base_point, screw_parameters, screw_pose
+from .screw import screw_parameters, screw_pose
 
-__all__ = ["RigidTransform"]
+__all__ = ["RigidTransform", "change_base_point"]
 
 #: Largest accepted departure from rigidity: |bottom row - (0, 0, 0, 1)| of a
 #: homogeneous matrix, ||q_r| - 1| and the relative q_r·q_d of a dual
@@ -548,3 +548,40 @@ class RigidTransform:
             t = "[" + ", ".join(repr(float(x)) for x in self._translation) + "]"
             return f"RigidTransform(quat={q}, translation={t})"
         return f"RigidTransform(shape={self.shape}, quat={fmt(self._quat)}, translation={fmt(self._translation)})"
+
+
+def change_base_point(transform, offset):
+    """The same displacement described about another body point (Theory §1.3, corollary).
+
+    With base point C, ``r_P = R r′_CP + r_C``. Taking instead the body
+    point A with body components ``r′_CA = offset`` (relative to C) as the
+    base point gives ``r_P = R r′_AP + r_A`` with the **same** R and
+    ``r_A = R r′_CA + r_C``. The result maps body components relative to A
+    to space positions; it equals ``transform * RigidTransform.from_translation(offset)``.
+
+    Parameters
+    ----------
+    transform : RigidTransform
+        Displacement described with base point C.
+    offset : array_like, shape (..., 3)
+        ``r′_CA``: body components of the new base point A, relative to C.
+
+    Returns
+    -------
+    RigidTransform
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kreisel.se3 import RigidTransform
+    >>> T = RigidTransform.from_rotation_translation([0, 0, 0, 1], [1.0, 0.0, 0.0])  # 180° about z
+    >>> TA = change_base_point(T, [1.0, 0.0, 0.0])
+    >>> TA.translation                                   # where A went
+    array([0., 0., 0.])
+    >>> np.allclose(TA.as_quat(), T.as_quat())           # R unchanged
+    True
+    """
+    if not isinstance(transform, RigidTransform):
+        raise TypeError(f"transform must be a RigidTransform, got {type(transform).__name__}")
+    offset = finite_array(offset, "offset")
+    return RigidTransform._from_arrays(transform._quat, transform.apply(offset))

@@ -1,0 +1,144 @@
+"""The import graph of src/kreisel: no cycles between modules, no import of a higher layer.
+
+The graph is read from the source with :mod:`ast`, so function-local imports
+(which hide cycles from Python itself) count like module-level ones.
+"""
+
+import ast
+import pathlib
+
+import pytest
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "src" / "kreisel"
+
+#: Layers from the bottom: a module may import its own layer and those below.
+LAYERS = (
+    ("_compiled", "_validation", "_fileio"),
+    ("so3",),
+    ("kinematics",),
+    ("inertia", "dynamics"),
+    ("tops", "frames", "earth", "nav", "se3"),
+    ("io", "plot", "cli", "web", "sweep", "tour", "__init__", "__main__"),
+)
+LAYER = {name: level for level, names in enumerate(LAYERS) for name in names}
+
+
+def _modules(root):
+    """Dotted module name -> (path, is_package) for every .py file under ``root``."""
+    modules = {}
+    for path in root.rglob("*.py"):
+        parts = list(path.relative_to(root.parent).with_suffix("").parts)
+        is_package = parts[-1] == "__init__"
+        modules[".".join(parts[:-1] if is_package else parts)] = (path, is_package)
+    return modules
+
+
+def import_graph(root=PACKAGE):
+    """Edges ``(importer, imported, line)`` between kreisel modules, function-local imports included."""
+    modules = _modules(root)
+    top = root.name
+    edges = []
+    for name, (path, is_package) in sorted(modules.items()):
+        package = name if is_package else name.rpartition(".")[0]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+            if isinstance(node, ast.Import):
+                targets = [alias.name for alias in node.names if alias.name.split(".")[0] == top]
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    module = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    module = node.module or ""
+                    if module.split(".")[0] != top:
+                        continue
+                # ``from package import submodule`` imports the submodule
+                targets = [f"{module}.{alias.name}" if f"{module}.{alias.name}" in modules else module for alias in node.names]
+            else:
+                continue
+            edges.extend((name, target, node.lineno) for target in targets if target != name)
+    unknown = [(a, b, line) for a, b, line in edges if b not in modules]
+    assert not unknown, f"imports of modules that do not exist: {unknown}"
+    return modules, edges
+
+
+def layer(module):
+    """Layer index of a dotted module name (the package facade ``kreisel`` is in the top layer)."""
+    parts = module.split(".")
+    return LAYER[parts[1] if len(parts) > 1 else "__init__"]
+
+
+def cycles(nodes, edges):
+    """Strongly connected components with more than one module (Tarjan, iterative)."""
+    successors = {n: sorted({b for a, b, _ in edges if a == n}) for n in nodes}
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+    counter = 0
+    for start in sorted(nodes):
+        if start in index:
+            continue
+        work = [(start, iter(successors[start]))]
+        index[start] = low[start] = counter
+        counter += 1
+        stack.append(start)
+        on_stack.add(start)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = counter
+                    counter += 1
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(successors[child])))
+                elif child in on_stack:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = []
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.append(member)
+                    if member == node:
+                        break
+                if len(component) > 1:
+                    found.append(sorted(component))
+    return found
+
+
+def test_no_import_cycles():
+    modules, edges = import_graph()
+    assert cycles(modules, edges) == []
+
+
+def test_no_import_of_a_higher_layer():
+    _, edges = import_graph()
+    upward = [f"{a} -> {b} (line {line})" for a, b, line in edges if layer(b) > layer(a)]
+    assert upward == []
+
+
+def test_every_package_has_a_layer():
+    assert {path.name for path in PACKAGE.iterdir() if path.is_dir() and (path / "__init__.py").exists()} <= set(LAYER)
+    assert {path.stem for path in PACKAGE.glob("*.py")} <= set(LAYER)
+
+
+def test_the_checks_see_function_local_imports_and_upward_imports(tmp_path):
+    root = tmp_path / "kreisel"
+    for package in ("so3", "kinematics"):
+        (root / package).mkdir(parents=True)
+        (root / package / "__init__.py").write_text("")
+    (root / "__init__.py").write_text("")
+    (root / "so3" / "a.py").write_text("def f():\n    from . import b\n")
+    (root / "so3" / "b.py").write_text("from .a import f\n")
+    (root / "so3" / "c.py").write_text("import kreisel.kinematics\n")
+    modules, edges = import_graph(root)
+    assert cycles(modules, edges) == [["kreisel.so3.a", "kreisel.so3.b"]]
+    assert [(a, b) for a, b, _ in edges if layer(b) > layer(a)] == [("kreisel.so3.c", "kreisel.kinematics")]
+
+
+@pytest.mark.parametrize("module", ["kreisel", "kreisel.__main__", "kreisel._compiled.gufunc", "kreisel.tour.runner"])
+def test_layer_of_the_facade_private_base_and_user_layers(module):
+    assert layer(module) == {"kreisel._compiled.gufunc": 0}.get(module, len(LAYERS) - 1)
