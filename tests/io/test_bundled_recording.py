@@ -15,7 +15,7 @@ NOISE = 0.05  # rad/s
 HEADER = '"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)","Gyroscope z (rad/s)","Absolute (rad/s)"'
 
 
-def make_phone_toss(seed=2024):
+def make_phone_toss(seed=2025):
     """Exact free-top ω of the phone slab, sampled like a phone's gyroscope (~400 Hz, jittered)."""
     rng = np.random.default_rng(seed)
     moments = np.diag(kr.inertia.box(PHONE_MASS, PHONE_SIZE))

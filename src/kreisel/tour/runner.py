@@ -12,7 +12,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._fileio import atomic_output
-from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, rotations
+from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, phone_lab, rotations
 from .report import Section, render_html
 
 # in the order of the chapter: §2, §3 (with its navigation remarks), §4, §5, §6, §7, §8
@@ -23,6 +23,7 @@ SECTIONS = (
     free_top.inertia_ellipsoid,
     *integrators.SECTIONS,
     free_top.tennis_racket,
+    *phone_lab.SECTIONS,
     free_top.poinsot_construction,
     free_top.symmetric_top_cones,
     *heavy_top.SECTIONS,
