@@ -47,10 +47,11 @@ import os
 import pathlib
 import shutil
 import uuid
+import zipfile
 
 import numpy as np
 
-from .._fileio import atomic_output
+from .._fileio import atomic_output, remove_stale_temporaries, temporary_prefix
 
 SERIAL = "serial"
 _CHECKPOINT_META = "sweep.json"
@@ -75,7 +76,8 @@ class SweepError(RuntimeError):
 class SweepProgress:
     """One event of a running sweep, passed to the ``progress`` callback.
 
-    ``event`` is ``"resumed"`` (chunk loaded from the checkpoint), ``"done"``,
+    ``event`` is ``"resumed"`` (chunk loaded from the checkpoint), ``"discarded"``
+    (its checkpoint file was unreadable and is computed again), ``"done"``,
     ``"retry"`` (the chunk failed and was resubmitted) or ``"failed"`` (no
     retries left); ``done`` counts the chunks finished so far (resumed ones
     included) out of ``total``; ``message`` describes a failure.
@@ -184,13 +186,29 @@ class _Checkpoint:
         return self.directory / f"chunk-{chunk:06d}.npz"
 
     def load(self, n_chunks):
-        found = {}
+        """``({chunk: arrays}, {chunk: why it was discarded})`` of the chunk files on disk.
+
+        A chunk file that cannot be read whole (empty, truncated, corrupted by a
+        crash of the disk or of another program) is deleted, so that its chunk
+        is computed again.
+        """
+        found, discarded = {}, {}
         for chunk in range(n_chunks):
             path = self._path(chunk)
-            if path.exists():
+            if not path.exists():
+                continue
+            try:
                 with np.load(path, allow_pickle=False) as data:
                     found[chunk] = {name: data[name] for name in data.files}
-        return found
+                if not found[chunk]:
+                    raise ValueError("it holds no arrays")
+            except (OSError, ValueError, EOFError, KeyError, zipfile.BadZipFile) as exc:
+                found.pop(chunk, None)
+                size = path.stat().st_size
+                discarded[chunk] = (f"checkpoint file {path.name} ({size} bytes) is unreadable "
+                                    f"({type(exc).__name__}: {exc or 'empty'}); computing the chunk again")
+                path.unlink(missing_ok=True)
+        return found, discarded
 
     def save(self, chunk, result):
         with atomic_output(self._path(chunk)) as tmp:
@@ -384,9 +402,10 @@ def write_dataset(dataset, output):
         with atomic_output(output) as tmp:
             dataset.to_netcdf(tmp)
         return
+    remove_stale_temporaries(output)  # stores left by a killed write
     tag = uuid.uuid4().hex[:8]
-    tmp = output.with_name(f".{output.name}.{tag}.tmp")
-    old = output.with_name(f".{output.name}.{tag}.old")
+    tmp = output.with_name(f"{temporary_prefix(output)}{tag}.tmp")
+    old = output.with_name(f"{temporary_prefix(output)}{tag}.old")
     try:
         dataset.to_zarr(tmp, mode="w", zarr_format=2, consolidated=True)  # v2 + consolidated: widest reader support
         if output.exists():
@@ -497,10 +516,12 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
     directory = checkpoint if checkpoint is not None else _default_checkpoint(output)
     store = _Checkpoint(directory, key, description) if directory is not None else None
 
-    results = store.load(n_chunks) if store is not None else {}
+    results, discarded = store.load(n_chunks) if store is not None else ({}, {})
     report = _Reporter(progress, console, n_chunks, description)
     failures = {}
     try:
+        for chunk, message in sorted(discarded.items()):
+            report("discarded", chunk, message)
         for chunk in sorted(results):
             report("resumed", chunk)
         todo = [chunk for chunk in range(n_chunks) if chunk not in results]
