@@ -215,3 +215,37 @@ def test_refuses_container_use_of_single_and_foreign_products():
         t * np.eye(4)
     with pytest.raises(TypeError):
         RigidTransform.from_scipy(np.eye(4))
+
+
+# -- powers and means (scipy parity) --------------------------------------------
+
+
+@pytest.mark.parametrize("p", [0, 1, -1, 0.5, -2.3, 3, 1e-9])
+def test_powers_match_scipy_and_exp_of_scaled_log(p):
+    T = RigidTransform.random((4, 5), rng=12)
+    got = T**p
+    np.testing.assert_allclose(got.as_matrix(), (T.to_scipy() ** p).as_matrix(), atol=5e-15)
+    np.testing.assert_allclose(got.as_matrix(), RigidTransform.from_exp_coords(p * T.as_exp_coords()).as_matrix(), atol=5e-15)
+
+
+def test_power_halves_compose_to_the_whole_and_exponents_broadcast():
+    T = RigidTransform.random(6, rng=13)
+    np.testing.assert_allclose(((T**0.5) * (T**0.5)).as_matrix(), T.as_matrix(), atol=5e-15)
+    np.testing.assert_allclose((T**-1).as_matrix(), T.inv().as_matrix(), atol=0)
+    np.testing.assert_array_equal((T**0).as_matrix(), RigidTransform.identity(6).as_matrix())
+    p = np.linspace(-2.0, 2.0, 6)
+    np.testing.assert_allclose((T**p).as_matrix(), [(T[i] ** p[i]).as_matrix() for i in range(6)], atol=1e-14)
+
+
+@pytest.mark.parametrize("axis", [None, 0, 1, (0, 1)])
+def test_mean_matches_scipy(axis):
+    T = RigidTransform.random((4, 5), rng=14)
+    w = np.random.default_rng(15).random((4, 5))
+    for weights in (None, w):
+        np.testing.assert_allclose(
+            T.mean(weights, axis=axis).as_matrix(), T.to_scipy().mean(weights, axis=axis).as_matrix(), atol=5e-15
+        )
+    with pytest.raises(ValueError, match="empty"):
+        RigidTransform.identity(0).mean()
+    with pytest.raises(ValueError, match="weights"):
+        T.mean(-w)

@@ -191,3 +191,51 @@ def test_random_matches_scipy_seeds():
         np.testing.assert_allclose(
             Rotation.random(rng=seed).as_quat(), S.random(rng=seed).as_quat(scalar_first=True), rtol=0, atol=3e-16
         )
+
+
+# -- powers and means over axes (scipy parity) ----------------------------------
+
+
+@pytest.mark.parametrize("p", [0, 1, -1, 0.5, -0.25, 2, 3.7, -2.5, 1e-9])
+def test_powers_match_scipy_and_scale_the_rotation_vector(p):
+    r = Rotation.random(200, rng=8)
+    got = r**p
+    np.testing.assert_allclose(got.as_matrix(), (r.to_scipy() ** p).as_matrix(), atol=3e-15)
+    # Independent: exp(p ψ) with ψ = log r, |ψ| <= π.
+    np.testing.assert_allclose(got.as_matrix(), kr.rotvec_to_matrix(p * r.as_rotvec()), atol=3e-15)
+    np.testing.assert_allclose(np.linalg.norm(got.as_quat(), axis=-1), 1.0, atol=3e-16)
+
+
+def test_power_special_cases_are_exact_and_exponents_broadcast():
+    r = Rotation.random(6, rng=9)
+    np.testing.assert_array_equal((r**0).as_quat(), Rotation.identity(6).as_quat())
+    np.testing.assert_allclose((r**-1).as_quat(), r.inv().as_quat(), rtol=0, atol=2.3e-16)  # renormalised only
+    np.testing.assert_allclose((r**1).as_quat(), r.as_quat(), rtol=0, atol=2.3e-16)
+    # (r^a)(r^b) = r^(a+b) for exponents that keep the angle within π.
+    np.testing.assert_allclose((r**0.3 * r**0.4).as_matrix(), (r**0.7).as_matrix(), atol=3e-15)
+    p = np.linspace(-1.0, 1.0, 6)
+    np.testing.assert_allclose((r**p).as_matrix(), [(r[i] ** p[i]).as_matrix() for i in range(6)], atol=1e-15)
+    half = Rotation.from_rotvec([0.0, 0.0, 1.5 * np.pi])  # 270° is stored as -90°
+    np.testing.assert_allclose((half**2).magnitude(), np.pi, atol=1e-15)
+    with pytest.raises(ValueError, match="p must be finite"):
+        r ** np.nan
+    with pytest.raises(TypeError):
+        pow(r, 2, 3)
+    big = Rotation.random(40000, rng=10)  # the multi-core loop
+    np.testing.assert_allclose((big**0.3).as_matrix()[::997], (big[::997] ** 0.3).as_matrix(), atol=0)
+
+
+@pytest.mark.parametrize("axis", [None, 0, 1, -1, (0, 1), (1,)])
+def test_mean_over_axes_matches_scipy(axis, rng):
+    r = Rotation.random((4, 5), rng=11)
+    w = rng.random((4, 5))
+    s = r.to_scipy()
+    for weights in (None, w):
+        got = r.mean(weights, axis=axis)
+        want = Rotation.from_scipy(s.mean(weights, axis=axis))
+        assert got.shape == want.shape
+        assert got.approx_equal(want, atol=1e-12).all()
+    with pytest.raises(ValueError, match="out of bounds"):
+        r.mean(axis=2)
+    with pytest.raises(ValueError, match="weights must have the batch shape"):
+        r.mean(np.ones(5))

@@ -20,6 +20,7 @@ from ..so3 import (
     quat_to_matrix,
 )
 from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
+from ..so3.interpolation import gather_samples, mean_over
 from . import _kernels, lie
 from ._checks import finite_array
 from .screw import screw_parameters, screw_pose
@@ -453,6 +454,71 @@ class RigidTransform:
         if not isinstance(other, RigidTransform):
             return NotImplemented
         return RigidTransform._from_arrays(*_kernels.compose(self._quat, self._translation, other._quat, other._translation))
+
+    def __pow__(self, p, modulus=None):
+        """``T ** p = exp(p log T)``: the screw motion scaled by ``p`` (scipy's ``RigidTransform.__pow__``).
+
+        The logarithm has rotation angle in [0, π]; ``p = -1`` is the
+        inverse and ``p = 0`` the identity, exactly. ``p`` may be an array
+        broadcast against the batch (scipy takes a scalar only).
+
+        Examples
+        --------
+        Half of a screw motion turns half as far and slides half as far along the axis:
+
+        >>> import numpy as np
+        >>> T = RigidTransform.from_screw([0, 0, 1], [1.0, 0.0, 0.0], np.pi / 2, 2.0)
+        >>> half = T ** 0.5
+        >>> round(float(np.degrees(half.rotation.magnitude())), 9), float(half.as_screw().translation.round(12))
+        (45.0, 1.0)
+        >>> bool(np.allclose((half * half).as_matrix(), T.as_matrix()))
+        True
+        """
+        if modulus is not None:
+            raise TypeError("pow() with a modulus is not defined for rigid transforms")
+        p = finite_array(p, "p", ())
+        if p.ndim == 0 and p in (0.0, 1.0, -1.0):
+            if p == 1.0:
+                return self
+            if p == -1.0:
+                return self.inv()
+            return RigidTransform.identity(self.shape)
+        xi = lie.log(self._quat, self._translation)
+        return RigidTransform._from_arrays(*lie.exp(p[..., None] * xi))
+
+    def mean(self, weights=None, axis=None):
+        """Mean pose: chordal L2 mean of the rotations and weighted mean of the translations.
+
+        scipy's ``RigidTransform.mean``: the rotation part is
+        :meth:`Rotation.mean <kreisel.so3.Rotation.mean>`, the translation the
+        (weighted) arithmetic mean, both over the batch ``axis`` (``None``:
+        all axes).
+
+        Parameters
+        ----------
+        weights : array_like, optional
+            Non-negative, of the batch shape.
+        axis : None, int or tuple of int
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> T = RigidTransform.from_rotation_translation(
+        ...     [[1.0, 0, 0, 0], [np.cos(0.2), 0, 0, np.sin(0.2)]], [[0.0, 0, 0], [2.0, 0, 0]]
+        ... )
+        >>> m = T.mean()
+        >>> m.translation.tolist(), round(float(m.rotation.magnitude()), 12)
+        ([1.0, 0.0, 0.0], 0.2)
+        """
+        quat, axes = mean_over(self._quat, weights, axis)
+        nd = len(self.shape)
+        t = gather_samples(np.asarray(self._translation), nd, axes)
+        if weights is None:
+            translation = t.mean(axis=-2)
+        else:
+            w = gather_samples(np.asarray(weights, dtype=np.float64), nd, axes)[..., None]
+            translation = (w * t).sum(axis=-2) / w.sum(axis=-2)
+        return RigidTransform._from_arrays(quat, translation)
 
     def inv(self):
         """Inverse displacements ``(Rᵀ, -Rᵀ r_C)``.

@@ -97,3 +97,43 @@ def quat_mean(q, weights=None, axis=-2):
     _, vectors = np.linalg.eigh(M)
     mean = vectors[..., :, -1]
     return np.where(mean[..., :1] < 0.0, -mean, mean)
+
+
+def sample_axes(batch_shape, axis):
+    """Normalised, sorted batch axes to average over (scipy's ``axis``: None = all)."""
+    nd = len(batch_shape)
+    if nd == 0:
+        raise ValueError("mean needs a batch of rotations, got a single one")
+    if axis is None:
+        return tuple(range(nd))
+    axes = (axis,) if isinstance(axis, (int, np.integer)) else axis
+    if not isinstance(axes, tuple) or not all(isinstance(a, (int, np.integer)) for a in axes):
+        raise ValueError(f"axis must be None, an int or a tuple of ints, got {axis!r}")
+    if any(not -nd <= a < nd for a in axes):
+        raise ValueError(f"axis {axis} is out of bounds for batch shape {tuple(batch_shape)}")
+    return tuple(sorted({int(a) % nd for a in axes}))
+
+
+def gather_samples(x, batch_nd, axes):
+    """``x`` of shape ``(*batch, *tail)`` as ``(*kept batch, samples, *tail)``, the ``axes`` merged into one."""
+    keep = [i for i in range(batch_nd) if i not in axes]
+    tail = list(range(batch_nd, x.ndim))
+    moved = np.transpose(x, keep + list(axes) + tail)
+    return moved.reshape(*[x.shape[i] for i in keep], -1, *x.shape[batch_nd:])
+
+
+def mean_over(q, weights, axis):
+    """Chordal mean of unit quaternions ``(*batch, 4)`` over the batch ``axis`` (None: all axes).
+
+    ``weights`` has the batch shape; returns the quaternions and the normalised axes.
+    """
+    axes = sample_axes(q.shape[:-1], axis)
+    if weights is not None:
+        weights = finite_array(weights, "weights", None)
+        if weights.shape != q.shape[:-1]:
+            raise ValueError(f"weights must have the batch shape {q.shape[:-1]}, got {weights.shape}")
+        weights = gather_samples(weights, weights.ndim, axes)
+    samples = gather_samples(q, q.ndim - 1, axes)
+    if samples.shape[-2] == 0:
+        raise ValueError("the mean of an empty set of rotations is undefined")
+    return quat_mean(samples, weights, axis=-2), axes

@@ -579,8 +579,15 @@ class Rotation:
         """
         return np.linalg.norm(self.as_rotvec(), axis=-1)
 
-    def mean(self, weights=None):
-        """Chordal L2 mean over the first batch axis (see :func:`quat_mean`).
+    def mean(self, weights=None, axis=None):
+        """Chordal L2 mean (see :func:`quat_mean`) over the batch ``axis``, as scipy's ``mean``.
+
+        Parameters
+        ----------
+        weights : array_like, optional
+            Non-negative, of the batch shape.
+        axis : None, int or tuple of int
+            Batch axes to average over; ``None`` (scipy's default) means all.
 
         Examples
         --------
@@ -590,12 +597,29 @@ class Rotation:
         >>> r = Rotation.from_rotvec([[0.0, 0.0, 0.2], [0.0, 0.0, 0.6]])
         >>> (r.mean().as_rotvec().round(9) + 0.0).tolist()
         [0.0, 0.0, 0.4]
+        >>> Rotation.random((5, 3), rng=0).mean(axis=0).shape
+        (3,)
         """
-        if self._q.ndim < 2:
-            raise ValueError("mean needs a batch of rotations")
-        if self._q.shape[0] == 0:
-            raise ValueError("mean of an empty set of rotations is undefined")
-        return Rotation._wrap(_interp.quat_mean(self._q, weights, axis=0))
+        return Rotation._wrap(_interp.mean_over(self._q, weights, axis)[0])
+
+    def __pow__(self, p, modulus=None):
+        """``r ** p``: the rotation about the same axis by ``p`` times the angle, ``exp(p log r)``.
+
+        As in scipy: ``log`` takes the angle in [0, π], so ``p`` scales the
+        shortest rotation; ``r ** -1`` is the inverse and ``r ** 0`` the
+        identity (both exact); ``p`` may also be an array broadcast against
+        the batch. ``r ** 2`` of a 270° turn is a 180° turn the other way.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> r = Rotation.from_rotvec([0.0, 0.0, 0.6])
+        >>> (r ** 0.5).as_rotvec().round(12).tolist(), ((r ** -2).as_rotvec().round(12) + 0.0).tolist()
+        ([0.0, 0.0, 0.3], [0.0, 0.0, -1.2])
+        """
+        if modulus is not None:
+            raise TypeError("pow() with a modulus is not defined for rotations")
+        return Rotation._wrap(_quat.quat_power(self._q, p))
 
     def slerp(self, other, t):
         """Spherical linear interpolation from ``self`` (t = 0) to ``other`` (t = 1).
