@@ -101,7 +101,7 @@ def test_solid_constructors_match_inertia_functions(name, args):
 def test_every_physical_body_is_accepted(seed, planar):
     # point clouds, including planar ones (thin plates, triangle equality) in random
     # orientations where the equality only holds up to rounding
-    rng = np.random.default_rng(chapter)
+    rng = np.random.default_rng(seed)
     masses = rng.uniform(0.1, 1.0, 7)
     positions = rng.normal(size=(7, 3)) * rng.uniform(1e-3, 1e3)
     if planar:

@@ -50,8 +50,8 @@ def test_kinetic_energy_identity():
 
 @settings(max_examples=50, deadline=None)
 @given(seeds)
-def test_parallel_axis_theorem(chapter):
-    rng = np.random.default_rng(chapter)
+def test_parallel_axis_theorem(seed):
+    rng = np.random.default_rng(seed)
     m, r = point_cloud(rng)
     com = m @ r / m.sum()
     I_cm = I.points(m, r - com)
@@ -71,8 +71,8 @@ def test_parallel_axis_broadcasts():
 
 @settings(max_examples=50, deadline=None)
 @given(seeds)
-def test_rotate_matches_rotated_point_cloud(chapter):
-    rng = np.random.default_rng(chapter)
+def test_rotate_matches_rotated_point_cloud(seed):
+    rng = np.random.default_rng(seed)
     m, r = point_cloud(rng)
     rotation = ScipyRotation.random(random_state=rng)
     R = rotation.as_matrix()
@@ -141,8 +141,8 @@ def test_principal_axes_of_constructed_tensors(case):
 
 @settings(max_examples=100, deadline=None)
 @given(seeds)
-def test_principal_axes_of_random_symmetric_matrices(chapter):
-    rng = np.random.default_rng(chapter)
+def test_principal_axes_of_random_symmetric_matrices(seed):
+    rng = np.random.default_rng(seed)
     A = rng.normal(size=(3, 3))
     tensor = A + A.T  # need not be physical: principal_axes is plain linear algebra
     moments, R = I.principal_axes(tensor)

@@ -161,7 +161,7 @@ class GyroErrorModel:
         dt = _nonnegative(sample_time, "sample_time")
         if dt == 0:
             raise ValueError("sample_time must be positive")
-        rng = np.random.default_rng(chapter)
+        rng = np.random.default_rng(seed)
         size = (int(n_samples),) + tuple(shape)
         error = np.full(size, self.bias)
         if self.angle_random_walk > 0:

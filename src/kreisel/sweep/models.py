@@ -237,7 +237,7 @@ def imu_attitude_error(angle_random_walk, trial, *, bias_instability=0.0, correl
     for i, (arw, k) in enumerate(zip(angle_random_walk, trial)):
         model = GyroErrorModel.from_datasheet(angle_random_walk=arw, bias_instability=bias_instability,
                                               correlation_time=correlation_time if bias_instability > 0 else None)
-        entropy = [int(chapter), int(k), int(np.float64(arw).view(np.uint64))]
+        entropy = [int(seed), int(k), int(np.float64(arw).view(np.uint64))]
         dtheta[i] = model.corrupt_increments(motion.dtheta, sample_time, seed=np.random.SeedSequence(entropy))
     q = attitude_from_increments(motion.q[0], dtheta, samples_per_update)[:, -1]
     true = motion.q[-1]
