@@ -9,11 +9,13 @@ Modules: :mod:`.quaternion` (algebra, Theory §2.4), :mod:`.matrix` (DCM, §2.1)
 :mod:`.rotvec` (generators, exp/log, BCH, adjoint action, §2.2),
 :mod:`.euler` (§2.3), :mod:`.su2` (SU(2), Cayley–Klein, Euler parameters,
 appendix), :mod:`.rodrigues` (Gibbs vector, MRPs), :mod:`.interpolation`
-(slerp, mean), :mod:`.alignment` (Wahba's problem), :mod:`.rotation` (the ``Rotation`` class).
+(slerp, mean), :mod:`.alignment` (Wahba's problem), :mod:`.davenport`
+(Davenport angles), :mod:`.rotation` (the ``Rotation`` class).
 """
 
-from . import alignment, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, su2
+from . import alignment, davenport, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, su2
 from .alignment import *  # noqa: F401,F403
+from .davenport import *  # noqa: F401,F403
 from .euler import *  # noqa: F401,F403
 from .interpolation import *  # noqa: F401,F403
 from .matrix import *  # noqa: F401,F403
@@ -32,5 +34,6 @@ __all__ = [
     *rodrigues.__all__,
     *interpolation.__all__,
     *alignment.__all__,
+    *davenport.__all__,
     *rotation.__all__,
 ]

@@ -13,6 +13,7 @@ import numpy as np
 
 from .._validation import as_float_array, batch_shape
 from . import alignment as _alignment
+from . import davenport as _davenport
 from . import euler as _euler
 from . import interpolation as _interp
 from . import matrix as _matrix
@@ -170,6 +171,44 @@ class Rotation:
         [30.0, 40.0, 50.0]
         """
         return cls._wrap(_euler.euler_to_quat(seq, angles, degrees=degrees))
+
+    @classmethod
+    def from_davenport(cls, axes, order, angles, degrees=False):
+        """From Davenport angles about any axes, the middle one orthogonal to the others.
+
+        scipy's ``from_davenport`` (see :mod:`kreisel.so3.davenport`):
+        ``order`` is ``"i"``/``"intrinsic"`` or ``"e"``/``"extrinsic"``; Euler
+        angles are the special case of coordinate axes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> axes = [[0, 0, 1], [1, 0, 0], [0, 0, 1]]
+        >>> r = Rotation.from_davenport(axes, "intrinsic", [30, 40, 50], degrees=True)
+        >>> bool(r.approx_equal(Rotation.from_euler("ZXZ", [30, 40, 50], degrees=True)))
+        True
+        """
+        return cls._wrap(_davenport.davenport_to_quat(axes, order, angles, degrees=degrees))
+
+    def as_davenport(self, axes, order, degrees=False, *, suppress_warnings=True):
+        """Davenport angles about ``axes`` (scipy's ``as_davenport``), exact through gimbal lock.
+
+        As :meth:`as_euler`, no warning by default; ``suppress_warnings=False``
+        warns (:class:`~kreisel.kinematics.GimbalLockWarning`) for rotations
+        within 1e-7 rad of gimbal lock. One and two axes are accepted too.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> axes = [[1, 0, 0], [0, 1, 0], [np.sqrt(0.5), 0, np.sqrt(0.5)]]
+        >>> r = Rotation.from_davenport(axes, "e", [0.1, 0.2, 0.3])
+        >>> r.as_davenport(axes, "e").round(12).tolist()
+        [0.1, 0.2, 0.3]
+        """
+        angles = _davenport.quat_to_davenport(axes, order, self._q, degrees=degrees)
+        if not suppress_warnings and np.shape(axes) == (3, 3):
+            _warn_gimbal_lock(_davenport.davenport_gimbal_lock(axes, order, angles, degrees, _GIMBAL_TOLERANCE))
+        return angles
 
     @classmethod
     def from_su2(cls, u):
