@@ -140,3 +140,17 @@ def test_convert_help_states_the_layouts():
     text = " ".join(kreisel("convert", "--help").stdout.split())
     for phrase in ("scalar first", "--scalar-last", "row-major", "the axis, then the angle", "-30 45 60"):
         assert phrase in text, phrase
+
+
+def test_a_heavy_top_reports_its_first_integrals_not_drift(tmp_path):
+    process = kreisel("simulate", "fast_top", "-o", "fast.nc", cwd=tmp_path)
+    assert process.returncode == 0, process.stderr
+    assert "drift" not in process.stdout
+    assert "first integrals of the heavy symmetric (Lagrange) top" in process.stdout
+    rows = {line.split()[0]: line for line in process.stdout.splitlines()[2:5]}
+    assert sorted(rows) == ["E", "J_3", "J_z"]
+    for line in rows.values():   # each kept to rounding error by the default integrator
+        assert float(line.rsplit("change", 1)[1]) < 1e-9
+    process = kreisel("plot", "fast.nc", "--kind", "energy", "-o", "energy.png", cwd=tmp_path)
+    assert process.returncode == 0, process.stderr
+    assert (tmp_path / "energy.png").stat().st_size > 10_000

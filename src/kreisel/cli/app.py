@@ -160,12 +160,13 @@ def plot(
     """Plot a saved trajectory."""
     from .. import plot as plots
     from ..io.results import ResultError, load_trajectory
+    from ..io.run import trajectory_integrals
 
     if kind not in plots.KINDS:
         usage_error(f"--kind: unknown plot kind {kind!r} (expected one of {', '.join(plots.KINDS)})")
     try:
         traj = load_trajectory(trajectory)
-        fig = plots.KINDS[kind](traj)
+        fig = plots.energy(traj, trajectory_integrals(traj)) if kind == "energy" else plots.KINDS[kind](traj)
         plots.save(fig, output)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))

@@ -105,7 +105,36 @@ def _rigid_body(scenario):
     traj = simulate(body, t, omega0, q0=q0, torque=torque_model(data.get("torque", [])),
                     method=grid.get("method"), dt=grid.get("dt"))
     traj.meta["scenario"] = scenario.title
+    # the torque as data, so that a saved run still knows its first integrals (trajectory_integrals)
+    traj.meta["torques"] = [{k: np.asarray(v).tolist() if k != "kind" else v for k, v in entry.items()}
+                            for entry in data.get("torque", [])]
     return traj
+
+
+def trajectory_integrals(traj):
+    """First integrals (:func:`kreisel.tops.first_integrals`) of a run of :func:`run_scenario`, saved or not.
+
+    The torque comes from the trajectory's ``meta["torques"]``; a trajectory
+    simulated under some other torque (``meta["torque"]`` names one) is
+    reported as a driven body without integrals.
+
+    Examples
+    --------
+    >>> from kreisel.io import example_path, load_scenario
+    >>> found = trajectory_integrals(run_scenario(load_scenario(example_path("kovalevskaya"))))
+    >>> found.model, [f.symbol for f in found]
+    ('Kovalevskaya top', ['E', 'J_z', 'K'])
+    """
+    from ..tops import first_integrals
+
+    entries = traj.meta.get("torques")
+    if entries is None:
+        driven = traj.meta.get("torque", "none") != "none"
+        return first_integrals(traj, torque=_UNKNOWN_TORQUE if driven else None)
+    return first_integrals(traj, torque=torque_model(entries))
+
+
+_UNKNOWN_TORQUE = object()
 
 
 def _foucault(scenario):
@@ -149,25 +178,36 @@ _RUNNERS = {"rigid_body": _rigid_body, "foucault": _foucault, "coning": _coning}
 
 
 def summary(result):
-    """Lines describing a run's first integrals or measured rates.
+    """Lines describing a run: its first integrals and how much the run changed them, or measured rates.
 
     Examples
     --------
+    A heavy top keeps E = T + V, J_z and J_3 (not T or |J|):
+
     >>> from kreisel.io import example_path, load_scenario
-    >>> lines = summary(run_scenario(load_scenario(example_path("tennis_racket"))))
-    >>> lines[0]
-    '2001 samples, t = 0 … 100 s, method dop853'
-    >>> lines[1].startswith("energy T = 1.0002 J, relative drift")
-    True
+    >>> lines = summary(run_scenario(load_scenario(example_path("fast_top"))))
+    >>> print("\\n".join(lines[:2]))
+    4001 samples, t = 0 … 40 s, method dop853
+    first integrals of the heavy symmetric (Lagrange) top, and their largest relative change:
+    >>> [line.split()[0] for line in lines[2:]]
+    ['E', 'J_z', 'J_3']
     """
     if isinstance(result, Trajectory):
-        drift = result.drift()
-        return [
-            f"{len(result)} samples, t = {result.t[0]:g} … {result.t[-1]:g} s, method {result.meta.get('method', '?')}",
-            f"energy T = {float(result.energy[..., 0]):.12g} J, relative drift {float(np.max(drift['energy'])):.3e}",
-            f"|J| relative drift {float(np.max(drift['angular_momentum'])):.3e}, "
-            f"direction drift {float(np.max(drift['direction'])):.3e} rad",
-        ]
+        lines = [f"{len(result)} samples, t = {result.t[0]:g} … {result.t[-1]:g} s, "
+                 f"method {result.meta.get('method', '?')}"]
+        found = trajectory_integrals(result)
+        if not len(found):
+            T, J = result.energy, np.linalg.norm(result.angular_momentum_body, axis=-1)
+            return lines + [f"no first integrals: the torque ({result.meta.get('torque', '?')}) does work",
+                            f"T = {float(T[..., 0]):.6g} … {float(T[..., -1]):.6g} J, "
+                            f"|J| = {float(J[..., 0]):.6g} … {float(J[..., -1]):.6g} kg m²/s"]
+        lines.append(f"first integrals of the {found.model}, and their largest relative change:")
+        for integral in found:
+            value = np.round(integral.initial, 12) + 0.0
+            shown = f"[{', '.join(f'{v:.6g}' for v in value)}]" if integral.is_vector else f"{float(value):.10g}"
+            lines.append(f"{integral.symbol:<4} {integral.name:<42} {shown} {integral.unit}, "
+                         f"change {float(integral.relative_change()):.2e}")
+        return lines
     kind = result.attrs.get("kreisel")
     if kind == "Foucault pendulum":
         measured, theory = result.attrs["precession_rate_measured"], result.attrs["precession_rate_theory"]

@@ -35,30 +35,54 @@ def omega(traj, frame="body"):
     return fig
 
 
-def energy(traj):
-    """Relative drift of the energy T and of |J| (first integrals, Theory §5.2).
+def energy(traj, integrals=None):
+    """"First integrals" panel: the relative change of each conserved quantity along the run.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    integrals : FirstIntegrals, optional
+        The integrals of the model that was simulated (see
+        :func:`kreisel.tops.first_integrals`); default: those of a free body
+        (T and the space J). Under a torque without integrals the panel shows
+        T and |J| themselves, which the torque changes.
 
     Examples
     --------
-    A closed-form free top conserves both integrals, so the plotted drifts are
-    at rounding level:
+    A closed-form free top conserves T and J, so the plotted changes are at
+    rounding level:
 
     >>> import kreisel as kr, numpy as np
     >>> tr = kr.EulerTop(1, 2, 3).solve(np.linspace(0, 20, 200), [0.01, 1, 0.01])
     >>> fig = energy(tr)
     >>> [line.get_label() for line in fig.axes[0].lines]
-    ['T(t)/T(0) − 1', '|J|(t)/|J|(0) − 1']
+    ['T: kinetic energy', 'J: angular momentum (space)']
     >>> bool(max(np.abs(line.get_ydata()).max() for line in fig.axes[0].lines) < 1e-12)
     True
     """
+    from ..tops import first_integrals
+
+    found = first_integrals(traj) if integrals is None else integrals
     fig = Figure(figsize=(7, 3.6), layout="constrained")
     ax = fig.add_subplot()
-    for label, series in (("T", traj.energy), ("|J|", np.linalg.norm(traj.angular_momentum_body, axis=-1))):
-        ref = series[..., :1]
-        ax.plot(traj.t, (series - ref) / np.where(ref == 0, 1.0, ref), label=f"{label}(t)/{label}(0) − 1")
-    ax.set(xlabel="t (s)", ylabel="relative drift", title="first integrals")
+    if not len(found):
+        J = np.linalg.norm(traj.angular_momentum_body, axis=-1)
+        ax.plot(traj.t, traj.energy.T, label="T (J)")
+        ax.plot(traj.t, J.T, label="|J| (kg m²/s)")
+        ax.set(xlabel="t (s)", ylabel="value (SI units)",
+               title="energy and angular momentum (not conserved under this torque)")
+        ax.legend(loc="best")
+        return fig
+    for integral in found:
+        if integral.is_vector:
+            change = np.linalg.norm(integral.values - integral.values[..., :1, :], axis=-1)
+        else:
+            change = integral.values - integral.values[..., :1]
+        ax.plot(traj.t, (change / integral.scale[..., None]).T, label=f"{integral.symbol}: {integral.name}")
+    ax.set(xlabel="t (s)", ylabel="change relative to its size",
+           title=f"first integrals of the {found.model}: change since t = {traj.t[0]:g} s")
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
-    ax.legend(loc="best")
+    ax.legend(loc="best", fontsize="small")
     return fig
 
 

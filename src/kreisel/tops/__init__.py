@@ -10,12 +10,16 @@ Kovalevskaya integral; the free top fitted to gyroscope recordings.
 from ._elliptic import complete_elliptic_pi, elliptic_pi
 from .euler_top import EulerTop, SteadyRotation
 from .fitting import FreeRotationFit, NotFreeRotationWarning, fit_free_rotation
+from .integrals import FirstIntegral, FirstIntegrals, first_integrals
 from .kovalevskaya import KovalevskayaIntegrals, KovalevskayaTop
 from .poinsot import PoinsotGeometry, poinsot
 from .lagrange import FastTop, LagrangeConstants, LagrangeTop, larmor_precession_rate
 from .symmetric import Cones, SymmetricTop
 
 __all__ = [
+    "first_integrals",
+    "FirstIntegral",
+    "FirstIntegrals",
     "EulerTop",
     "SteadyRotation",
     "fit_free_rotation",
