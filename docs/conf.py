@@ -37,7 +37,12 @@ extensions = [
     "numpydoc",
     "sphinx_gallery.gen_gallery",
     "theory_citations",
+    "api_aliases",
 ]
+
+# Private base classes (kreisel.*._module.Name) are not documented by design; the standard library
+# and scipy are not linked because the docs build without network access (no intersphinx).
+nitpick_ignore_regex = [("py:class", r"kreisel\.(\w+\.)*_\w+\.\w+"), ("py:(func|class|meth)", r"(functools|scipy)\..*")]
 
 # Equations are numbered by theory section: (5.12) is the twelfth of section 5.
 numfig = True
@@ -155,7 +160,7 @@ def _api_page(modname, title):
             functions.append(name)
         else:
             data.append(name)
-    for label, group, template in (("Functions", functions, None), ("Classes", classes, "class.rst")):
+    for label, group, template in (("Functions", functions, None), ("Classes", classes, "class")):
         if group:
             lines += [label, "-" * len(label), "", f".. currentmodule:: {modname}", "",
                       ".. autosummary::", "   :toctree: generated", "   :nosignatures:"]
@@ -262,25 +267,18 @@ def _generate_bench():
         _write_if_changed(target / f"bench_{topic}.rst", text)
 
 
-def _generate_cli():
-    from typer.testing import CliRunner
+def _generate_references():
+    """CLI and file-format references, generated from the commands and the schemas themselves."""
+    from cli_reference import cli_reference
+    from schema_reference import file_reference
 
-    from kreisel.cli import app
-
-    runner = CliRunner()
-    commands = [[]] + [[c.name or c.callback.__name__] for c in app.registered_commands]
-    blocks = []
-    for command in commands:
-        result = runner.invoke(app, [*command, "--help"], env={"COLUMNS": "100", "NO_COLOR": "1", "TERM": "dumb"})
-        title = "kreisel " + " ".join(command) if command else "kreisel"
-        blocks += [title, "-" * len(title), "", ".. code-block:: text", ""]
-        blocks += ["   " + line.rstrip() for line in result.output.splitlines()] + [""]
-    _write_if_changed(HERE / "_generated" / "cli_help.rst", "\n".join(blocks) + "\n")
+    _write_if_changed(HERE / "_generated" / "cli_reference.rst", cli_reference())
+    _write_if_changed(HERE / "_generated" / "file_reference.rst", file_reference(ROOT))
 
 
 _generate_api()
 _generate_bench()
-_generate_cli()
+_generate_references()
 
 
 # --------------------------------------------------------------------------------------------

@@ -55,7 +55,8 @@ _ATTITUDE = {
 }
 
 _TORQUE = {
-    "kind": Key("str", required=True, choices=("gravity", "constant_body", "constant_space", "damping")),
+    "kind": Key("str", required=True, choices=("gravity", "constant_body", "constant_space", "damping"),
+                doc="which torque"),
     "weight": Key("number", positive=True, doc="m g in newtons (gravity)"),
     "lever": Key("vector3", doc="body vector from pivot to centre of mass, metres (gravity)"),
     "torque": Key("vector3", doc="torque in N m (constant_body, constant_space)"),
@@ -63,47 +64,49 @@ _TORQUE = {
 }
 
 _SCHEMA = {
-    "title": Key("str", default=""),
-    "description": Key("str", default=""),
-    "kind": Key("str", default="rigid_body", choices=("rigid_body", "foucault", "coning")),
+    "title": Key("str", default="", doc="shown by the viewer and in reports (default: the file name)"),
+    "description": Key("str", default="", doc="one sentence, listed by `kreisel examples`"),
+    "kind": Key("str", default="rigid_body", choices=("rigid_body", "foucault", "coning"), doc="what to simulate"),
     "body": Key("table", schema={
         "moments": Key("vector3", doc="principal moments I1, I2, I3 in kg m^2"),
         "tensor": Key("matrix3", doc="inertia tensor in body axes, kg m^2"),
-        "shape": Key("str", choices=("box", "solid_sphere", "solid_cylinder", "solid_ellipsoid")),
+        "shape": Key("str", choices=("box", "solid_sphere", "solid_cylinder", "solid_ellipsoid"),
+                     doc="homogeneous solid of mass `mass`"),
         "size": Key("vector3", doc="box edge lengths, m"),
-        "radius": Key("number", positive=True),
-        "height": Key("number", positive=True),
+        "radius": Key("number", positive=True, doc="sphere or cylinder radius, m"),
+        "height": Key("number", positive=True, doc="cylinder height, m"),
         "semi_axes": Key("vector3", doc="ellipsoid semi-axes, m"),
         "mesh": Key("str", doc="closed triangle mesh file (STL, OBJ, PLY, ...), relative to the scenario"),
-        "density": Key("number", positive=True, default=1.0),
-        "mass": Key("number", positive=True, default=1.0),
+        "density": Key("number", positive=True, default=1.0, doc="mesh density, kg/m^3"),
+        "mass": Key("number", positive=True, default=1.0, doc="mass of a shape or of the body, kg"),
     }),
     "initial": Key("table", schema={
         "omega": Key("vector3", required=True, doc="angular velocity in rad/s"),
-        "frame": Key("str", default="body", choices=("body", "space")),
+        "frame": Key("str", default="body", choices=("body", "space"), doc="axes of `omega`"),
         "attitude": Key("table", schema=_ATTITUDE),
     }),
     "torque": Key("tables", schema=_TORQUE),
     "integration": Key("table", schema={
         "t_end": Key("number", required=True, positive=True, doc="final time, s"),
-        "t_start": Key("number", default=0.0),
-        "n_samples": Key("int", default=1001, positive=True),
-        "method": Key("str", choices=("dop853", "splitting", "dmv", "rkmk4", "midpoint", "rk4", "scipy")),
+        "t_start": Key("number", default=0.0, doc="initial time, s"),
+        "n_samples": Key("int", default=1001, positive=True, doc="output times, evenly spaced"),
+        "method": Key("str", choices=("dop853", "splitting", "dmv", "rkmk4", "midpoint", "rk4", "scipy"),
+                      doc="integrator (default dop853)"),
         "dt": Key("number", positive=True, doc="step of fixed-step methods, s"),
     }),
     "foucault": Key("table", schema={
         "length": Key("number", required=True, positive=True, doc="pendulum length, m"),
-        "latitude_deg": Key("number", required=True),
-        "duration": Key("number", required=True, positive=True, doc="s"),
+        "latitude_deg": Key("number", required=True, doc="latitude in [-90, 90], degrees"),
+        "duration": Key("number", required=True, positive=True, doc="simulated time, s"),
         "amplitude": Key("number", required=True, positive=True, doc="initial string angle from the vertical, rad"),
         "omega": Key("number", positive=True, doc="Earth's rate, rad/s"),
     }),
     "coning": Key("table", schema={
-        "half_angle_deg": Key("number", required=True, positive=True),
+        "half_angle_deg": Key("number", required=True, positive=True, doc="half-cone angle below 90, degrees"),
         "rate_hz": Key("number", required=True, positive=True, doc="coning frequency Ω/2π"),
         "sample_time": Key("number", required=True, positive=True, doc="gyro sample interval, s"),
-        "n_samples": Key("int", required=True, positive=True),
-        "samples_per_update": Key("int", default=2, choices=(1, 2, 3, 4)),
+        "n_samples": Key("int", required=True, positive=True, doc="gyro samples"),
+        "samples_per_update": Key("int", default=2, choices=(1, 2, 3, 4), doc="N of the coning correction"),
     }),
 }
 

@@ -3,7 +3,7 @@
 :class:`RigidTransform` holds batched poses (R, r_C); :func:`change_base_point`
 re-expresses a displacement about another body point (R unchanged);
 :class:`Screw` carries the Chasles/Mozzi screw of finite displacements;
-:mod:`~kreisel.se3.lie` has twists ``ξ = (ω, v)``, exp/log and the SE(3)
+``kreisel.se3.lie`` has twists ``ξ = (ω, v)``, exp/log and the SE(3)
 Jacobians; :func:`sclerp` interpolates along screws and
 :func:`point_trajectory` follows body points of a moving body.
 """

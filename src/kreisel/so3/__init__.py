@@ -5,12 +5,12 @@ Conventions: scalar-first Hamilton quaternions, active rotations with ``R``
 mapping body to space components, rotation vectors with |ψ| <= π from logs,
 uppercase Euler sequences intrinsic and lowercase extrinsic.
 
-Modules: :mod:`.quaternion` (algebra, Theory §2.4), :mod:`.matrix` (DCM, §2.1),
-:mod:`.rotvec` (generators, exp/log, BCH, adjoint action, §2.2),
-:mod:`.euler` (§2.3), :mod:`.su2` (SU(2), Cayley–Klein, Euler parameters,
-appendix), :mod:`.rodrigues` (Gibbs vector, MRPs), :mod:`.interpolation`
-(slerp, mean), :mod:`.alignment` (Wahba's problem), :mod:`.davenport`
-(Davenport angles), :mod:`.rotation` (the ``Rotation`` class).
+Modules: ``quaternion`` (algebra, Theory §2.4), ``matrix`` (DCM, §2.1),
+``rotvec`` (generators, exp/log, BCH, adjoint action, §2.2),
+``euler`` (§2.3), ``su2`` (SU(2), Cayley–Klein, Euler parameters,
+appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
+(slerp, mean), ``alignment`` (Wahba's problem), ``davenport``
+(Davenport angles), ``rotation`` (the ``Rotation`` class).
 """
 
 from . import alignment, davenport, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, su2

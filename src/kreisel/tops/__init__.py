@@ -1,7 +1,7 @@
 """tops layer of kreisel: the Euler, symmetric, Lagrange and Kovalevskaya tops (Theory §5–§7).
 
 Exact solutions (no time stepping) by elliptic functions and integrals of the
-third kind (:mod:`._elliptic`, built on Carlson's integrals), the stability and
+third kind (``_elliptic``, built on Carlson's integrals), the stability and
 Poinsot geometry of the free top, regular precession and the body and space
 cones, the Lagrange top's integrals, nutation and apex locus, and the
 Kovalevskaya integral; the free top fitted to gyroscope recordings.

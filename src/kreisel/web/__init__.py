@@ -1,6 +1,6 @@
 """``kreisel serve``: a local web viewer of rigid bodies and tops, computed by kreisel.
 
-:func:`create_app` builds the ASGI app (static front end + JSON API, see :mod:`kreisel.web.app`);
+:func:`create_app` builds the ASGI app (static front end + JSON API, see ``kreisel.web.app``);
 :func:`serve` runs it with uvicorn on the loopback interface.
 """
 
