@@ -48,6 +48,69 @@ def test_checkpoint_of_another_sweep_is_refused(tmp_path):
         sweep(affine, GRID, chunk_size=4, scheduler="serial", checkpoint=tmp_path / "c")
 
 
+def _defined(source):
+    """``scale`` defined from ``source`` text with no file behind it (as in a notebook): bytecode only."""
+    namespace = {"__name__": "user_model"}
+    exec(compile(source, "<notebook cell>", "exec"), namespace)
+    return namespace["scale"]
+
+
+BUGGY = "def scale(a, b):\n    if a[0] >= 3.0:\n        raise ArithmeticError('bug')\n    return {'s': a + b}\n"
+FIXED = "def scale(a, b):\n    return {'s': 2.0 * a + b}\n"
+
+
+def test_chunks_of_changed_code_are_discarded_and_said_so(tmp_path):
+    from kreisel.sweep import SweepError
+
+    checkpoint = tmp_path / "c"
+    with pytest.raises(SweepError):
+        sweep(_defined(BUGGY), GRID, chunk_size=4, scheduler="serial", retries=0, checkpoint=checkpoint)
+    assert len(list(checkpoint.glob("chunk-*.npz"))) == 2
+    # the fixed function has the same module and name: its sweep must not reuse the buggy chunks
+    with pytest.warns(UserWarning, match=r"discarded 2 of the chunks .* computed by other code"):
+        events = []
+        ds = sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint,
+                   progress=events.append)
+    assert [e.chunk for e in events if e.event == "discarded"] == [0, 1]
+    assert not any(e.event == "resumed" for e in events)
+    np.testing.assert_array_equal(ds.s.values, 2.0 * ds.a.values[:, None] + ds.b.values[None, :])
+
+
+def test_same_code_resumes_and_a_new_kreisel_version_discards(tmp_path, monkeypatch):
+    import kreisel
+
+    checkpoint = tmp_path / "c"
+    sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, keep_checkpoint=True)
+    events = []
+    sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, keep_checkpoint=True,
+          progress=events.append)
+    assert [e.event for e in events] == ["resumed"] * 3
+    monkeypatch.setattr(kreisel, "__version__", "999.0")
+    console = Console(file=io.StringIO(), force_terminal=False, width=200)
+    events.clear()
+    sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, console=console,
+          progress=events.append)
+    assert [e.event for e in events] == ["discarded"] * 3 + ["done"] * 3
+    shown = console.file.getvalue()
+    assert shown.count("computed by other code") == 3 and "now kreisel 999.0" in shown
+
+
+def test_bound_values_are_part_of_the_code(tmp_path):
+    import functools
+
+    from kreisel.sweep.core import _code_fingerprint
+
+    assert _code_fingerprint(_defined(FIXED)) == _code_fingerprint(_defined(FIXED))
+    assert _code_fingerprint(_defined(FIXED)) != _code_fingerprint(_defined(FIXED.replace("2.0", "3.0")))
+    assert _code_fingerprint(functools.partial(affine, offset=1.0)) != \
+        _code_fingerprint(functools.partial(affine, offset=2.0))
+
+    def closure(k):
+        return lambda a, b: {"s": k * a}
+
+    assert _code_fingerprint(closure(1.0)) != _code_fingerprint(closure(2.0))
+
+
 def test_progress_bar_on_a_console():
     console = Console(file=io.StringIO(), force_terminal=False, width=100)
     sweep(affine, GRID, chunk_size=5, scheduler="serial", console=console)

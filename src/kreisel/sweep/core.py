@@ -41,12 +41,16 @@ import collections.abc
 import dataclasses
 import functools
 import hashlib
+import inspect
 import json
 import math
 import os
 import pathlib
+import pickle
 import shutil
+import types
 import uuid
+import warnings
 import zipfile
 
 import numpy as np
@@ -77,7 +81,8 @@ class SweepProgress:
     """One event of a running sweep, passed to the ``progress`` callback.
 
     ``event`` is ``"resumed"`` (chunk loaded from the checkpoint), ``"discarded"``
-    (its checkpoint file was unreadable and is computed again), ``"done"``,
+    (its checkpoint file was unreadable or made by other code, and it is computed
+    again), ``"done"``,
     ``"retry"`` (the chunk failed and was resubmitted) or ``"failed"`` (no
     retries left); ``done`` counts the chunks finished so far (resumed ones
     included) out of ``total``; ``message`` describes a failure.
@@ -152,7 +157,62 @@ def _describe_function(function):
     return f"{owner.__module__}.{owner.__qualname__}"
 
 
+def _code_digest(code, digest):
+    """Feed what a code object computes (bytecode, constants, names, nested code) into ``digest``."""
+    digest.update(code.co_code)
+    digest.update(repr(code.co_names).encode())
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            _code_digest(const, digest)
+        else:
+            digest.update(repr(const).encode())
+
+
+def _state_digest(value, digest):
+    try:
+        digest.update(pickle.dumps(value, protocol=4))
+    except Exception:  # an unpicklable closure value or attribute: its type is all that can be told
+        digest.update(type(value).__qualname__.encode())
+
+
+def _code_fingerprint(function):
+    """Hash of the code and bound values that decide what ``function`` returns.
+
+    The source of the function and of its whole module (helpers it calls), or the bytecode where no
+    source exists; its defaults and closure values; a partial's arguments; a callable object's state.
+    """
+    digest = hashlib.sha256()
+    if isinstance(function, functools.partial):
+        digest.update(_code_fingerprint(function.func).encode())
+        _state_digest((function.args, sorted(function.keywords.items())), digest)
+        return digest.hexdigest()
+    function = getattr(function, "py_func", function)  # a numba dispatcher: its Python function
+    if not isinstance(function, (types.FunctionType, types.MethodType)):
+        _state_digest(getattr(function, "__dict__", None), digest)
+        function = type(function).__call__
+    function = getattr(function, "__func__", function)
+    try:
+        digest.update(inspect.getsource(inspect.getmodule(function) or function).encode())
+        digest.update(inspect.getsource(function).encode())
+    except (OSError, TypeError):  # defined in an interactive session or by exec: no source to read
+        pass
+    code = getattr(function, "__code__", None)
+    if code is not None:
+        _code_digest(code, digest)
+        _state_digest((function.__defaults__, function.__kwdefaults__), digest)
+        for cell in function.__closure__ or ():
+            try:
+                _state_digest(cell.cell_contents, digest)
+            except ValueError:  # an empty cell
+                pass
+    return digest.hexdigest()
+
+
 def _sweep_key(function, grid, constants, chunk_size):
+    """(what is swept, what computes it): the function's name, grid, constants and chunking; and the
+    code that determines each chunk's result, with kreisel's version."""
+    from .. import __version__
+
     digest = hashlib.sha256()
     digest.update(_describe_function(function).encode())
     for name, values in grid.items():
@@ -161,26 +221,41 @@ def _sweep_key(function, grid, constants, chunk_size):
         digest.update(np.ascontiguousarray(values).tobytes())
     digest.update(repr(sorted(constants.items())).encode())
     digest.update(str(chunk_size).encode())
-    return digest.hexdigest()
+    return digest.hexdigest(), f"kreisel {__version__}, code {_code_fingerprint(function)[:16]}"
 
 
 class _Checkpoint:
-    """Finished chunks as ``chunk-NNNNNN.npz`` files next to a ``sweep.json`` naming the sweep."""
+    """Finished chunks as ``chunk-NNNNNN.npz`` files next to a ``sweep.json`` naming the sweep.
+
+    ``key`` is (what is swept, what computes it) from :func:`_sweep_key`. Chunks of the same sweep made
+    by other code (the function was edited, kreisel was upgraded) are deleted and listed by :meth:`load`
+    among the discarded ones; a checkpoint of another sweep is refused.
+    """
 
     def __init__(self, directory, key, description):
         self.directory = pathlib.Path(directory)
+        self.outdated = {}
+        sweep_key, code = key
         meta = self.directory / _CHECKPOINT_META
         if meta.exists():
             stored = json.loads(meta.read_text(encoding="utf-8"))
-            if stored.get("key") != key:
+            if stored.get("key") != sweep_key:
                 raise ValueError(f"checkpoint: {str(self.directory)!r} holds chunks of a different sweep "
                                  f"({stored.get('description', '?')}); remove it or choose another directory")
+            if stored.get("code") == code:
+                return
+            for path in sorted(self.directory.glob("chunk-*.npz")):
+                self.outdated[int(path.stem.split("-")[1])] = (
+                    f"checkpoint file {path.name} was computed by other code ({stored.get('code', 'unknown')}; "
+                    f"now {code}); computing the chunk again")
+                path.unlink()
         else:
             if not self.directory.parent.is_dir():
                 raise ValueError(f"checkpoint: directory {str(self.directory.parent)!r} does not exist")
             self.directory.mkdir(exist_ok=True)
-            with atomic_output(meta) as tmp:
-                tmp.write_text(json.dumps({"key": key, "description": description}), encoding="utf-8")
+        with atomic_output(meta) as tmp:
+            tmp.write_text(json.dumps({"key": sweep_key, "code": code, "description": description}),
+                           encoding="utf-8")
 
     def _path(self, chunk):
         return self.directory / f"chunk-{chunk:06d}.npz"
@@ -192,7 +267,7 @@ class _Checkpoint:
         crash of the disk or of another program) is deleted, so that its chunk
         is computed again.
         """
-        found, discarded = {}, {}
+        found, discarded = {}, dict(self.outdated)
         for chunk in range(n_chunks):
             path = self._path(chunk)
             if not path.exists():
@@ -517,6 +592,9 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
     store = _Checkpoint(directory, key, description) if directory is not None else None
 
     results, discarded = store.load(n_chunks) if store is not None else ({}, {})
+    if discarded and console is None:  # the console shows each discarded chunk; a library caller is warned
+        warnings.warn(f"checkpoint: discarded {len(discarded)} of the chunks in {str(store.directory)!r} (first: "
+                      f"{discarded[min(discarded)]})", stacklevel=2)
     report = _Reporter(progress, console, n_chunks, description)
     failures = {}
     try:
@@ -526,7 +604,8 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
             report("resumed", chunk)
         todo = [chunk for chunk in range(n_chunks) if chunk not in results]
         if todo:
-            session = _open_session(scheduler, n_workers, threads_per_worker, key)
+            session = _open_session(scheduler, n_workers, threads_per_worker,
+                                    hashlib.sha256("".join(key).encode()).hexdigest())
             try:
                 parameters = {chunk: _chunk_parameters(grid, shape, chunk * chunk_size,
                                                        min(total, (chunk + 1) * chunk_size)) for chunk in todo}
