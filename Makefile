@@ -24,10 +24,10 @@ $(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
 	$(PY) -m pip install --quiet -e ".[docs]"
 	touch $@
 
-demo: $(VENV)/.installed-run web
+demo: $(VENV)/.installed-run
 	$(PY) -m kreisel tour --out tour
 
-test: $(VENV)/.installed-dev web
+test: $(VENV)/.installed-dev
 	$(PY) -m pytest -n 2 --dist loadfile -q
 
 $(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
@@ -48,7 +48,9 @@ docs: $(VENV)/.installed-docs docs/node_modules/.installed
 clean:
 	rm -rf $(VENV) build src/*.egg-info
 
-# The viewer's front end (kreisel serve): three.js bundled by esbuild into the package.
+# The viewer's front end (kreisel serve): three.js bundled by esbuild into src/kreisel/web/static/.
+# The bundle is committed (an installed kreisel serves it without Node.js); after editing web/, run
+# `make web` and commit the new bundle: tests/web/test_bundle.py fails while it is stale.
 .PHONY: web
 WEB_BUNDLE := src/kreisel/web/static/viewer.js
 

@@ -3,15 +3,42 @@ import time
 
 import pytest
 
+from kreisel.web.runner import Limits
+
+# the first run of a test session may compile the integrators (numba) inside a worker: no time limit bites
+RELAXED = Limits(wall_seconds=900.0, queue_seconds=900.0)
+
 
 @pytest.fixture(scope="module")
-def live_url():
-    """The viewer served by uvicorn on a free loopback port in a background thread."""
-    from kreisel.web import create_app
-    from kreisel.web.server import bind, make_server, url_of
+def app_client():
+    """A factory of test clients that talk to the app as its own page would (Host 127.0.0.1); their run
+    workers end with the module."""
+    from fastapi.testclient import TestClient
 
-    sock = bind("127.0.0.1", 0)
-    server = make_server(create_app())
+    from kreisel.web import create_app
+
+    class Local(TestClient):
+        def websocket_connect(self, url, *args, headers=None, **kwargs):
+            # the test client names itself "testserver" on WebSockets whatever its base_url
+            return super().websocket_connect(url, *args, headers={"host": "127.0.0.1", **(headers or {})}, **kwargs)
+
+    apps = []
+
+    def make(*args, limits=RELAXED, **kwargs):
+        app = create_app(*args, limits=limits, **kwargs)
+        apps.append(app)
+        return Local(app, base_url="http://127.0.0.1")
+
+    yield make
+    for app in apps:
+        app.state.viewer.runner.close()
+
+
+def start_server(app, sock):
+    """Run ``app`` with uvicorn on ``sock`` in a background thread; the server and its thread."""
+    from kreisel.web.server import make_server
+
+    server = make_server(app)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     thread.start()
     deadline = time.monotonic() + 60
@@ -19,7 +46,25 @@ def live_url():
         if time.monotonic() > deadline or not thread.is_alive():
             raise RuntimeError("uvicorn did not start")
         time.sleep(0.05)
-    yield url_of(sock)
+    return server, thread
+
+
+@pytest.fixture(scope="module")
+def live_server():
+    """The viewer served by uvicorn on a free loopback port in a background thread: (url, app)."""
+    from kreisel.web import create_app
+    from kreisel.web.server import bind, url_of
+
+    sock = bind("127.0.0.1", 0)
+    app = create_app(port=sock.getsockname()[1], limits=RELAXED)
+    server, thread = start_server(app, sock)
+    yield url_of(sock), app
     server.should_exit = True
     thread.join(timeout=30)
     sock.close()
+    app.state.viewer.runner.close()
+
+
+@pytest.fixture(scope="module")
+def live_url(live_server):
+    return live_server[0]

@@ -3,10 +3,8 @@
 
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 
 from kreisel.io import parse_scenario
-from kreisel.web import create_app
 from kreisel.web.presets import PRESETS
 from kreisel.web.session import MAX_SAMPLES, form_fields, scenario_toml
 
@@ -17,8 +15,8 @@ LAGRANGE = {"moments": [1.0, 1.0, 0.5], "omega": [0.0, 0.0, 6.0], "euler_deg": [
 
 
 @pytest.fixture(scope="module")
-def client():
-    return TestClient(create_app())
+def client(app_client):
+    return app_client()
 
 
 def test_presets_list_and_text(client):
@@ -29,21 +27,24 @@ def test_presets_list_and_text(client):
     assert client.get("/api/presets/nope").status_code == 404
 
 
-def test_free_body_run_conserves_and_reports_chapter_quantities(client):
+def test_free_body_run_conserves_and_reports_analysis(client):
     data = client.post("/api/run", json={"form": TENNIS}).json()
     t, q, omega = (np.array(data[k]) for k in ("t", "q", "omega"))
     assert t.shape == (201,) and q.shape == (201, 4) and omega.shape == (201, 3)
     np.testing.assert_allclose(np.linalg.norm(q, axis=1), 1.0, atol=1e-12)
     assert data["energy"][0] == pytest.approx(0.5 * (1e-4 + 2.0 + 3e-4), rel=1e-14)
-    assert data["drift"]["energy"] < 1e-9 and data["drift"]["J_norm"] < 1e-9
+    integrals = {i["name"]: i for i in data["integrals"]}
+    assert list(integrals) == ["T", "J"]  # the free body's first integrals: T and the space vector J
+    assert integrals["T"]["initial"] == pytest.approx(1.0002, rel=1e-14)
+    assert integrals["T"]["relative"] < 1e-9 and integrals["J"]["relative"] < 1e-9
     # omega_space = R omega_body: |omega| is frame independent
     np.testing.assert_allclose(np.linalg.norm(data["omega_space"], axis=1), np.linalg.norm(omega, axis=1), rtol=1e-12)
-    seed = data["seed"]
-    assert seed["J_norm"] == pytest.approx(np.sqrt(1e-4 + 4.0 + 9e-4), rel=1e-14)
-    assert [s["kind"] for s in seed["stability"]] == ["stable", "unstable", "stable"]
+    info = data["analysis"]
+    assert info["J_norm"] == pytest.approx(np.sqrt(1e-4 + 4.0 + 9e-4), rel=1e-14)
+    assert [s["kind"] for s in info["stability"]] == ["stable", "unstable", "stable"]
     # middle-axis growth rate sqrt((I2 - I1)(I3 - I2) / (I1 I3)) |omega| (Theory §5.4)
-    assert seed["stability"][1]["growth_rate"] == pytest.approx(np.sqrt(1 / 3) * np.linalg.norm(omega[0]), rel=1e-12)
-    assert seed["lagrange"] is None
+    assert info["stability"][1]["growth_rate"] == pytest.approx(np.sqrt(1 / 3) * np.linalg.norm(omega[0]), rel=1e-12)
+    assert info["lagrange"] is None
     assert data["form"]["moments"] == TENNIS["moments"]
 
 
@@ -51,8 +52,12 @@ def test_heavy_top_energy_includes_gravity_and_turning_points(client):
     data = client.post("/api/run", json={"form": LAGRANGE}).json()
     # released at theta = 30 degrees with pure spin: E = ½ I3 ω3² + mgl cos θ, and theta_min is the start
     assert data["energy"][0] == pytest.approx(0.5 * 0.5 * 36 + np.cos(np.pi / 6), rel=1e-14)
-    assert data["drift"]["energy"] < 1e-8
-    lagrange = data["seed"]["lagrange"]
+    integrals = {i["name"]: i for i in data["integrals"]}
+    assert list(integrals) == ["E", "J_z", "J_3"]  # the Lagrange top's: E = T + V, J_z and J_3
+    assert integrals["E"]["initial"] == pytest.approx(data["energy"][0], rel=1e-15)
+    assert integrals["J_3"]["initial"] == pytest.approx(0.5 * 6.0, rel=1e-14)
+    assert all(i["relative"] < 1e-8 for i in integrals.values())
+    lagrange = data["analysis"]["lagrange"]
     assert lagrange["apex_locus"] == "cusp"
     assert lagrange["theta_min_deg"] == pytest.approx(30.0, abs=1e-9)
     assert lagrange["theta_max_deg"] > 30.0
@@ -65,14 +70,23 @@ def test_every_preset_runs(client):
     for name in ("symmetric_top", "lagrange_loops", "kovalevskaya"):
         data = client.post("/api/run", json={"preset": name}).json()
         assert len(data["t"]) > 10, name
+    kovalevskaya = client.post("/api/run", json={"preset": "kovalevskaya"}).json()
+    integrals = {i["name"]: i for i in kovalevskaya["integrals"]}
+    assert list(integrals) == ["E", "J_z", "K"] and integrals["K"]["relative"] < 1e-8
+    # K from its definition at the first sample: (p² − q² − c γ1)² + (2pq − c γ2)², c = mgl / I3 = 1
+    p, q_, _ = kovalevskaya["omega"][0]
+    w, x, y, z = kovalevskaya["q"][0]
+    gamma1, gamma2 = 2 * (x * z - w * y), 2 * (y * z + w * x)  # third row of R: R^T e_z
+    assert integrals["K"]["initial"] == pytest.approx((p * p - q_ * q_ - gamma1) ** 2 + (2 * p * q_ - gamma2) ** 2,
+                                                      rel=1e-12)
     loops = client.post("/api/run", json={"preset": "lagrange_loops"}).json()
-    assert loops["seed"]["lagrange"]["apex_locus"] == "loop"
+    assert loops["analysis"]["lagrange"]["apex_locus"] == "loop"
     from kreisel.web.presets import preset_text
 
     short = preset_text("foucault").replace("duration = 3600.0", "duration = 600.0")
     foucault = client.post("/api/run", json={"toml": short}).json()
-    seed = foucault["seed"]
-    assert seed["precession_rate_measured"] == pytest.approx(seed["precession_rate_theory"], rel=2e-3)
+    info = foucault["analysis"]
+    assert info["precession_rate_measured"] == pytest.approx(info["precession_rate_theory"], rel=2e-3)
 
 
 @pytest.mark.parametrize(("body", "status", "words"), [
@@ -80,7 +94,7 @@ def test_every_preset_runs(client):
     ({"form": dict(TENNIS, method="rk4", dt=1e-9)}, 422, "steps is too many"),
     ({"form": dict(TENNIS, t_end=1e9)}, 422, "turns"),
     ({"form": dict(TENNIS, moments=[1.0, 1.0, 3.0])}, 400, "not a physical rigid body"),
-    ({"form": dict(TENNIS, method="euler")}, 400, "form.method"),
+    ({"form": dict(TENNIS, method="euler")}, 422, "form.method"),
     ({"toml": "[body]\nmesh = '/etc/passwd'\ndensity = 1.0\n[initial]\nomega = [0, 0, 1]\n"
               "[integration]\nt_end = 1.0\n"}, 422, "mesh"),
     ({"toml": "not toml ["}, 400, "<scenario>"),
@@ -120,10 +134,10 @@ def test_export_trajectory_and_scenario(client, tmp_path):
     assert parse_scenario(toml).data["body"]["moments"].tolist() == TENNIS["moments"]
 
 
-def test_initial_scenario_and_index(tmp_path):
+def test_initial_scenario_and_index(app_client):
     from kreisel.web.presets import preset_text
 
-    client = TestClient(create_app(preset_text("sleeping_top")))
+    client = app_client(preset_text("sleeping_top"))
     assert "Sleeping top" in client.get("/api/initial").json()["toml"]
     page = client.get("/")
     assert page.status_code in (200, 503)

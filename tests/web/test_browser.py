@@ -65,6 +65,14 @@ def test_tennis_racket_preset_plays_with_constant_energy(page):
     else:
         assert not arrived["streamed"] and arrived["chunks"] == 0
     assert page.evaluate("window.kreisel.webgl"), "WebGL (SwiftShader) was not available"
+    # the page says what the scene draws and what the racket does, and reports the model's first integrals
+    legend = page.inner_text("#legend")
+    for item in ("invariable plane", "herpolhode", "polhode", "ω, angular velocity", "J, angular momentum"):
+        assert item in legend
+    readout = page.inner_text("#readout")
+    assert "spun near the middle axis (I2 = 2): unstable, it flips over every" in readout
+    assert "first integrals" in readout and "T   = 1.0002" in readout and "drift" not in readout
+    assert page.evaluate("document.querySelector('link[rel=icon]').href").endswith("/static/favicon.svg")
     page.evaluate("document.getElementById('speed').value = 1; document.getElementById('speed').oninput()")
     page.wait_for_function("window.kreisel.plotted.energy.length > 200", timeout=120_000)
     energy = np.array(page.evaluate("window.kreisel.plotted.energy"))
@@ -106,6 +114,6 @@ def test_without_webgl_the_page_says_so(playwright, live_url):
         assert "WebGL is not available" in page.inner_text("#nowebgl")
         # the numbers still come: the plots and readouts do not need WebGL
         page.wait_for_function("window.kreisel.ready", timeout=240_000)
-        assert "T   =" in page.inner_text("#readout")
+        assert "first integrals" in page.inner_text("#readout")
     finally:
         browser.close()

@@ -1,6 +1,6 @@
 // The viewer's page logic: form <-> API, playback clock, plots and readouts.
 import { drawPlot } from "./plots.js";
-import { Viewer, webglAvailable } from "./scene.js";
+import { legendItems, Viewer, webglAvailable } from "./scene.js";
 
 const $ = (id) => document.getElementById(id);
 // window.kreisel is read by the end-to-end tests: the data, the playback position, what is plotted and
@@ -53,18 +53,30 @@ function fillForm(form) {
 
 const fmt = (v, digits = 6) => (v === null || v === undefined ? "–" : Number(v).toPrecision(digits));
 
+// The first integrals of the simulated model (free body: T and J; heavy top: E, J_z, and J_3 or K) with their
+// largest change over the run: what a correct integration keeps constant.
+function integralLines(d) {
+  if (!d.integrals) return ["first integrals: when the run is complete"];
+  if (!d.integrals.length) return ["first integrals: none (the torque does work)"];
+  const lines = ["first integrals (largest change over the run):"];
+  for (const i of d.integrals) {
+    const value = Array.isArray(i.initial) ? `[${i.initial.map((v) => fmt(v, 5)).join(", ")}]` : fmt(i.initial, 10);
+    lines.push(`  ${i.name.padEnd(3)} = ${value} ${i.unit}`.trimEnd(), `        change ${fmt(i.change, 3)} (relative ${fmt(i.relative, 3)})`);
+  }
+  return lines;
+}
+
 function readout(d) {
   const lines = [`${d.title}`];
+  const s = d.analysis;
   if (d.kind === "foucault") {
-    const s = d.seed;
     lines.push(`swing plane rate  ${fmt(s.precession_rate_measured)} rad/s`,
       `theory −Ω sin λ    ${fmt(s.precession_rate_theory)} rad/s`,
-      `one turn in       ${fmt(s.period_hours, 5)} h`, `Jacobi drift      ${d.drift ? fmt(d.drift.jacobi, 3) : "–"}`);
+      `one turn in       ${fmt(s.period_hours, 5)} h`, ...integralLines(d));
   } else {
-    const s = d.seed;
-    lines.push(`method ${d.method}`, `T   = ${fmt(s.T, 10)} J`, `J   = [${s.J.map((v) => fmt(v, 5)).join(", ")}]`,
-      `|J| = ${fmt(s.J_norm, 10)}`, d.drift ? `energy drift ${fmt(d.drift.energy, 3)}, |J| drift ${fmt(d.drift.J_norm, 3)}` : "drift: when the run is complete");
-    if (s.regime) lines.push(`free-top regime: ${s.regime}`);
+    lines.push(`method ${d.method}`);
+    if (s.regime_text) lines.push(s.regime_text);
+    lines.push(...integralLines(d));
     lines.push("steady rotation about principal axes:");
     for (const a of s.stability) {
       const extra = a.kind === "unstable" ? `growth ${fmt(a.growth_rate, 4)}/s` : a.kind === "stable" ? `wobble ${fmt(a.wobble_frequency, 4)} rad/s` : "";
@@ -81,6 +93,16 @@ function readout(d) {
   $("readout").textContent = lines.join("\n");
 }
 
+function legend(d) {
+  $("legend").replaceChildren(...legendItems(d).map(([color, text]) => {
+    const row = document.createElement("div");
+    const swatch = document.createElement("i");
+    swatch.style.background = color;
+    row.append(swatch, text);
+    return row;
+  }));
+}
+
 // Start playing `d`, which may hold only the first chunk of a streamed run.
 function show(d) {
   state.data = d;
@@ -91,8 +113,9 @@ function show(d) {
   if (d.method === "exact") $("method").value = "exact";
   if (viewer) viewer.load(d);
   readout(d);
-  const heavyOrFoucault = d.kind === "foucault" ? "swing-plane azimuth (rad)" : "Energy (J)";
-  document.querySelectorAll("#side h2")[1].textContent = heavyOrFoucault;
+  legend(d);
+  $("energy-title").textContent = d.kind === "foucault" ? "swing-plane azimuth (rad)"
+    : d.gravity ? "energy E = T + V (J)" : "kinetic energy T (J)";
   status(`${d.title}: ${d.t.length} of ${d.n_samples || d.t.length} samples`);
 }
 
@@ -126,7 +149,7 @@ function run(body) {
       d = m;
       const keys = m.kind === "foucault" ? ["t", "swing_azimuth", "tilt"] : ["t", "q", "omega", "omega_space", "J", "J_norm", "energy", "kinetic"];
       for (const k of keys) d[k] = [];
-      d.drift = null;
+      d.integrals = null;
       d._keys = keys;
       return;
     }
@@ -143,7 +166,7 @@ function run(body) {
       return;
     }
     if (m.type === "done") {
-      d.drift = m.drift;
+      d.integrals = m.integrals;
       state.done = true;
       readout(d);
       status(`${d.title}: ${d.t.length} samples`);
@@ -218,6 +241,8 @@ async function init() {
   }
   if (!viewer) { $("nowebgl").style.display = "block"; $("scene").style.display = "none"; }
   state.webgl = !!viewer;
+  const methods = await (await api("/api/methods")).json();
+  for (const m of methods) $("method").add(new Option(m, m), $("method").options.length - 1);
   const presets = await (await api("/api/presets")).json();
   for (const p of presets) $("preset").add(new Option(p.title, p.name));
   const describe = () => ($("description").textContent = presets.find((p) => p.name === $("preset").value)?.description || "");

@@ -20,10 +20,14 @@ function yRange(series) {
   return [mid - 0.55 * span, mid + 0.55 * span];
 }
 
-function fmt(v) { return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(4) : v.toPrecision(8); }
+function fmt(v) {
+  if (v === 0) return "0";
+  return Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3 ? v.toExponential(3) : Number(v.toPrecision(6)).toString();
+}
 
 /** Draw `series` (arrays over `t`) up to sample `upto` inclusive on the time axis `span` (default: all of
- * `t`, which may still be growing while a run streams in); returns the plotted values. */
+ * `t`, which may still be growing while a run streams in); returns the plotted values. The y axis is
+ * labelled at its ends and middle, the time axis in seconds, and the current time is marked. */
 export function drawPlot(canvas, t, series, colors, upto, span = null) {
   const [ctx, w, h] = sized(canvas);
   ctx.clearRect(0, 0, w, h);
@@ -32,14 +36,27 @@ export function drawPlot(canvas, t, series, colors, upto, span = null) {
   const [lo, hi] = yRange(series);
   const [t0, last] = span || [t[0], t[t.length - 1]];
   const t1 = last > t0 ? last : t0 + 1;
-  const left = 4, right = w - 4, top = 14, bottom = h - 4;
+  ctx.font = "11px ui-monospace, monospace";
+  const labels = [hi, 0.5 * (lo + hi), lo].map(fmt);
+  const left = 8 + Math.max(...labels.map((l) => ctx.measureText(l).width)), right = w - 8, top = 8, bottom = h - 20;
   const x = (v) => left + ((v - t0) / (t1 - t0)) * (right - left);
   const y = (v) => bottom - ((v - lo) / (hi - lo)) * (bottom - top);
-  ctx.strokeStyle = "#eee";
-  ctx.beginPath(); ctx.moveTo(left, y(0)); ctx.lineTo(right, y(0)); ctx.stroke();
+  // frame, grid and labels
+  ctx.strokeStyle = "#e4e4e4";
+  ctx.lineWidth = 1;
+  ctx.fillStyle = "#555";
+  ctx.textBaseline = "middle";
+  ctx.textAlign = "right";
+  [hi, 0.5 * (lo + hi), lo].forEach((v, k) => {
+    ctx.beginPath(); ctx.moveTo(left, y(v)); ctx.lineTo(right, y(v)); ctx.stroke();
+    ctx.fillText(labels[k], left - 4, y(v));
+  });
+  ctx.textAlign = "center";
+  ctx.textBaseline = "top";
+  for (const v of [t0, 0.5 * (t0 + t1), t1]) ctx.fillText(`${fmt(v)} s`, Math.min(Math.max(x(v), left + 16), right - 16), bottom + 4);
   plotted.forEach((values, k) => {
     ctx.strokeStyle = colors[k];
-    ctx.lineWidth = 1.4;
+    ctx.lineWidth = 1.5;
     ctx.beginPath();
     // a long run draws about two points per pixel column, not every sample each frame
     const stride = Math.max(1, Math.floor(values.length / (2 * w)));
@@ -48,8 +65,10 @@ export function drawPlot(canvas, t, series, colors, upto, span = null) {
     if (values.length > 1) ctx.lineTo(x(t[values.length - 1]), y(values[values.length - 1]));
     ctx.stroke();
   });
-  ctx.fillStyle = "#666";
-  ctx.font = "10px ui-monospace, monospace";
-  ctx.fillText(`${fmt(lo)} … ${fmt(hi)}   t = ${t[upto].toFixed(2)} s`, left, 10);
+  // the current time
+  ctx.strokeStyle = "#999";
+  ctx.setLineDash([3, 3]);
+  ctx.beginPath(); ctx.moveTo(x(t[upto]), top); ctx.lineTo(x(t[upto]), bottom); ctx.stroke();
+  ctx.setLineDash([]);
   return plotted;
 }

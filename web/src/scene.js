@@ -46,6 +46,28 @@ function boxSize(moments) {
   return edges.map((e) => e / top);
 }
 
+const css = (hex) => `#${hex.toString(16).padStart(6, "0")}`;
+const COLORS = { omega: 0xcc00cc, J: 0x008888, herpolhode: 0x228822, polhode: 0xaa2288, plane: 0x88bb88,
+  ellipsoid: 0x6677aa, apex: 0x0077cc, gravity: 0x444444, swing: 0x3050d0 };
+
+/** What the scene draws for `data`, as [CSS colour, description] rows of the legend. */
+export function legendItems(data) {
+  if (data.kind === "foucault") {
+    return [[css(COLORS.swing), "swing plane (turns with −Ω sin λ)"],
+      [css(COLORS.swing), "turning points of the bob, magnified"], ["#aa3322", "bob"]];
+  }
+  const axes = [[css(AXIS_COLORS[0]), "principal axis 1 (and space x)"], [css(AXIS_COLORS[1]), "principal axis 2 (and space y)"],
+    [css(AXIS_COLORS[2]), "principal axis 3 (and space z)"]];
+  const arrows = [[css(COLORS.omega), "ω, angular velocity"], [css(COLORS.J), "J, angular momentum"]];
+  if (data.gravity) {
+    return [...arrows, [css(COLORS.apex), "path of the apex (tip of the lever axis)"],
+      [css(COLORS.gravity), "gravity, pivot at the origin"], ...axes];
+  }
+  return [...arrows, [css(COLORS.plane), "invariable plane (⊥ J, fixed in space)"],
+    [css(COLORS.herpolhode), "herpolhode: ω's path on the plane"], [css(COLORS.polhode), "polhode: ω's path in the body"],
+    [css(COLORS.ellipsoid), "energy ellipsoid, rolling on the plane"], ...axes];
+}
+
 export class Viewer {
   constructor(canvas) {
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
@@ -89,13 +111,13 @@ export class Viewer {
     this.world.add(space);
     if (data.kind === "foucault") return this.loadFoucault(data);
     const heavy = !!data.gravity;
-    const seed = data.seed;
-    const P = seed.principal_axes; // columns: principal axes in body components
+    const info = data.analysis;
+    const P = info.principal_axes; // columns: principal axes in body components
     const principal = new THREE.Matrix4().set(P[0][0], P[0][1], P[0][2], 0, P[1][0], P[1][1], P[1][2], 0,
       P[2][0], P[2][1], P[2][2], 0, 0, 0, 0, 1);
     this.body = new THREE.Group();
     this.world.add(this.body);
-    const size = boxSize(seed.principal_moments).map((e) => e * (heavy ? 1.0 : 1.3));
+    const size = boxSize(info.principal_moments).map((e) => e * (heavy ? 1.0 : 1.3));
     const box = new THREE.Mesh(new THREE.BoxGeometry(...size),
       new THREE.MeshStandardMaterial({ color: 0xe0b060, transparent: true, opacity: heavy ? 0.9 : 0.55, roughness: 0.6 }));
     box.applyMatrix4(principal);
@@ -108,13 +130,13 @@ export class Viewer {
     }
     this.body.add(axes);
     // one scale for omega, the ellipsoid, the invariable plane and both trails (Poinsot construction)
-    const T = seed.T;
-    const semi = seed.principal_moments.map((I) => Math.sqrt((2 * Math.abs(T)) / I));
+    const T = info.T;
+    const semi = info.principal_moments.map((I) => Math.sqrt((2 * Math.abs(T)) / I));
     this.s = T > 0 ? 1.5 / Math.max(...semi) : 1;
-    this.omegaArrow = arrow(0xcc00cc);
-    this.JArrow = arrow(0x008888);
+    this.omegaArrow = arrow(COLORS.omega);
+    this.JArrow = arrow(COLORS.J);
     this.world.add(this.omegaArrow, this.JArrow);
-    this.J0 = Math.max(1e-300, seed.J_norm);
+    this.J0 = Math.max(1e-300, info.J_norm);
     const n = data.n_samples || data.t.length;
     if (heavy) {
       const lever = vec(data.gravity.lever);
@@ -123,28 +145,28 @@ export class Viewer {
       box.position.copy(lhat.clone().multiplyScalar(0.5 * size[k]));
       const pivot = new THREE.Mesh(new THREE.SphereGeometry(0.05, 16, 12), new THREE.MeshStandardMaterial({ color: 0x333333 }));
       this.world.add(pivot);
-      const g = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(-1.6, 1.6, 1.2), 0.8, 0x444444, 0.15, 0.08);
+      const g = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), new THREE.Vector3(-1.6, 1.6, 1.2), 0.8, COLORS.gravity, 0.15, 0.08);
       this.world.add(g);
       const apex = lhat.clone().multiplyScalar(size[k] * 1.05);
-      this.trails = [trail(n, 0x0077cc, (i) => apex.clone().applyQuaternion(quat(data.q[i])))];
+      this.trails = [trail(n, COLORS.apex, (i) => apex.clone().applyQuaternion(quat(data.q[i])))];
       const sphere = new THREE.Mesh(new THREE.SphereGeometry(size[k] * 1.05, 32, 16),
         new THREE.MeshBasicMaterial({ color: 0x8899aa, wireframe: true, transparent: true, opacity: 0.12 }));
       this.world.add(sphere, ...this.trails);
       this.bodyTrails = [];
     } else {
       const ellipsoid = new THREE.Mesh(new THREE.SphereGeometry(1, 32, 20),
-        new THREE.MeshBasicMaterial({ color: 0x6677aa, wireframe: true, transparent: true, opacity: 0.25 }));
+        new THREE.MeshBasicMaterial({ color: COLORS.ellipsoid, wireframe: true, transparent: true, opacity: 0.25 }));
       ellipsoid.scale.set(...semi.map((a) => a * this.s));
       ellipsoid.applyMatrix4(principal);
       this.body.add(ellipsoid);
-      const Jhat = vec(seed.J).normalize();
+      const Jhat = vec(info.J).normalize();
       const plane = new THREE.Mesh(new THREE.CircleGeometry(2.2, 48),
-        new THREE.MeshBasicMaterial({ color: 0x88bb88, transparent: true, opacity: 0.22, side: THREE.DoubleSide }));
+        new THREE.MeshBasicMaterial({ color: COLORS.plane, transparent: true, opacity: 0.22, side: THREE.DoubleSide }));
       plane.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), Jhat);
-      plane.position.copy(Jhat.clone().multiplyScalar((2 * T / seed.J_norm) * this.s));
+      plane.position.copy(Jhat.clone().multiplyScalar((2 * T / info.J_norm) * this.s));
       this.world.add(plane);
-      this.trails = [trail(n, 0x228822, (i) => vec(data.omega_space[i], this.s))]; // herpolhode
-      this.bodyTrails = [trail(n, 0xaa2288, (i) => vec(data.omega[i], this.s))]; // polhode
+      this.trails = [trail(n, COLORS.herpolhode, (i) => vec(data.omega_space[i], this.s))]; // herpolhode
+      this.bodyTrails = [trail(n, COLORS.polhode, (i) => vec(data.omega[i], this.s))]; // polhode
       this.world.add(...this.trails);
       this.body.add(...this.bodyTrails);
     }
@@ -174,14 +196,14 @@ export class Viewer {
     this.string = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(0, 0, L), new THREE.Vector3()]),
       new THREE.LineBasicMaterial({ color: 0x333333 }));
     this.swingPlane = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(-1.2, 0, 0.01), new THREE.Vector3(1.2, 0, 0.01)]),
-      new THREE.LineBasicMaterial({ color: 0x3050d0 }));
+      new THREE.LineBasicMaterial({ color: COLORS.swing }));
     // turning points on the floor, exaggerated: the rosette of the swing plane's slow turn
     const gain = 1.0 / Math.max(...data.tilt.map(Math.abs));
     this.footprints = data.t.map((_, i) => {
       const sign = i % 2 ? -1 : 1, r = sign * Math.abs(data.tilt[i]) * gain;
       return new THREE.Vector3(r * Math.cos(data.swing_azimuth[i]), r * Math.sin(data.swing_azimuth[i]), 0.02);
     });
-    this.trails = [trail(this.footprints.length, 0x3050d0, (i) => this.footprints[i])];
+    this.trails = [trail(this.footprints.length, COLORS.swing, (i) => this.footprints[i])];
     this.bodyTrails = [];
     this.world.add(this.bob, this.string, this.swingPlane, ...this.trails);
     this.L = L;

@@ -4,25 +4,33 @@ Endpoints (all JSON unless noted):
 
 ``GET /api/presets``                 name, title and description of every preset
 ``GET /api/presets/{name}``          its scenario TOML
+``GET /api/methods``                 the integrators a run may name (those of :func:`kreisel.simulate`)
 ``GET /api/initial``                 the scenario given to :func:`serve` (TOML or null)
 ``POST /api/scenario``               ``{"form": {...}}`` -> ``{"toml": ...}``
 ``POST /api/run``                    ``{"preset": name}`` | ``{"toml": text}`` | ``{"form": {...}}`` -> the run
 ``POST /api/export?format=nc|csv``   same body -> the trajectory file (attachment)
 ``WebSocket /api/stream``            same body as the first message -> the run in chunks (below)
 
-Invalid scenarios answer 400 and work over the limits answers 422, with the reason in ``detail``.
+Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server are
+refused with 403 and bodies over the size limit with 413, before they are read (:mod:`kreisel.web.guard`).
+Every refusal is a 4xx JSON answer with the reason in ``detail``: 400 for an invalid scenario, 404 for an
+unknown preset, 422 for a malformed request, work over the limits or a run that failed, 503 when all run
+slots are busy. Every body field has a strict type (``"exact": "yes"`` is refused, not read as true).
 A body may add ``"exact": true`` to use the closed form of the free top instead of an integrator.
 
-The stream runs in a worker thread one chunk of samples at a time (the event loop stays free) and sends
-``start``, then ``chunk`` messages as soon as each is computed, then ``done`` with the drift summary (see
-:func:`kreisel.web.session.stream`); it allows :data:`~kreisel.web.session.MAX_STREAM_SAMPLES` samples
-instead of the one-shot reply's :data:`~kreisel.web.session.MAX_SAMPLES`. The client may send
-``"cancel"`` (or ``{"type": "cancel"}``) at any time: the stream stops after the chunk in progress and
-answers ``{"type": "cancelled", "samples": sent}``. A request that is refused gets
-``{"type": "error", "status": 400|404|422, "detail": reason}`` before any work, then the socket closes
-with code 1008 (policy violation); a run that fails midway sends an error with status 500 and closes
-with 1011; a finished or cancelled stream closes with 1000.
-Nothing reads or writes the user's files except the export, which writes to a private temporary folder.
+Runs happen in worker processes (:mod:`kreisel.web.runner`): each is stopped after the wall-clock limit
+and when its client goes away, and only a few run at once.
+
+The stream sends ``start``, then ``chunk`` messages as soon as each is computed, then ``done`` with the
+first integrals (see :func:`kreisel.web.session.stream`); it allows
+:data:`~kreisel.web.session.MAX_STREAM_SAMPLES` samples instead of the one-shot reply's
+:data:`~kreisel.web.session.MAX_SAMPLES`. The client may send ``"cancel"`` (or ``{"type": "cancel"}``) at
+any time: the stream stops after the chunk in progress and answers ``{"type": "cancelled", "samples":
+sent}``. A request that is refused gets ``{"type": "error", "status": 4xx, "detail": reason}`` before any
+work, then the socket closes with code 1008 (policy violation) and the reason; a run that fails or runs out
+of time midway sends an error and closes with 1011 and the reason; a finished or cancelled stream closes
+with 1000. Nothing reads or writes the user's files except the export, which writes to a private
+temporary folder.
 """
 
 from __future__ import annotations
@@ -32,45 +40,58 @@ import json
 import pathlib
 import tempfile
 import tomllib
+from typing import Annotated, Literal
 
-from fastapi import FastAPI, HTTPException, Query, WebSocket, WebSocketDisconnect
+from fastapi import FastAPI, HTTPException, Query, Request, WebSocket, WebSocketDisconnect
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from starlette.background import BackgroundTask
-from starlette.concurrency import run_in_threadpool
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from . import session
+from .guard import Guard
 from .presets import PRESETS, preset_text
+from .runner import Limits, Runner, Stopped
 
 STATIC = pathlib.Path(__file__).parent / "static"
 MAX_TOML_CHARS = 100_000
 
 _MISSING_BUNDLE = """<!doctype html><meta charset="utf-8"><title>kreisel viewer</title>
-<p>The viewer's front end has not been built. From the repository, run <code>make web</code>
-(needs Node.js and npm), then start <code>kreisel serve</code> again.</p>"""
+<p>The viewer's front end is missing from this installation (src/kreisel/web/static/). From a clone of
+the repository, run <code>make web</code> (needs Node.js and npm), then start <code>kreisel serve</code>
+again.</p>"""
+
+Number = Annotated[float, Field(allow_inf_nan=False)]
+Positive = Annotated[float, Field(gt=0.0, allow_inf_nan=False)]
+Vector = Annotated[list[Number], Field(min_length=3, max_length=3)]
 
 
 class Form(BaseModel):
-    """The viewer's form: a rigid body with principal moments, optionally a heavy top."""
+    """The viewer's form: a rigid body with principal moments, optionally a heavy top (strict types)."""
 
-    title: str | None = Field(None, max_length=200)
-    moments: list[float] = Field(min_length=3, max_length=3)
-    omega: list[float] = Field(min_length=3, max_length=3)
-    euler_deg: list[float] | None = Field(None, min_length=3, max_length=3)
-    mgl: float = 0.0
-    lever_axis: int = Field(2, ge=0, le=2)
-    method: str | None = None
-    t_end: float = 30.0
-    n_samples: int = 1501
-    dt: float | None = None
+    model_config = ConfigDict(strict=True, extra="forbid")
+
+    title: Annotated[str, Field(max_length=200)] | None = None
+    moments: Annotated[list[Positive], Field(min_length=3, max_length=3)]
+    omega: Vector
+    euler_deg: Vector | None = None
+    mgl: Annotated[float, Field(ge=0.0, allow_inf_nan=False)] = 0.0
+    lever_axis: Annotated[int, Field(ge=0, le=2)] = 2
+    method: Literal[session.METHODS] | None = None
+    t_end: Positive = 30.0
+    n_samples: Annotated[int, Field(ge=2)] = 1501
+    dt: Positive | None = None
 
 
 class RunRequest(BaseModel):
     """Exactly one of a preset name, scenario TOML text or form fields."""
 
-    preset: str | None = None
-    toml: str | None = Field(None, max_length=MAX_TOML_CHARS)
+    model_config = ConfigDict(strict=True, extra="forbid")
+
+    preset: Annotated[str, Field(max_length=100)] | None = None
+    toml: Annotated[str, Field(max_length=MAX_TOML_CHARS)] | None = None
     form: Form | None = None
     exact: bool = False
 
@@ -85,9 +106,6 @@ def _scenario_text(request):
         except ValueError as exc:
             raise HTTPException(404, str(exc)) from None
     if request.form is not None:
-        if request.form.method is not None and request.form.method not in session.METHODS:
-            raise HTTPException(400, f"form.method must be one of {', '.join(session.METHODS)}, "
-                                     f"got {request.form.method!r}")
         return session.scenario_toml(request.form.model_dump())
     return request.toml
 
@@ -101,8 +119,9 @@ def _checked(call, *args):
         raise HTTPException(400, str(exc)) from None
 
 
-def _validation_detail(exc):
-    return "; ".join(f"{'.'.join(str(p) for p in e['loc']) or 'request'}: {e['msg']}" for e in exc.errors())
+def _validation_detail(errors):
+    return "; ".join(f"{'.'.join(str(p) for p in e['loc'] if p != 'body') or 'request'}: {e['msg']}"
+                     for e in errors)
 
 
 def _is_cancel(message):
@@ -117,76 +136,143 @@ def _is_cancel(message):
         return False
 
 
-async def _stream(websocket, chunk_samples):
-    """Serve one streamed run on an accepted ``websocket`` (protocol in the module docstring)."""
-    try:
-        request = RunRequest.model_validate_json(await websocket.receive_text())
-        messages = await run_in_threadpool(_checked, session.stream, _scenario_text(request), request.exact,
-                                            chunk_samples)
-    except WebSocketDisconnect:
-        return
-    except (HTTPException, ValidationError, KeyError) as exc:
-        if isinstance(exc, HTTPException):
-            status, detail = exc.status_code, exc.detail
-        elif isinstance(exc, ValidationError):
-            status, detail = 422, _validation_detail(exc)
-        else:  # a binary frame: receive_text finds no "text"
-            status, detail = 400, "send the run request as a JSON text message"
-        await websocket.send_json({"type": "error", "status": status, "detail": detail})
-        await websocket.close(code=1008, reason=detail[:120])
-        return
+async def _until_disconnected(request, gone):
+    """Set ``gone`` when the HTTP client of ``request`` goes away."""
+    while not await request.is_disconnected():
+        await asyncio.sleep(0.2)
+    gone.set()
 
-    cancelled = asyncio.Event()
 
-    async def listen():
-        # cancel on request or when the client goes away; other messages are ignored
-        while True:
-            message = await websocket.receive()
-            if message["type"] == "websocket.disconnect" or _is_cancel(message):
-                cancelled.set()
-                return
+class Viewer:
+    """The app's state: the initial scenario, the run limits and the worker pool."""
 
-    listener = asyncio.create_task(listen())
-    sent = 0
-    try:
-        while not cancelled.is_set():
-            try:
-                message = await run_in_threadpool(next, messages, None)
-            except Exception as exc:  # the integrator failed midway (step size collapse, ...)
-                await websocket.send_json({"type": "error", "status": 500, "detail": f"the run failed: {exc}"})
-                await websocket.close(code=1011)
-                return
-            if message is None:
+    def __init__(self, scenario_text, chunk_samples, limits):
+        self.scenario_text = scenario_text
+        self.chunk_samples = chunk_samples
+        self.limits = limits
+        self.runner = Runner(limits)
+
+    def request(self, text):
+        """The request in WebSocket message ``text``; HTTPException with the reason when malformed."""
+        if len(text.encode()) > self.limits.max_body:
+            raise HTTPException(413, f"request message larger than {self.limits.max_body} bytes")
+        try:
+            return RunRequest.model_validate_json(text)
+        except ValidationError as exc:
+            raise HTTPException(422, _validation_detail(exc.errors())) from None
+
+    async def one(self, request, name, *args):
+        """The single answer of job ``name``; stopped when the client of ``request`` leaves."""
+        gone = asyncio.Event()
+        watch = asyncio.create_task(_until_disconnected(request, gone))
+        try:
+            answers = [answer async for answer in self.runner.messages(name, args, gone)]
+            if not answers:
+                raise HTTPException(499, "the client went away")
+            return answers[0]
+        except Stopped as stopped:
+            raise HTTPException(stopped.status, stopped.detail) from None
+        finally:
+            watch.cancel()
+
+    async def stream(self, websocket):
+        """Serve one streamed run on an accepted ``websocket`` (protocol in the module docstring)."""
+        try:
+            request = self.request(await websocket.receive_text())
+            text = _scenario_text(request)
+            _checked(session.load, text, session.MAX_STREAM_SAMPLES, request.exact)
+        except WebSocketDisconnect:
+            return
+        except (HTTPException, KeyError) as exc:
+            if isinstance(exc, HTTPException):
+                status, detail = exc.status_code, exc.detail
+            else:  # a binary frame: receive_text finds no "text"
+                status, detail = 400, "send the run request as a JSON text message"
+            await websocket.send_json({"type": "error", "status": status, "detail": detail})
+            await websocket.close(code=1008, reason=_reason(detail))
+            return
+
+        stop = asyncio.Event()
+        cancelled = False
+
+        async def listen():
+            # stop on request or when the client goes away; other messages are ignored
+            nonlocal cancelled
+            while True:
+                message = await websocket.receive()
+                if message["type"] == "websocket.disconnect" or _is_cancel(message):
+                    cancelled = message["type"] != "websocket.disconnect"
+                    stop.set()
+                    return
+
+        listener = asyncio.create_task(listen())
+        sent = 0
+        try:
+            async for message in self.runner.messages("stream", (text, request.exact, self.chunk_samples), stop):
+                await websocket.send_json(message)
+                sent += len(message["t"]) if message["type"] == "chunk" else 0
+            if cancelled:
+                await websocket.send_json({"type": "cancelled", "samples": sent})
+            if not stop.is_set() or cancelled:
                 await websocket.close(code=1000)
-                return
-            if cancelled.is_set():
-                break
-            await websocket.send_json(message)
-            sent += len(message["t"]) if message["type"] == "chunk" else 0
-        await websocket.send_json({"type": "cancelled", "samples": sent})
-        await websocket.close(code=1000)
-    except (WebSocketDisconnect, RuntimeError):
-        return  # the client left while we were sending
-    finally:
-        listener.cancel()
-        messages.close()
+        except Stopped as stopped:
+            await websocket.send_json({"type": "error", "status": stopped.status, "detail": stopped.detail})
+            await websocket.close(code=1011, reason=_reason(stopped.detail))
+        except (WebSocketDisconnect, RuntimeError):
+            return  # the client left while we were sending
+        finally:
+            listener.cancel()
 
 
-def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES):
+def _reason(detail):
+    """A close-frame reason: at most 123 bytes of UTF-8."""
+    data = detail.encode()
+    return detail if len(data) <= 123 else data[:120].decode(errors="ignore") + "..."
+
+
+def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="127.0.0.1", port=None, limits=None):
     """The viewer's FastAPI app; ``scenario_text`` (TOML) is offered as the initial scenario.
 
-    ``chunk_samples`` is the number of samples per message of ``/api/stream``.
+    Parameters
+    ----------
+    scenario_text : str, optional
+        Scenario TOML shown first.
+    chunk_samples : int
+        Samples per message of ``/api/stream``.
+    host : str
+        The interface the server listens on: requests must name it (or a loopback name) as their host.
+    port : int, optional
+        The server's port, required in the ``Host`` header when given.
+    limits : Limits, optional
+        Run slots, time limit and body size (:class:`kreisel.web.runner.Limits`).
 
     Examples
     --------
     >>> from fastapi.testclient import TestClient
-    >>> client = TestClient(create_app())
+    >>> client = TestClient(create_app(), base_url="http://127.0.0.1")
     >>> client.get("/api/presets").json()[0]["name"]
     'tennis_racket'
+    >>> client.get("/api/presets", headers={"Origin": "http://evil.example"}).status_code
+    403
     """
     if not isinstance(chunk_samples, int) or chunk_samples < 2:
         raise ValueError(f"chunk_samples must be an integer >= 2, got {chunk_samples!r}")
+    limits = limits or Limits()
+    if not isinstance(limits, Limits):
+        raise TypeError(f"limits must be a kreisel.web.runner.Limits, got {type(limits).__name__}")
+    viewer = Viewer(scenario_text, chunk_samples, limits)
     app = FastAPI(title="kreisel viewer", docs_url=None, redoc_url=None, openapi_url=None)
+    app.state.viewer = viewer
+    app.add_middleware(Guard, host=host, port=port, max_body=limits.max_body)
+
+    @app.exception_handler(RequestValidationError)
+    async def invalid(request, exc):
+        return JSONResponse({"detail": _validation_detail(exc.errors())}, status_code=422)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def refused(request, exc):
+        detail = exc.detail if isinstance(exc.detail, str) else json.dumps(exc.detail)
+        return JSONResponse({"detail": detail}, status_code=exc.status_code, headers=exc.headers)
 
     @app.get("/", response_class=HTMLResponse)
     def index():
@@ -194,6 +280,13 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES):
         if not page.is_file():
             return HTMLResponse(_MISSING_BUNDLE, status_code=503)
         return HTMLResponse(page.read_text(encoding="utf-8"))
+
+    @app.get("/favicon.ico", include_in_schema=False)
+    def favicon():
+        icon = STATIC / "favicon.svg"
+        if not icon.is_file():
+            raise HTTPException(404, "no favicon in this installation")
+        return FileResponse(icon, media_type="image/svg+xml")
 
     @app.get("/api/presets")
     def presets():
@@ -210,38 +303,44 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES):
         except ValueError as exc:
             raise HTTPException(404, str(exc)) from None
 
+    @app.get("/api/methods")
+    def methods():
+        return list(session.METHODS)
+
     @app.get("/api/initial")
     def initial():
-        return {"toml": scenario_text}
+        return {"toml": viewer.scenario_text}
 
     @app.post("/api/scenario")
     def scenario(request: RunRequest):
         text = _scenario_text(request)
-        _checked(session.load, text)
+        _checked(session.load, text, session.MAX_STREAM_SAMPLES, request.exact)
         return {"toml": text}
 
     @app.post("/api/run")
-    def run(request: RunRequest):
-        return JSONResponse(_checked(session.run, _scenario_text(request), request.exact))
+    async def run(body: RunRequest, request: Request):
+        text = _scenario_text(body)
+        _checked(session.load, text, session.MAX_SAMPLES, body.exact)
+        return JSONResponse(await viewer.one(request, "run", text, body.exact))
 
     @app.websocket("/api/stream")
     async def stream(websocket: WebSocket):
         await websocket.accept()
-        await _stream(websocket, chunk_samples)
+        await viewer.stream(websocket)
 
     @app.post("/api/export")
-    def export(request: RunRequest, format: str = Query("nc", pattern="^(nc|csv)$")):
-        text = _scenario_text(request)
+    async def export(body: RunRequest, request: Request, format: Literal["nc", "csv"] = Query("nc")):
+        text = _scenario_text(body)
         # what the viewer streamed it can export: the file is written from one run held in memory
-        scenario = _checked(session.load, text, session.MAX_STREAM_SAMPLES)
+        scenario = _checked(session.load, text, session.MAX_STREAM_SAMPLES, body.exact)
         if scenario.kind != "rigid_body":
             raise HTTPException(400, "only rigid-body runs export as a trajectory file")
-        from ..io import save_result
-
-        traj = _checked(lambda: session.Solver(scenario, request.exact).run())
         folder = tempfile.TemporaryDirectory(prefix="kreisel-export-")
-        name = "".join(c if c.isalnum() else "_" for c in scenario.title.lower()).strip("_") or "trajectory"
-        path = save_result(traj, pathlib.Path(folder.name) / f"{name}.{format}")
+        try:
+            path = pathlib.Path(await viewer.one(request, "export", text, body.exact, format, folder.name))
+        except BaseException:
+            folder.cleanup()
+            raise
         return FileResponse(path, filename=path.name, background=BackgroundTask(folder.cleanup))
 
     if STATIC.is_dir():

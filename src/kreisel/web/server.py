@@ -7,6 +7,8 @@ import socket
 import threading
 import webbrowser
 
+from .guard import WILDCARDS
+
 
 def bind(host="127.0.0.1", port=0):
     """A listening TCP socket on ``host:port`` (port 0: a free port chosen by the system)."""
@@ -35,10 +37,16 @@ def websocket_support():
 
 
 def make_server(app):
-    """A uvicorn server for ``app``; run it with ``.run(sockets=[sock])`` on a socket from :func:`bind`."""
+    """A uvicorn server for ``app``; run it with ``.run(sockets=[sock])`` on a socket from :func:`bind`.
+
+    WebSocket messages are limited to the app's body limit, so a huge run request is refused by uvicorn
+    before it is buffered.
+    """
     import uvicorn
 
-    return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off"))
+    limits = getattr(getattr(app.state, "viewer", None), "limits", None)
+    size = {"ws_max_size": limits.max_body} if limits is not None else {}
+    return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off", **size))
 
 
 def url_of(sock):
@@ -54,7 +62,10 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
     scenario : str or path-like, optional
         A scenario TOML file shown first (checked before the server starts).
     host : str
-        Interface to listen on; the default keeps the viewer private to this machine.
+        Interface to listen on; the default keeps the viewer private to this machine. Only requests
+        that name this host (or a loopback name) with the server's port, from the server's own pages,
+        are answered (:mod:`kreisel.web.guard`); a wildcard such as ``0.0.0.0`` makes the viewer
+        reachable from other machines and prints a warning.
     port : int
         TCP port; 0 picks a free one.
     open_browser : bool
@@ -91,7 +102,12 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
         load(text)
     sock = bind(host, port)
     url = url_of(sock)
-    server = make_server(create_app(text))
+    app = create_app(text, host=host, port=sock.getsockname()[1])
+    server = make_server(app)
+    if host in WILDCARDS:
+        print(f"warning: --host {host} serves the viewer to every machine that can reach this one, and any "
+              "host name is accepted; anyone on the network can run simulations on it. Use the default "
+              "127.0.0.1 unless you mean that.", flush=True)
     print(f"kreisel viewer at {url}  (Ctrl+C to stop)", flush=True)
     if not websocket_support():
         print("note: runs are not streamed (install the `websockets` package); each comes in one reply of at "
@@ -102,3 +118,4 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
         server.run(sockets=[sock])
     finally:
         sock.close()
+        app.state.viewer.runner.close()

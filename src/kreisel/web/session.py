@@ -6,8 +6,13 @@ the exported scenario obey one schema and one set of error messages.
 
 from __future__ import annotations
 
+import json
+import pathlib
+
 import numpy as np
 
+from ..dynamics import METHODS as DYNAMICS_METHODS
+from ..dynamics.engine import ADAPTIVE
 from ..dynamics import simulate
 from ..io import ScenarioError, parse_scenario
 from ..io.run import build_body, initial_attitude, torque_model
@@ -15,7 +20,7 @@ from ..kinematics import euler_rates
 from ..so3 import quat_apply, quat_to_euler
 from ..tops import EulerTop, LagrangeTop
 
-METHODS = ("dop853", "splitting", "dmv", "rkmk4", "midpoint", "rk4")
+METHODS = tuple(DYNAMICS_METHODS)
 # One JSON reply holds the whole run; a stream holds one chunk at a time on the server, so its limit is
 # set by what the browser keeps (about 0.5 kB of JavaScript arrays per sample: 100 MB at the limit).
 MAX_SAMPLES = 20_000
@@ -29,36 +34,89 @@ class RunRefused(ValueError):
     """A request the viewer will not run (too much work, or reads files); the message says why."""
 
 
-def _vector(values):
-    return "[" + ", ".join(repr(float(v)) for v in values) + "]"
+def scenario_data(form):
+    """The scenario (as TOML data) of the form fields ``form`` (moments, omega, euler_deg, mgl, ...).
 
-
-def scenario_toml(params):
-    """Scenario TOML of the form fields ``params`` (moments, omega, euler_deg, mgl, lever_axis, method, ...).
+    Missing optional fields take the form's defaults; a gravity torque is added when ``mgl > 0``.
 
     Examples
     --------
-    >>> text = scenario_toml({"moments": [1, 2, 3], "omega": [0.01, 1, 0.01], "t_end": 10})
-    >>> parse_scenario(text).data["body"]["moments"].tolist()
-    [1.0, 2.0, 3.0]
+    >>> data = scenario_data({"moments": [1, 2, 3], "omega": [0.01, 1, 0.01], "t_end": 10})
+    >>> data["integration"], "torque" in data
+    ({'t_end': 10.0, 'n_samples': 1501}, False)
     """
-    lines = [f'title = {params.get("title") or "Custom rigid body"!r}'.replace("'", '"'), "",
-             "[body]", f"moments = {_vector(params['moments'])}", "",
-             "[initial]", f"omega = {_vector(params['omega'])}", 'frame = "body"', ""]
-    euler = params.get("euler_deg") or [0.0, 0.0, 0.0]
-    lines += ["[initial.attitude]", f"euler = {_vector(euler)}", 'seq = "ZXZ"', "degrees = true", ""]
-    mgl = float(params.get("mgl") or 0.0)
+    lever = [0.0, 0.0, 0.0]
+    lever[int(form.get("lever_axis", 2))] = 1.0
+    mgl = float(form.get("mgl") or 0.0)
+    if not 0.0 <= mgl < np.inf:
+        raise ValueError(f"form.mgl must be a finite number >= 0 (0: no gravity), got {mgl!r}")
+    grid = {"t_end": float(form.get("t_end", 30.0)), "n_samples": int(form.get("n_samples", 1501))}
+    grid.update({key: form[key] for key in ("method", "dt") if form.get(key) is not None})
+    data = {"title": form.get("title") or "Custom rigid body",
+            "body": {"moments": [float(v) for v in form["moments"]]},
+            "initial": {"omega": [float(v) for v in form["omega"]], "frame": "body",
+                        "attitude": {"euler": [float(v) for v in form.get("euler_deg") or (0.0, 0.0, 0.0)],
+                                     "seq": "ZXZ", "degrees": True}},
+            "integration": grid}
     if mgl > 0.0:
-        lever = [0.0, 0.0, 0.0]
-        lever[int(params.get("lever_axis", 2))] = 1.0
-        lines += ["[[torque]]", 'kind = "gravity"', f"weight = {mgl!r}", f"lever = {_vector(lever)}", ""]
-    lines += ["[integration]", f"t_end = {float(params.get('t_end', 30.0))!r}",
-              f"n_samples = {int(params.get('n_samples', 1501))}"]
-    if params.get("method"):
-        lines.append(f'method = "{params["method"]}"')
-    if params.get("dt"):
-        lines.append(f"dt = {float(params['dt'])!r}")
-    return "\n".join(lines) + "\n"
+        data["torque"] = [{"kind": "gravity", "weight": mgl, "lever": lever}]
+    return data
+
+
+def toml_text(data):
+    """TOML text of ``data`` (tables of str, bool, int, finite float, lists of them, and lists of tables).
+
+    Strings are written as JSON strings, which TOML reads as basic strings with the same escapes.
+
+    Examples
+    --------
+    >>> print(toml_text({"title": 'a "quoted" title', "body": {"moments": [1.0, 2.0, 3.0]}}), end="")
+    title = "a \\"quoted\\" title"
+    <BLANKLINE>
+    [body]
+    moments = [1.0, 2.0, 3.0]
+    """
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            if not np.isfinite(v):
+                raise ValueError(f"TOML numbers must be finite, got {v!r}")
+            return repr(v)
+        if isinstance(v, str):
+            return json.dumps(v, ensure_ascii=False)
+        return "[" + ", ".join(value(x) for x in v) + "]"
+
+    def table(prefix, entries, header):
+        plain = [f"{k} = {value(v)}" for k, v in entries.items() if not isinstance(v, dict) and not _tables(v)]
+        lines = ([header] if header and (plain or not entries) else []) + plain
+        for k, v in entries.items():
+            name = f"{prefix}{k}"
+            if isinstance(v, dict):
+                lines += ["", *table(name + ".", v, f"[{name}]")]
+            elif _tables(v):
+                for entry in v:
+                    lines += ["", *table(name + ".", entry, f"[[{name}]]")]
+        return lines
+
+    return "\n".join(table("", data, None)).lstrip("\n") + "\n"
+
+
+def _tables(v):
+    return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
+
+
+def scenario_toml(form):
+    """Scenario TOML of the form fields ``form``: :func:`toml_text` of :func:`scenario_data`.
+
+    Examples
+    --------
+    >>> text = scenario_toml({"moments": [1, 2, 3], "omega": [0.01, 1, 0.01], "t_end": 10, "title": 'my "top"'})
+    >>> scenario = parse_scenario(text)
+    >>> scenario.title, scenario.data["body"]["moments"].tolist()
+    ('my "top"', [1.0, 2.0, 3.0])
+    """
+    return toml_text(scenario_data(form))
 
 
 def form_fields(scenario):
@@ -111,10 +169,30 @@ def check_workload(scenario, max_samples=MAX_SAMPLES):
                          f"{MAX_TURNS}")
 
 
-def load(text, max_samples=MAX_SAMPLES):
-    """Validate scenario TOML ``text`` and check its workload; ScenarioError or RunRefused."""
+def load(text, max_samples=MAX_SAMPLES, exact=False):
+    """Validate scenario TOML ``text`` and check its workload; ScenarioError or RunRefused.
+
+    This is the one check every endpoint makes before it accepts a scenario: besides the schema of
+    :func:`kreisel.io.parse_scenario` it builds what a run builds (body, initial attitude, torques, the
+    exact solution when ``exact``), so a scenario accepted here does not fail when it starts.
+    """
     scenario = parse_scenario(text)
     check_workload(scenario, max_samples)
+    if scenario.kind == "rigid_body":
+        data = scenario.data
+        grid = data["integration"]
+        if not exact and grid.get("method") not in (None, *ADAPTIVE) and grid.get("dt") is None:
+            raise ScenarioError(f"<scenario>: integration.dt: method {grid['method']!r} takes fixed steps and "
+                                "needs dt (s)")
+        for key, build in (("body", lambda: build_body(data["body"])),
+                           ("initial.attitude", lambda: initial_attitude(data["initial"].get("attitude"))),
+                           ("torque", lambda: torque_model(data.get("torque", [])))):
+            try:
+                build()
+            except ValueError as exc:
+                raise ScenarioError(f"<scenario>: {key}: {exc}") from None
+        if exact:
+            Solver(scenario, exact=True)  # RunRefused when the closed form does not apply
     return scenario
 
 
@@ -167,27 +245,100 @@ class Solver:
         return simulate(self.body, t, omega_start, q0=q_start, torque=self.torque, method=self.method, dt=self.dt)
 
 
-class Drift:
-    """Largest change of energy, |J| and the direction of the space J since the first sample, gathered chunk
-    by chunk; the relative figures of :meth:`kreisel.dynamics.Trajectory.drift` plus the potential energy."""
+def model_of(scenario):
+    """Which integrable model a rigid-body scenario simulates: ``"free"`` (no torque), ``"lagrange"``
+    (symmetric top, centre of mass on the symmetry axis), ``"kovalevskaya"`` (I1 = I2 = 2 I3, centre of
+    mass in the equatorial plane on axis 1), ``"heavy"`` (any other body under gravity alone) or
+    ``"driven"`` (other torques: nothing is conserved)."""
+    torques = scenario.data.get("torque", [])
+    if not torques:
+        return "free"
+    if len(torques) > 1 or torques[0]["kind"] != "gravity":
+        return "driven"
+    tensor = build_body(scenario.data["body"]).inertia
+    lever = np.asarray(torques[0]["lever"], dtype=float)
+    moments = np.diag(tensor)
+    if np.count_nonzero(tensor - np.diag(moments)) or not np.isclose(moments[0], moments[1], rtol=1e-12):
+        return "heavy"
+    if lever[0] == lever[1] == 0.0 and lever[2] != 0.0:
+        return "lagrange"
+    if np.isclose(moments[0], 2.0 * moments[2], rtol=1e-12) and lever[0] > 0.0 and lever[1] == lever[2] == 0.0:
+        return "kovalevskaya"
+    return "heavy"
 
-    def __init__(self):
-        self.energy0 = self.J0 = None
-        self.energy = self.J_norm = self.direction = 0.0
 
-    def add(self, energy, J):
-        if self.energy0 is None:
-            self.energy0, self.J0 = energy[0], J[0]
-        norms = np.linalg.norm(J, axis=-1)
-        angle = np.arctan2(np.linalg.norm(np.cross(J, self.J0), axis=-1), J @ self.J0)
-        self.energy = max(self.energy, float(np.max(np.abs(energy - self.energy0))))
-        self.J_norm = max(self.J_norm, float(np.max(np.abs(norms - np.linalg.norm(self.J0)))))
-        self.direction = max(self.direction, float(np.max(angle)))
+_INTEGRALS = {
+    "free": (("T", "kinetic energy T", "J"), ("J", "angular momentum J in space (vector)", "kg m²/s")),
+    "heavy": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s")),
+    "lagrange": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s"),
+                 ("J_3", "spin angular momentum J_3 = I3 ω3", "kg m²/s")),
+    "kovalevskaya": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s"),
+                     ("K", "Kovalevskaya's integral K", "rad⁴/s⁴")),
+    "driven": (),
+}
 
-    def summary(self, free):
-        J0 = float(np.linalg.norm(self.J0))
-        return {"energy": self.energy / float(abs(self.energy0) or 1.0), "J_norm": self.J_norm / (J0 or 1.0),
-                "direction": self.direction if free else None}
+
+class FirstIntegrals:
+    """The first integrals of the simulated model and their largest change since the first sample, gathered
+    chunk by chunk (free body: T and the space J; heavy top: E = T + V and J_z; Lagrange top: also J_3;
+    Kovalevskaya top: also K; Theory §5–7). A change is the integrator's error, not physics.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> integrals = FirstIntegrals("free", np.diag([1.0, 2.0, 3.0]), None)
+    >>> integrals.add({"kinetic": np.array([1.0, 1.0 + 1e-12]), "J": np.array([[0.0, 2.0, 0.0]] * 2)})
+    >>> [(i["name"], i["relative"] < 2e-12) for i in integrals.summary()]
+    [('T', True), ('J', True)]
+    """
+
+    def __init__(self, model, inertia, gravity):
+        self.model = model
+        self.inertia = np.asarray(inertia, dtype=float)
+        self.gravity = gravity
+        self.first = None
+        self.change = None
+
+    def values(self, arrays):
+        """The integrals at each sample of ``arrays`` (from :func:`samples`), by name."""
+        if self.model == "free":
+            return {"T": arrays["kinetic"], "J": arrays["J"]}
+        out = {"E": arrays["energy"], "J_z": arrays["J"][:, 2]}
+        if self.model == "lagrange":
+            out["J_3"] = arrays["omega"] @ self.inertia[2]
+        elif self.model == "kovalevskaya":
+            from ..tops import KovalevskayaTop
+
+            weight, lever = self.gravity
+            top = KovalevskayaTop(self.inertia[2, 2], weight * lever[0])
+            gamma = quat_apply(arrays["q"], [0.0, 0.0, 1.0], inverse=True)  # the upward vertical in the body
+            out["K"] = top.integrals(arrays["omega"], gamma).kovalevskaya
+        return out
+
+    def add(self, arrays):
+        """Take the samples ``arrays`` of the next stretch of the run into account."""
+        values = self.values(arrays)
+        if self.first is None:
+            self.first = {name: value[0] for name, value in values.items()}
+            self.change = dict.fromkeys(values, 0.0)
+        for name, value in values.items():
+            moved = np.abs(value - self.first[name])
+            moved = np.linalg.norm(moved, axis=-1) if moved.ndim > 1 else moved
+            self.change[name] = max(self.change[name], float(np.max(moved)))
+
+    def summary(self):
+        """One entry per integral: name, label, unit, first value, largest change and the change relative to
+        the first value (or to the energy or |J| scale where the first value is zero)."""
+        out = []
+        for name, label, unit in _INTEGRALS[self.model]:
+            first = self.first[name]
+            size = float(np.linalg.norm(first))
+            if size == 0.0:  # J_z or K may start at 0: measure against the run's own scale
+                size = float(np.linalg.norm(self.first["J" if "J" in self.first else "J_z"])) or 1.0
+            out.append({"name": name, "label": label, "unit": unit,
+                        "initial": np.asarray(first).tolist(), "change": self.change[name],
+                        "relative": self.change[name] / size})
+        return out
 
 
 def samples(traj, gravity):
@@ -208,24 +359,24 @@ def _lists(arrays):
 
 
 def rigid_body_header(scenario, traj):
-    """Everything of a rigid-body run's JSON but the samples and the drift (theory quantities from ``traj[0]``)."""
+    """Everything of a rigid-body run's JSON but the samples and the integrals (analysis from ``traj[0]``)."""
     gravity = _gravity(scenario)
     return {"kind": "rigid_body", "title": scenario.title, "method": traj.meta.get("method"),
             "inertia": traj.inertia.tolist(),
             "gravity": None if gravity is None else {"weight": gravity[0], "lever": gravity[1].tolist()},
-            "seed": theory_quantities(traj, gravity)}
+            "analysis": analysis(traj, gravity)}
 
 
 def rigid_body_result(scenario, traj):
-    """JSON-ready arrays and theory quantities of a rigid-body run."""
+    """JSON-ready arrays and analysis of a rigid-body run."""
     gravity = _gravity(scenario)
     arrays = samples(traj, gravity)
-    drift = Drift()
-    drift.add(arrays["energy"], arrays["J"])
-    return {**rigid_body_header(scenario, traj), **_lists(arrays), "drift": drift.summary(gravity is None)}
+    integrals = FirstIntegrals(model_of(scenario), traj.inertia, gravity)
+    integrals.add(arrays)
+    return {**rigid_body_header(scenario, traj), **_lists(arrays), "integrals": integrals.summary()}
 
 
-def theory_quantities(traj, gravity):
+def analysis(traj, gravity):
     """T, J, stability of the principal axes and, for a Lagrange top, the nutation range (Theory §5, §6)."""
     from ..inertia import principal_axes
 
@@ -242,10 +393,40 @@ def theory_quantities(traj, gravity):
     if gravity is None:
         try:
             out["regime"] = top.regime(axes.T @ omega0)
+            out["regime_text"] = regime_text(top, axes.T @ omega0)
         except ValueError:
-            out["regime"] = None
+            out["regime"] = out["regime_text"] = None
     out["lagrange"] = _lagrange(traj, gravity) if gravity is not None else None
     return out
+
+
+def regime_text(top, omega):
+    """What a user sees a free body do when spun with principal-axis ω ``omega`` (Theory §5.4), in words.
+
+    Examples
+    --------
+    >>> from kreisel.tops import EulerTop
+    >>> regime_text(EulerTop(1.0, 2.0, 3.0), [0.001, 1.0, 0.001])
+    'spun near the middle axis (I2 = 2): unstable, it flips over every 27.5 s'
+    >>> regime_text(EulerTop(1.0, 2.0, 3.0), [0.1, 0.1, 1.0])
+    'spun near the largest axis (I3 = 3): stable, ω wobbles about it with period 6.28 s'
+    """
+    omega = np.asarray(omega, dtype=float)
+    regime = top.regime(omega)
+    order = np.argsort(top.moments)
+    names = {order[0]: "smallest", order[1]: "middle", order[2]: "largest"}
+    # the axis the spin is nearest to, by the share of ω along it
+    near = int(np.argmax(np.abs(omega)))
+    axis = f"{names[near]} axis (I{near + 1} = {top.moments[near]:.4g})"
+    if regime == "steady":
+        return "steady rotation: spun about a principal axis (or a sphere), nothing changes"
+    if regime == "separatrix":
+        return "on the separatrix: ω creeps towards the middle axis and never completes a flip"
+    if regime == "symmetric":
+        return f"symmetric body: ω precesses regularly about the symmetry axis, period {top.omega_period(omega):.3g} s"
+    if names[near] == "middle":
+        return f"spun near the {axis}: unstable, it flips over every {top.dzhanibekov_flip_time(omega):.3g} s"
+    return f"spun near the {axis}: stable, ω wobbles about it with period {top.omega_period(omega):.3g} s"
 
 
 def _lagrange(traj, gravity):
@@ -284,8 +465,10 @@ def foucault_result(scenario):
     jacobi = np.asarray(swing.jacobi, dtype=float)
     return {"kind": "foucault", "title": scenario.title, "t": swing.t.tolist(),
             "swing_azimuth": swing.swing_azimuth.tolist(), "tilt": swing.tilt.tolist(), "length": spec["length"],
-            "drift": {"jacobi": float(abs(jacobi[-1] - jacobi[0]) / abs(jacobi[0]))},
-            "seed": {"precession_rate_measured": float(swing.precession_rate), "precession_rate_theory": rate,
+            "integrals": [{"name": "C", "label": "Jacobi integral", "unit": "", "initial": float(jacobi[0]),
+                           "change": float(abs(jacobi[-1] - jacobi[0])),
+                           "relative": float(abs(jacobi[-1] - jacobi[0]) / abs(jacobi[0]))}],
+            "analysis": {"precession_rate_measured": float(swing.precession_rate), "precession_rate_theory": rate,
                      "period_hours": float(2 * np.pi / abs(rate) / 3600.0) if rate else None}}
 
 
@@ -294,7 +477,7 @@ def run(text, exact=False):
 
     ``exact=True`` uses the closed form of the free top instead of an integrator.
     """
-    scenario = load(text)
+    scenario = load(text, exact=exact)
     if scenario.kind == "foucault":
         answer = foucault_result(scenario)
         answer["form"] = None
@@ -305,13 +488,28 @@ def run(text, exact=False):
     return answer
 
 
+def export(text, exact, format, folder):
+    """Run scenario TOML ``text`` and write its trajectory as ``format`` ("nc" or "csv") into ``folder``.
+
+    Returns the path written (named after the scenario's title).
+    """
+    from ..io import save_result
+
+    scenario = load(text, MAX_STREAM_SAMPLES, exact)
+    if scenario.kind != "rigid_body":
+        raise RunRefused("only rigid-body runs export as a trajectory file")
+    traj = Solver(scenario, exact).run()
+    name = "".join(c if c.isalnum() else "_" for c in scenario.title.lower()).strip("_") or "trajectory"
+    return str(save_result(traj, pathlib.Path(folder) / f"{name}.{format}"))
+
+
 def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES):
     """Validate ``text`` now, then return a generator of the run's messages, one chunk of work per message.
 
-    Messages: ``{"type": "start", ...}`` (what :func:`run` answers but the samples and the drift, plus
+    Messages: ``{"type": "start", ...}`` (what :func:`run` answers but the samples and the integrals, plus
     ``n_samples``, ``n_chunks`` and ``t_range``, the first and last time), then
     ``{"type": "chunk", "index", "offset", t, q, omega, ...}`` with consecutive samples, then
-    ``{"type": "done", "drift": ...}``. The integrators restart each chunk from the last state of the
+    ``{"type": "done", "integrals": ...}``. The integrators restart each chunk from the last state of the
     previous one: dop853's error control then restarts too, so a streamed run agrees with :func:`run` to
     the integrator's tolerance (not bit for bit; ~3e-11 on the tennis racket at rtol 1e-12); fixed-step
     methods take the same steps either way (each interval between samples is stepped alone), and the
@@ -328,7 +526,7 @@ def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES):
     """
     if not isinstance(chunk_samples, int) or chunk_samples < 2:
         raise ValueError(f"chunk_samples must be an integer >= 2, got {chunk_samples!r}")
-    scenario = load(text, MAX_STREAM_SAMPLES)
+    scenario = load(text, MAX_STREAM_SAMPLES, exact)
     solver = None if scenario.kind == "foucault" else Solver(scenario, exact)
     return _messages(scenario, solver, text, chunk_samples)
 
@@ -338,17 +536,17 @@ def _messages(scenario, solver, text, chunk_samples):
         # the pendulum's turning points come from one event-located integration: a single chunk
         result = foucault_result(scenario)
         arrays = {key: result.pop(key) for key in ("t", "swing_azimuth", "tilt")}
-        drift = result.pop("drift")
+        integrals = result.pop("integrals")
         yield {"type": "start", **result, "form": None, "toml": text, "n_samples": len(arrays["t"]), "n_chunks": 1,
                "t_range": [arrays["t"][0], arrays["t"][-1]]}
         yield {"type": "chunk", "index": 0, "offset": 0, **arrays}
-        yield {"type": "done", "drift": drift}
+        yield {"type": "done", "integrals": integrals}
         return
     t = solver.t
     # chunk k holds samples [bounds[k], bounds[k + 1]); its integration starts at the sample before
     bounds = list(range(0, t.size, chunk_samples)) + [t.size]
     gravity = _gravity(scenario)
-    drift = Drift()
+    integrals = FirstIntegrals(model_of(scenario), solver.body.inertia, gravity)
     omega, q = solver.omega0, solver.q0
     for index, (first, stop) in enumerate(zip(bounds[:-1], bounds[1:])):
         start = max(first - 1, 0)
@@ -359,10 +557,11 @@ def _messages(scenario, solver, text, chunk_samples):
                    "toml": text, "n_samples": int(t.size), "n_chunks": len(bounds) - 1,
                    "t_range": [float(t[0]), float(t[-1])]}
         arrays = {key: value[first - start:] for key, value in samples(traj, gravity).items()}
-        drift.add(arrays["energy"], arrays["J"])
+        integrals.add(arrays)
         yield {"type": "chunk", "index": index, "offset": first, **_lists(arrays)}
-    yield {"type": "done", "drift": drift.summary(gravity is None)}
+    yield {"type": "done", "integrals": integrals.summary()}
 
 
 __all__ = ["METHODS", "MAX_SAMPLES", "MAX_STREAM_SAMPLES", "CHUNK_SAMPLES", "RunRefused", "ScenarioError",
-           "Solver", "Drift", "samples", "scenario_toml", "form_fields", "load", "run", "stream"]
+           "Solver", "FirstIntegrals", "model_of", "samples", "regime_text", "scenario_data", "scenario_toml", "toml_text", "form_fields", "load", "run",
+           "export", "stream"]

@@ -1,0 +1,158 @@
+"""The committed front-end bundle is the build of web/, and a non-editable install serves it without Node.js."""
+
+import hashlib
+import json
+import os
+import pathlib
+import re
+import shutil
+import signal
+import site
+import subprocess
+import sys
+import time
+
+import pytest
+
+from kreisel.web.app import STATIC
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+WEB = ROOT / "web"
+
+
+def source_hash(files):
+    """The hash web/build.mjs stores in BUILD.json: each file's name and LF-normalised text."""
+    digest = hashlib.sha256()
+    for name in files:
+        digest.update(name.encode() + b"\0")
+        digest.update((WEB / name).read_bytes().decode("utf-8").replace("\r\n", "\n").encode())
+        digest.update(b"\0")
+    return digest.hexdigest()
+
+
+def test_bundle_was_built_from_the_current_sources():
+    build = json.loads((STATIC / "BUILD.json").read_text(encoding="utf-8"))
+    sources = ["build.mjs", "index.html", "favicon.svg", "package-lock.json",
+               *sorted(f"src/{p.name}" for p in (WEB / "src").glob("*.js"))]
+    assert build["files"] == sources, "web/ has files the bundle was not built from: run `make web`"
+    assert build["sha256"] == source_hash(sources), "web/ changed since the bundle was built: run `make web`"
+    assert (STATIC / "index.html").read_bytes() == (WEB / "index.html").read_bytes()
+    assert (STATIC / "favicon.svg").read_bytes() == (WEB / "favicon.svg").read_bytes()
+
+
+@pytest.mark.skipif(shutil.which("node") is None or not (WEB / "node_modules" / "esbuild").is_dir(),
+                    reason="needs Node.js and web/node_modules (npm ci in web/)")
+def test_rebuilding_gives_the_committed_bundle(tmp_path):
+    subprocess.run(["node", str(WEB / "build.mjs")], check=True, env={**os.environ, "KREISEL_WEB_OUT": str(tmp_path)},
+                   timeout=300)
+    for name in ("viewer.js", "index.html", "favicon.svg", "BUILD.json"):
+        assert (tmp_path / name).read_bytes() == (STATIC / name).read_bytes(), name
+
+
+def test_static_files_are_package_data():
+    import tomllib
+
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    patterns = config["tool"]["setuptools"]["package-data"]["kreisel.web"]
+    for name in ("viewer.js", "index.html", "favicon.svg", "BUILD.json"):
+        assert any(pathlib.PurePath(f"static/{name}").match(p) for p in patterns), name
+
+
+def _tracked_copy(target):
+    """The files of the repository a clone has (tracked or about to be), without build products."""
+    listed = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
+                            capture_output=True, text=True, check=True).stdout.split("\n")
+    for name in filter(None, listed):
+        source = ROOT / name
+        if source.is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name)
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """A fresh virtual environment with kreisel installed from a copy of the repository, not editable.
+
+    The environment sees this interpreter's packages (numpy, fastapi, ...), so only the build backend is
+    fetched (or taken from pip's cache); its own site-packages, where kreisel goes, comes first on its path.
+    """
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("needs a git checkout to know the repository's files")
+    base = tmp_path_factory.mktemp("install")
+    clone = base / "clone"
+    _tracked_copy(clone)
+    venv = base / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
+    python = venv / "bin" / "python"
+    # this interpreter's packages after the environment's own (a .pth line adds a directory without
+    # running the .pth files in it, so an editable kreisel installed here stays out)
+    own = subprocess.run([str(python), "-c", "import site; print(site.getsitepackages()[0])"], capture_output=True,
+                         text=True, check=True, timeout=300).stdout.strip()
+    pathlib.Path(own, "dependencies.pth").write_text("\n".join(site.getsitepackages()) + "\n", encoding="utf-8")
+    # pip builds the wheel in an isolated environment with the setuptools pyproject.toml asks for, as a
+    # user's `pip install` does (the runtime dependencies come from this interpreter's packages)
+    subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-deps", str(clone)], check=True,
+                   timeout=900, cwd=base)
+    where = subprocess.run([str(python), "-c", "import kreisel.web.app as a; print(a.STATIC)"],
+                           capture_output=True, text=True, timeout=300, cwd=base,
+                           env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
+    assert str(venv) in where.stdout, f"kreisel was not imported from the new environment: {where}"
+    return python, base
+
+
+@pytest.fixture(scope="module")
+def served(installed):
+    """``kreisel serve`` from the fresh environment, as a user starts it: its URL."""
+    python, base = installed
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    server = subprocess.Popen([str(python), "-m", "kreisel", "serve", "--port", "0", "--no-browser"], cwd=base,
+                              env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        deadline = time.monotonic() + 300
+        url = None
+        while url is None and time.monotonic() < deadline:
+            line = server.stdout.readline()
+            if not line:
+                break
+            found = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            url = found.group(0) if found else None
+        assert url, "kreisel serve did not print its URL"
+        yield url
+    finally:
+        server.send_signal(signal.SIGINT)  # Ctrl+C: the server stops its run workers on the way out
+        try:
+            server.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait()
+
+
+def test_installed_viewer_serves_the_page_and_its_script(served):
+    import httpx
+
+    page = httpx.get(served, timeout=60)
+    assert page.status_code == 200 and '<script type="module" src="/static/viewer.js">' in page.text
+    script = httpx.get(served + "static/viewer.js", timeout=60)
+    assert script.status_code == 200 and len(script.content) > 100_000
+    assert httpx.get(served + "favicon.ico", timeout=60).headers["content-type"].startswith("image/svg+xml")
+
+
+@pytest.mark.skipif(not pathlib.Path("/usr/bin/chromium").exists(), reason="needs chromium at /usr/bin/chromium")
+def test_installed_viewer_renders_in_chromium(served):
+    sync_api = pytest.importorskip("playwright.sync_api")
+    from .test_browser import ARGS
+
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS, timeout=120_000)
+        try:
+            page = browser.new_page(viewport={"width": 1400, "height": 820})
+            errors = []
+            page.on("pageerror", lambda exc: errors.append(str(exc)))
+            page.goto(served, wait_until="load", timeout=120_000)
+            # the script ran: presets and integrators came from the API and WebGL drew the scene
+            page.wait_for_function("document.getElementById('preset').options.length >= 8 && "
+                                   "document.getElementById('method').options.length > 3 && "
+                                   "window.kreisel && window.kreisel.webgl === true", timeout=120_000)
+            assert errors == []
+        finally:
+            browser.close()
