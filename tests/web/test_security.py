@@ -146,7 +146,7 @@ MALFORMED = [
     json.dumps({"toml": ATTITUDE.format('seq = "ZZX"\neuler = [1.0, 2.0, 3.0]')}).encode(),
     json.dumps({"toml": ATTITUDE.format("quat = [0.0, 0.0, 0.0, 0.0]")}).encode(),
     json.dumps({"toml": ATTITUDE.format("matrix = [[1.0, 0, 0], [0, 2.0, 0], [0, 0, 1.0]]")}).encode(),
-    json.dumps({"toml": "\ufeff" + ATTITUDE.format("rotvec = [0.0, 0.0, 1.0]")}).encode(),
+    json.dumps({"toml": "x = " + "[" * 5000 + "]" * 5000}).encode(),
     json.dumps({"toml": ATTITUDE.replace("[integration]", "[[torque]]\nkind = 'gravity'\nweight = 1.0\n"
                                                          "lever = [0.0, 0.0, 0.0]\n[integration]")
                 .format("")}).encode(),
