@@ -10,10 +10,11 @@ Modules: ``quaternion`` (algebra, Theory §2.4), ``matrix`` (DCM, §2.1),
 ``euler`` (§2.3), ``su2`` (SU(2), Cayley–Klein, Euler parameters,
 appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
 (slerp, mean), ``alignment`` (Wahba's problem), ``davenport``
-(Davenport angles), ``rotation`` (the ``Rotation`` class).
+(Davenport angles), ``rotation`` (the ``Rotation`` class), ``spline``
+(``RotationSpline``, ``Slerp``).
 """
 
-from . import alignment, davenport, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, su2
+from . import alignment, davenport, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2
 from .alignment import *  # noqa: F401,F403
 from .davenport import *  # noqa: F401,F403
 from .euler import *  # noqa: F401,F403
@@ -23,6 +24,7 @@ from .quaternion import *  # noqa: F401,F403
 from .rodrigues import *  # noqa: F401,F403
 from .rotation import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
+from .spline import *  # noqa: F401,F403
 from .su2 import *  # noqa: F401,F403
 
 __all__ = [
@@ -36,4 +38,5 @@ __all__ = [
     *alignment.__all__,
     *davenport.__all__,
     *rotation.__all__,
+    *spline.__all__,
 ]
