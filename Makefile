@@ -1,6 +1,8 @@
 # The whole set-up on a fresh machine: `make demo` and `make test`.
 # Each creates .venv and installs what it needs; re-running only reinstalls
-# when pyproject.toml changed.
+# when pyproject.toml changed. kreisel is installed editable, so every target
+# compiles into .numba_cache/<state of the sources> (see kreisel._compiled):
+# no target runs machine code compiled before an edit.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -46,7 +48,7 @@ docs: $(VENV)/.installed-docs docs/node_modules/.installed
 	MPLBACKEND=Agg $(PY) -m sphinx -b html -W --keep-going docs docs/_build/html
 
 clean:
-	rm -rf $(VENV) build src/*.egg-info
+	rm -rf $(VENV) build src/*.egg-info .numba_cache
 
 # The viewer's front end (kreisel serve): three.js bundled by esbuild into src/kreisel/web/static/.
 # The bundle is committed (an installed kreisel serves it without Node.js); after editing web/, run

@@ -1,38 +1,74 @@
 """Test-session set-up shared by tests/ and the doctests in src/kreisel.
 
-Numba's on-disk cache is keyed on the file of each compiled function, not on
-the files of the functions it calls, so after an edit to a shared kernel a
-cached caller elsewhere can keep running the old code; and two processes
-compiling one function for different array layouts at the same moment can
-leave an index that pairs one signature with the other's machine code. Tests
-therefore compile into a cache of their own, keyed by the state of the source
-tree and separate for each pytest-xdist worker. This runs before numba is
-imported, which conftest.py at the root of the repository guarantees.
+Compiled code: a source checkout compiles into ``.numba_cache/<state>/<worker>``,
+keyed by the state of the package sources (:mod:`kreisel._compiled` sets this
+up on import, for tests and every other run alike). Here, the main process
+removes the caches of earlier source states, which are never valid again, and
+every process checks at the end that no shared kernel of the compiled layer
+was compiled for more than one signature (``kreisel._compiled.signatures``);
+pytest-xdist workers hand their findings to the main process.
 """
 
-import hashlib
+import json
 import os
-import pathlib
 import shutil
+import sys
 
-_ROOT = pathlib.Path(__file__).parent
-_CACHES = _ROOT / ".numba_cache"
+import pytest
 
-
-def _source_state():
-    digest = hashlib.sha1()
-    for path in sorted((_ROOT / "src" / "kreisel").rglob("*.py")):
-        stat = path.stat()
-        digest.update(f"{path.relative_to(_ROOT)}:{stat.st_size}:{stat.st_mtime_ns}".encode())
-    return digest.hexdigest()[:16]
+_SIGNATURES = "kreisel_signature_violations"
 
 
-# a cache directory the user chose is respected; ours (inherited by xdist workers) is re-derived per worker
-if "NUMBA_CACHE_DIR" not in os.environ or os.environ.get("KREISEL_TEST_NUMBA_CACHE") == os.environ["NUMBA_CACHE_DIR"]:
-    _state = _source_state()
-    if os.environ.get("PYTEST_XDIST_WORKER") is None and _CACHES.is_dir():
-        for stale in _CACHES.iterdir():  # caches of earlier source states are never valid again
-            if stale.name != _state:
-                shutil.rmtree(stale, ignore_errors=True)
-    os.environ["NUMBA_CACHE_DIR"] = str(_CACHES / _state / os.environ.get("PYTEST_XDIST_WORKER", "main"))
-    os.environ["KREISEL_TEST_NUMBA_CACHE"] = os.environ["NUMBA_CACHE_DIR"]
+def _remove_stale_caches():
+    from kreisel._compiled import checkout_cache_root, source_state
+
+    caches = checkout_cache_root()
+    if caches is None or os.environ.get("NUMBA_CACHE_DIR") or not caches.is_dir():
+        return
+    state = source_state()
+    for stale in caches.iterdir():
+        if stale.name != state:
+            shutil.rmtree(stale, ignore_errors=True)
+
+
+def _violations():
+    if "kreisel._compiled" not in sys.modules:
+        return {}
+    from kreisel._compiled.signatures import violations
+
+    return violations()
+
+
+class _WorkerReports:
+    """Collects the violations found by pytest-xdist workers (main process only)."""
+
+    def __init__(self):
+        self.found = {}
+
+    @pytest.hookimpl(optionalhook=True)
+    def pytest_testnodedown(self, node, error):
+        self.found.update(json.loads(getattr(node, "workeroutput", {}).get(_SIGNATURES, "{}")))
+
+
+def pytest_configure(config):
+    if hasattr(config, "workerinput"):
+        return
+    _remove_stale_caches()
+    config._kreisel_workers = _WorkerReports()
+    config.pluginmanager.register(config._kreisel_workers)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    found = _violations()
+    config = session.config
+    if hasattr(config, "workeroutput"):
+        config.workeroutput[_SIGNATURES] = json.dumps(found)
+        return
+    found.update(config._kreisel_workers.found)
+    if found:
+        lines = [f"  {name}: {', '.join(signatures)}" for name, signatures in sorted(found.items())]
+        sys.stderr.write(
+            "\nShared compiled kernels with more than one signature (one layout per shared kernel,"
+            " see kreisel._compiled):\n" + "\n".join(lines) + "\n"
+        )
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED

@@ -15,7 +15,8 @@ holds
   functions that lose digits to cancellation at small angles;
 - :mod:`.dop853`: the one adaptive Dormand–Prince 8(5,3) integrator.
 
-The decorator flavours below are the only ways kreisel compiles a function.
+The decorator flavours below are the only ways kreisel compiles a function
+(besides user callables, compiled per call, and one object-mode callback).
 
 Invariants
 ----------
@@ -43,14 +44,59 @@ Cache rules
 Inlining and stale caches
     numba keys a cache entry on the file of the compiled function, not on the
     files of the kernels it calls or inlines: after an edit here, a cached
-    caller elsewhere keeps the old code. Development trees therefore compile
-    into a cache directory keyed by the state of the package sources (the
-    test suite: the root ``conftest.py``).
+    caller elsewhere keeps the old code. An installed kreisel is safe (an
+    upgrade rewrites every file, and with it every entry's source stamp), and
+    kreisel leaves numba's cache location alone there. A source checkout
+    (``src/kreisel`` next to ``pyproject.toml``: an editable install, or
+    ``PYTHONPATH=src``) compiles into ``.numba_cache/<state>/`` at the
+    repository root instead, ``<state>`` a digest of the paths, sizes and
+    modification times of the package sources, so any edit starts a fresh
+    cache: tests, ``make demo``, ``make bench`` and ``make docs`` never run
+    stale machine code. Each pytest-xdist worker compiles into a directory of
+    its own (two processes adding signatures to one index at the same moment
+    can pair a signature with the other's machine code). A ``NUMBA_CACHE_DIR``
+    set by the user is respected.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+import pathlib
+
+import numba
 from numba import njit
+
+#: The package sources this layer belongs to.
+_PACKAGE = pathlib.Path(__file__).resolve().parents[1]
+
+
+def source_state():
+    """Digest of the paths, sizes and modification times of the package's Python sources."""
+    digest = hashlib.sha1()
+    for path in sorted(_PACKAGE.rglob("*.py")):
+        stat = path.stat()
+        digest.update(f"{path.relative_to(_PACKAGE)}:{stat.st_size}:{stat.st_mtime_ns}".encode())
+    return digest.hexdigest()[:16]
+
+
+def checkout_cache_root():
+    """``.numba_cache`` of the source checkout kreisel is imported from, or None if it is installed."""
+    root = _PACKAGE.parents[1]
+    if _PACKAGE.parent.name != "src" or not (root / "pyproject.toml").is_file():
+        return None
+    return root / ".numba_cache"
+
+
+def _use_checkout_cache():
+    caches = checkout_cache_root()
+    if caches is None or os.environ.get("NUMBA_CACHE_DIR"):
+        return
+    numba.config.CACHE_DIR = str(caches / source_state() / os.environ.get("PYTEST_XDIST_WORKER", "main"))
+
+
+# before any kernel is decorated: numba picks a function's cache directory then
+_use_checkout_cache()
 
 #: Cached, GIL-free scalar or array kernel: the default flavour.
 cached = njit(cache=True, nogil=True)
@@ -63,4 +109,4 @@ generic = njit(nogil=True, inline="always")
 #: Cached multi-core loop (``prange``) over flattened batches.
 parallel = njit(parallel=True, cache=True)
 
-__all__ = ["cached", "generic", "inlined", "parallel"]
+__all__ = ["cached", "checkout_cache_root", "generic", "inlined", "parallel", "source_state"]

@@ -187,6 +187,17 @@ def _all_finite_parallel(flat, chunk):
     return finite.all()
 
 
+def _read_only_flat(a):
+    """Read-only C-contiguous 1-D view of ``a`` (a copy only if ``a`` is not contiguous).
+
+    numba types writable and read-only arrays apart: passing every batch check
+    the same kind of array keeps each compiled for one signature.
+    """
+    flat = np.ascontiguousarray(a).reshape(-1)
+    flat.flags.writeable = False
+    return flat
+
+
 def _large(flat, width):
     return flat.size >= PARALLEL_THRESHOLD * width
 
@@ -194,7 +205,7 @@ def _large(flat, width):
 def finite_array(x, name, tail):
     """Float64 array with trailing shape ``tail`` and only finite entries."""
     a = as_float_array(x, name, tail, finite=False)
-    flat = a.reshape(-1)
+    flat = _read_only_flat(a)
     width = math.prod(tail or ())
     if not (_all_finite_parallel(flat, _CHUNK) if _large(flat, width) else _all_finite(flat, 0, flat.size)):
         raise ValueError(f"{name} must be finite (no NaN or inf)")
@@ -210,7 +221,7 @@ def quaternion_array(q, name="q", nonzero=True):
     a = as_float_array(q, name, (4,), finite=False)
     if a.size == 0:
         return a
-    flat = np.ascontiguousarray(a).reshape(-1)
+    flat = _read_only_flat(a)
     smallest = _smallest_quat_norm2_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_norm2(flat, 0, flat.size)
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
@@ -288,7 +299,7 @@ def matrix_array(R, name="R", tolerance=ORTHOGONALITY_TOLERANCE):
     a = as_float_array(R, name, (3, 3), finite=False)
     if a.size == 0:
         return a
-    flat = np.ascontiguousarray(a).reshape(-1)
+    flat = _read_only_flat(a)
     if _large(flat, 9):
         worst, smallest_det = _orthogonality_defect_parallel(flat, _CHUNK)
     else:

@@ -21,7 +21,7 @@ from numba import prange
 from .._compiled import cached, inlined, parallel
 from .._compiled.dop853 import NOT_FINITE, OK, integrate
 from .._compiled.kernels import _rotated as rotated
-from .._compiled.kernels import qnormalize, quat_product, rotvec_quat
+from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
 from ._rows import CALLBACK
 from .forces import evaluate_force
 from .torques import DAMPING, evaluate_torque
@@ -264,7 +264,7 @@ def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
         rhs(t + a, tmp, 7, inertia, 1.0, rows, None, k, 7 * s, scratch)
     for i in range(7):
         y[i] = y0[i] + h / 6.0 * (k[i] + 2.0 * k[7 + i] + 2.0 * k[14 + i] + k[21 + i])
-    qnormalize(y[3:7])
+    y[3], y[4], y[5], y[6] = quat_unit(y[3], y[4], y[5], y[6])
 
 
 @cached
@@ -313,7 +313,7 @@ def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
     for i in range(3):
         y[i] = y0[i] + h / 6.0 * (deriv[i] + 2.0 * deriv[7 + i] + 2.0 * deriv[14 + i] + deriv[21 + i])
     _group_stage(y0, u0, u1, u2, y)
-    qnormalize(y[3:7])
+    y[3], y[4], y[5], y[6] = quat_unit(y[3], y[4], y[5], y[6])
 
 
 @cached

@@ -14,9 +14,9 @@ import itertools
 import math
 
 import numpy as np
-from numba import objmode
+from numba import njit, objmode
 
-from .._compiled import cached, generic
+from .._compiled import generic
 
 ROW_SIZE = 10
 CALLBACK = -1  # the kind of a row that calls a registered Python function (the same in every family)
@@ -102,7 +102,8 @@ def _call_registered(key, t, y):
     return np.ascontiguousarray(function(*args), dtype=np.float64)
 
 
-@cached
+# object mode holds the GIL, so not the nogil flavour
+@njit(cache=True)
 def _callback_into(key, t, y, scratch, at):
     with objmode(r="float64[:]"):
         r = _call_registered(key, t, y)
