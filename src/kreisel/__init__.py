@@ -9,8 +9,6 @@ body components to space components, uppercase Euler sequences intrinsic and
 lowercase extrinsic, SI units, ``frame="space" | "body"``.
 """
 
-from importlib.metadata import PackageNotFoundError, version as _version
-
 from .so3 import *  # noqa: F401,F403
 from .so3 import __all__ as _so3_all
 from .kinematics import *  # noqa: F401,F403
@@ -25,11 +23,7 @@ from .se3 import *  # noqa: F401,F403
 from .se3 import __all__ as _se3_all
 from . import frames, earth, nav  # noqa: F401
 from . import io, sweep  # noqa: F401  (user-facing layers; neither imports dask or the web stack)
-
-try:
-    __version__ = _version("kreisel")
-except PackageNotFoundError:  # running from a source tree without installation
-    __version__ = "0+unknown"
+from ._version import __version__
 
 __all__ = [
     *_so3_all,

@@ -211,7 +211,7 @@ def _code_fingerprint(function):
 def _sweep_key(function, grid, constants, chunk_size):
     """(what is swept, what computes it): the function's name, grid, constants and chunking; and the
     code that determines each chunk's result, with kreisel's version."""
-    from .. import __version__
+    from .._version import __version__
 
     digest = hashlib.sha256()
     digest.update(_describe_function(function).encode())
