@@ -1,5 +1,7 @@
 """Earth examples of Theory §8.2–§8.3 against the chapter's numbers, closed forms and references."""
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -49,7 +51,14 @@ def test_poles_and_equator():
     assert east[2] == pytest.approx(E.eastward_deflection(50.0, 0.0), rel=1e-6)
     sidereal_day = 2 * np.pi / E.OMEGA_EARTH
     np.testing.assert_allclose(E.foucault_period([90.0, -90.0]), sidereal_day, rtol=1e-15)
-    assert np.isinf(E.foucault_period(0.0))
+    for latitude in (0.0, -0.0, [10.0, 0.0]):
+        with pytest.raises(ValueError, match=r"at the equator \(latitude 0\) the swing plane .* does not turn"):
+            E.foucault_period(latitude)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")   # no overflow warning: a message in words instead
+        with pytest.raises(ValueError, match=r"latitude 1e-310°, this close to the equator.*exceeds the largest"):
+            E.foucault_period(1e-310)
+        assert np.isfinite(E.foucault_period(1e-300))
     assert E.foucault_precession_rate(0.0) == 0.0
 
 

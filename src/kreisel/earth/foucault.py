@@ -41,9 +41,13 @@ def foucault_precession_rate(latitude_deg, omega=OMEGA_EARTH):
 def foucault_period(latitude_deg, omega=OMEGA_EARTH):
     """Time for the swing plane to turn once, 2π/(ω |sin λ|), seconds (Theory §8.3).
 
-    One sidereal day at the poles (with the sidereal ``omega``); at the equator
-    the plane does not turn and the period is ``inf`` (returned as such, not
-    as an overflowing finite number).
+    One sidereal day at the poles (with the sidereal ``omega``). At the
+    equator the swing plane does not turn at all, so it has no period: a
+    latitude of 0, or one so close to 0 that the period would exceed the
+    largest float (about 1e-300 degrees), raises ``ValueError`` saying so
+    rather than returning ``inf`` or overflowing. Use
+    :func:`foucault_precession_rate`, which is 0 at the equator, for tables
+    that include it.
 
     Examples
     --------
@@ -52,12 +56,24 @@ def foucault_period(latitude_deg, omega=OMEGA_EARTH):
     >>> T = float(foucault_period(31.8584, omega=7.27221e-5))
     >>> int(T // 3600), int(T % 3600 // 60)
     (45, 28)
-    >>> float(foucault_period(0.0))
-    inf
+    >>> foucault_period([0.0, 45.0])
+    Traceback (most recent call last):
+        ...
+    ValueError: latitude_deg: at the equator (latitude 0) the swing plane of a Foucault pendulum does not turn, so it has no period; foucault_precession_rate is 0 there
     """
     rate = np.abs(foucault_precession_rate(latitude_deg, omega))
-    with np.errstate(divide="ignore"):
-        return np.where(rate > 0, 2.0 * np.pi / np.where(rate > 0, rate, 1.0), np.inf)[()]
+    smallest = 2.0 * np.pi / np.finfo(float).max   # below this rate the period overflows
+    still = rate <= smallest
+    if np.any(still):
+        latitude = np.asarray(latitude_deg, dtype=float)[still] if np.ndim(latitude_deg) else latitude_deg
+        shown = float(np.ravel(latitude)[0]) if np.ndim(latitude) else float(latitude)
+        if shown == 0.0:
+            raise ValueError("latitude_deg: at the equator (latitude 0) the swing plane of a Foucault pendulum "
+                             "does not turn, so it has no period; foucault_precession_rate is 0 there")
+        raise ValueError(f"latitude_deg: at latitude {shown:g}°, this close to the equator, the swing plane turns "
+                         f"so slowly that its period exceeds the largest float ({np.finfo(float).max:.1e} s); "
+                         "foucault_precession_rate gives the rate")
+    return (2.0 * np.pi / rate)[()]
 
 
 @cached
