@@ -35,6 +35,8 @@ def inertia_ellipsoid(quick):
         d = ellipsoid.semi_axes[k] * ellipsoid.axes[:, k]
         ax.plot(*np.c_[-d, d], color=f"C{k + 1}", linewidth=2)
     ax.set_box_aspect(np.ptp(np.stack([ellipsoid.x.ravel(), ellipsoid.y.ravel(), ellipsoid.z.ravel()]), axis=1))
+    unit = "(1/√(kg m²))"
+    ax.set(xlabel=f"x {unit}", ylabel=f"y {unit}", zlabel=f"z {unit}")
     ax.set_title("inertia ellipsoid xᵀ I x = 1 of a turned box")
     return Section(
         "Inertia tensor and the inertia ellipsoid", "§4.1–3",
@@ -68,7 +70,7 @@ def tennis_racket(quick):
         ax.set_ylabel("rad/s")
         ax.set_title(f"spun {label}", fontsize=10)
     axes[0].legend(loc="upper right", ncol=3)
-    axes[-1].set_xlabel("t (s)")
+    axes[-1].set_xlabel("t (s)")   # shared by the panels above
     middle = top.solve(t, starts["near axis 2 (middle)"])
     crossings = t[:-1][np.diff(np.sign(middle.omega[:, 1])) != 0]
     measured = float(np.mean(np.diff(crossings)))
@@ -84,7 +86,7 @@ def tennis_racket(quick):
         "small perturbation grows exponentially and the body flips over again and again (Dzhanibekov "
         "effect). kreisel's Euler top is the exact elliptic-function solution, so the flip time "
         "2K(m)/λ and the first integrals hold at any time without time stepping.",
-        [Check.equal("stability of axes 1, 2, 3", kinds, ["stable", "unstable", "stable"]),
+        [Check.equal("stability of axes 1, 2, 3", ", ".join(kinds), "stable, unstable, stable"),
          Check.close("flip time from the zero crossings of ω′2 (s)", measured, predicted, rtol=3e-3,
                      source="2K(m)/λ"),
          Check.below("energy error at t = 1e5 s (relative)", energy_error, 1e-12),
@@ -116,6 +118,8 @@ def poinsot_construction(quick):
                 spread.append(np.max(np.abs(distance / (np.sqrt(2 * tr.energy) / np.linalg.norm(
                     tr.angular_momentum_space, axis=-1)) - 1)))
     ax.set_box_aspect(semi)
+    unit = "(1/√(kg m²))"
+    ax.set(xlabel=f"ρ′1 {unit}", ylabel=f"ρ′2 {unit}", zlabel=f"ρ′3 {unit}")
     ax.set_title("polhodes on the inertia ellipsoid")
     tr = top.solve(np.linspace(0, 200, 4000 if quick else 20000), [0.4, 0.2, 1.0])
     j_hat = tr.angular_momentum_space[0] / np.linalg.norm(tr.angular_momentum_space[0])
@@ -126,6 +130,7 @@ def poinsot_construction(quick):
     ax2 = fig.add_subplot(1, 2, 2)
     ax2.plot(rho_space @ e1, rho_space @ e2, linewidth=0.6)
     ax2.set_aspect("equal")
+    ax2.set(xlabel="ρ · e1 (1/√(kg m²))", ylabel="ρ · e2 (1/√(kg m²))")
     ax2.set_title("herpolhode on the invariable plane")
     return Section(
         "Poinsot construction", "§5.5–6",
@@ -163,6 +168,7 @@ def symmetric_top_cones(quick):
     for k in range(0, t.size, max(1, t.size // 12)):
         ax.plot(*np.c_[np.zeros(3), w_space[k] / np.linalg.norm(w_space[k])], color="C3", alpha=0.3, linewidth=0.6)
     ax.legend(loc="upper left", fontsize=8)
+    ax.set(xlabel="x (space, unit vectors)", ylabel="y (space)", zlabel="z (space, along J)")
     ax.set_title("regular precession of an oblate top (I3 = 2 I1)")
     return Section(
         "Symmetric top: regular precession, body and space cones", "§5.7",
@@ -172,10 +178,13 @@ def symmetric_top_cones(quick):
         "the same sense; for a prolate top the cones touch outside and turn in opposite senses.",
         [Check.below("closed form vs general elliptic solution, max |Δq|", float(np.max(dq)), 1e-12),
          Check.close("ψ̇ measured (rad/s)", float(psi_rate), chapter_psi_rate, rtol=1e-10, source="Theory §5.7"),
-         Check.equal("oblate: cones", (oblate.relation, oblate.same_sense), ("space cone inside body cone", True)),
-         Check.equal("prolate: cones", (prolate.relation, prolate.same_sense),
-                     ("body cone outside space cone", False))],
+         Check.equal("oblate: cones", f"{oblate.relation}, {_sense(oblate)}",
+                     "space cone inside body cone, turning in the same sense"),
+         Check.equal("prolate: cones", f"{prolate.relation}, {_sense(prolate)}",
+                     "body cone outside space cone, turning in opposite senses")],
         [(fig, "ω and the symmetry axis during regular precession; J is fixed along z.")],
     )
 
 
+def _sense(cones):
+    return "turning in the same sense" if cones.same_sense else "turning in opposite senses"

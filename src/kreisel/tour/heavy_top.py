@@ -45,7 +45,7 @@ def lagrange_top(quick):
             ax.plot(np.sin(bound) * np.cos(ring), np.sin(bound) * np.sin(ring), color="0.6", linestyle=":")
         ax.set_aspect("equal")
         ax.set_title(f"apex locus seen from above: {kind}", fontsize=9)
-        ax.set(xlabel="x", ylabel="y")
+        ax.set(xlabel="x of the axis tip (unit sphere)", ylabel="y of the axis tip")
         checks += [
             Check.equal(f"{kind}: apex_locus_kind", _TOP.apex_locus_kind(euler0, rates), kind),
             Check.close(f"{kind}: largest θ on the sampled path (rad)", float(theta_path.max()), float(high),
@@ -54,7 +54,7 @@ def lagrange_top(quick):
         ]
     span = max(levels) - min(levels)
     ax0.set_ylim(min(levels) - 2 * span, max(levels) + 2 * span)
-    ax0.set_xlabel("θ (rad)")
+    ax0.set(xlabel="θ (rad)", ylabel="energy (J)")
     ax0.set_title("V_eff(θ) and energy E (dotted)")
     ax0.legend(fontsize=8)
     return Section(
@@ -105,9 +105,9 @@ def fast_and_sleeping_top(quick):
                      abs(exact_rates[-1] / approx_rates[-1] - 1), 1e-3),
          Check.close("sleeping-top threshold ω3 (rad/s)", float(threshold), 2 * np.sqrt(_TOP.I1 * _TOP.mgl) / _TOP.I3,
                      rtol=1e-14, source="J3² = 4 I1 m g l"),
-         Check.equal("stable just above / unstable just below the threshold",
-                     (bool(_TOP.sleeping_top_stable(1.01 * threshold)), bool(_TOP.sleeping_top_stable(0.99 * threshold))),
-                     (True, False))],
+         Check.equal("1 % above / 1 % below the threshold",
+                     " / ".join("stable" if _TOP.sleeping_top_stable(f * threshold) else "unstable" for f in (1.01, 0.99)),
+                     "stable / unstable")],
         [(fig, "Mean precession rate of the fast top: exact against the chapter's approximation.")],
     )
 

@@ -21,8 +21,8 @@ def rolling_wheel_centrodes(quick):
     # ladder from the wall (0, L sin θ) to the floor (L cos θ, 0); reference point its midpoint
     ladder = kinematics.centrodes(s, lambda u: -u, lambda u: 0.5 * ladder_length * np.stack([np.cos(u), np.sin(u)], -1))
 
-    fig = Figure(figsize=(9, 3.8), layout="constrained")
-    ax1, ax2 = fig.subplots(1, 2)
+    fig = Figure(figsize=(10, 4.4), layout="constrained")
+    ax1, ax2 = fig.subplots(1, 2, width_ratios=(1.3, 1))
     ax1.plot(wheel.space[:, 0], wheel.space[:, 1], "C3", linewidth=3, label="space centrode (ground line)")
     phi = np.linspace(0, 2 * np.pi, 100)
     for k in range(0, t.size, t.size // 4):
@@ -30,7 +30,8 @@ def rolling_wheel_centrodes(quick):
         ax1.plot(cx + radius * np.cos(phi), radius + radius * np.sin(phi), color="0.6", linewidth=0.8)
         ax1.plot(wheel.space[k, 0], wheel.space[k, 1], "ko")
     ax1.set_aspect("equal")
-    ax1.set_title("rolling wheel: the contact point is the instantaneous centre")
+    ax1.set(xlabel="x (m)", ylabel="y (m)")
+    ax1.set_title("rolling wheel: the contact point\nis the instantaneous centre", fontsize=10)
     ax1.legend(loc="upper right", fontsize=8)
     ax2.plot(ladder.space[:, 0], ladder.space[:, 1], "C3", label="space centrode: |r_I| = L")
     for k in range(0, s.size, s.size // 5):
@@ -42,7 +43,8 @@ def rolling_wheel_centrodes(quick):
         body_now = centre + ladder.body @ np.array([[c, d], [-d, c]])
         ax2.plot(body_now[:, 0], body_now[:, 1], "C0", linewidth=0.6)
     ax2.set_aspect("equal")
-    ax2.set_title("sliding ladder: body centrode (blue) rolls in the space centrode")
+    ax2.set(xlabel="x (m)", ylabel="y (m)")
+    ax2.set_title("sliding ladder: body centrode (blue)\nrolls in the space centrode", fontsize=10)
     ax2.legend(loc="upper right", fontsize=8)
 
     contact_error = np.max(np.abs(wheel.space[:, 1]))

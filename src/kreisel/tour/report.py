@@ -41,8 +41,8 @@ class Check:
 
     @classmethod
     def equal(cls, label, value, target):
-        """Check a discrete outcome (a classification, a count)."""
-        return cls(label, value, repr(target), value == target)
+        """Check a discrete outcome (a classification, a count), shown in words."""
+        return cls(label, value, plain(target), value == target)
 
 
 @dataclasses.dataclass
@@ -68,10 +68,21 @@ def _png(fig):
     return base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def _value(v):
-    if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool):
+def plain(v):
+    """``v`` as a reader expects it in a table: numbers to 6 digits, yes/no, sequences as "a, b, c", no quotes.
+
+    Examples
+    --------
+    >>> plain(["stable", "unstable"]), plain((45, 28)), plain(True), plain(0.1 + 0.2), plain("loop")
+    ('stable, unstable', '45, 28', 'yes', '0.3', 'loop')
+    """
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
+    if isinstance(v, (int, float, np.integer, np.floating)):
         return f"{v:.6g}"
-    return html.escape(str(v))
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return ", ".join(plain(x) for x in v)
+    return str(v)
 
 
 def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
@@ -105,7 +116,7 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
             parts.append("<table><tr><th>quantity</th><th>kreisel</th><th>expected</th><th></th></tr>")
             for c in s.checks:
                 mark = "<span class='pass'>✓</span>" if c.ok else "<span class='fail'>✗</span>"
-                parts.append(f"<tr><td>{html.escape(c.label)}</td><td>{_value(c.value)}</td>"
+                parts.append(f"<tr><td>{html.escape(c.label)}</td><td>{html.escape(plain(c.value))}</td>"
                              f"<td>{html.escape(c.expected)}</td><td>{mark}</td></tr>")
             parts.append("</table>")
         for fig, caption in s.figures:

@@ -44,14 +44,15 @@ def euler_angles_and_nodal_line(quick):
     for k, name in enumerate("xyz"):
         e = np.eye(3)[k]
         ax.quiver(0, 0, 0, *e, color="0.6", arrow_length_ratio=0.08)
-        ax.text(*(1.08 * e), name, color="0.4")
+        ax.text(*(1.12 * e), name, color="0.4")
         b = R[:, k]
         ax.quiver(0, 0, 0, *b, color=f"C{k}", arrow_length_ratio=0.08, linewidth=2)
         ax.text(*(1.1 * b), f"{name}′", color=f"C{k}")
     node = _axis_rotation(2, phi)[:, 0]
     ax.plot(*np.c_[-node, node], "k--", linewidth=1.2)
-    ax.text(*(1.1 * node), "nodal line N", color="k")
-    ax.set(xlim=(-1.1, 1.1), ylim=(-1.1, 1.1), zlim=(-1.1, 1.1))
+    ax.text(*(0.55 * node + [0.0, 0.0, 0.08]), "nodal line N", color="k", ha="center")
+    ax.set(xlim=(-1.1, 1.1), ylim=(-1.1, 1.1), zlim=(-1.1, 1.1), xlabel="x (space)", ylabel="y (space)",
+           zlabel="z (space)")
     ax.set_box_aspect((1, 1, 1))
     ax.set_title("ZXZ (φ, θ, ψ) = (40°, 35°, 25°)")
 
