@@ -114,8 +114,12 @@ function show(d) {
   if (viewer) viewer.load(d);
   readout(d);
   legend(d);
-  $("energy-title").textContent = d.kind === "foucault" ? "swing-plane azimuth (rad)"
+  const foucault = d.kind === "foucault";
+  $("energy-title").textContent = foucault ? "swing-plane azimuth (rad)"
     : d.gravity ? "energy E = T + V (J)" : "kinetic energy T (J)";
+  $("omega-title").textContent = foucault ? "tilt of the string at the turning points (rad)" : "ω′ components (rad/s)";
+  $("omega-legend").style.display = foucault ? "none" : "";
+  $("J-panel").style.display = foucault ? "none" : "";
   status(`${d.title}: ${d.t.length} of ${d.n_samples || d.t.length} samples`);
 }
 
@@ -181,7 +185,7 @@ function run(body) {
 }
 
 function series(d) {
-  if (d.kind === "foucault") return { omega: [[], [], []], energy: [d.swing_azimuth], J: [[]] };
+  if (d.kind === "foucault") return { omega: [d.tilt.map(Math.abs)], energy: [d.swing_azimuth], J: [[]] };
   const col = (k) => d.omega.map((w) => w[k]);
   return { omega: [col(0), col(1), col(2)], energy: [d.energy], J: [d.J_norm] };
 }

@@ -20,10 +20,20 @@ function yRange(series) {
   return [mid - 0.55 * span, mid + 0.55 * span];
 }
 
-function fmt(v) {
-  if (v === 0) return "0";
-  return Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3 ? v.toExponential(3) : Number(v.toPrecision(6)).toString();
+// Tick labels with as many digits as tell them apart: a conserved quantity's axis spans a tiny range
+// about a large value, and every label would otherwise read the same. Values within round-off of zero
+// on a symmetric axis print as 0.
+function tickLabels(values, span) {
+  const size = Math.max(...values.map(Math.abs));
+  const digits = Math.min(15, Math.max(3, Math.ceil(Math.log10(size / span)) + 3));
+  return values.map((v) => {
+    if (Math.abs(v) < 1e-9 * span) return "0";
+    const a = Math.abs(v);
+    return a >= 1e5 || a < 1e-3 ? v.toExponential(Math.min(digits, 15) - 1) : Number(v.toPrecision(digits)).toString();
+  });
 }
+
+const timeLabel = (v) => `${Number(v.toPrecision(4))} s`;
 
 /** Draw `series` (arrays over `t`) up to sample `upto` inclusive on the time axis `span` (default: all of
  * `t`, which may still be growing while a run streams in); returns the plotted values. The y axis is
@@ -37,7 +47,7 @@ export function drawPlot(canvas, t, series, colors, upto, span = null) {
   const [t0, last] = span || [t[0], t[t.length - 1]];
   const t1 = last > t0 ? last : t0 + 1;
   ctx.font = "11px ui-monospace, monospace";
-  const labels = [hi, 0.5 * (lo + hi), lo].map(fmt);
+  const labels = tickLabels([hi, 0.5 * (lo + hi), lo], hi - lo);
   const left = 8 + Math.max(...labels.map((l) => ctx.measureText(l).width)), right = w - 8, top = 8, bottom = h - 20;
   const x = (v) => left + ((v - t0) / (t1 - t0)) * (right - left);
   const y = (v) => bottom - ((v - lo) / (hi - lo)) * (bottom - top);
@@ -53,7 +63,7 @@ export function drawPlot(canvas, t, series, colors, upto, span = null) {
   });
   ctx.textAlign = "center";
   ctx.textBaseline = "top";
-  for (const v of [t0, 0.5 * (t0 + t1), t1]) ctx.fillText(`${fmt(v)} s`, Math.min(Math.max(x(v), left + 16), right - 16), bottom + 4);
+  for (const v of [t0, 0.5 * (t0 + t1), t1]) ctx.fillText(timeLabel(v), Math.min(Math.max(x(v), left + 16), right - 16), bottom + 4);
   plotted.forEach((values, k) => {
     ctx.strokeStyle = colors[k];
     ctx.lineWidth = 1.5;
