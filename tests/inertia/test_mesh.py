@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import kreisel as kr
-from kreisel.inertia import meshes
+from kreisel.inertia import primitive_meshes as meshes
 
 TETRA_FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
 

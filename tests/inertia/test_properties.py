@@ -5,7 +5,7 @@ import pytest
 from scipy.spatial.transform import Rotation as ScipyRotation
 
 import kreisel as kr
-from kreisel.inertia import meshes
+from kreisel.inertia import primitive_meshes as meshes
 
 I = kr.inertia
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import kreisel as kr
-from kreisel.inertia import meshes
+from kreisel.inertia import primitive_meshes as meshes
 
 I = kr.inertia
 

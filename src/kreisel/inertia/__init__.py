@@ -5,9 +5,9 @@ function says otherwise; every function broadcasts over leading axes.
 :class:`RigidBody` bundles a validated tensor and mass for the dynamics.
 """
 
-from . import meshes
+from . import primitive_meshes
 from .body import RigidBody
-from .mesh import from_mesh
+from .mesh_properties import from_mesh
 from .properties import MassProperties, combine, from_points
 from .solids import (
     box,
@@ -41,7 +41,7 @@ __all__ = [
     "from_points",
     "from_mesh",
     "combine",
-    "meshes",
+    "primitive_meshes",
     "box",
     "solid_sphere",
     "hollow_sphere",

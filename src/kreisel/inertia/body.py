@@ -6,7 +6,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from . import solids
-from .mesh import from_mesh
+from .mesh_properties import from_mesh
 from .properties import MassProperties, combine, from_points
 from .tensors import as_symmetric_tensor, check_moments, principal_axes
 
@@ -158,7 +158,7 @@ class RigidBody:
         Examples
         --------
         >>> import kreisel as kr
-        >>> v, f = kr.inertia.meshes.box_mesh((1.0, 2.0, 3.0))
+        >>> v, f = kr.inertia.primitive_meshes.box_mesh((1.0, 2.0, 3.0))
         >>> body = kr.RigidBody.from_mesh(v, f, density=2.0)
         >>> body.mass, body.principal_moments.round(12)
         (12.0, array([ 5., 10., 13.]))

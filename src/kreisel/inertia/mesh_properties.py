@@ -125,7 +125,7 @@ def from_mesh(vertices, faces, density=1.0):
     The unit cube has volume 1 and I = 1/6 about its centre.
 
     >>> import numpy as np, kreisel as kr
-    >>> v, f = kr.inertia.meshes.box_mesh((1.0, 1.0, 1.0))
+    >>> v, f = kr.inertia.primitive_meshes.box_mesh((1.0, 1.0, 1.0))
     >>> p = kr.inertia.from_mesh(v + 0.5, f, density=6.0)
     >>> p.mass, p.com
     (6.0, array([0.5, 0.5, 0.5]))

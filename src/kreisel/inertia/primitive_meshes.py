@@ -50,7 +50,7 @@ def box_mesh(size):
     Examples
     --------
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.box_mesh((1.0, 2.0, 3.0))
+    >>> v, f = kr.inertia.primitive_meshes.box_mesh((1.0, 2.0, 3.0))
     >>> v.shape, f.shape
     ((8, 3), (12, 3))
     """
@@ -85,7 +85,7 @@ def surface_of_revolution(profile, n_azimuth, closed=False):
     A cone of radius 1 and height 2 as a pyramid over a regular 16-gon:
 
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.surface_of_revolution([[0, 0], [1, 0], [0, 2]], 16)
+    >>> v, f = kr.inertia.primitive_meshes.surface_of_revolution([[0, 0], [1, 0], [0, 2]], 16)
     >>> v.shape, f.shape
     ((18, 3), (32, 3))
     """
@@ -135,7 +135,7 @@ def ellipsoid_mesh(semi_axes, n_polar=32, n_azimuth=64):
     Examples
     --------
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.ellipsoid_mesh((1.0, 2.0, 3.0), 8, 12)
+    >>> v, f = kr.inertia.primitive_meshes.ellipsoid_mesh((1.0, 2.0, 3.0), 8, 12)
     >>> v.shape, f.shape
     ((86, 3), (168, 3))
     """
@@ -155,7 +155,7 @@ def cylinder_mesh(radius, height, n_azimuth=64, inner_radius=None):
     Examples
     --------
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.cylinder_mesh(1.0, 2.0, 16, inner_radius=0.5)
+    >>> v, f = kr.inertia.primitive_meshes.cylinder_mesh(1.0, 2.0, 16, inner_radius=0.5)
     >>> v.shape, f.shape
     ((64, 3), (128, 3))
     """
@@ -175,7 +175,7 @@ def cone_mesh(radius, height, n_azimuth=64):
     Examples
     --------
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.cone_mesh(1.0, 2.0, 16)
+    >>> v, f = kr.inertia.primitive_meshes.cone_mesh(1.0, 2.0, 16)
     >>> v.shape, f.shape
     ((18, 3), (32, 3))
     """
@@ -190,7 +190,7 @@ def torus_mesh(major_radius, minor_radius, n_major=64, n_minor=32):
     Examples
     --------
     >>> import kreisel as kr
-    >>> v, f = kr.inertia.meshes.torus_mesh(1.0, 0.25, 16, 8)
+    >>> v, f = kr.inertia.primitive_meshes.torus_mesh(1.0, 0.25, 16, 8)
     >>> v.shape, f.shape
     ((128, 3), (256, 3))
     """
