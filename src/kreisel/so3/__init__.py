@@ -10,14 +10,15 @@ Modules: ``quaternion`` (algebra, Theory §2.4), ``matrix`` (DCM, §2.1),
 ``euler`` (§2.3), ``su2`` (SU(2), Cayley–Klein, Euler parameters,
 appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
 (slerp, mean), ``alignment`` (Wahba's problem), ``davenport``
-(Davenport angles), ``rotation`` (the ``Rotation`` class), ``spline``
+(Davenport angles), ``groups`` (point groups, reduction), ``rotation`` (the ``Rotation`` class), ``spline``
 (``RotationSpline``, ``Slerp``).
 """
 
-from . import alignment, davenport, euler, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2
+from . import alignment, davenport, euler, groups, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2
 from .alignment import *  # noqa: F401,F403
 from .davenport import *  # noqa: F401,F403
 from .euler import *  # noqa: F401,F403
+from .groups import *  # noqa: F401,F403
 from .interpolation import *  # noqa: F401,F403
 from .matrix import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
@@ -37,6 +38,7 @@ __all__ = [
     *interpolation.__all__,
     *alignment.__all__,
     *davenport.__all__,
+    *groups.__all__,
     *rotation.__all__,
     *spline.__all__,
 ]

@@ -15,6 +15,7 @@ from .._validation import as_float_array, batch_shape
 from . import alignment as _alignment
 from . import davenport as _davenport
 from . import euler as _euler
+from . import groups as _groups
 from . import interpolation as _interp
 from . import matrix as _matrix
 from . import quaternion as _quat
@@ -346,6 +347,75 @@ class Rotation:
         rotation = cls._wrap(out[0])
         rssd = float(out[1]) if len(a_shape) <= 2 else out[1]
         return (rotation, rssd, *out[2:])
+
+    @classmethod
+    def create_group(cls, group, axis="Z"):
+        """A finite rotation group: ``"I"`` (60), ``"O"`` (24), ``"T"`` (12), ``"Dn"`` (2n) or ``"Cn"`` (n).
+
+        scipy's ``create_group`` (same orientation; see :mod:`kreisel.so3.groups`),
+        identity first. ``axis`` is the main axis of ``Cn`` and ``Dn``.
+
+        Examples
+        --------
+        The square's symmetries about x, and closure under composition:
+
+        >>> import numpy as np
+        >>> g = Rotation.create_group("C4", axis="X")
+        >>> np.degrees(g.as_rotvec()[:, 0]).round(9).tolist()
+        [0.0, 90.0, 180.0, -90.0]
+        >>> len(Rotation.create_group("O"))
+        24
+        """
+        return cls._wrap(_groups.create_group(group, axis))
+
+    def reduce(self, left=None, right=None, return_indices=False):
+        """The equivalent rotation ``l * self * r`` with the smallest angle (scipy's ``reduce``).
+
+        Parameters
+        ----------
+        left, right : Rotation, optional
+            Symmetry groups applied on the left and on the right (None: none).
+        return_indices : bool
+            Also return the indices of the chosen ``l`` and ``r`` (None for a
+            side not given), shaped like the batch.
+
+        Examples
+        --------
+        Two cube orientations 100° apart about z differ by only 10° up to the cube's symmetry:
+
+        >>> import numpy as np
+        >>> cube = Rotation.create_group("O")
+        >>> r = Rotation.from_rotvec([0.0, 0.0, np.radians(100)])
+        >>> round(float(np.degrees(r.reduce(right=cube).magnitude())), 9)
+        10.0
+        """
+        if left is None and right is None:
+            reduced, li, ri = self._q.copy(), None, None
+        else:
+            reduced, li, ri = _groups.reduce_quat(
+                self._q, None if left is None else left._q, None if right is None else right._q
+            )
+        out = Rotation._wrap(reduced)
+        return (out, li, ri) if return_indices else out
+
+    @classmethod
+    def concatenate(cls, rotations):
+        """One batch from a sequence of rotations (single ones count as one element each).
+
+        Examples
+        --------
+        >>> r = Rotation.concatenate([Rotation.identity(), Rotation.random(3, rng=0)])
+        >>> r.shape
+        (4,)
+        """
+        if isinstance(rotations, Rotation):
+            return cls._wrap(rotations._q.copy())
+        parts = list(rotations)
+        if not all(isinstance(r, Rotation) for r in parts):
+            raise TypeError("rotations must be a sequence of kreisel Rotation objects")
+        if not parts:
+            raise ValueError("rotations must hold at least one Rotation")
+        return cls._wrap(np.concatenate([np.atleast_2d(r._q) for r in parts]))
 
     @classmethod
     def identity(cls, shape=()):
@@ -704,6 +774,28 @@ class Rotation:
         if self.single:
             raise TypeError("a single Rotation has no len()")
         return self._q.shape[0]
+
+    def __iter__(self):
+        if self.single:
+            raise TypeError("a single Rotation is not iterable")
+        for i in range(len(self)):
+            yield self[i]
+
+    def __bool__(self):
+        # As scipy: a Rotation is true even when its batch is empty.
+        return True
+
+    def __setitem__(self, index, value):
+        if self.single:
+            raise TypeError("a single Rotation does not support item assignment")
+        if not isinstance(value, Rotation):
+            raise TypeError(f"value must be a kreisel Rotation, got {type(value).__name__}")
+        if isinstance(index, tuple):
+            index = (*index, slice(None))
+        # Copy first: the array may be shared with the Rotation it was sliced from.
+        q = np.array(self._q)
+        q[index] = value._q
+        self._q = q
 
     def __getitem__(self, index):
         if self.single:
