@@ -132,6 +132,36 @@ class RigidTransform:
         return cls(rotation, translation)
 
     @classmethod
+    def from_components(cls, translation, rotation):
+        """scipy's argument order, translation first: the same as ``RigidTransform(rotation, translation)``.
+
+        Examples
+        --------
+        >>> RigidTransform.from_components([1.0, 2.0, 3.0], [1.0, 0.0, 0.0, 0.0]).translation
+        array([1., 2., 3.])
+        """
+        return cls(rotation, translation)
+
+    @classmethod
+    def concatenate(cls, transforms):
+        """One batch from a sequence of transforms (single ones count as one element each).
+
+        Examples
+        --------
+        >>> RigidTransform.concatenate([RigidTransform.identity(), RigidTransform.identity(2)]).shape
+        (3,)
+        """
+        if isinstance(transforms, RigidTransform):
+            return cls._from_arrays(transforms.as_quat(), transforms.translation)
+        parts = list(transforms)
+        if not parts or not all(isinstance(t, RigidTransform) for t in parts):
+            raise TypeError("transforms must be a non-empty sequence of kreisel RigidTransform objects")
+        return cls._from_arrays(
+            np.concatenate([np.atleast_2d(t._quat) for t in parts]),
+            np.concatenate([np.atleast_2d(t._translation) for t in parts]),
+        )
+
+    @classmethod
     def from_rotation(cls, rotation):
         """Pure rotation about the origin (zero translation).
 
@@ -604,6 +634,18 @@ class RigidTransform:
     def __iter__(self):
         for i in range(len(self)):
             yield self[i]
+
+    def __setitem__(self, key, value):
+        if self.single:
+            raise TypeError("a single RigidTransform does not support item assignment")
+        if not isinstance(value, RigidTransform):
+            raise TypeError(f"value must be a kreisel RigidTransform, got {type(value).__name__}")
+        # Fresh arrays: the stored ones may be broadcast views shared with other transforms.
+        quat, translation = np.array(self._quat), np.array(self._translation)
+        index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
+        quat.reshape(-1, 4)[index] = value._quat
+        translation.reshape(-1, 3)[index] = value._translation
+        self._quat, self._translation = quat, translation
 
     def __repr__(self):
         def fmt(a):
