@@ -57,25 +57,6 @@ def test_terms_sum_and_names():
     np.testing.assert_allclose(f.total, f.translational + f.coriolis + f.centrifugal + f.euler)
 
 
-def test_five_term_acceleration_against_differentiated_motion():
-    # a point moving on a rotating, accelerating platform; absolute position
-    # x(t) = x_C(t) + R(t) r'(t) differentiated by complex-free finite parts analytically
-    t = 0.7
-    phi, dphi, ddphi = 0.3 * t**2, 0.6 * t, 0.6  # rotation about z
-    c, s = np.cos(phi), np.sin(phi)
-    R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
-    rp, vp, ap = np.array([1 + t**2, t, 0.5]), np.array([2 * t, 1, 0.0]), np.array([2.0, 0, 0])
-    aC = np.array([0.0, -1.0, 0.4])
-    w, eps = np.array([0, 0, dphi]), np.array([0, 0, ddphi])
-    terms = F.absolute_acceleration(aC, eps, w, R @ rp, R @ vp, R @ ap)
-    # reference: second derivative of R(t) r'(t) by the product rule
-    W = hat(w)
-    Rd, Rdd = W @ R, (hat(eps) + W @ W) @ R
-    ref = aC + Rdd @ rp + 2 * Rd @ vp + R @ ap
-    np.testing.assert_allclose(terms.total, ref, rtol=1e-14, atol=1e-14)
-    np.testing.assert_allclose(F.absolute_velocity([0, 0, 0], w, R @ rp, R @ vp), Rd @ rp + R @ vp, atol=1e-14)
-
-
 def _inertial_reference(t_eval, r0, v0, w0, wdot, a0, gravity, spring):
     """Integrate the frame (R, origin) and the particle in the inertial frame with scipy."""
 

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import kreisel as kr
 from kreisel.kinematics import (
     five_term_acceleration,
     point_acceleration,
@@ -106,3 +107,22 @@ def test_batches_and_bad_input():
         point_velocity(np.ones((2, 3)), np.ones((3, 3)))
     with pytest.raises(ValueError, match="relative_rate"):
         relative_derivative([0, 0, 1.0], [1.0, 0, 0], [1.0, 0])
+
+
+def test_five_terms_against_a_differentiated_platform_motion():
+    # a point moving on a rotating, accelerating platform; absolute position
+    # x(t) = x_C(t) + R(t) r'(t) differentiated by complex-free finite parts analytically
+    t = 0.7
+    phi, dphi, ddphi = 0.3 * t**2, 0.6 * t, 0.6  # rotation about z
+    c, s = np.cos(phi), np.sin(phi)
+    R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+    rp, vp, ap = np.array([1 + t**2, t, 0.5]), np.array([2 * t, 1, 0.0]), np.array([2.0, 0, 0])
+    aC = np.array([0.0, -1.0, 0.4])
+    w, eps = np.array([0, 0, dphi]), np.array([0, 0, ddphi])
+    terms = five_term_acceleration(w, eps, R @ rp, R @ vp, R @ ap, aC)
+    # reference: second derivative of R(t) r'(t) by the product rule
+    W = kr.hat(w)
+    Rd, Rdd = W @ R, (kr.hat(eps) + W @ W) @ R
+    ref = aC + Rdd @ rp + 2 * Rd @ vp + R @ ap
+    np.testing.assert_allclose(terms.total, ref, rtol=1e-14, atol=1e-14)
+    np.testing.assert_allclose(three_term_velocity(w, R @ rp, R @ vp).total, Rd @ rp + R @ vp, atol=1e-14)

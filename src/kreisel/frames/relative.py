@@ -1,7 +1,9 @@
 """Kinematics and mechanics of a particle seen from a moving, rotating frame.
 
-Theory §4.7 (five-term acceleration) and Theory §8.1 (Lagrangian and Hamiltonian of a
-particle in a non-inertial frame). All vectors are components along the moving
+Theory §8.1 (Lagrangian and Hamiltonian of a particle in a non-inertial frame);
+the three-term velocity and five-term acceleration of Theory §4.7 are
+:func:`kreisel.kinematics.three_term_velocity` and
+:func:`kreisel.kinematics.five_term_acceleration`. All vectors are components along the moving
 frame's axes unless a docstring says otherwise; every function broadcasts over
 leading axes.
 
@@ -27,12 +29,9 @@ import numpy as np
 from .._validation import as_float_array
 
 __all__ = [
-    "AccelerationTerms",
     "InertialForces",
     "LagrangianTerms",
     "HamiltonianTerms",
-    "absolute_velocity",
-    "absolute_acceleration",
     "inertial_forces",
     "canonical_momentum",
     "velocity_from_momentum",
@@ -41,27 +40,6 @@ __all__ = [
     "hamiltonian_terms",
     "hamiltonian",
 ]
-
-AccelerationTerms = namedtuple(
-    "AccelerationTerms", ["translational", "euler", "centripetal", "relative", "coriolis", "total"]
-)
-AccelerationTerms.__doc__ = """Five terms of the absolute acceleration (Theory §4.7).
-
-translational (a_C), euler (ε×r), centripetal (ω×(ω×r)), relative (a_rel),
-coriolis (2 ω×v_rel) and their sum ``total``.
-
-Examples
---------
-A star at rest, seen from a frame turning at 1 rad/s about z, circles the
-observer (r = (1, 0, 0), v_rel = -ω×r, a_rel = -r): centripetal, relative and
-Coriolis terms cancel, since its absolute acceleration is zero:
-
->>> a = absolute_acceleration([0, 0, 0], [0, 0, 0], [0, 0, 1], [1, 0, 0], [0, -1, 0], [-1, 0, 0])
->>> a.centripetal.tolist(), a.relative.tolist(), (a.coriolis + 0.0).tolist()
-([-1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
->>> (a.total + 0.0).tolist()
-[0.0, 0.0, 0.0]
-"""
 
 InertialForces = namedtuple("InertialForces", ["translational", "coriolis", "centrifugal", "euler", "total"])
 InertialForces.__doc__ = """Fictitious (inertial) forces in a moving frame (Theory §8.1).
@@ -127,74 +105,6 @@ def _scalar(x, name, positive=False):
 
 def _dot(a, b):
     return np.sum(a * b, axis=-1)
-
-
-def absolute_velocity(v_origin, omega, r_rel, v_rel):
-    """Absolute velocity from the three terms of Theory §4.7: v = v_C + v_rel + ω×r.
-
-    Parameters
-    ----------
-    v_origin : (..., 3) array_like
-        Velocity of the frame's reference point C.
-    omega : (..., 3) array_like
-        Angular velocity of the frame.
-    r_rel, v_rel : (..., 3) array_like
-        Position of the point relative to C and its velocity observed in the
-        frame (``v_rel = R d r'/dt``). All four in the same components.
-
-    Returns
-    -------
-    (..., 3) ndarray
-
-    Examples
-    --------
-    >>> absolute_velocity([0, 0, 0], [0, 0, 1], [1, 0, 0], [0, 0, 0]).tolist()
-    [0.0, 1.0, 0.0]
-    """
-    v_origin, omega, r_rel, v_rel = _vectors(v_origin=v_origin, omega=omega, r_rel=r_rel, v_rel=v_rel)
-    return v_origin + v_rel + np.cross(omega, r_rel)
-
-
-def absolute_acceleration(a_origin, angular_acceleration, omega, r_rel, v_rel, a_rel):
-    """Absolute acceleration as the five terms of Theory §4.7.
-
-    a = a_C + ε×r + ω×(ω×r) + a_rel + 2 ω×v_rel, with every vector in the same
-    components (space components give the chapter's formula after multiplying by
-    R(t); moving-frame components give the primed form).
-
-    Parameters
-    ----------
-    a_origin : (..., 3) array_like
-        Acceleration of the reference point C.
-    angular_acceleration : (..., 3) array_like
-        ε = dω/dt.
-    omega : (..., 3) array_like
-        Angular velocity of the frame.
-    r_rel, v_rel, a_rel : (..., 3) array_like
-        Relative position, velocity and acceleration observed in the frame.
-
-    Returns
-    -------
-    AccelerationTerms
-        The five (..., 3) terms and their ``total``.
-
-    Examples
-    --------
-    >>> terms = absolute_acceleration([0, 0, 0], [0, 0, 0], [0, 0, 2], [1, 0, 0], [0, 1, 0], [0, 0, 0])
-    >>> terms.centripetal.tolist(), terms.coriolis.tolist()
-    ([-4.0, 0.0, 0.0], [-4.0, 0.0, 0.0])
-    """
-    a_origin, eps, omega, r, v, a = _vectors(
-        a_origin=a_origin, angular_acceleration=angular_acceleration, omega=omega, r_rel=r_rel, v_rel=v_rel, a_rel=a_rel
-    )
-    euler = np.cross(eps, r)
-    centripetal = np.cross(omega, np.cross(omega, r))
-    coriolis = 2.0 * np.cross(omega, v)
-    total = a_origin + euler + centripetal + a + coriolis
-    shape = total.shape
-    return AccelerationTerms(
-        *(np.broadcast_to(x, shape).copy() for x in (a_origin, euler, centripetal, a, coriolis)), total
-    )
 
 
 def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), mass=1.0):
