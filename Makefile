@@ -18,8 +18,9 @@ $(VENV)/.installed-run: pyproject.toml $(VENV)/.created
 	$(PY) -m pip install --quiet -e .
 	touch $@
 
+# the tests build the documentation too (tests/docs/test_docs_build.py)
 $(VENV)/.installed-dev: pyproject.toml $(VENV)/.created
-	$(PY) -m pip install --quiet -e ".[dev]"
+	$(PY) -m pip install --quiet -e ".[dev,docs]"
 	touch $@
 
 $(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
@@ -29,7 +30,7 @@ $(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
 demo: $(VENV)/.installed-run
 	$(PY) -m kreisel tour --out tour
 
-test: $(VENV)/.installed-dev
+test: $(VENV)/.installed-dev docs/node_modules/.installed
 	$(PY) -m pytest -n 2 --dist loadfile -q
 
 $(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
@@ -45,7 +46,7 @@ docs/node_modules/.installed: docs/package.json docs/package-lock.json
 	touch $@
 
 docs: $(VENV)/.installed-docs docs/node_modules/.installed
-	MPLBACKEND=Agg $(PY) -m sphinx -b html -W --keep-going docs docs/_build/html
+	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going docs docs/_build/html
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info .numba_cache

@@ -42,7 +42,7 @@ extensions = [
 
 # Private base classes (kreisel.*._module.Name) are not documented by design; the standard library
 # and scipy are not linked because the docs build without network access (no intersphinx).
-nitpick_ignore_regex = [("py:class", r"kreisel\.(\w+\.)*_\w+\.\w+"), ("py:(func|class|meth)", r"(functools|scipy)\..*")]
+nitpick_ignore_regex = [("py:class", r"kreisel\.(\w+\.)*_\w+\.\w+"), ("py:(func|class|meth)", r"(functools|numpy|scipy)\..*")]
 
 # Equations are numbered by theory section: (5.12) is the twelfth of section 5.
 numfig = True
@@ -60,7 +60,7 @@ html_last_updated_fmt = None
 
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": False}
+# (no autodoc_default_options: Sphinx 9 lets a default "members" override the class template's :members:)
 autodoc_typehints = "none"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False

@@ -27,14 +27,35 @@ def _candidates(objects, target, context_class):
     return found
 
 
+def _documented_module(domain, target):
+    """The nearest documented package of a module ``target`` (submodules have no page of their own)."""
+    while target:
+        if target in domain.modules:
+            return target
+        target = target.rpartition(".")[0]
+    return None
+
+
 def _resolve(app, env, node, contnode):
     if node.get("refdomain") != "py":
         return None
     target = node["reftarget"].lstrip("~.")
     domain = env.get_domain("py")
+    if node.get("reftype") == "mod":
+        module = _documented_module(domain, target) if target.startswith("kreisel.") else None
+        if module is None:
+            return None
+        entry = domain.modules[module]
+        return make_refnode(app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, module)
     objects = domain.objects
     if target.startswith("kreisel."):
         target = target[len("kreisel."):]
+        # a top-level alias: the same name in the subpackage that documents it
+        exact = [name for name in objects if name.count(".") == target.count(".") + 2
+                 and name.startswith("kreisel.") and name.split(".", 2)[2] == target]
+        if len(exact) == 1:
+            entry = objects[exact[0]]
+            return make_refnode(app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, exact[0])
     candidates = _candidates(objects, target, node.get("py:class"))
     if len(candidates) != 1:
         return None

@@ -139,7 +139,7 @@ class GyroErrorModel:
 
         Returns
         -------
-        (n_samples, *shape) ndarray
+        ndarray of shape ``(n_samples, *shape)``
             Rate error in rad/s.
 
         Examples

@@ -65,7 +65,7 @@ class FirstIntegral:
     scale: np.ndarray
 
     def relative_change(self):
-        """Largest |value(t) − value(t0)| over the trajectory, divided by :attr:`scale` (batch shape)."""
+        """Largest |value(t) − value(t0)| over the trajectory, divided by ``scale`` (batch shape)."""
         change = self.values - self.values[..., :1, :] if self.is_vector else self.values - self.values[..., :1]
         size = np.linalg.norm(change, axis=-1) if self.is_vector else np.abs(change)
         return np.max(size, axis=-1) / self.scale
