@@ -18,7 +18,7 @@ from ..io import ScenarioError, parse_scenario
 from ..io.run import build_body, initial_attitude, torque_model
 from ..kinematics import euler_rates
 from ..so3 import quat_apply, quat_to_euler
-from ..tops import EulerTop, LagrangeTop
+from ..tops import EulerTop, LagrangeTop, first_integrals
 
 METHODS = tuple(DYNAMICS_METHODS)
 # One JSON reply holds the whole run; a stream holds one chunk at a time on the server, so its limit is
@@ -245,100 +245,46 @@ class Solver:
         return simulate(self.body, t, omega_start, q0=q_start, torque=self.torque, method=self.method, dt=self.dt)
 
 
-def model_of(scenario):
-    """Which integrable model a rigid-body scenario simulates: ``"free"`` (no torque), ``"lagrange"``
-    (symmetric top, centre of mass on the symmetry axis), ``"kovalevskaya"`` (I1 = I2 = 2 I3, centre of
-    mass in the equatorial plane on axis 1), ``"heavy"`` (any other body under gravity alone) or
-    ``"driven"`` (other torques: nothing is conserved)."""
-    torques = scenario.data.get("torque", [])
-    if not torques:
-        return "free"
-    if len(torques) > 1 or torques[0]["kind"] != "gravity":
-        return "driven"
-    tensor = build_body(scenario.data["body"]).inertia
-    lever = np.asarray(torques[0]["lever"], dtype=float)
-    moments = np.diag(tensor)
-    if np.count_nonzero(tensor - np.diag(moments)) or not np.isclose(moments[0], moments[1], rtol=1e-12):
-        return "heavy"
-    if lever[0] == lever[1] == 0.0 and lever[2] != 0.0:
-        return "lagrange"
-    if np.isclose(moments[0], 2.0 * moments[2], rtol=1e-12) and lever[0] > 0.0 and lever[1] == lever[2] == 0.0:
-        return "kovalevskaya"
-    return "heavy"
-
-
-_INTEGRALS = {
-    "free": (("T", "kinetic energy T", "J"), ("J", "angular momentum J in space (vector)", "kg m²/s")),
-    "heavy": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s")),
-    "lagrange": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s"),
-                 ("J_3", "spin angular momentum J_3 = I3 ω3", "kg m²/s")),
-    "kovalevskaya": (("E", "energy E = T + V", "J"), ("J_z", "vertical angular momentum J_z", "kg m²/s"),
-                     ("K", "Kovalevskaya's integral K", "rad⁴/s⁴")),
-    "driven": (),
-}
-
-
-class FirstIntegrals:
-    """The first integrals of the simulated model and their largest change since the first sample, gathered
-    chunk by chunk (free body: T and the space J; heavy top: E = T + V and J_z; Lagrange top: also J_3;
-    Kovalevskaya top: also K; Theory §5–7). A change is the integrator's error, not physics.
+class IntegralChanges:
+    """The first integrals of the simulated model (:func:`kreisel.tops.first_integrals`: free body T and
+    the space J; heavy top E = T + V and J_z; Lagrange top also J_3; Kovalevskaya top also K) and their
+    largest change since the first sample, gathered chunk by chunk. A change is the integrator's error,
+    not physics.
 
     Examples
     --------
     >>> import numpy as np
-    >>> integrals = FirstIntegrals("free", np.diag([1.0, 2.0, 3.0]), None)
-    >>> integrals.add({"kinetic": np.array([1.0, 1.0 + 1e-12]), "J": np.array([[0.0, 2.0, 0.0]] * 2)})
-    >>> [(i["name"], i["relative"] < 2e-12) for i in integrals.summary()]
+    >>> from kreisel import simulate
+    >>> changes = IntegralChanges(None)
+    >>> changes.add(simulate([1.0, 2.0, 3.0], np.linspace(0.0, 1.0, 11), [0.1, 1.0, 0.1]))
+    >>> [(i["name"], i["relative"] < 1e-10) for i in changes.summary()]
     [('T', True), ('J', True)]
     """
 
-    def __init__(self, model, inertia, gravity):
-        self.model = model
-        self.inertia = np.asarray(inertia, dtype=float)
-        self.gravity = gravity
-        self.first = None
-        self.change = None
+    def __init__(self, torque):
+        self.torque = torque
+        self.model = None
+        self.first = {}
+        self.change = {}
 
-    def values(self, arrays):
-        """The integrals at each sample of ``arrays`` (from :func:`samples`), by name."""
-        if self.model == "free":
-            return {"T": arrays["kinetic"], "J": arrays["J"]}
-        out = {"E": arrays["energy"], "J_z": arrays["J"][:, 2]}
-        if self.model == "lagrange":
-            out["J_3"] = arrays["omega"] @ self.inertia[2]
-        elif self.model == "kovalevskaya":
-            from ..tops import KovalevskayaTop
-
-            weight, lever = self.gravity
-            top = KovalevskayaTop(self.inertia[2, 2], weight * lever[0])
-            gamma = quat_apply(arrays["q"], [0.0, 0.0, 1.0], inverse=True)  # the upward vertical in the body
-            out["K"] = top.integrals(arrays["omega"], gamma).kovalevskaya
-        return out
-
-    def add(self, arrays):
-        """Take the samples ``arrays`` of the next stretch of the run into account."""
-        values = self.values(arrays)
-        if self.first is None:
-            self.first = {name: value[0] for name, value in values.items()}
-            self.change = dict.fromkeys(values, 0.0)
-        for name, value in values.items():
-            moved = np.abs(value - self.first[name])
-            moved = np.linalg.norm(moved, axis=-1) if moved.ndim > 1 else moved
-            self.change[name] = max(self.change[name], float(np.max(moved)))
+    def add(self, traj):
+        """Take the samples of ``traj``, the next stretch of the run, into account."""
+        found = first_integrals(traj, self.torque)
+        if self.model is None:
+            self.model = found.model
+            self.first = {f.symbol: f for f in found}
+            self.change = dict.fromkeys(self.first, 0.0)
+        for f in found:
+            moved = np.abs(f.values - self.first[f.symbol].initial)
+            moved = np.linalg.norm(moved, axis=-1) if f.is_vector else moved
+            self.change[f.symbol] = max(self.change[f.symbol], float(np.max(moved)))
 
     def summary(self):
-        """One entry per integral: name, label, unit, first value, largest change and the change relative to
-        the first value (or to the energy or |J| scale where the first value is zero)."""
-        out = []
-        for name, label, unit in _INTEGRALS[self.model]:
-            first = self.first[name]
-            size = float(np.linalg.norm(first))
-            if size == 0.0:  # J_z or K may start at 0: measure against the run's own scale
-                size = float(np.linalg.norm(self.first["J" if "J" in self.first else "J_z"])) or 1.0
-            out.append({"name": name, "label": label, "unit": unit,
-                        "initial": np.asarray(first).tolist(), "change": self.change[name],
-                        "relative": self.change[name] / size})
-        return out
+        """One entry per integral: name, label, unit, first value, largest change, and the change relative to
+        the integral's scale (its first value, or |J| or the potential's range where that is zero)."""
+        return [{"name": symbol, "label": f.name, "unit": f.unit, "initial": np.asarray(f.initial).tolist(),
+                 "change": self.change[symbol], "relative": self.change[symbol] / float(f.scale)}
+                for symbol, f in self.first.items()]
 
 
 def samples(traj, gravity):
@@ -371,8 +317,8 @@ def rigid_body_result(scenario, traj):
     """JSON-ready arrays and analysis of a rigid-body run."""
     gravity = _gravity(scenario)
     arrays = samples(traj, gravity)
-    integrals = FirstIntegrals(model_of(scenario), traj.inertia, gravity)
-    integrals.add(arrays)
+    integrals = IntegralChanges(torque_model(scenario.data.get("torque", [])))
+    integrals.add(traj)
     return {**rigid_body_header(scenario, traj), **_lists(arrays), "integrals": integrals.summary()}
 
 
@@ -546,7 +492,7 @@ def _messages(scenario, solver, text, chunk_samples):
     # chunk k holds samples [bounds[k], bounds[k + 1]); its integration starts at the sample before
     bounds = list(range(0, t.size, chunk_samples)) + [t.size]
     gravity = _gravity(scenario)
-    integrals = FirstIntegrals(model_of(scenario), solver.body.inertia, gravity)
+    integrals = IntegralChanges(solver.torque)
     omega, q = solver.omega0, solver.q0
     for index, (first, stop) in enumerate(zip(bounds[:-1], bounds[1:])):
         start = max(first - 1, 0)
@@ -557,11 +503,11 @@ def _messages(scenario, solver, text, chunk_samples):
                    "toml": text, "n_samples": int(t.size), "n_chunks": len(bounds) - 1,
                    "t_range": [float(t[0]), float(t[-1])]}
         arrays = {key: value[first - start:] for key, value in samples(traj, gravity).items()}
-        integrals.add(arrays)
+        integrals.add(traj)
         yield {"type": "chunk", "index": index, "offset": first, **_lists(arrays)}
     yield {"type": "done", "integrals": integrals.summary()}
 
 
 __all__ = ["METHODS", "MAX_SAMPLES", "MAX_STREAM_SAMPLES", "CHUNK_SAMPLES", "RunRefused", "ScenarioError",
-           "Solver", "FirstIntegrals", "model_of", "samples", "regime_text", "scenario_data", "scenario_toml", "toml_text", "form_fields", "load", "run",
+           "Solver", "IntegralChanges", "samples", "regime_text", "scenario_data", "scenario_toml", "toml_text", "form_fields", "load", "run",
            "export", "stream"]
