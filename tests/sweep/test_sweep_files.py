@@ -77,7 +77,7 @@ def test_chunks_of_changed_code_are_discarded_and_said_so(tmp_path):
 
 
 def test_same_code_resumes_and_a_new_kreisel_version_discards(tmp_path, monkeypatch):
-    import kreisel
+    import kreisel._version
 
     checkpoint = tmp_path / "c"
     sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, keep_checkpoint=True)
@@ -85,7 +85,7 @@ def test_same_code_resumes_and_a_new_kreisel_version_discards(tmp_path, monkeypa
     sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, keep_checkpoint=True,
           progress=events.append)
     assert [e.event for e in events] == ["resumed"] * 3
-    monkeypatch.setattr(kreisel, "__version__", "999.0")
+    monkeypatch.setattr(kreisel._version, "__version__", "999.0")
     console = Console(file=io.StringIO(), force_terminal=False, width=200)
     events.clear()
     sweep(_defined(FIXED), GRID, chunk_size=4, scheduler="serial", checkpoint=checkpoint, console=console,
