@@ -244,7 +244,7 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     port : int, optional
         The server's port, required in the ``Host`` header when given.
     limits : Limits, optional
-        Run slots, time limit and body size (:class:`kreisel.web.runner.Limits`).
+        Run slots, time limit and body size (``kreisel.web.runner.Limits``).
 
     Examples
     --------

@@ -64,7 +64,7 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
     host : str
         Interface to listen on; the default keeps the viewer private to this machine. Only requests
         that name this host (or a loopback name) with the server's port, from the server's own pages,
-        are answered (:mod:`kreisel.web.guard`); a wildcard such as ``0.0.0.0`` makes the viewer
+        are answered (``kreisel.web.guard``); a wildcard such as ``0.0.0.0`` makes the viewer
         reachable from other machines and prints a warning.
     port : int
         TCP port; 0 picks a free one.
