@@ -274,3 +274,25 @@ def test_limits_are_checked():
     with pytest.raises(ValueError, match="wall_seconds"):
         Limits(wall_seconds=float("inf"))
     assert RELAXED.wall_seconds > Limits().wall_seconds
+
+
+def test_a_wildcard_host_warns_and_names_the_server(monkeypatch, capsys):
+    from kreisel.web import server
+
+    started = {}
+
+    class Server:
+        def __init__(self, app):
+            started["app"] = app
+
+        def run(self, sockets):
+            started["sockets"] = sockets
+
+    # the socket is bound on the loopback interface: the test must not listen on every interface
+    monkeypatch.setattr(server, "bind", lambda host, port: socket.create_server(("127.0.0.1", 0)))
+    monkeypatch.setattr(server, "make_server", Server)
+    server.serve(host="0.0.0.0", open_browser=False)
+    out = capsys.readouterr().out
+    assert "warning: --host 0.0.0.0 serves the viewer to every machine" in out
+    assert started["sockets"][0].fileno() == -1  # closed on the way out
+    assert not started["app"].state.viewer.runner.workers
