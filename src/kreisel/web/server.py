@@ -99,7 +99,7 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
             text = path.read_text(encoding="utf-8")
         except OSError as exc:
             raise ValueError(f"scenario: cannot read {path} ({exc.strerror})") from None
-        load(text)
+        load(text, path=path)
     sock = bind(host, port)
     url = url_of(sock)
     app = create_app(text, host=host, port=sock.getsockname()[1])

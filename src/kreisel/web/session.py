@@ -169,20 +169,21 @@ def check_workload(scenario, max_samples=MAX_SAMPLES):
                          f"{MAX_TURNS}")
 
 
-def load(text, max_samples=MAX_SAMPLES, exact=False):
+def load(text, max_samples=MAX_SAMPLES, exact=False, path=None):
     """Validate scenario TOML ``text`` and check its workload; ScenarioError or RunRefused.
 
     This is the one check every endpoint makes before it accepts a scenario: besides the schema of
     :func:`kreisel.io.parse_scenario` it builds what a run builds (body, initial attitude, torques, the
-    exact solution when ``exact``), so a scenario accepted here does not fail when it starts.
+    exact solution when ``exact``), so a scenario accepted here does not fail when it starts. ``path``
+    names the file in the messages (default ``<scenario>``).
     """
-    scenario = parse_scenario(text)
+    scenario = parse_scenario(text, path)
     check_workload(scenario, max_samples)
     if scenario.kind == "rigid_body":
         data = scenario.data
         grid = data["integration"]
         if not exact and grid.get("method") not in (None, *ADAPTIVE) and grid.get("dt") is None:
-            raise ScenarioError(f"<scenario>: integration.dt: method {grid['method']!r} takes fixed steps and "
+            raise ScenarioError(f"{path or '<scenario>'}: integration.dt: method {grid['method']!r} takes fixed steps and "
                                 "needs dt (s)")
         for key, build in (("body", lambda: build_body(data["body"])),
                            ("initial.attitude", lambda: initial_attitude(data["initial"].get("attitude"))),
@@ -190,7 +191,7 @@ def load(text, max_samples=MAX_SAMPLES, exact=False):
             try:
                 build()
             except ValueError as exc:
-                raise ScenarioError(f"<scenario>: {key}: {exc}") from None
+                raise ScenarioError(f"{path or '<scenario>'}: {key}: {exc}") from None
         if exact:
             Solver(scenario, exact=True)  # RunRefused when the closed form does not apply
     return scenario
