@@ -20,8 +20,22 @@ from __future__ import annotations
 
 import numpy as np
 import quaternion as npq
-from _common import NOTES_MARKER, header, interleaved, load_average, markdown_table, median_time, streaming_copy, write_results
+import sys
+
+from _common import (
+    NOTES_MARKER,
+    RESULTS,
+    atomic_write,
+    header,
+    interleaved,
+    load_average,
+    markdown_table,
+    median_time,
+    streaming_copy,
+    write_results,
+)
 from scipy.spatial.transform import Rotation as S
+from scipy.spatial.transform import RotationSpline as ScipySpline
 
 import kreisel as kr
 
@@ -143,5 +157,101 @@ def main():
     write_results("so3", "\n".join(lines))
 
 
+#: Heading of the section on the operations scipy users port (kept in so3.md above the notes).
+PARITY_HEADING = "## Operations scipy users port: align_vectors, RotationSpline, powers, Davenport angles"
+#: Wahba problems in the batch and vectors per problem; scipy solves one per call.
+PROBLEMS, VECTORS, SCIPY_LOOP = 100_000, 4, 2_000
+
+
+def _parity_cases(rng):
+    """name, kreisel batch, scipy batch (or per-call loop and its scale), kreisel single, scipy single."""
+    q = rng.normal(size=(N, 4))
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    r, sr = kr.Rotation.from_quat(q), S.from_quat(q, scalar_first=True)
+    b = rng.normal(size=(PROBLEMS, VECTORS, 3))
+    truth = kr.Rotation.random(PROBLEMS, rng=1)
+    a = truth[:, None].apply(b) + 0.01 * rng.normal(size=b.shape)
+    w = rng.random((PROBLEMS, VECTORS)) + 0.5
+    knots = kr.Rotation.random(100, rng=2)
+    times = np.arange(100.0)
+    spline, sspline = kr.RotationSpline(times, knots), ScipySpline(times, knots.to_scipy())
+    t = rng.uniform(0.0, 99.0, N)
+    axes = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [np.cos(0.4), 0.0, np.sin(0.4)]])
+    angles = r.as_davenport(axes, "e")
+    r1, sr1 = r[0], sr[0]
+
+    # The peers agree before they are timed.
+    assert np.allclose(kr.quat_to_matrix(kr.align_vectors(a[:50], b[:50], w[:50])[0]),
+                       [S.align_vectors(a[i], b[i], w[i])[0].as_matrix() for i in range(50)], atol=1e-12)
+    assert np.allclose(spline(t[:1000], 1, frame="body"), sspline(t[:1000], 1), atol=1e-10)
+    assert np.allclose((r[:1000] ** 0.3).as_matrix(), (sr[:1000] ** 0.3).as_matrix(), atol=1e-14)
+    assert np.allclose(angles[:1000], sr[:1000].as_davenport(axes, "e"), atol=1e-9)
+
+    def scipy_align_loop():
+        for i in range(SCIPY_LOOP):
+            S.align_vectors(a[i], b[i], w[i])
+
+    return [
+        (f"align_vectors, {PROBLEMS:.0e} problems of {VECTORS} vectors", lambda: kr.align_vectors(a, b, w),
+         scipy_align_loop, PROBLEMS / SCIPY_LOOP,
+         lambda: kr.Rotation.align_vectors(a[0], b[0], w[0]), lambda: S.align_vectors(a[0], b[0], w[0])),
+        ("RotationSpline(t), 10^6 times, 100 knots", lambda: spline(t), lambda: sspline(t), 1.0,
+         lambda: spline(t[0]), lambda: sspline(t[0])),
+        ("RotationSpline(t, 1), angular velocity", lambda: spline(t, 1, frame="body"), lambda: sspline(t, 1), 1.0,
+         lambda: spline(t[0], 1, frame="body"), lambda: sspline(t[0], 1)),
+        ("RotationSpline(t, 2), angular acceleration", lambda: spline(t, 2, frame="body"), lambda: sspline(t, 2), 1.0,
+         lambda: spline(t[0], 2, frame="body"), lambda: sspline(t[0], 2)),
+        ("r ** 0.3", lambda: r**0.3, lambda: sr**0.3, 1.0, lambda: r1**0.3, lambda: sr1**0.3),
+        ("from_davenport (tilted axes)", lambda: kr.Rotation.from_davenport(axes, "e", angles),
+         lambda: S.from_davenport(axes, "e", angles), 1.0,
+         lambda: kr.Rotation.from_davenport(axes, "e", angles[0]), lambda: S.from_davenport(axes, "e", angles[0])),
+        ("as_davenport (tilted axes)", lambda: r.as_davenport(axes, "e"), lambda: sr.as_davenport(axes, "e"), 1.0,
+         lambda: r1.as_davenport(axes, "e"), lambda: sr1.as_davenport(axes, "e")),
+    ]
+
+
+def parity(repeats=3):
+    """The parity section's lines: batch and single-call times against scipy."""
+    load_before = load_average()
+    rows = []
+    for name, ours, theirs, scale, ours_one, theirs_one in _parity_cases(np.random.default_rng(0)):
+        t_ours, t_theirs = interleaved(ours, theirs, repeats=repeats)
+        scipy_batch = t_theirs.median * scale
+        one = median_time(lambda: [ours_one() for _ in range(200)]) / 200
+        one_scipy = median_time(lambda: [theirs_one() for _ in range(200)]) / 200
+        rows.append([name, _ms(t_ours.median), _ms(scipy_batch) + (" (loop, scaled)" if scale != 1.0 else ""),
+                     f"{scipy_batch / t_ours.median:.1f}×", f"{t_ours.cpu_median / t_ours.median:.1f}",
+                     f"{one * 1e6:.1f}", f"{one_scipy * 1e6:.1f}", f"{one_scipy / one:.1f}×"])
+        print(" | ".join(rows[-1]), flush=True)
+    lines = [PARITY_HEADING, ""] + header(
+        None,
+        f"Batches of 10^6 rotations or times (align_vectors: {PROBLEMS} problems; scipy has no batched "
+        f"align_vectors, so its time is a loop of {SCIPY_LOOP} calls scaled to {PROBLEMS}); medians of {repeats} "
+        "runs in alternation, one process. Single call: median of 200 calls on one rotation, time, or problem.",
+        load_before=load_before,
+    )
+    lines += markdown_table(
+        ["operation", "kreisel (ms)", "scipy (ms)", "vs scipy", "kreisel CPU / wall", "single kreisel (µs)",
+         "single scipy (µs)", "single vs scipy"],
+        rows, "l" + "r" * 7,
+    )
+    return lines
+
+
+def write_parity(lines):
+    """Put the parity section into results/so3.md (replacing an earlier one), above the kept notes."""
+    path = RESULTS / "so3.md"
+    old = path.read_text(encoding="utf-8")
+    notes = old.find(NOTES_MARKER)
+    body, tail = (old[:notes], old[notes:]) if notes >= 0 else (old, "")
+    if PARITY_HEADING in body:
+        body = body[: body.index(PARITY_HEADING)]
+    atomic_write(path, body.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n\n" + tail)
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:] == ["--parity"]:
+        write_parity(parity())
+    else:
+        main()
+        write_parity(parity())

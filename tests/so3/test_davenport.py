@@ -95,3 +95,15 @@ def test_bad_axes_are_refused(axes, order, match):
         Rotation.from_davenport(axes, order, [0.1, 0.2, 0.3])
     with pytest.raises(ValueError, match=match):
         Rotation.identity().as_davenport(axes, order)
+
+
+def test_large_batches_and_single_calls_agree(rng):
+    axes = random_axes(rng, "general")
+    angles = rng.uniform(-np.pi, np.pi, size=(40000, 3))  # the multi-core loops
+    for order in "ie":
+        r = Rotation.from_davenport(axes, order, angles)
+        back = r.as_davenport(axes, order)
+        for i in (0, 12345, 39999):
+            np.testing.assert_array_equal(Rotation.from_davenport(axes, order, angles[i]).as_quat(), r[i].as_quat())
+            np.testing.assert_array_equal(r[i].as_davenport(axes, order), back[i])
+        np.testing.assert_allclose(Rotation.from_davenport(axes, order, back).as_matrix(), r.as_matrix(), atol=3e-15)

@@ -22,8 +22,14 @@ inherit the exactness of :func:`quat_to_euler` through gimbal lock
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
+import numpy as np
+from numba import prange
+
+from .._compiled import cached, parallel
+from .._compiled import kernels as k
+from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._validation import as_float_array
 from . import euler as _euler
 from .quaternion import quat_multiply
@@ -33,6 +39,96 @@ __all__ = ["davenport_to_quat", "quat_to_davenport", "davenport_gimbal_lock"]
 
 #: Largest |cos| between consecutive axes that counts as orthogonal (scipy's).
 ORTHOGONAL_AXES_TOLERANCE = 1e-7
+
+
+def _setup(axes, order):
+    """Checked axes and the fixed factors of both conversions, computed once per axes and order.
+
+    Returns ``(count, reverse, seq, lam, before, after, inverse_after, other)`` with
+    ``q = before ⊗ q_euler ⊗ after``, ``q_euler = conj(before) ⊗ q ⊗ inverse_after``
+    and ``other`` the choice of scipy's angle branch (see :func:`quat_to_davenport`).
+    """
+    a = as_float_array(axes, "axes", (3,))
+    key = (a.tobytes(), a.shape, order)
+    found = _SETUPS.get(key)
+    if found is None:
+        unit, reverse = _parse(a, order)
+        qf, lam, seq = _frame(unit)
+        qy = np.array([np.cos(lam / 2), 0.0, np.sin(lam / 2), 0.0])
+        # scipy's λ, computed the same way, for the same sign of rounding noise.
+        other = len(unit) == 3 and np.arctan2(np.dot(unit[0], np.cross(unit[2], unit[1])), np.dot(unit[0], unit[2])) < 0.0
+        found = (len(unit), reverse, seq, lam, qf, quat_multiply(qy, _conjugate(qf)), quat_multiply(qf, _conjugate(qy)), other)
+        if len(_SETUPS) < 256:
+            _SETUPS[key] = found
+    return found
+
+
+_SETUPS = {}
+
+
+@cached
+def _angles_of(q0, q1, q2, q3, f, g, lam, other, reverse):
+    """Three Davenport angles of q: XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch."""
+    a0, a1, a2, a3 = k.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
+    e0, e1, e2, e3 = k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+    first, b, third = _euler._euler_angles(e0, e1, e2, e3, 0, 1, 0, 0)
+    # scipy's branch: the middle angle in [λ, λ + π] when n₁·(n₃ × n₂) >= 0, else
+    # in [λ - π, λ], from the other set (α + π, -b, γ + π) of the Euler angles.
+    # At gimbal lock (b = 0 or π exactly) both ranges hold the same angle.
+    if other and 0.0 < b < math.pi:
+        first, b, third = _euler._wrap(first + math.pi), -b, _euler._wrap(third + math.pi)
+    middle = _euler._wrap(b + lam)
+    if reverse:
+        return third, middle, first
+    return first, middle, third
+
+
+@cached
+def _quat_of(x, y, z, f, g, lam, reverse):
+    """Quaternion f ⊗ q_XYX(α, β - λ, γ) ⊗ g of three Davenport angles."""
+    if reverse:
+        x, z = z, x
+    e0, e1, e2, e3 = _euler._euler_quat(x, y - lam, z, 0, 1, 0, 0)
+    a0, a1, a2, a3 = k.quat_product(f[0], f[1], f[2], f[3], e0, e1, e2, e3)
+    return k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+
+
+@parallel
+def _to_angles_parallel(q, f, g, lam, other, reverse, out):
+    for i in prange(q.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = _angles_of(q[i, 0], q[i, 1], q[i, 2], q[i, 3], f, g, lam, other, reverse)
+
+
+@parallel
+def _to_quat_parallel(angles, f, g, lam, reverse, out):
+    for i in prange(angles.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _quat_of(angles[i, 0], angles[i, 1], angles[i, 2], f, g, lam, reverse)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:], f8, i8, i8, f8[:], f8[:])"], "(4),(4),(4),(),(),(),(3)->(3)",
+        parallel=_to_angles_parallel, shared=(1, 2, 3, 4, 5))  # fmt: skip
+def _to_angles(q, f, g, lam, other, reverse, carrier3, out):
+    out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
+
+
+@gufunc(["void(f8[:], f8[:], f8[:], f8, i8, f8[:])"], "(3),(4),(4),(),()->(4)",
+        parallel=_to_quat_parallel, shared=(1, 2, 3, 4))  # fmt: skip
+def _to_quat(angles, f, g, lam, reverse, out):
+    out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
+
+
+@cached
+def _one_angles(q, f, g, lam, other, reverse):
+    out = np.empty(3)
+    out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
+    return out
+
+
+@cached
+def _one_quat(angles, f, g, lam, reverse):
+    out = np.empty(4)
+    out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
+    return out
 
 
 def _parse(axes, order):
@@ -100,18 +196,19 @@ def davenport_to_quat(axes, order, angles, degrees=False):
     >>> bool(np.allclose(davenport_to_quat(axes, "i", [0.3, 0.2, 0.1]), euler_to_quat("ZXZ", [0.3, 0.2, 0.1])))
     True
     """
-    axes, reverse = _parse(axes, order)
-    qf, lam, seq = _frame(axes)
-    angles = _euler._short_angles(angles, len(axes), degrees)[..., : len(axes)]
+    count, reverse, seq, lam, before, after, _, _ = _setup(axes, order)
+    if count == 3:
+        a = finite_array(angles, "angles", (3,))
+        if degrees:
+            a = np.deg2rad(a)
+        if a.shape == (3,) and a.flags.writeable:
+            return _one_quat(a, before, after, lam, int(reverse))
+        return _to_quat(a, before, after, lam, int(reverse))
+    angles = _euler._short_angles(angles, count, degrees)[..., :count]
     if reverse:
         angles = angles[..., ::-1]
-    shifted = angles.copy()
-    if len(axes) == 3:
-        shifted[..., 1] -= lam
-    # R = F R_x(α) R_y(β - λ) R_x(γ) R_y(λ) Fᵀ.
-    q = _euler.euler_to_quat(seq, shifted)
-    q = quat_multiply(q, [np.cos(lam / 2), 0.0, np.sin(lam / 2), 0.0])
-    return quat_multiply(quat_multiply(qf, q), _conjugate(qf))
+    # R = F R_x(α) R_y(β) Fᵀ (λ = 0 for fewer than three axes).
+    return quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after)
 
 
 def quat_to_davenport(axes, order, q, degrees=False):
@@ -140,26 +237,14 @@ def quat_to_davenport(axes, order, q, degrees=False):
     >>> bool(np.allclose(davenport_to_quat(axes, "e", angles), q) or np.allclose(davenport_to_quat(axes, "e", angles), -q))
     True
     """
-    axes, reverse = _parse(axes, order)
-    qf, lam, seq = _frame(axes)
-    q = quat_multiply(quat_multiply(_conjugate(qf), q), qf)
-    q = quat_multiply(q, [np.cos(lam / 2), 0.0, -np.sin(lam / 2), 0.0])
-    angles = _euler.quat_to_euler(seq, q)
-    if len(axes) == 3:
-        b = angles[..., 1]
-        # scipy's branch: the middle angle in [λ, λ + π] when n₃·(n₂ × n₁) >= 0 (its
-        # λ, computed the same way, for the same sign of rounding noise), else in
-        # [λ - π, λ], from the other set (α + π, -b, γ + π) of the Euler angles.
-        # At gimbal lock (b = 0 or π exactly) both ranges hold the same angle.
-        n1, n2, n3 = axes
-        other = np.arctan2(np.dot(n1, np.cross(n3, n2)), np.dot(n1, n3)) < 0.0
-        if other:
-            flip = (b > 0.0) & (b < np.pi)
-            angles[..., 0] = np.where(flip, angles[..., 0] + np.pi, angles[..., 0])
-            angles[..., 2] = np.where(flip, angles[..., 2] + np.pi, angles[..., 2])
-            angles[..., 1] = np.where(flip, -b, b)
-        angles[..., 1] += lam
-        angles = np.where(angles > np.pi, angles - 2.0 * np.pi, np.where(angles < -np.pi, angles + 2.0 * np.pi, angles))
+    count, reverse, seq, lam, before, _, inverse_after, other = _setup(axes, order)
+    if count == 3:
+        if type(q) is np.ndarray and q.shape == (4,) and q.dtype == np.float64 and q.flags.writeable and np.isfinite(q).all() and q.any():
+            angles = _one_angles(q, before, inverse_after, lam, int(other), int(reverse))
+        else:
+            angles = _to_angles(quaternion_array(q, "q"), before, inverse_after, lam, int(other), int(reverse))
+        return np.rad2deg(angles) if degrees else angles
+    angles = _euler.quat_to_euler(seq, quat_multiply(quat_multiply(_conjugate(before), q), inverse_after))
     if reverse:
         angles = np.ascontiguousarray(angles[..., ::-1])
     return np.rad2deg(angles) if degrees else angles

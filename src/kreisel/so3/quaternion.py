@@ -8,6 +8,8 @@ give the same rotation (double cover).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import prange
 
@@ -319,6 +321,9 @@ def quat_power(q, p):
     >>> np.allclose(quat_power(q, 1 / 3), [np.cos(np.pi / 12), 0.0, 0.0, np.sin(np.pi / 12)])
     True
     """
+    if _is_single(q) and type(p) in (int, float) and math.isfinite(p) and q.any() and np.isfinite(q).all():
+        # One rotation: the compiled kernel without the gufunc dispatch.
+        return np.array(_powered(q[0], q[1], q[2], q[3], float(p)))
     q = quaternion_array(q, "q")
     p = finite_array(p, "p", ())
     return _power(q, float(p) if p.ndim == 0 else p)
