@@ -117,3 +117,21 @@ def test_without_webgl_the_page_says_so(playwright, live_url):
         assert "first integrals" in page.inner_text("#readout")
     finally:
         browser.close()
+
+
+def test_uploaded_recording_is_fitted_and_replayed(page):
+    """A gyroscope recording uploaded in the page is fitted, and the fitted body's ω′ follows the data."""
+    import kreisel as kr
+
+    page.wait_for_function("window.kreisel && window.kreisel.ready", timeout=240_000)
+    page.set_input_files("#recording", str(kr.io.recording_path("phone_toss")))
+    page.click("#fit")
+    page.wait_for_function("window.kreisel.data && window.kreisel.data.fit", timeout=120_000)
+    assert "I_x = 0.81" in page.inner_text("#readout")
+    page.wait_for_function("window.kreisel.plotted.omega.length === 6 && window.kreisel.plotted.omega[0].length > 50",
+                           timeout=120_000)
+    plotted = page.evaluate("window.kreisel.plotted.omega")
+    n = min(len(s) for s in plotted)
+    measured, fitted = np.array([s[:n] for s in plotted[:3]]), np.array([s[:n] for s in plotted[3:]])
+    assert np.sqrt(np.mean((measured - fitted) ** 2)) < 0.1
+    assert not page.errors, page.errors

@@ -77,6 +77,14 @@ function readout(d) {
     lines.push(`method ${d.method}`);
     if (s.regime_text) lines.push(s.regime_text);
     lines.push(...integralLines(d));
+    if (d.fit) {
+      const f = d.fit, pm = (v, e) => `${fmt(v, 5)} ± ${fmt(e, 2)}`;
+      lines.push("fit to the recording (largest moment = 1; ω′ plot: light = measured):",
+        ...["x", "y", "z"].map((a, k) => `  I_${a} = ${pm(f.moments[k], f.moments_stderr[k])}`),
+        `  ω0 = [${f.omega0.map((v) => fmt(v, 5)).join(", ")}] rad/s`,
+        `  bias = [${f.bias.map((v) => fmt(v, 3)).join(", ")}] rad/s`,
+        `  RMS ${fmt(f.rms, 3)} rad/s, intermediate axis ${f.intermediate_axis}`, `  ${f.message}`);
+    }
     lines.push("steady rotation about principal axes:");
     for (const a of s.stability) {
       const extra = a.kind === "unstable" ? `growth ${fmt(a.growth_rate, 4)}/s` : a.kind === "stable" ? `wobble ${fmt(a.wobble_frequency, 4)} rad/s` : "";
@@ -186,8 +194,11 @@ function run(body) {
 
 function series(d) {
   if (d.kind === "foucault") return { omega: [d.tilt.map(Math.abs)], energy: [d.swing_azimuth], J: [[]] };
-  const col = (k) => d.omega.map((w) => w[k]);
-  return { omega: [col(0), col(1), col(2)], energy: [d.energy], J: [d.J_norm] };
+  const col = (k, w = d.omega) => w.map((v) => v[k]);
+  const omega = [col(0), col(1), col(2)];
+  // a fitted recording: the measurement (light) under the fitted body's ω′
+  if (d.omega_measured) omega.unshift(col(0, d.omega_measured), col(1, d.omega_measured), col(2, d.omega_measured));
+  return { omega, energy: [d.energy], J: [d.J_norm] };
 }
 
 function drawPlots() {
@@ -195,7 +206,8 @@ function drawPlots() {
   if (!d) return;
   if (!d._series) d._series = series(d);
   const s = d._series, i = state.index, span = d.t_range || null;
-  state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, ["#d33", "#393", "#33d"], i, span);
+  const colors = d.omega_measured ? ["#f2b8b8", "#b8dcb8", "#b8b8f2", "#d33", "#393", "#33d"] : ["#d33", "#393", "#33d"];
+  state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, colors, i, span);
   state.plotted.energy = drawPlot($("plot-energy"), d.t, s.energy, ["#b60"], i, span)[0];
   state.plotted.J = drawPlot($("plot-J"), d.t, s.J, ["#088"], i, span)[0];
 }
@@ -281,9 +293,27 @@ async function init() {
     const file = $("load").files[0];
     if (file) run({ toml: await file.text() });
   };
+  // a gyroscope recording: fitted on the server, then played like a run (one reply, no stream)
+  const showFit = (d) => {
+    if (socket) { try { socket.send("cancel"); socket.close(); } catch (e) { /* already closed */ } socket = null; }
+    state.done = true; state.playing = true; $("play").textContent = "Pause";
+    show(d);
+  };
+  $("fit").onclick = async () => {
+    const file = $("recording").files[0];
+    if (!file) { status("choose a recording file first", true); return; }
+    const bound = (id) => ($(id).value === "" ? null : num(id));
+    status("fitting…");
+    try {
+      showFit(await (await api("/api/fit", { text: await file.text(), name: file.name, start: bound("fit-start"),
+        stop: bound("fit-stop"), bias: $("fit-bias").checked })).json());
+    } catch (e) { status(e.message, true); }
+  };
   requestAnimationFrame(frame);
+  const recording = await (await api("/api/recording")).json();
   const initial = (await (await api("/api/initial")).json()).toml;
-  if (initial) run({ toml: initial });
+  if (recording) showFit(recording);
+  else if (initial) run({ toml: initial });
   else { $("preset").value = "tennis_racket"; describe(); run({ preset: "tennis_racket" }); }
 }
 

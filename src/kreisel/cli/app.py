@@ -280,7 +280,7 @@ def fit(
     from .._fileio import atomic_output
     from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
     from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
-    from .fit import as_dict, summary
+    from .fit import summary
 
     if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
         usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
@@ -311,7 +311,7 @@ def fit(
         out.print(f"wrote {plot_file}")
     if json_file is not None:
         with atomic_output(json_file) as tmp:
-            tmp.write_text(json.dumps(as_dict(result), indent=2) + "\n", encoding="utf-8")
+            tmp.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
         out.print(f"wrote {json_file}")
     if not result.free_rotation:
         raise typer.Exit(1)
@@ -323,12 +323,17 @@ def serve(
     host: str = typer.Option("127.0.0.1", "--host", help="Interface to bind (loopback by default)."),
     port: int = typer.Option(0, "--port", help="Port; 0 picks a free one."),
     no_browser: bool = typer.Option(False, "--no-browser", help="Do not open a browser window."),
+    recording: Optional[pathlib.Path] = typer.Option(
+        None, "--recording", help="Gyroscope recording to fit and replay (see `kreisel fit`); 'phone_toss' is bundled."),
 ):
     """Start the interactive 3D viewer in the browser."""
+    from ..io.gyro import RECORDINGS, recording_path
     from ..web import serve as run_server
 
+    if recording is not None and not recording.exists() and str(recording) in RECORDINGS:
+        recording = recording_path(str(recording))
     try:
-        run_server(scenario, host=host, port=port, open_browser=not no_browser)
+        run_server(scenario, host=host, port=port, open_browser=not no_browser, recording=recording)
     except ValueError as exc:
         usage_error(str(exc))
 

@@ -1,4 +1,4 @@
-"""``kreisel fit``: the lines it prints and the JSON it writes for a free-top fit."""
+"""``kreisel fit``: the lines it prints for a free-top fit (the JSON is ``FreeRotationFit.to_dict``)."""
 
 from __future__ import annotations
 
@@ -11,26 +11,6 @@ REGIMES = {
     "symmetric": "symmetric body: regular precession",
     "steady": "steady rotation",
 }
-
-
-def integrals_drift(fit):
-    """Spread (std/mean) and linear trend (per second, relative) of T and |J| along the data.
-
-    Examples
-    --------
-    >>> import numpy as np, kreisel as kr
-    >>> t = np.linspace(0.0, 1.0, 300)
-    >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
-    >>> drift = integrals_drift(fit)
-    >>> sorted(drift), bool(drift["energy"]["spread"] < 1e-6)
-    (['energy', 'momentum'], True)
-    """
-    result = {}
-    for name, series in zip(("energy", "momentum"), fit.first_integrals()):
-        mean = float(np.mean(series))
-        slope = float(np.polyfit(fit.t - fit.t0, series, 1)[0])
-        result[name] = {"spread": float(np.std(series)) / mean, "trend_per_s": slope / mean}
-    return result
 
 
 def summary(fit):
@@ -67,46 +47,9 @@ def summary(fit):
         f"  intermediate axis {names[fit.intermediate_axis]}; {REGIMES.get(fit.regime, fit.regime)}, "
         f"(J² − 2T·I_mid)/(2T·I_mid) = {fit.separatrix_distance:+.3g}",
     ]
-    drift = integrals_drift(fit)
+    drift = fit.integrals_drift()
     for name, label in (("energy", "energy T"), ("momentum", "|J|")):
         lines.append(f"  {label} with the fitted moments: spread {100 * drift[name]['spread']:.2f} %, "
                      f"trend {100 * drift[name]['trend_per_s']:+.2f} %/s along the data")
     lines.append(("  " if fit.free_rotation else "  warning: ") + fit.message)
     return lines
-
-
-def as_dict(fit):
-    """Everything :func:`summary` prints, as plain JSON-ready numbers.
-
-    Examples
-    --------
-    >>> import json, numpy as np, kreisel as kr
-    >>> t = np.linspace(0.0, 1.0, 300)
-    >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
-    >>> record = json.loads(json.dumps(as_dict(fit)))
-    >>> [round(m, 6) for m in record["moments"]], record["intermediate_axis"]
-    ([0.2, 0.8, 1.0], 'y')
-    """
-    return {
-        "moments": fit.moments.tolist(),
-        "moments_stderr": fit.moments_stderr.tolist(),
-        "normalisation": "largest moment = 1",
-        "omega0": fit.omega0.tolist(),
-        "omega0_stderr": fit.omega0_stderr.tolist(),
-        "t0": fit.t0,
-        "bias": fit.bias.tolist(),
-        "bias_stderr": fit.bias_stderr.tolist(),
-        "principal_axes": fit.axes.tolist(),
-        "misalignment_deg": float(np.degrees(fit.misalignment)),
-        "rms": fit.rms,
-        "signal_rms": fit.signal_rms,
-        "n_samples": int(fit.t.size),
-        "t_first": float(fit.t[0]),
-        "t_last": float(fit.t[-1]),
-        "regime": fit.regime,
-        "intermediate_axis": "xyz"[fit.intermediate_axis],
-        "separatrix_distance": fit.separatrix_distance,
-        "first_integrals": integrals_drift(fit),
-        "free_rotation": fit.free_rotation,
-        "message": fit.message,
-    }

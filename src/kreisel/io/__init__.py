@@ -1,7 +1,7 @@
 """Files in and out: scenario TOML files, result files, bundled examples, gyroscope recordings."""
 
 from .bundled import EXAMPLES, copy_example, example_path
-from .gyro import RECORDINGS, GyroFileError, GyroRecording, read_gyro, recording_path
+from .gyro import RECORDINGS, GyroFileError, GyroRecording, parse_gyro, read_gyro, recording_path
 from .results import ResultError, load_trajectory, save_result
 from .run import run_scenario, summary
 from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
@@ -9,4 +9,4 @@ from .schema import SchemaError
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_trajectory", "save_result",
            "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
-           "SchemaError", "GyroFileError", "GyroRecording", "RECORDINGS", "read_gyro", "recording_path"]
+           "SchemaError", "GyroFileError", "GyroRecording", "RECORDINGS", "parse_gyro", "read_gyro", "recording_path"]

@@ -19,7 +19,7 @@ from typing import Optional
 
 import numpy as np
 
-__all__ = ["GyroFileError", "GyroRecording", "RECORDINGS", "read_gyro", "recording_path"]
+__all__ = ["GyroFileError", "GyroRecording", "RECORDINGS", "parse_gyro", "read_gyro", "recording_path"]
 
 # bundled synthetic recordings (package data), so the fit runs offline: name -> file
 RECORDINGS = {"phone_toss": "phone_toss.csv"}
@@ -124,7 +124,24 @@ def _layout(header, ncols):
     return gyro, accel, to_rad, time_scale
 
 
-def _parse(text, source):
+def parse_gyro(text, source="<text>"):
+    """Parse the text of a gyroscope recording (any layout :func:`read_gyro` reads from a file).
+
+    Parameters
+    ----------
+    text : str
+        The file's content.
+    source : str
+        Name used in error messages and kept as ``.source``.
+
+    Examples
+    --------
+    >>> rec = parse_gyro("t;wx;wy;wz\\n0,0;1,5;0;0\\n0,5;1,5;0;0\\n", "upload.csv")
+    >>> rec.t.tolist(), rec.omega[1].tolist()
+    ([0.0, 0.5], [1.5, 0.0, 0.0])
+    """
+    if not isinstance(text, str):
+        raise TypeError(f"text must be a str, got {type(text).__name__}")
     header = None
     rows, numbers = [], []
     for number, raw in enumerate(text.splitlines(), start=1):
@@ -247,7 +264,7 @@ def read_gyro(path):
         text, source = _from_zip(path)
     else:
         text, source = _decode(path.read_bytes(), str(path)), str(path)
-    return _parse(text, source)
+    return parse_gyro(text, source)
 
 
 def recording_path(name):

@@ -205,6 +205,62 @@ class FreeRotationFit:
         return self.top.energy(body), self.top.angular_momentum(body)
 
 
+    def integrals_drift(self):
+        """Spread (std/mean) and linear trend (relative, per second) of T and |J| along the data.
+
+        Examples
+        --------
+        >>> import numpy as np, kreisel as kr
+        >>> t = np.linspace(0.0, 1.0, 300)
+        >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
+        >>> drift = fit.integrals_drift()
+        >>> sorted(drift), bool(drift["energy"]["spread"] < 1e-6)
+        (['energy', 'momentum'], True)
+        """
+        result = {}
+        for name, series in zip(("energy", "momentum"), self.first_integrals()):
+            mean = float(np.mean(series))
+            slope = float(np.polyfit(self.t - self.t0, series, 1)[0])
+            result[name] = {"spread": float(np.std(series)) / mean, "trend_per_s": slope / mean}
+        return result
+
+    def to_dict(self):
+        """The results as plain JSON-ready numbers (what ``kreisel fit --json`` writes).
+
+        Examples
+        --------
+        >>> import json, numpy as np, kreisel as kr
+        >>> t = np.linspace(0.0, 1.0, 300)
+        >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
+        >>> record = json.loads(json.dumps(fit.to_dict()))
+        >>> [round(m, 6) for m in record["moments"]], record["intermediate_axis"]
+        ([0.2, 0.8, 1.0], 'y')
+        """
+        return {
+            "moments": self.moments.tolist(),
+            "moments_stderr": self.moments_stderr.tolist(),
+            "normalisation": "largest moment = 1",
+            "omega0": self.omega0.tolist(),
+            "omega0_stderr": self.omega0_stderr.tolist(),
+            "t0": self.t0,
+            "bias": self.bias.tolist(),
+            "bias_stderr": self.bias_stderr.tolist(),
+            "principal_axes": self.axes.tolist(),
+            "misalignment_deg": float(np.degrees(self.misalignment)),
+            "rms": self.rms,
+            "signal_rms": self.signal_rms,
+            "n_samples": int(self.t.size),
+            "t_first": float(self.t[0]),
+            "t_last": float(self.t[-1]),
+            "regime": self.regime,
+            "intermediate_axis": AXES[self.intermediate_axis],
+            "separatrix_distance": self.separatrix_distance,
+            "first_integrals": self.integrals_drift(),
+            "free_rotation": self.free_rotation,
+            "message": self.message,
+        }
+
+
 def _check(t, omega, window):
     t = as_float_array(t, "t")
     omega = as_float_array(omega, "omega")

@@ -10,6 +10,9 @@ Endpoints (all JSON unless noted):
 ``POST /api/run``                    ``{"preset": name}`` | ``{"toml": text}`` | ``{"form": {...}}`` -> the run
 ``POST /api/export?format=nc|csv``   same body -> the trajectory file (attachment)
 ``WebSocket /api/stream``            same body as the first message -> the run in chunks (below)
+``POST /api/fit``                    ``{"text": recording, "name", "start", "stop", "bias"}`` -> the free top
+                                     fitted to a gyroscope recording, as a run (:mod:`kreisel.web.recording`)
+``GET /api/recording``               the recording given to :func:`serve`, fitted (or null)
 
 Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server are
 refused with 403 and bodies over the size limit with 413, before they are read (:mod:`kreisel.web.guard`).
@@ -94,6 +97,18 @@ class RunRequest(BaseModel):
     toml: Annotated[str, Field(max_length=MAX_TOML_CHARS)] | None = None
     form: Form | None = None
     exact: bool = False
+
+
+class FitRequest(BaseModel):
+    """A gyroscope recording's text (any layout :func:`kreisel.io.read_gyro` reads) and the fit options."""
+
+    model_config = ConfigDict(strict=True, extra="forbid")
+
+    text: str
+    name: Annotated[str, Field(max_length=200)] = "upload"
+    start: Number | None = None
+    stop: Number | None = None
+    bias: bool = True
 
 
 def _scenario_text(request):
@@ -230,7 +245,8 @@ def _reason(detail):
     return detail if len(data) <= 123 else data[:120].decode(errors="ignore") + "..."
 
 
-def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="127.0.0.1", port=None, limits=None):
+def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="127.0.0.1", port=None, limits=None,
+               recording=None):
     """The viewer's FastAPI app; ``scenario_text`` (TOML) is offered as the initial scenario.
 
     Parameters
@@ -245,6 +261,8 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
         The server's port, required in the ``Host`` header when given.
     limits : Limits, optional
         Run slots, time limit and body size (``kreisel.web.runner.Limits``).
+    recording : GyroRecording, optional
+        A gyroscope recording (:func:`kreisel.io.read_gyro`) fitted and shown first.
 
     Examples
     --------
@@ -327,6 +345,16 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     async def stream(websocket: WebSocket):
         await websocket.accept()
         await viewer.stream(websocket)
+
+    @app.post("/api/fit")
+    async def fit(body: FitRequest, request: Request):
+        return JSONResponse(await viewer.one(request, "fit", body.text, body.name, body.start, body.stop, body.bias))
+
+    @app.get("/api/recording")
+    async def initial_recording(request: Request):
+        if recording is None:
+            return None
+        return JSONResponse(await viewer.one(request, "fit", recording, recording.source))
 
     @app.post("/api/export")
     async def export(body: RunRequest, request: Request, format: Literal["nc", "csv"] = Query("nc")):

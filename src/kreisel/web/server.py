@@ -54,7 +54,7 @@ def url_of(sock):
     return f"http://{'[' + host + ']' if ':' in host else host}:{port}/"
 
 
-def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
+def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=None):
     """Serve the viewer until interrupted; prints its URL and optionally opens a browser.
 
     Parameters
@@ -70,6 +70,8 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
         TCP port; 0 picks a free one.
     open_browser : bool
         Open the default web browser at the URL once the server listens.
+    recording : str or path-like, optional
+        A gyroscope recording (see :func:`kreisel.io.read_gyro`) fitted and shown first.
 
     Examples
     --------
@@ -100,9 +102,19 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True):
         except OSError as exc:
             raise ValueError(f"scenario: cannot read {path} ({exc.strerror})") from None
         load(text, path=path)
+    data = None
+    if recording is not None:
+        from ..io.gyro import GyroFileError, read_gyro
+
+        try:
+            data = read_gyro(recording)
+        except OSError as exc:
+            raise ValueError(f"recording: cannot read {recording} ({exc.strerror or exc})") from None
+        except GyroFileError as exc:
+            raise ValueError(f"recording: {exc}") from None
     sock = bind(host, port)
     url = url_of(sock)
-    app = create_app(text, host=host, port=sock.getsockname()[1])
+    app = create_app(text, host=host, port=sock.getsockname()[1], recording=data)
     server = make_server(app)
     if host in WILDCARDS:
         print(f"warning: --host {host} serves the viewer to every machine that can reach this one, and any "

@@ -435,6 +435,20 @@ def run(text, exact=False):
     return answer
 
 
+def fit(recording, name="upload", start=None, stop=None, bias=True):
+    """The free top fitted to a gyroscope recording (text or read), as a run: see :mod:`kreisel.web.recording`.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> fit(kr.io.recording_path("phone_toss").read_text(), "phone_toss.csv")["fit"]["intermediate_axis"]
+    'x'
+    """
+    from .recording import fit_payload
+
+    return fit_payload(recording, name, start, stop, bias)
+
+
 def export(text, exact, format, folder):
     """Run scenario TOML ``text`` and write its trajectory as ``format`` ("nc" or "csv") into ``folder``.
 
