@@ -11,7 +11,7 @@ Endpoints (all JSON unless noted):
 ``POST /api/export?format=nc|csv``   same body -> the trajectory file (attachment)
 ``WebSocket /api/stream``            same body as the first message -> the run in chunks (below)
 ``POST /api/fit``                    ``{"text": recording, "name", "start", "stop", "bias"}`` -> the free top
-                                     fitted to a gyroscope recording, as a run (:mod:`kreisel.web.recording`)
+                                     fitted to a gyroscope recording, as a run (:func:`kreisel.web.session.fit`)
 ``GET /api/recording``               the recording given to :func:`serve`, fitted (or null)
 
 Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server are

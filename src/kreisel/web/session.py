@@ -435,18 +435,73 @@ def run(text, exact=False):
     return answer
 
 
+MAX_RECORDING_SAMPLES = 50_000
+
+
 def fit(recording, name="upload", start=None, stop=None, bias=True):
-    """The free top fitted to a gyroscope recording (text or read), as a run: see :mod:`kreisel.web.recording`.
+    """A gyroscope recording with the free top fitted to it, as a run the viewer replays (job ``"fit"``).
+
+    The fitted body moves exactly (:meth:`kreisel.tops.EulerTop.solve`) through the recording's own
+    sample times, so the viewer plays the body with its inertia ellipsoid and polhode while the ω′ plot
+    shows the measurement (``omega_measured``: bias removed, in the fitted principal axes) with the
+    fitted curves; ``fit`` holds :meth:`kreisel.tops.FreeRotationFit.to_dict`.
+
+    Parameters
+    ----------
+    recording : str or GyroRecording
+        The text of a recording (any layout :func:`kreisel.io.read_gyro` reads) or a read recording.
+    name : str
+        The recording's name in messages (for text).
+    start, stop : float, optional
+        Window of the free flight, s (as in the file).
+    bias : bool
+        Also fit a constant gyroscope offset.
+
+    Raises
+    ------
+    ScenarioError
+        The text is not a recording, or its samples cannot be fitted (the viewer answers 400).
+    RunRefused
+        More than :data:`MAX_RECORDING_SAMPLES` samples (the viewer answers 422).
 
     Examples
     --------
     >>> import kreisel as kr
-    >>> fit(kr.io.recording_path("phone_toss").read_text(), "phone_toss.csv")["fit"]["intermediate_axis"]
-    'x'
+    >>> data = fit(kr.io.recording_path("phone_toss").read_text(), "phone_toss.csv")
+    >>> data["kind"], len(data["t"]) == len(data["omega_measured"]), data["fit"]["intermediate_axis"]
+    ('rigid_body', True, 'x')
     """
-    from .recording import fit_payload
+    import warnings
 
-    return fit_payload(recording, name, start, stop, bias)
+    from ..io.gyro import GyroFileError, parse_gyro
+    from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
+
+    if isinstance(recording, str):
+        try:
+            recording = parse_gyro(recording, name)
+        except GyroFileError as exc:
+            raise ScenarioError(str(exc)) from None
+    if len(recording.t) > MAX_RECORDING_SAMPLES:
+        raise RunRefused(f"the recording has {len(recording.t)} samples; the viewer fits at most "
+                         f"{MAX_RECORDING_SAMPLES}")
+    window = None if start is None and stop is None else (start, stop)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotFreeRotationWarning)  # reported in fit.message
+        try:
+            result = fit_free_rotation(recording.t, recording.omega, bias=bias, window=window)
+        except ValueError as exc:
+            raise ScenarioError(f"{recording.source}: {exc}") from None
+    traj = result.top.solve(result.t - result.t0, result.axes.T @ result.omega0)
+    arrays = samples(traj, None)
+    arrays["t"] = result.t
+    integrals = FirstIntegrals("free", traj.inertia, None)
+    integrals.add(arrays)
+    return {
+        "kind": "rigid_body", "title": f"free-top fit of {recording.source}", "method": "exact",
+        "inertia": traj.inertia.tolist(), "gravity": None, "analysis": analysis(traj, None), **_lists(arrays),
+        "omega_measured": ((result.omega - result.bias) @ result.axes).tolist(),
+        "integrals": integrals.summary(), "fit": result.to_dict(),
+    }
 
 
 def export(text, exact, format, folder):
