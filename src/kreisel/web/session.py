@@ -494,8 +494,8 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     traj = result.top.solve(result.t - result.t0, result.axes.T @ result.omega0)
     arrays = samples(traj, None)
     arrays["t"] = result.t
-    integrals = FirstIntegrals("free", traj.inertia, None)
-    integrals.add(arrays)
+    integrals = IntegralChanges(None)
+    integrals.add(traj)
     return {
         "kind": "rigid_body", "title": f"free-top fit of {recording.source}", "method": "exact",
         "inertia": traj.inertia.tolist(), "gravity": None, "analysis": analysis(traj, None), **_lists(arrays),
