@@ -51,7 +51,7 @@ numfig_secnum_depth = 1
 math_eqref_format = "({number})"
 
 templates_path = ["_templates"]
-exclude_patterns = ["_build", "_generated", "node_modules", "sg_execution_times.rst", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
+exclude_patterns = ["_build", "_generated", "node_modules", "**/sg_execution_times.rst", "sg_execution_times.rst", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
                     "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
 html_theme = "pydata_sphinx_theme"
 html_title = f"kreisel {release}"
@@ -189,7 +189,9 @@ def _top_level_page():
         if name == "__version__":
             continue
         home = getattr(obj, "__name__", "") if isinstance(obj, type(kreisel)) else getattr(obj, "__module__", "")
-        sub = next((m for m, _ in API_MODULES if home == m or home.startswith(m + ".")), None)
+        exporters = [m for m, _ in API_MODULES if name in (getattr(sys.modules.get(m), "__all__", None) or ())]
+        # documented in the subpackage that defines it, or else in the one that exports it
+        sub = next((m for m in exporters if home == m or home.startswith(m + ".")), exporters[0] if exporters else None)
         if isinstance(obj, type(kreisel)):
             rows.append((name, f":doc:`{obj.__name__} <{obj.__name__}>`"))
         elif sub is not None:
