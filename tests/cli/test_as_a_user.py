@@ -154,3 +154,12 @@ def test_a_heavy_top_reports_its_first_integrals_not_drift(tmp_path):
     process = kreisel("plot", "fast.nc", "--kind", "energy", "-o", "energy.png", cwd=tmp_path)
     assert process.returncode == 0, process.stderr
     assert (tmp_path / "energy.png").stat().st_size > 10_000
+
+
+def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):
+    assert kreisel("simulate", "foucault", "-o", "f.nc", cwd=tmp_path).returncode == 0
+    process = kreisel("plot", "f.nc", "-o", "f.png", cwd=tmp_path)
+    assert process.returncode == 0, process.stderr
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+    usage_error(kreisel("plot", "f.nc", "--kind", "euler", "-o", "g.png", cwd=tmp_path),
+                "f.nc holds a Foucault pendulum result, which plots as azimuth")

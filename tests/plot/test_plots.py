@@ -45,3 +45,35 @@ def test_refusals(tmp_path, trajectory):
     with pytest.raises(ValueError, match="one body"):
         animate(batch, tmp_path / "a.gif")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_euler_plot_avoids_the_gimbal_lock_of_the_tennis_racket_and_unwraps():
+    import kreisel as kr
+    from kreisel.plot import euler, regular_sequence
+
+    racket = kr.EulerTop(1.0, 2.0, 3.0).solve(np.linspace(0.0, 60.0, 601), [0.01, 1.0, 0.01])
+    seq = regular_sequence(racket.q)
+    R = kr.quat_to_matrix(racket.q)
+    outer = ("XYZ".index(seq[0]), "XYZ".index(seq[2]))
+    # at least 30° from the lock all along, where ZXZ starts at its lock (θ = 0)
+    assert np.min(np.arccos(np.abs(R[:, outer[0], outer[1]]))) > np.radians(30.0)
+    assert np.min(np.arccos(np.abs(R[:, 2, 2]))) < np.radians(1.0)
+    fig = euler(racket)
+    assert seq in fig.axes[0].get_title()
+    for line in fig.axes[0].lines:
+        assert np.max(np.abs(np.diff(line.get_ydata()))) < 90.0   # no ±180° jumps
+
+
+def test_apex_and_polhode_label_every_axis():
+    import kreisel as kr
+    from kreisel.plot import apex, polhode
+
+    tr = kr.EulerTop(1.0, 2.0, 3.0).solve(np.linspace(0.0, 20.0, 201), [0.01, 1.0, 0.01])
+    for fig in (apex(tr), polhode(tr)):
+        for ax in fig.axes:
+            assert ax.get_xlabel() and ax.get_ylabel()
+            if ax.name == "3d":
+                assert ax.get_zlabel()
+                fig.canvas.draw()
+                box = ax.zaxis.label.get_window_extent()
+                assert 0 <= box.x0 and box.x1 <= fig.bbox.width   # the third label is not clipped

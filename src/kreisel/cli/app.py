@@ -153,20 +153,29 @@ def simulate(
 
 @app.command()
 def plot(
-    trajectory: pathlib.Path = typer.Argument(..., help="Trajectory file written by `kreisel simulate`."),
-    kind: str = typer.Option("omega", "--kind", "-k", help="omega | energy | euler | polhode | herpolhode | apex"),
+    trajectory: pathlib.Path = typer.Argument(..., help="Result file written by `kreisel simulate`."),
+    kind: Optional[str] = typer.Option(
+        None, "--kind", "-k", help="Trajectories: omega (default) | energy | euler | polhode | herpolhode | apex; "
+                                   "Foucault results: azimuth; coning results: error."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="fig.png | .svg | .pdf"),
 ):
-    """Plot a saved trajectory."""
+    """Plot a saved result: a trajectory, or what a Foucault or coning run holds."""
     from .. import plot as plots
-    from ..io.results import ResultError, load_trajectory
+    from ..dynamics import Trajectory
+    from ..io.results import ResultError, load_result
     from ..io.run import trajectory_integrals
 
-    if kind not in plots.KINDS:
-        usage_error(f"--kind: unknown plot kind {kind!r} (expected one of {', '.join(plots.KINDS)})")
     try:
-        traj = load_trajectory(trajectory)
-        fig = plots.energy(traj, trajectory_integrals(traj)) if kind == "energy" else plots.KINDS[kind](traj)
+        result = load_result(trajectory)
+        if isinstance(result, Trajectory):
+            kinds, what = plots.KINDS, "a trajectory"
+        else:
+            what = f"a {result.attrs['kreisel']} result"
+            kinds = plots.DATASET_KINDS.get(result.attrs["kreisel"], {})
+        kind = kind or next(iter(kinds))
+        if kind not in kinds:
+            usage_error(f"--kind: {trajectory} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
+        fig = plots.energy(result, trajectory_integrals(result)) if kind == "energy" else kinds[kind](result)
         plots.save(fig, output)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))

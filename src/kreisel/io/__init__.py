@@ -2,11 +2,11 @@
 
 from .bundled import EXAMPLES, copy_example, example_path
 from .gyro import RECORDINGS, GyroFileError, GyroRecording, parse_gyro, read_gyro, recording_path
-from .results import ResultError, load_trajectory, save_result
+from .results import ResultError, load_result, load_trajectory, save_result
 from .run import run_scenario, summary
 from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
 from .schema import SchemaError
 
-__all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_trajectory", "save_result",
+__all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_result", "load_trajectory", "save_result",
            "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
            "SchemaError", "GyroFileError", "GyroRecording", "RECORDINGS", "parse_gyro", "read_gyro", "recording_path"]

@@ -97,4 +97,45 @@ def load_trajectory(path):
                               meta=header["meta"])
         return Trajectory.load(path)
     except (OSError, KeyError, ValueError, TypeError) as exc:
+        kind = _dataset_kind(path)
+        if kind is not None:
+            raise ResultError(f"{path}: holds a {kind} result, not a trajectory") from None
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {exc})") from None
+
+
+def _dataset_kind(path):
+    """The ``kreisel`` attribute of a NetCDF result that is not a trajectory (Foucault, coning), else None."""
+    if path.suffix != ".nc":
+        return None
+    try:
+        import xarray as xr
+
+        with xr.open_dataset(path, engine="scipy") as ds:
+            kind = ds.attrs.get("kreisel")
+    except (OSError, ValueError, TypeError):
+        return None
+    return kind if isinstance(kind, str) and not kind.startswith("Trajectory") else None
+
+
+def load_result(path):
+    """A result file written by :func:`save_result`: a Trajectory, or the ``xarray.Dataset`` of a Foucault or
+    coning run (its ``kreisel`` attribute names it).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from kreisel.io import load_scenario, run_scenario
+    >>> path = save_result(run_scenario(load_scenario("foucault")), os.path.join(tempfile.mkdtemp(), "f.nc"))
+    >>> load_result(path).attrs["kreisel"]
+    'Foucault pendulum'
+    """
+    path = pathlib.Path(path)
+    try:
+        return load_trajectory(path)
+    except ResultError:
+        if _dataset_kind(path) is None:
+            raise
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="scipy") as ds:
+        return ds.load()

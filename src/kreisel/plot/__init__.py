@@ -10,9 +10,11 @@ import pathlib
 
 from .._fileio import atomic_output
 from .fit import gyro_fit
-from .trajectory import KINDS, apex, energy, euler, herpolhode, omega, polhode
+from .trajectory import (DATASET_KINDS, KINDS, apex, coning, energy, euler, foucault, herpolhode, omega, polhode,
+                         regular_sequence)
 
-__all__ = ["KINDS", "apex", "energy", "euler", "gyro_fit", "herpolhode", "omega", "polhode", "save"]
+__all__ = ["KINDS", "DATASET_KINDS", "apex", "coning", "energy", "euler", "foucault", "gyro_fit", "herpolhode",
+           "omega", "polhode", "regular_sequence", "save"]
 
 _FORMATS = {".png", ".svg", ".pdf"}
 

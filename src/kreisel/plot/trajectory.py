@@ -86,27 +86,82 @@ def energy(traj, integrals=None):
     return fig
 
 
-def euler(traj, seq="ZXZ", degrees=True):
-    """Euler angles in sequence ``seq`` against time (Theory §2.3).
+_SEQUENCES = ("ZXZ", "ZYZ", "XYX", "XZX", "YXY", "YZY", "ZYX", "ZXY", "XYZ", "XZY", "YXZ", "YZX")
+_NAMES = {"ZXZ": ("φ", "θ", "ψ")}
+
+
+def regular_sequence(q):
+    """The Euler sequence whose middle angle stays farthest from its singularity along attitudes ``q``.
+
+    The chapter's ZXZ is kept whenever θ stays at least 10° away from 0 and
+    180°; otherwise the intrinsic sequence with the largest margin is chosen
+    (Theory §2.3: every sequence has a gimbal lock, at a different attitude).
 
     Examples
     --------
-    The chapter's mechanics angles (φ, θ, ψ) of a free symmetric top (I1 = I2),
-    in degrees unless ``degrees=False``:
+    A tennis racket spun about body axis 2 starts with θ = 0 in ZXZ (singular);
+    a sequence whose lock lies elsewhere is chosen:
 
     >>> import kreisel as kr, numpy as np
-    >>> tr = kr.EulerTop(1, 1, 2).solve(np.linspace(0, 10, 101), [0.3, 0.0, 1.0])
+    >>> tr = kr.EulerTop(1, 2, 3).solve(np.linspace(0, 5, 51), [0.01, 1, 0.01])
+    >>> regular_sequence(tr.q) != "ZXZ"
+    True
+    >>> regular_sequence(kr.euler_to_quat("ZXZ", [[0.1, 0.8, 0.2], [0.3, 1.1, 0.4]]))
+    'ZXZ'
+    """
+    from ..so3 import quat_to_matrix
+
+    R = quat_to_matrix(q).reshape(-1, 3, 3)
+    axis = {"X": 0, "Y": 1, "Z": 2}
+
+    def margin(seq):
+        # R[i, k] (i, k the outer axes) is ±cos of the middle angle for proper Euler sequences (i = k) and ±sin
+        # for Tait–Bryan ones: both lock where it is ±1, and arccos|R[i, k]| is the angle to the lock
+        i, k = axis[seq[0]], axis[seq[2]]
+        return float(np.min(np.arccos(np.clip(np.abs(R[:, i, k]), 0.0, 1.0))))
+
+    if margin("ZXZ") >= np.radians(10.0):
+        return "ZXZ"
+    return max(_SEQUENCES, key=margin)
+
+
+def euler(traj, seq=None, degrees=True):
+    """Euler angles against time, unwrapped, in a sequence regular for the motion (Theory §2.3).
+
+    Parameters
+    ----------
+    traj : Trajectory
+    seq : str, optional
+        Axis sequence; default: :func:`regular_sequence` of the trajectory
+        (the chapter's ZXZ unless the motion passes near its gimbal lock).
+    degrees : bool
+        Angles in degrees (default) or radians.
+
+    Angles are unwrapped (no jumps of 360°), so a steady spin is a straight line.
+
+    Examples
+    --------
+    The chapter's mechanics angles (φ, θ, ψ) of a tilted free symmetric top (I1 = I2):
+
+    >>> import kreisel as kr, numpy as np
+    >>> q0 = kr.euler_to_quat("ZXZ", [0.0, 0.5, 0.0])
+    >>> tr = kr.EulerTop(1, 1, 2).solve(np.linspace(0, 10, 101), [0.3, 0.0, 1.0], q0)
     >>> fig = euler(tr)
     >>> [line.get_label() for line in fig.axes[0].lines], fig.axes[0].get_ylabel()
     (['φ', 'θ', 'ψ'], 'angle (°)')
+    >>> bool(np.all(np.abs(np.diff(fig.axes[0].lines[2].get_ydata())) < 180))   # unwrapped
+    True
     """
-    angles = traj.euler(seq, degrees=degrees)
+    seq = regular_sequence(traj.q) if seq is None else seq
+    angles = np.unwrap(traj.euler(seq), axis=-2)
+    angles = np.degrees(angles) if degrees else angles
     fig = Figure(figsize=(7, 3.6), layout="constrained")
     ax = fig.add_subplot()
-    names = ("φ", "θ", "ψ") if seq == "ZXZ" else tuple(f"angle {i + 1}" for i in range(3))
+    names = _NAMES.get(seq, tuple(f"angle {i + 1} (about {a})" for i, a in enumerate(seq.upper())))
     for i in range(3):
-        ax.plot(traj.t, angles[..., i], label=names[i])
-    ax.set(xlabel="t (s)", ylabel="angle (°)" if degrees else "angle (rad)", title=f"Euler angles ({seq})")
+        ax.plot(traj.t, angles[..., i].T, label=names[i])
+    ax.set(xlabel="t (s)", ylabel="angle (°)" if degrees else "angle (rad)",
+           title=f"Euler angles, intrinsic {seq}, unwrapped")
     ax.legend(loc="best")
     return fig
 
@@ -135,10 +190,10 @@ def polhode(traj):
                       color="0.8", linewidth=0.4)
     for path in w:
         ax.plot(path[:, 0], path[:, 1], path[:, 2], color="C3", linewidth=1.5)
-    ax.set(xlabel="ω′1", ylabel="ω′2")
-    ax.set_zlabel("ω′3")
+    ax.set(xlabel="ω′1 (rad/s)", ylabel="ω′2 (rad/s)", zlabel="ω′3 (rad/s)")
     ax.set_title("polhode on the energy ellipsoid")
-    ax.set_box_aspect(semi)
+    ax.set_box_aspect(semi / semi.max(), zoom=0.8)   # zoom < 1 leaves room for the axis labels
+    ax.locator_params(nbins=5)
     return fig
 
 
@@ -175,32 +230,90 @@ def herpolhode(traj):
 
 
 def apex(traj, axis=2):
-    """Locus of the body's symmetry axis on the unit sphere (Theory §6.5).
+    """Path of the tip of a body axis: seen from above, and its tilt against time (Theory §6.5).
+
+    The left panel shows the tip of the unit body axis projected on the
+    horizontal plane (zoomed to the path, so a fast top's small nutation
+    loops show); the right panel its angle θ from the vertical, in which
+    nutation is the oscillation.
 
     Examples
     --------
-    The symmetry axis of a free symmetric top sweeps a cone about J: the
-    plotted tip stays on the unit sphere at a fixed angle from J:
+    The symmetry axis of a free symmetric top sweeps a cone about J:
 
     >>> import kreisel as kr, numpy as np
     >>> tr = kr.EulerTop(1, 1, 2).solve(np.linspace(0, 10, 101), [0.3, 0.0, 1.0])
-    >>> tip = np.stack(apex(tr).axes[0].lines[0].get_data_3d(), axis=-1)
-    >>> j = tr.angular_momentum_space[0] / np.linalg.norm(tr.angular_momentum_space[0])
-    >>> bool(np.allclose(np.linalg.norm(tip, axis=-1), 1.0)), bool(np.allclose(tip @ j, tip[0] @ j))
-    (True, True)
+    >>> fig = apex(tr)
+    >>> [ax.get_xlabel() for ax in fig.axes]
+    ['x (unit length)', 't (s)']
+    >>> tip = np.stack(fig.axes[0].lines[0].get_data(), axis=-1)
+    >>> bool(np.allclose(tip, kr.quat_apply(tr.q, [0, 0, 1.0])[:, :2]))
+    True
     """
     e = np.zeros(3)
     e[axis] = 1.0
     tip = quat_apply(traj.q, e)
-    fig = Figure(figsize=(5.5, 5), layout="constrained")
-    ax = fig.add_subplot(projection="3d")
-    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 36), np.linspace(0, np.pi, 18))
-    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.4)
-    ax.plot(tip[..., 0], tip[..., 1], tip[..., 2], color="C3", linewidth=1.2)
-    ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"apex locus of body axis {axis + 1}")
+    tilt = np.degrees(np.arctan2(np.hypot(tip[..., 0], tip[..., 1]), tip[..., 2]))
+    fig = Figure(figsize=(10, 4.2), layout="constrained")
+    top, side = fig.subplots(1, 2, width_ratios=(1, 1.4))
+    top.plot(tip[..., 0].T, tip[..., 1].T, color="C3", linewidth=0.9)
+    top.plot(tip[..., 0, 0], tip[..., 0, 1], "ko", markersize=4, label="start")
+    top.set_aspect("equal", adjustable="datalim")
+    top.set(xlabel="x (unit length)", ylabel="y (unit length)", title=f"tip of body axis {axis + 1}, seen from above")
+    top.legend(loc="best", fontsize=8)
+    side.plot(traj.t, tilt.T, color="C0", linewidth=0.9)
+    side.set(xlabel="t (s)", ylabel="θ, angle from the vertical (°)", title="tilt: nutation is its oscillation")
+    return fig
+
+
+def foucault(dataset):
+    """Swing-plane azimuth and tilt of a Foucault-pendulum run of :mod:`kreisel.io` (Theory §8.3).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> ds = kr.io.run_scenario(kr.io.load_scenario("foucault"))
+    >>> [ax.get_ylabel() for ax in foucault(ds).axes]
+    ['swing azimuth change (°)', 'string angle from vertical (°)']
+    """
+    t = dataset["time"].values
+    azimuth = np.degrees(np.unwrap(dataset["swing_azimuth"].values))
+    fig = Figure(figsize=(8, 5), layout="constrained")
+    turn, tilt = fig.subplots(2, 1, sharex=True)
+    turn.plot(t / 3600, azimuth - azimuth[0], label="measured at each swing")
+    rate = dataset.attrs.get("precession_rate_theory")
+    if rate is not None:
+        turn.plot(t / 3600, np.degrees(rate * (t - t[0])), "k--", linewidth=0.8, label="−Ω sin λ t")
+    turn.set(ylabel="swing azimuth change (°)", title="Foucault pendulum: the swing plane turns")
+    turn.legend(loc="best", fontsize=8)
+    tilt.plot(t / 3600, np.degrees(dataset["tilt"].values), linewidth=0.5)
+    tilt.set(xlabel="t (h)", ylabel="string angle from vertical (°)")
+    return fig
+
+
+def coning(dataset):
+    """Attitude error of strapdown integration under coning motion, from :mod:`kreisel.io` (Theory §3.5).
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> ds = kr.io.run_scenario(kr.io.load_scenario("coning"))
+    >>> coning(ds).axes[0].get_ylabel()
+    'attitude error (rad)'
+    """
+    t = dataset["time"].values
+    error = dataset["attitude_error"].values
+    fig = Figure(figsize=(7, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    for k, name in enumerate("xyz"):
+        ax.plot(t, error[:, k], label=f"about body {name}")
+    ax.set(xlabel="t (s)", ylabel="attitude error (rad)", title="strapdown attitude error under coning")
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
+    ax.legend(loc="best", fontsize=8)
     return fig
 
 
 KINDS = {"omega": omega, "energy": energy, "euler": euler, "polhode": polhode,
          "herpolhode": herpolhode, "apex": apex}
+DATASET_KINDS = {"Foucault pendulum": {"azimuth": foucault}, "coning": {"error": coning}}
+"""Plots of the result files that hold no trajectory, by their ``kreisel`` attribute: {kind: function}."""
