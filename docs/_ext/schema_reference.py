@@ -65,13 +65,15 @@ def key_table(schema, prefix=(), notes=None):
     return lines + [""]
 
 
-def _example_blocks(title_of, paths, root):
+def _example_blocks(read, paths, root):
+    """A heading, the description (as text, so that its Theory citations become links) and the file."""
     lines = []
     for name, path in paths.items():
-        heading = f"``{name}``: {title_of(path)}"
+        data = read(path)
+        heading = f"``{name}``: {data.get('title', '')}"
         relative = pathlib.Path(path).resolve().relative_to(root)
-        lines += [heading, "^" * len(heading), "", f".. literalinclude:: /../{relative.as_posix()}",
-                  "   :language: toml", ""]
+        lines += [heading, "^" * len(heading), "", data.get("description", ""), "",
+                  f".. literalinclude:: /../{relative.as_posix()}", "   :language: toml", ""]
     return lines
 
 
@@ -85,7 +87,7 @@ def file_reference(root):
     from kreisel.sweep import files as sweep_files
     from kreisel.sweep.models import MODELS
 
-    title_of = lambda path: tomllib.loads(pathlib.Path(path).read_text(encoding="utf-8")).get("title", "")
+    read = lambda path: tomllib.loads(pathlib.Path(path).read_text(encoding="utf-8"))
     schema = scenario_module._SCHEMA
     lines = ["Scenario files", "--------------", "",
              "Top-level keys and tables. Which tables a scenario needs depends on ``kind``:", ""]
@@ -113,7 +115,7 @@ def file_reference(root):
     lines += ["A ``[[torque]]`` entry may appear several times; the torques add.", "",
               "Bundled scenarios", "~~~~~~~~~~~~~~~~~", "",
               "Each is complete and valid; ``kreisel examples NAME`` copies one out to edit.", ""]
-    lines += _example_blocks(title_of, {name: example_path(name) for name in EXAMPLES}, root)
+    lines += _example_blocks(read, {name: example_path(name) for name in EXAMPLES}, root)
 
     lines += ["Sweep files", "-----------", "", "Top-level keys:", ""]
     lines += key_table(sweep_files._TOP, notes={
@@ -141,7 +143,7 @@ def file_reference(root):
                             for v, meta in model.units.items())
         lines += [f"Output variables with metadata: {outputs}.", ""]
     lines += ["Bundled sweeps", "~~~~~~~~~~~~~~", "", "``kreisel sweep NAME`` runs one.", ""]
-    lines += _example_blocks(title_of, {n: sweep_files.example_path(n) for n in sweep_files.EXAMPLES}, root)
+    lines += _example_blocks(read, {n: sweep_files.example_path(n) for n in sweep_files.EXAMPLES}, root)
     return "\n".join(lines) + "\n"
 
 
