@@ -1,5 +1,7 @@
 """Result files round-trip and are written atomically."""
 
+from unittest import mock
+
 import numpy as np
 import pytest
 
@@ -27,12 +29,14 @@ def test_failed_write_keeps_the_old_file(tmp_path, trajectory):
     target = tmp_path / "keep.nc"
     target.write_text("precious")
 
-    class Broken:
-        def to_netcdf(self, *args, **kwargs):
-            raise RuntimeError("disk full")
+    import xarray as xr
 
-    with pytest.raises(RuntimeError):
-        save_result(Broken(), target)
+    def broken(*args, **kwargs):
+        raise RuntimeError("disk full")
+
+    dataset = xr.Dataset({"x": ("i", [1.0])})
+    with pytest.raises(RuntimeError), mock.patch.object(xr.Dataset, "to_netcdf", broken):
+        save_result(dataset, target)
     assert target.read_text() == "precious"
     assert [p.name for p in tmp_path.iterdir()] == ["keep.nc"]
 
@@ -50,3 +54,17 @@ def test_unreadable_files_give_one_line_errors(tmp_path):
         load_trajectory(other)
     with pytest.raises(ValueError, match="path must end in one of"):
         save_result(None, tmp_path / "x.txt")
+
+
+def test_netcdf_variables_carry_cf_units_and_long_names(tmp_path):
+    import xarray as xr
+
+    from kreisel.io import load_scenario, run_scenario, save_result
+
+    for name, variables in (("tennis_racket", ("time", "q", "omega", "energy", "angular_momentum")),
+                            ("foucault", ("time", "swing_azimuth", "tilt"))):
+        path = save_result(run_scenario(load_scenario(name)), tmp_path / f"{name}.nc")
+        with xr.open_dataset(path) as ds:
+            for variable in variables:
+                assert ds[variable].attrs["units"] and ds[variable].attrs["long_name"], (name, variable)
+            assert ds["time"].attrs["units"] == "s"

@@ -47,10 +47,12 @@ def save_result(result, path):
                 frame = result.to_pandas()
                 frame.attrs["kreisel"] = _trajectory_header(result)
                 frame.to_parquet(tmp)
+            elif path.suffix == ".nc":
+                with_units(result.to_xarray()).to_netcdf(tmp, engine="scipy")
             else:
                 result.save(tmp)
         elif path.suffix == ".nc":
-            result.to_netcdf(tmp, engine="scipy")
+            with_units(result).to_netcdf(tmp, engine="scipy")
         elif path.suffix == ".csv":
             result.to_dataframe().to_csv(tmp, float_format="%.17g")
         else:
@@ -58,6 +60,44 @@ def save_result(result, path):
             frame.attrs["kreisel"] = json.dumps(dict(result.attrs), default=str)
             frame.to_parquet(tmp)
     return path
+
+
+# CF-convention labels of every variable kreisel writes (xarray, Panoply and ncview show them)
+_CF = {
+    "time": ("s", "time"),
+    "q": ("1", "attitude quaternion, body to space, scalar first"),
+    "omega": ("rad/s", "angular velocity, body components"),
+    "omega_space": ("rad/s", "angular velocity, space components"),
+    "angular_momentum": ("kg m2/s", "angular momentum, space components"),
+    "energy": ("J", "rotational kinetic energy"),
+    "inertia": ("kg m2", "inertia tensor, body axes"),
+    "position": ("m", "centre-of-mass position, space components"),
+    "velocity": ("m/s", "centre-of-mass velocity, space components"),
+    "swing_azimuth": ("rad", "swing-plane azimuth, counter-clockwise from east"),
+    "tilt": ("rad", "string angle from the vertical"),
+    "q_true": ("1", "true attitude quaternion, scalar first"),
+    "q_estimate": ("1", "strapdown attitude quaternion, scalar first"),
+    "attitude_error": ("rad", "attitude error rotation vector, body components"),
+}
+
+
+def with_units(dataset):
+    """``dataset`` with CF ``units`` and ``long_name`` attributes on the variables kreisel knows.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kreisel.dynamics import Trajectory
+    >>> ds = with_units(Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3]).to_xarray())
+    >>> ds["omega"].attrs
+    {'units': 'rad/s', 'long_name': 'angular velocity, body components'}
+    """
+    dataset = dataset.copy()
+    for name in list(dataset.variables):
+        if name in _CF:
+            units, long_name = _CF[name]
+            dataset[name].attrs.update(units=units, long_name=long_name)
+    return dataset
 
 
 def _trajectory_header(traj):
