@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from kreisel.tops import complete_elliptic_pi, elliptic_pi
+from kreisel.tops import complete_elliptic_pi, elliptic_f, elliptic_k, elliptic_pi, jacobi_elliptic
 
 
 def _pi_quad(phi, n, m):
@@ -42,3 +42,65 @@ def test_bad_parameters_are_refused():
         elliptic_pi(2.0, 0.5, 1.0)
     with pytest.raises(TypeError, match="phi"):
         elliptic_pi("x", 0.5, 0.2)
+
+
+# ---- against mpmath at 30 digits, parameter given as m1 = 1 - m -----------------------------------
+mp = pytest.importorskip("mpmath")
+EPS = np.finfo(float).eps
+M1_VALUES = [1.0, 0.7, 0.3, 1e-2, 1e-4, 1e-8, 1e-12, 1e-16, 1e-17, 1e-20, 1e-40, 1e-300]
+
+
+def _mp_parameter(m1):
+    # 30 correct digits of m = 1 - m1 need 30 + |log10 m1| working digits
+    mp.mp.dps = 30 + int(max(0.0, -np.log10(m1)))
+    return 1 - mp.mpf(m1)
+
+
+@pytest.mark.parametrize("m1", M1_VALUES)
+def test_jacobi_functions_match_mpmath(m1):
+    m = _mp_parameter(m1)
+    K = float(elliptic_k(m1=m1))
+    assert K == pytest.approx(float(mp.ellipk(m)), rel=2 * EPS)
+    u = np.concatenate([np.linspace(-3.7, 3.7, 23), [0.5, 0.999, 1.0, 1.001, 2.0, 2.5]]) * K
+    sn, cn, dn = jacobi_elliptic(u, m1=m1)
+    for i, x in enumerate(u):
+        X = mp.mpf(x)
+        S, C, D = (mp.ellipfun(kind, X, m=m) for kind in ("sn", "cn", "dn"))
+        # error relative to the value plus what the rounding of u itself moves it (|u f'| eps);
+        # 1e-30 is the reference's own resolution (mpmath returns sn(0) = ±1e-38)
+        for value, exact, slope in ((sn[i], S, C * D), (cn[i], C, S * D), (dn[i], D, m * S * C)):
+            scale = abs(exact) + abs(X * slope)
+            assert abs(value - exact) <= 4 * EPS * scale + 1e-30, (x, value, exact)
+
+
+@pytest.mark.parametrize("m1", M1_VALUES)
+def test_first_and_third_kind_match_mpmath(m1):
+    m = _mp_parameter(m1)
+    for phi in (0.3, 1.2, np.pi / 2 - 1e-9, 1.9, -4.0):
+        if m1 < 1e-16 and abs(phi) > np.pi / 2:
+            continue  # K ~ ln(4/√m1): fine, but mpmath's reduction needs more digits than is useful
+        F = mp.ellipf(mp.mpf(phi), m)
+        assert float(elliptic_f(phi, m1=m1)) == pytest.approx(float(F), rel=8 * EPS)
+        for n in (-3.0, -0.4, 0.5, 0.9):
+            P = mp.ellippi(mp.mpf(n), mp.mpf(phi), m)
+            assert float(elliptic_pi(phi, n, m1=m1)) == pytest.approx(float(P), rel=8 * EPS), (phi, n)
+    if m1 > 0.0:
+        for n in (-3.0, -0.4, 0.5, 0.9):
+            P = mp.ellippi(mp.mpf(n), m)
+            assert float(complete_elliptic_pi(n, m1=m1)) == pytest.approx(float(P), rel=8 * EPS), n
+
+
+def test_separatrix_limit_and_parameter_checks():
+    u = np.array([-30.0, -1.0, 0.0, 0.4, 25.0])
+    sn, cn, dn = jacobi_elliptic(u, m1=0.0)
+    np.testing.assert_allclose(sn, np.tanh(u), rtol=1e-15)
+    np.testing.assert_allclose(cn, 1 / np.cosh(u), rtol=1e-15)
+    np.testing.assert_array_equal(cn, dn)
+    # m given as m or as m1 agree where 1 - m is exact
+    np.testing.assert_array_equal(elliptic_pi(0.7, -0.3, 0.25), elliptic_pi(0.7, -0.3, m1=0.75))
+    with pytest.raises(TypeError, match="exactly one of m and m1"):
+        elliptic_pi(0.3, 0.5, 0.2, m1=0.8)
+    with pytest.raises(ValueError, match="m must be <= 1"):
+        jacobi_elliptic(0.3, m1=-1e-3)
+    with pytest.raises(ValueError, match="diverges"):
+        complete_elliptic_pi(0.5, m1=0.0)

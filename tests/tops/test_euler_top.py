@@ -1,10 +1,13 @@
 import itertools
+import pathlib
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import kreisel as kr
-from kreisel.so3 import quat_apply
+from kreisel.so3 import quat_apply, quat_conjugate, quat_multiply, quat_normalize
 
 Q0 = np.array([0.5, 0.5, -0.5, 0.5])
 T_SHORT = np.linspace(0.0, 20.0, 201)
@@ -16,7 +19,7 @@ def _space_momentum(tr):
 
 
 def _assert_matches_reference(reference, moments, omega0, t=T_SHORT, tol=2e-11):
-    tr = kr.EulerTop(*moments).solve(t, omega0, Q0)
+    tr = kr.EulerTop(*moments, allow_unphysical=True).solve(t, omega0, Q0)
     omega_ref, q_ref = reference(moments, omega0, Q0, t)
     scale = np.linalg.norm(omega0)
     np.testing.assert_allclose(tr.omega, omega_ref, rtol=0, atol=tol * scale)
@@ -122,7 +125,7 @@ def test_first_integrals_and_period(reference):
 
 
 def test_symmetric_period_is_body_precession():
-    top = kr.EulerTop(1.0, 1.0, 3.0)
+    top = kr.EulerTop(1.0, 1.0, 3.0, allow_unphysical=True)
     assert top.omega_period([0.3, 0.1, 0.5]) == pytest.approx(2 * np.pi / (2.0 * 0.5))
 
 
@@ -151,7 +154,7 @@ def test_tennis_racket_theorem(reference, moments):
 
 
 def test_symmetric_and_spherical_stability_follow_the_chapter():
-    assert [s.kind for s in kr.EulerTop(1.0, 1.0, 3.0).steady_rotations()] == ["neutral", "neutral", "stable"]
+    assert [s.kind for s in kr.EulerTop(1.0, 1.0, 1.5).steady_rotations()] == ["neutral", "neutral", "stable"]
     assert [s.kind for s in kr.EulerTop(2.0, 2.0, 2.0).steady_rotations()] == ["neutral"] * 3
 
 
@@ -187,3 +190,132 @@ def test_bad_input_is_refused():
         top.solve([0.0, 1.0], [1.0, 2.0, 3.0], [1.0, 1.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="t must be one-dimensional"):
         top.solve([[0.0, 1.0]], [1.0, 2.0, 3.0])
+
+
+# ---- exact everywhere: next to the separatrix and next to the axes -------------------------------
+EPS = np.finfo(float).eps
+REFERENCE = np.load(pathlib.Path(__file__).parent / "data" / "free_top_reference.npz")
+CASES = sorted({key.split("/")[0] for key in REFERENCE.files if "/" in key})
+
+
+def _attitude_angle(q, q_ref):
+    """Rotation angle of q_ref⁻¹ q, rad (sign of the quaternion irrelevant)."""
+    d = quat_multiply(quat_conjugate(q_ref), q)
+    return 2.0 * np.arctan2(np.linalg.norm(d[..., 1:], axis=-1), np.abs(d[..., 0]))
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_matches_30_digit_reference_next_to_the_separatrix(case):
+    moments, omega0 = REFERENCE[f"{case}/moments"], REFERENCE[f"{case}/omega0"]
+    t, q0 = REFERENCE["times"], REFERENCE["q0"]
+    top = kr.EulerTop(*moments, allow_unphysical=True)
+    tr = top.solve(t, omega0, q0)
+    # ω(0) = ω0 to a few ulp of |ω0|, and to the last bit where a component is exactly zero
+    np.testing.assert_allclose(tr.omega[0], omega0, rtol=0, atol=4 * EPS * np.linalg.norm(omega0))
+    np.testing.assert_allclose(np.abs(tr.q[0]), np.abs(q0), rtol=0, atol=4 * EPS)
+    assert np.max(np.abs(tr.omega - REFERENCE[f"{case}/omega"])) <= 1e-12
+    assert np.max(_attitude_angle(tr.q, REFERENCE[f"{case}/q"])) <= 1e-11
+    # the guaranteed bounds hold
+    accuracy = top.accuracy(omega0, duration=t[-1])
+    assert np.max(np.abs(tr.omega - REFERENCE[f"{case}/omega"])) <= accuracy.omega_error * np.linalg.norm(omega0)
+    assert np.max(_attitude_angle(tr.q, REFERENCE[f"{case}/q"])) <= accuracy.attitude_error
+
+
+@pytest.mark.parametrize("case", sorted({key.split("/")[0] for key in REFERENCE.files if "/taylor" in key}))
+def test_closed_form_reference_agrees_with_taylor_integration(case):
+    # the stored closed-form values and an independent 30-digit Taylor integration of Euler's equations
+    at = np.searchsorted(REFERENCE["times"], REFERENCE["taylor_times"])
+    np.testing.assert_allclose(REFERENCE[f"{case}/taylor_omega"], REFERENCE[f"{case}/omega"][at], rtol=0, atol=1e-15)
+    assert np.max(_attitude_angle(REFERENCE[f"{case}/taylor_q"], REFERENCE[f"{case}/q"][at])) <= 1e-14
+    moments, omega0 = REFERENCE[f"{case}/moments"], REFERENCE[f"{case}/omega0"]
+    tr = kr.EulerTop(*moments, allow_unphysical=True).solve(REFERENCE["taylor_times"], omega0, REFERENCE["q0"])
+    assert np.max(np.abs(tr.omega - REFERENCE[f"{case}/taylor_omega"])) <= 1e-12
+
+
+@pytest.mark.parametrize("case", CASES[::3])
+def test_integrals_exact_at_late_times_next_to_the_separatrix(case):
+    moments, omega0 = REFERENCE[f"{case}/moments"], REFERENCE[f"{case}/omega0"]
+    top = kr.EulerTop(*moments, allow_unphysical=True)
+    tr = top.solve([0.0, 1e5 - 0.5, 1e5], omega0, REFERENCE["q0"])
+    np.testing.assert_allclose(tr.energy, top.energy(omega0), rtol=1e-13)
+    momentum = _space_momentum(tr)
+    np.testing.assert_allclose(momentum, np.broadcast_to(momentum[0], momentum.shape), rtol=0,
+                               atol=1e-13 * np.linalg.norm(momentum[0]))
+
+
+def test_known_failures_next_to_the_axes():
+    top = kr.EulerTop(1.0, 2.0, 3.0)
+    tr = top.solve([0.0, 1.0, 10.0], [1e-9, 1.0, 0.0], [1.0, 0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(tr.omega[0], [1e-9, 1.0, 0.0])
+    np.testing.assert_allclose(tr.energy, 1.0, rtol=1e-15)
+    tr = top.solve([0.0, 1.0, 10.0], [0.0, 1.0, 1e-9])
+    assert np.all(np.isfinite(tr.q)) and tr.omega[0, 2] == pytest.approx(1e-9, rel=4 * EPS)
+    # ω1 ω3 < 0 about the largest axis: the start lies past a quarter period
+    omega0 = np.array([-0.1, 1.0, 0.0577350269])
+    np.testing.assert_allclose(top.solve([0.0], omega0).omega[0], omega0, rtol=0, atol=4 * EPS)
+
+
+FINITE_SCALE = st.floats(min_value=-300.0, max_value=-6.0)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    moments=st.sampled_from([(1.0, 2.0, 3.0), (3.0, 1.0, 2.0), (2.0, 1.0, 2.0 / 3.0)]),
+    axis=st.integers(0, 2),
+    spin=st.floats(min_value=0.05, max_value=20.0),
+    signs=st.tuples(*[st.sampled_from([-1.0, 1.0])] * 3),
+    offsets=st.tuples(*[st.one_of(st.just(None), FINITE_SCALE)] * 2),
+)
+def test_every_start_next_to_a_principal_axis(moments, axis, spin, signs, offsets):
+    omega0 = np.zeros(3)
+    omega0[axis] = spin
+    others = [k for k in range(3) if k != axis]
+    for k, exponent in zip(others, offsets):
+        if exponent is not None:
+            omega0[k] = spin * 10.0**exponent
+    omega0 *= signs
+    top = kr.EulerTop(*moments, allow_unphysical=True)
+    t = np.array([0.0, 0.3, 7.0, 150.0, 4e3])
+    tr = top.solve(t, omega0, Q0)
+    np.testing.assert_allclose(tr.omega[0], omega0, rtol=4 * EPS, atol=4 * EPS * spin)
+    assert np.all(np.isfinite(tr.q)) and np.all(np.isfinite(tr.omega))
+    np.testing.assert_allclose(tr.energy, top.energy(omega0), rtol=1e-14)
+    np.testing.assert_allclose(np.linalg.norm(_space_momentum(tr), axis=-1), top.angular_momentum(omega0), rtol=1e-14)
+    np.testing.assert_allclose(np.linalg.norm(tr.q, axis=-1), 1.0, rtol=0, atol=4 * EPS)
+
+
+def test_triangle_inequality_is_one_rule_with_simulate():
+    with pytest.raises(ValueError, match="triangle inequality") as from_top:
+        kr.EulerTop(1.0, 1.0, 5.0)
+    with pytest.raises(ValueError, match="triangle inequality") as from_simulate:
+        kr.simulate([1.0, 1.0, 5.0], [0.0, 1.0], [0.0, 0.0, 1.0])
+    assert str(from_top.value).split(": ", 1)[1] == str(from_simulate.value).split(": ", 1)[1]
+    top = kr.EulerTop(1.0, 1.0, 5.0, allow_unphysical=True)
+    assert top.regime([0.1, 0.0, 1.0]) == "symmetric"
+
+
+def test_regimes_are_named_constants():
+    top = kr.EulerTop(1.0, 2.0, 3.0)
+    assert top.regime([0.1, 1.0, 0.2]) == kr.tops.Regime.ABOUT_LARGEST_AXIS.label == "about_largest_axis"
+    assert str(kr.tops.Regime.SEPARATRIX) == "separatrix"
+    assert top.separatrix_distance([1e-8, 1.0, 0.0]) == pytest.approx(-2.5e-17, rel=1e-14)
+    assert top.separatrix_distance([0.0, 0.0, 1.0]) != top.separatrix_distance([0.0, 0.0, 1.0])  # NaN: steady
+
+
+def test_batch_of_bodies_is_one_call_and_matches_single_solves():
+    rng = np.random.default_rng(3)
+    bodies = np.array([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0], [3.0, 1.0, 2.5], [1.5, 1.5, 1.5], [3.0, 4.0, 6.0]])
+    omega0 = rng.normal(size=(5, 3))
+    omega0[4] = [2.0, 0.3, 1.0]  # exactly on the separatrix of (3, 4, 6)
+    q0 = quat_normalize(rng.normal(size=(5, 4)))
+    t = np.linspace(0.0, 30.0, 7)
+    tr = kr.tops.solve_free_batch(bodies, t, omega0, q0)
+    assert tr.omega.shape == (5, 7, 3) and tr.q.shape == (5, 7, 4)
+    assert tr.meta["regime"][1] == "symmetric" and tr.meta["regime"][3] == "steady"
+    assert tr.meta["regime"][4] == "separatrix"
+    for b in range(5):
+        single = kr.EulerTop(*bodies[b]).solve(t, omega0[b], q0[b])
+        np.testing.assert_array_equal(tr.omega[b], single.omega)
+        np.testing.assert_array_equal(tr.q[b], single.q)
+    with pytest.raises(ValueError, match="triangle inequality"):
+        kr.tops.solve_free_batch([[1.0, 1.0, 5.0]], t, [0.0, 0.0, 1.0])

@@ -7,8 +7,8 @@ cones, the Lagrange top's integrals, nutation and apex locus, and the
 Kovalevskaya integral; the free top fitted to gyroscope recordings.
 """
 
-from ._elliptic import complete_elliptic_pi, elliptic_pi
-from .euler_top import EulerTop, SteadyRotation
+from ._elliptic import complete_elliptic_pi, elliptic_f, elliptic_k, elliptic_pi, jacobi_elliptic
+from .euler_top import EulerTop, Regime, SolutionAccuracy, SteadyRotation, solve_free_batch
 from .fitting import FreeRotationFit, NotFreeRotationWarning, fit_free_rotation
 from .integrals import FirstIntegral, FirstIntegrals, first_integrals
 from .kovalevskaya import KovalevskayaIntegrals, KovalevskayaTop
@@ -25,6 +25,9 @@ __all__ = [
     "fit_free_rotation",
     "FreeRotationFit",
     "NotFreeRotationWarning",
+    "Regime",
+    "SolutionAccuracy",
+    "solve_free_batch",
     "poinsot",
     "PoinsotGeometry",
     "SymmetricTop",
@@ -37,4 +40,7 @@ __all__ = [
     "KovalevskayaIntegrals",
     "elliptic_pi",
     "complete_elliptic_pi",
+    "elliptic_f",
+    "elliptic_k",
+    "jacobi_elliptic",
 ]

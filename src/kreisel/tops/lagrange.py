@@ -16,14 +16,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
+from numba import njit
 
 from .._validation import as_float_array
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
 from ..so3 import euler_to_quat, quat_to_euler
-from ._elliptic import _complete_pi, _pi_reduced
+from . import _elliptic
 from .euler_top import _check_moments
 
 __all__ = ["LagrangeTop", "LagrangeConstants", "FastTop", "larmor_precession_rate"]
@@ -156,43 +156,30 @@ class _Quadrature:
         u1, u2, u3 = sorted([root, *others])
         self.u1, self.u2, self.u3 = u1, u2, u3
         self.lam = 0.5 * np.sqrt(beta * (u3 - u1))
-        self.m = (u2 - u1) / (u3 - u1)
-        self.quarter = special.ellipk(self.m)
-        # amplitude at t = 0: sn² v0 = (u0 − u1)/(u2 − u1), sign from u̇0
-        amplitude0 = np.arctan2(np.sqrt(max(u0 - u1, 0.0)), np.sqrt(max(u2 - u0, 0.0)))
-        self.v0 = np.copysign(special.ellipkinc(amplitude0, self.m), udot0)
-
-    def _elliptic(self, t):
-        v = self.lam * t + self.v0
-        j = np.round(v / (2.0 * self.quarter))
-        sn, cn, dn, ph = special.ellipj(v - 2.0 * self.quarter * j, self.m)
-        parity = 1.0 - 2.0 * np.mod(j, 2.0)
-        return parity * sn, parity * cn, dn, ph, j
+        self.m1 = (u3 - u2) / (u3 - u1)
+        self.kc = np.sqrt(self.m1)
+        self.quarter = _elliptic.complete_k(self.m1, self.kc)
+        # phase at t = 0: sn² v0 = (u0 − u1)/(u2 − u1), cn² v0 = (u2 − u0)/(u2 − u1), sign from u̇0
+        sn0 = np.copysign(np.sqrt(max(u0 - u1, 0.0)), udot0)
+        self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, np.sqrt(max(u2 - u0, 0.0)), self.m1, self.kc)
 
     def _partial_fraction_terms(self):
-        """(coefficient, characteristic) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
+        """(coefficient, characteristic n, 1 − n) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
         a, b, u1, u2 = self.a, self.b, self.u1, self.u2
         return (
-            ((b - a) / (1.0 - u1), (u2 - u1) / (1.0 - u1)),
-            ((b + a) / (1.0 + u1), -(u2 - u1) / (1.0 + u1)),
+            ((b - a) / (1.0 - u1), (u2 - u1) / (1.0 - u1), (1.0 - u2) / (1.0 - u1)),
+            ((b + a) / (1.0 + u1), -(u2 - u1) / (1.0 + u1), (1.0 + u2) / (1.0 + u1)),
         )
 
     def angles_and_rates(self, t, top):
-        sn, cn, dn, ph, j = self._elliptic(t)
-        _, _, _, ph0, j0 = self._elliptic(np.zeros(1))
-        u = self.u1 + (self.u2 - self.u1) * sn * sn
+        t = np.asarray(t, dtype=float)
+        out = np.empty((t.size, 9))
+        terms = np.array(self._partial_fraction_terms(), dtype=float)
+        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.u1, self.u2, terms, out)
+        u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
         udot = 2.0 * (self.u2 - self.u1) * self.lam * sn * cn * dn
-        # 1 ∓ u from the factored forms keep their relative accuracy near θ = 0, π
-        one_minus_u = (1.0 - self.u1) - (self.u2 - self.u1) * sn * sn
-        one_plus_u = (1.0 + self.u1) + (self.u2 - self.u1) * sn * sn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
         theta = np.arctan2(sin_theta, u)
-        plus, minus = [
-            coefficient * (_pi_reduced(ph, j, n, self.m) - _pi_reduced(ph0, j0, n, self.m))
-            if coefficient != 0.0
-            else np.zeros_like(t)
-            for coefficient, n in self._partial_fraction_terms()
-        ]
         phi = (plus + minus) / (2.0 * self.lam)
         psi = self.a * (top.I1 / top.I3 - 1.0) * t - (plus - minus) / (2.0 * self.lam)
         phidot = (self.b - self.a * u) / (one_minus_u * one_plus_u)
@@ -202,8 +189,36 @@ class _Quadrature:
 
     def mean_precession_rate(self):
         """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
-        total = sum(c * _complete_pi(n, self.m) for c, n in self._partial_fraction_terms() if c != 0.0)
+        total = sum(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc)
+                    for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0)
         return float(total / (2.0 * self.quarter))
+
+
+@njit(cache=True)
+def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, u1, u2, terms, out):
+    """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
+    pic = np.empty(2)
+    pi0 = np.empty(2)
+    s0, c0, _ = _elliptic.jacobi_near(r0, m1, kc)
+    for k in range(2):
+        pic[k] = _elliptic.complete_pi(terms[k, 1], terms[k, 2], m1, kc)
+        pi0[k] = _elliptic.pi_split(n0, r0, s0, c0, m1, kc, terms[k, 1], terms[k, 2], pic[k])
+    for i in range(t.size):
+        j, r = _elliptic.split_phase(r0 + lam * t[i], quarter)
+        n = n0 + j
+        sr, cr, dr = _elliptic.jacobi_near(r, m1, kc)
+        sn, cn, dn = _elliptic.quarter_shift(n, sr, cr, dr, kc)
+        # 1 ∓ u from the factored forms keep their relative accuracy near θ = 0, π
+        out[i, 0] = u1 + (u2 - u1) * sn * sn
+        out[i, 1] = (1.0 - u2) + (u2 - u1) * cn * cn
+        out[i, 2] = (1.0 + u1) + (u2 - u1) * sn * sn
+        out[i, 3], out[i, 4], out[i, 5] = sn, cn, dn
+        for k in range(2):
+            value = 0.0
+            if terms[k, 0] != 0.0:
+                pi = _elliptic.pi_split(n, r, sr, cr, m1, kc, terms[k, 1], terms[k, 2], pic[k])
+                value = terms[k, 0] * (pi - pi0[k])
+            out[i, 6 + k] = value
 
 
 class LagrangeTop:
