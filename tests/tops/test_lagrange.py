@@ -204,3 +204,36 @@ def test_bad_input():
         TOP.solve([0.0], [0.0, 0.5, 0.0], [0.0, 1.0])
     with pytest.raises(ValueError, match="theta must lie"):
         TOP.effective_potential(0.0, 1.0, 1.0)
+
+
+def test_turning_points_of_a_top_that_reaches_the_vertical():
+    # J3 = Jz: u = 1 is an exact root; the computed one used to round above 1 (θ_min = NaN)
+    euler0, rates0 = [0.0, np.radians(60.0), 0.0], [1.2000000000000002, 0.0, 3.0]
+    theta_min, theta_max = TOP.turning_points(euler0, rates0)
+    assert theta_min == 0.0 and theta_max == pytest.approx(np.radians(60.0), abs=1e-15)
+    assert TOP.cubic_roots(euler0, rates0)[1] == 1.0
+
+
+@pytest.mark.parametrize("thetadot0", [0.0, 0.8, -1.5, 2.9, -3.5])
+def test_planar_pendulum_swings_through_the_vertical(reference, thetadot0):
+    # J3 = Jz = 0: libration through the bottom (|θ̇0| small) or circulation over the top
+    euler0, rates0 = [0.4, 2.0, -0.3], [0.0, thetadot0, 0.0]
+    t = np.linspace(0.0, 12.0, 121)
+    tr = TOP.solve(t, euler0, rates0)
+    np.testing.assert_allclose(tr.zxz_angles[0], euler0, atol=1e-15)
+    np.testing.assert_allclose(tr.zxz_rates[0], rates0, atol=1e-14)
+    omega_ref, q_ref = _reference_from(reference, tr, t)
+    np.testing.assert_allclose(tr.omega, omega_ref, atol=1e-10)
+    dq = np.minimum(np.abs(tr.q - q_ref).max(axis=1), np.abs(tr.q + q_ref).max(axis=1))
+    assert dq.max() < 1e-10
+    constants = TOP.constants(euler0, rates0)
+    energy = 0.5 * TOP.I1 * tr.zxz_rates[:, 1] ** 2 + TOP.mgl * np.cos(tr.zxz_angles[:, 1])
+    np.testing.assert_allclose(energy, constants.E, rtol=1e-13)
+
+
+def test_bundled_apex_sweep_grid_has_finite_turning_points():
+    # the cells of kreisel's bundled lagrange_apex sweep (φ̇ × ψ̇ at θ0 = 60°), J3 = Jz among them
+    for phidot in np.linspace(-3.0, 3.0, 25):
+        for psidot in np.linspace(2.0, 12.0, 11):
+            theta_min, theta_max = TOP.turning_points([0.0, np.radians(60.0), 0.0], [phidot, 0.0, psidot])
+            assert 0.0 <= theta_min <= theta_max <= np.pi

@@ -31,13 +31,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._compiled import cached as _jit
 from .._validation import as_float_array
 
 __all__ = ["elliptic_pi", "complete_elliptic_pi", "elliptic_f", "elliptic_k", "jacobi_elliptic"]
 
-_jit = njit(cache=True, nogil=True)
 
 #: Duplication stops when 4^-n Q < |A_n| (Carlson 1995, relative error below the
 #: unit roundoff r = 2^-53): Q = (3r)^(-1/6) max|A0 - x| for R_F, (r/4)^(-1/6) for R_D, R_J.
@@ -262,6 +261,14 @@ def quarter_shift(n, sn, cn, dn, kc):
 
 
 @_jit
+def amplitude_split(n, sr, cr, kc):
+    """am u for u = nK + r from sn, cn of r: (n/2)π + am r, or ((n − 1)/2)π + am(K + r)."""
+    if n % 2 == 0:
+        return 0.5 * n * math.pi + math.atan2(sr, cr)
+    return 0.5 * (n - 1) * math.pi + math.atan2(cr, -kc * sr)
+
+
+@_jit
 def split_phase(x, k):
     """(n, r) with x = nK + r, |r| <= K/2."""
     n = math.floor(x / k + 0.5)
@@ -317,7 +324,7 @@ def pi_separatrix(r, nu, one_minus_nu):
 # ---------------------------------------------------------------------------- array wrappers
 
 
-@njit(cache=True)
+@_jit
 def _pi_loop(phi, nu, m1, out):
     for i in range(phi.size):
         kc = math.sqrt(m1[i])
@@ -330,13 +337,13 @@ def _pi_loop(phi, nu, m1, out):
         out[i] = value
 
 
-@njit(cache=True)
+@_jit
 def _complete_pi_loop(nu, m1, out):
     for i in range(nu.size):
         out[i] = complete_pi(nu[i], 1.0 - nu[i], m1[i], math.sqrt(m1[i]))
 
 
-@njit(cache=True)
+@_jit
 def _jacobi_loop(u, m1, sn, cn, dn):
     for i in range(u.size):
         kc = math.sqrt(m1[i])

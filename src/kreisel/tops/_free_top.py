@@ -23,10 +23,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
-from ..so3._kernels import matrix_entries_quat, quat_product, rotated, rotvec_quat
+from .._compiled import cached as _jit
+from .._compiled import parallel
+from .._compiled.kernels import matrix_entries_quat, quat_product, rotated, rotvec_quat
 from ._elliptic import (
+    amplitude_split,
     complete_k,
     complete_pi,
     jacobi_near,
@@ -37,7 +40,6 @@ from ._elliptic import (
     split_phase,
 )
 
-_jit = njit(cache=True, nogil=True)
 
 STEADY, SYMMETRIC, ABOUT_LARGEST_AXIS, ABOUT_SMALLEST_AXIS, SEPARATRIX = 0, 1, 2, 3, 4
 #: Entries of the per-body ``info`` row written by :func:`setup_info`.
@@ -192,14 +194,6 @@ def _phase_functions(x, regime, m1, kc, k, n0):
 
 
 @_jit
-def _amplitude(n, sr, cr, kc):
-    """am u for u = nK + r from sn, cn of r: (n/2)π + am r, or ((n−1)/2)π + am(K + r)."""
-    if n % 2 == 0:
-        return 0.5 * n * math.pi + math.atan2(sr, cr)
-    return 0.5 * (n - 1) * math.pi + math.atan2(cr, -kc * sr)
-
-
-@_jit
 def _model_quat(I1, I2, I3, o1, o2, o3, phi, psi_parity):
     """Rz(φ) Rx(θ) Rz(ψ) with cos θ = I3ω3/J, ψ = atan2(I1ω1, I2ω2) (+2π for odd parity)."""
     half_theta = 0.5 * math.atan2(math.hypot(I1 * o1, I2 * o2), I3 * o3)
@@ -242,7 +236,7 @@ def _asymmetric_samples(I1, I2, I3, w1, w2, w3, q0, q1, q2, q3, t, omega, quat, 
             alpha = 0.0
         else:
             pi = pi_split(n, r, sr, cr, m1, kc, nu, one_minus_nu, pic)
-            alpha = _amplitude(n, sr, cr, kc)
+            alpha = amplitude_split(n, sr, cr, kc)
         if i < 0:
             # the initial state itself (not its rounded elliptic image) fixes the constant rotation
             o1, o2, o3 = w1, w2, w3
@@ -343,7 +337,7 @@ def body_samples(moments, w, q, t, omega, quat):
                             quat, permute)
 
 
-@njit(cache=True)
+@_jit
 def body_omega(moments, w, t, omega):
     """Exact ω (n, 3) of one body at times t (the attitude is not computed)."""
     regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
@@ -359,14 +353,14 @@ def body_omega(moments, w, t, omega):
     _asymmetric_omega(moments[i0], moments[i1], moments[i2], v1, v2, v3, t, omega, permute)
 
 
-@njit(cache=True, parallel=True)
+@parallel
 def batch_samples(moments, w, q, t, omega, quat):
     """:func:`body_samples` for bodies (B, 3), ω0 (B, 3), q0 (B, 4) -> (B, n, 3), (B, n, 4)."""
     for b in prange(moments.shape[0]):
         body_samples(moments[b], w[b], q[b], t, omega[b], quat[b])
 
 
-@njit(cache=True)
+@_jit
 def setup_info(moments, w, info):
     """Per body (B rows): the :data:`INFO_FIELDS` of its motion."""
     for b in range(moments.shape[0]):

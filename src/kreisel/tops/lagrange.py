@@ -13,11 +13,12 @@ u1 <= u2 <= 1 < u3, solved by u = u1 + (u2 − u1) sn²(λt + v0 | m) with φ an
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from .._compiled import cached as _jit
 from .._validation import as_float_array
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
@@ -154,6 +155,10 @@ class _Quadrature:
         others = [w, r / w] if w != 0.0 else [0.0, -p]
         # f(±1) <= 0 and f -> +inf: two roots in [−1, 1], the third above 1
         u1, u2, u3 = sorted([root, *others])
+        # f(±1) = −(b ∓ a)² <= 0 < f on (u1, u2) puts the exact u1, u2 in [−1, 1]; the deflated
+        # quadratic's rounding (a few ulp of its coefficients, amplified where two roots meet)
+        # can carry a root that is exactly ±1 (a top that reaches the vertical, b = ±a) past it
+        u1, u2 = max(u1, -1.0), min(u2, 1.0)
         self.u1, self.u2, self.u3 = u1, u2, u3
         self.lam = 0.5 * np.sqrt(beta * (u3 - u1))
         self.m1 = (u3 - u2) / (u3 - u1)
@@ -194,15 +199,17 @@ class _Quadrature:
         return float(total / (2.0 * self.quarter))
 
 
-@njit(cache=True)
+@_jit
 def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, u1, u2, terms, out):
     """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
-    pic = np.empty(2)
-    pi0 = np.empty(2)
+    pic = np.zeros(2)
+    pi0 = np.zeros(2)
     s0, c0, _ = _elliptic.jacobi_near(r0, m1, kc)
     for k in range(2):
-        pic[k] = _elliptic.complete_pi(terms[k, 1], terms[k, 2], m1, kc)
-        pi0[k] = _elliptic.pi_split(n0, r0, s0, c0, m1, kc, terms[k, 1], terms[k, 2], pic[k])
+        # a vanishing coefficient may come with n = 1 (the vertical reached): its Π is not needed
+        if terms[k, 0] != 0.0:
+            pic[k] = _elliptic.complete_pi(terms[k, 1], terms[k, 2], m1, kc)
+            pi0[k] = _elliptic.pi_split(n0, r0, s0, c0, m1, kc, terms[k, 1], terms[k, 2], pic[k])
     for i in range(t.size):
         j, r = _elliptic.split_phase(r0 + lam * t[i], quarter)
         n = n0 + j
@@ -219,6 +226,78 @@ def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, u1, u2, terms, out):
                 pi = _elliptic.pi_split(n, r, sr, cr, m1, kc, terms[k, 1], terms[k, 2], pic[k])
                 value = terms[k, 0] * (pi - pi0[k])
             out[i, 6 + k] = value
+
+
+class _PlanarPendulum:
+    """J3 = Jz = 0: the top swings in a vertical plane through the vertical (Theory §6.3 with a = b = 0).
+
+    f(u) = (1 − u²)(α − βu) has the roots ±1, so u reaches −1 (or both ±1)
+    and the ZXZ angles cannot follow θ through the vertical; the swing angle
+    χ = π − θ from the downward vertical is solved instead, as a pendulum:
+    sin(χ/2) = k sn(λt + v0 | m) (libration, m = cos²(θ0/2) + g, m1 = sin²(θ0/2) − g,
+    g = I1 θ̇0²/(4 mgl), λ = √(mgl/I1)) or χ/2 = ±am(λt + v0 | m) (circulation,
+    m = 1/(cos²(θ0/2) + g), λ = √(mgl (cos²(θ0/2) + g)/I1)). θ = π − χ is
+    returned continuous (outside [0, π] beyond the vertical), φ and ψ stay
+    constant.
+    """
+
+    a = b = 0.0
+
+    def __init__(self, top, theta0, thetadot0):
+        g = top.I1 * thetadot0**2 / (4.0 * top.mgl)
+        s2, c2 = np.sin(0.5 * theta0) ** 2, np.cos(0.5 * theta0) ** 2
+        level = c2 + g  # (E + mgl)/(2 mgl)
+        self.m1 = abs(s2 - g) / (level if s2 < g else 1.0)
+        self.kc = np.sqrt(self.m1)
+        self.circulating = bool(s2 <= g)
+        self.lam = np.sqrt(top.mgl / top.I1 * (level if self.circulating else 1.0))
+        self.k = np.sqrt(1.0 - self.m1)
+        half = 0.5 * (np.pi - theta0)  # χ0/2 in (0, π/2)
+        if self.circulating:
+            self.sign = -np.sign(thetadot0)
+            sn0, cn0 = self.sign * np.sin(half), np.cos(half)
+            self.u1, self.u2, self.u3 = -1.0, 1.0, 2.0 * level - 1.0  # α/β
+        else:
+            self.sign = 1.0
+            # sn v0 = sin(χ0/2)/k, cn v0 = χ̇0/(2kλ) = −θ̇0 √(I1/(4 mgl))/k: both times k, exact
+            sn0, cn0 = np.cos(0.5 * theta0), -thetadot0 * np.sqrt(top.I1 / (4.0 * top.mgl))
+            self.u1, self.u2, self.u3 = -1.0, min(np.cos(theta0) + 2.0 * g, 1.0), 1.0
+        if self.m1 == 0.0:
+            self.quarter = np.inf
+            self.n0, self.r0 = 0, np.arcsinh(sn0 / cn0)
+        else:
+            self.quarter = _elliptic.complete_k(self.m1, self.kc)
+            self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, cn0, self.m1, self.kc)
+
+    def angles_and_rates(self, t, top):
+        t = np.asarray(t, dtype=float)
+        out = np.empty((t.size, 4))
+        _pendulum_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, out)
+        sn, cn, dn, am = out.T
+        if self.circulating:
+            chi, chidot = 2.0 * self.sign * am, 2.0 * self.sign * self.lam * dn
+        else:
+            chi, chidot = 2.0 * np.arctan2(self.k * sn, dn), 2.0 * self.k * self.lam * cn
+        zeros = np.zeros_like(t)
+        return np.stack([zeros, np.pi - chi, zeros], axis=-1), np.stack([zeros, -chidot, zeros], axis=-1)
+
+    def mean_precession_rate(self):
+        return 0.0
+
+
+@_jit
+def _pendulum_samples(t, lam, n0, r0, m1, kc, quarter, out):
+    """sn, cn, dn and am of v = r0 + λt (split phase n0 K + ...; m1 = 0: tanh, sech, gd)."""
+    for i in range(t.size):
+        v = r0 + lam * t[i]
+        if m1 == 0.0:
+            sech = 1.0 / math.cosh(v)
+            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = math.tanh(v), sech, sech, math.atan(math.sinh(v))
+            continue
+        j, r = _elliptic.split_phase(v, quarter)
+        sr, cr, dr = _elliptic.jacobi_near(r, m1, kc)
+        out[i, 0], out[i, 1], out[i, 2] = _elliptic.quarter_shift(n0 + j, sr, cr, dr, kc)
+        out[i, 3] = _elliptic.amplitude_split(n0 + j, sr, cr, kc)
 
 
 class LagrangeTop:
@@ -303,6 +382,8 @@ class LagrangeTop:
     def _quadrature(self, euler0, rates0):
         euler0, rates0 = self._check_state(euler0, rates0)
         constants = self._constants(euler0, rates0)
+        if constants.J3 == 0.0 and constants.Jz == 0.0:
+            return _PlanarPendulum(self, euler0[1], rates0[1]), euler0, rates0
         u0 = np.cos(euler0[1])
         udot0 = -np.sin(euler0[1]) * rates0[1]
         return _Quadrature(self, constants, u0, udot0), euler0, rates0
