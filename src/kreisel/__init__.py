@@ -9,34 +9,39 @@ body components to space components, uppercase Euler sequences intrinsic and
 lowercase extrinsic, SI units, ``frame="space" | "body"``.
 """
 
-from .so3 import *  # noqa: F401,F403
-from .so3 import __all__ as _so3_all
-from .kinematics import *  # noqa: F401,F403
-from .kinematics import __all__ as _kinematics_all
-from . import inertia  # noqa: F401
-from .inertia import RigidBody  # noqa: F401
-from .dynamics import *  # noqa: F401,F403
-from .dynamics import __all__ as _dynamics_all
-from .tops import *  # noqa: F401,F403
-from .tops import __all__ as _tops_all
-from .se3 import *  # noqa: F401,F403
-from .se3 import __all__ as _se3_all
-from . import frames, earth, nav  # noqa: F401
-from . import io, sweep  # noqa: F401  (user-facing layers; neither imports dask or the web stack)
+import importlib
+
 from ._version import __version__
 
-__all__ = [
-    *_so3_all,
-    *_kinematics_all,
-    *_dynamics_all,
-    *_tops_all,
-    *_se3_all,
-    "inertia",
-    "RigidBody",
-    "frames",
-    "earth",
-    "nav",
-    "io",
-    "sweep",
-    "__version__",
-]
+# Names are imported on first use (module __getattr__), so that ``import kreisel`` and the command line's
+# help and ``convert`` do not load the simulation, plotting, Dask or web stacks they do not need.
+_STAR = ("so3", "kinematics", "dynamics", "tops", "se3")   # subpackages whose public names kreisel re-exports
+_SUBPACKAGES = ("so3", "kinematics", "inertia", "dynamics", "tops", "se3", "frames", "earth", "nav", "io", "sweep",
+                "plot", "cli", "web")
+_FROM = {"RigidBody": "inertia"}
+
+
+def __getattr__(name):
+    if name == "__all__":
+        names = [n for package in _STAR for n in importlib.import_module(f"{__name__}.{package}").__all__]
+        value = [*names, "inertia", "RigidBody", "frames", "earth", "nav", "io", "sweep", "__version__"]
+    elif name in _SUBPACKAGES:
+        value = importlib.import_module(f"{__name__}.{name}")
+    elif name in _FROM:
+        value = getattr(importlib.import_module(f"{__name__}.{_FROM[name]}"), name)
+    elif name.startswith("__"):
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    else:
+        for package in _STAR:
+            module = importlib.import_module(f"{__name__}.{package}")
+            if name in module.__all__:
+                value = getattr(module, name)
+                break
+        else:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__getattr__("__all__")))

@@ -1,0 +1,54 @@
+"""`kreisel --help` and `kreisel convert` load only what they need (not the simulation, plotting, Dask or web stacks)."""
+
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import kreisel
+
+SRC = pathlib.Path(kreisel.__file__).resolve().parents[1]
+
+PROBE = """
+import json, sys
+from kreisel.cli import run
+sys.argv = ["kreisel", *json.loads(sys.argv[1])]
+try:
+    run()
+except SystemExit:
+    pass
+print(json.dumps(sorted(sys.modules)), file=sys.stderr)
+"""
+
+HEAVY = ("kreisel.dynamics", "kreisel.tops", "kreisel.plot", "kreisel.sweep", "kreisel.web", "kreisel.io.run",
+         "matplotlib", "dask", "distributed", "fastapi", "uvicorn", "xarray", "pandas", "zarr")
+
+
+def loaded(*args):
+    env = dict(os.environ, PYTHONPATH=str(SRC))
+    process = subprocess.run([sys.executable, "-c", PROBE, json.dumps(args)], env=env, capture_output=True,
+                             text=True, timeout=600)
+    return set(json.loads(process.stderr.strip().splitlines()[-1]))
+
+
+def heavy(modules):
+    return sorted(m for m in modules if any(m == h or m.startswith(h + ".") for h in HEAVY))
+
+
+def test_import_kreisel_loads_no_subpackage():
+    env = dict(os.environ, PYTHONPATH=str(SRC))
+    code = "import sys, kreisel; print(sorted(m for m in sys.modules if m.startswith(('kreisel.', 'numpy'))))"
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=600).stdout
+    assert out.strip() == "['kreisel._version']"
+
+
+def test_help_loads_no_numerics():
+    modules = loaded("--help")
+    assert heavy(modules) == [] and "numpy" not in modules and "numba" not in modules
+
+
+def test_convert_loads_only_the_rotation_layer():
+    modules = loaded("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degrees")
+    assert "kreisel.so3" in modules
+    assert heavy(modules) == []
