@@ -25,7 +25,15 @@ _EPS = float(np.finfo(float).eps)
 
 
 class Regime(enum.IntEnum):
-    """Kind of free motion; ``str(regime)``/``.label`` is the name :meth:`EulerTop.regime` returns."""
+    """Kind of free motion; ``str(regime)``/``.label`` is the name :meth:`EulerTop.regime` returns.
+
+    Examples
+    --------
+    >>> Regime.SEPARATRIX.label, str(Regime.ABOUT_LARGEST_AXIS)
+    ('separatrix', 'about_largest_axis')
+    >>> EulerTop(1.0, 2.0, 3.0).regime([0.1, 1.0, 0.0]) == Regime.ABOUT_SMALLEST_AXIS.label
+    True
+    """
 
     STEADY = _free_top.STEADY
     SYMMETRIC = _free_top.SYMMETRIC
@@ -35,7 +43,13 @@ class Regime(enum.IntEnum):
 
     @property
     def label(self):
-        """``"steady"``, ``"symmetric"``, ``"about_largest_axis"``, ``"about_smallest_axis"``, ``"separatrix"``."""
+        """``"steady"``, ``"symmetric"``, ``"about_largest_axis"``, ``"about_smallest_axis"``, ``"separatrix"``.
+
+        Examples
+        --------
+        >>> Regime.STEADY.label
+        'steady'
+        """
         return self.name.lower()
 
     def __str__(self):
