@@ -1,4 +1,4 @@
-"""Taylor coefficients of the kinematic coefficient functions, from exact rationals.
+"""Taylor coefficients of the SO(3) and SE(3) coefficient functions, from exact rationals.
 
 Each function of the angle ψ used by the rate maps loses digits to
 cancellation when evaluated directly at small ψ; below a switch-over angle
@@ -21,7 +21,8 @@ def _bernoulli(count):
     return b
 
 
-def _horner_order(coefficients):
+def horner_order(coefficients):
+    """Floats highest order first, for Horner's rule, from coefficients lowest order first."""
     return tuple(float(c) for c in reversed(coefficients))
 
 
@@ -34,6 +35,16 @@ def bortz_coefficients(terms):
 def sine_remainder_coefficients(terms):
     """(ψ - sin ψ)/ψ³ = Σ_{n>=0} (-1)^n ψ^(2n)/(2n+3)!."""
     return [Fraction((-1) ** n, factorial(2 * n + 3)) for n in range(terms)]
+
+
+def cosine_remainder_coefficients(terms):
+    """(ψ² + 2 cos ψ − 2)/(2ψ⁴) = Σ_{n>=0} (-1)^n ψ^(2n)/(2n+4)!."""
+    return [Fraction((-1) ** n, factorial(2 * n + 4)) for n in range(terms)]
+
+
+def se3_coupling_coefficients(terms):
+    """(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵) = Σ_{n>=0} (-1)^n (n+1) ψ^(2n)/(2n+5)!."""
+    return [Fraction((-1) ** n * (n + 1), factorial(2 * n + 5)) for n in range(terms)]
 
 
 def cosine_remainder_slope_coefficients(terms):
@@ -50,9 +61,9 @@ def sine_remainder_slope_coefficients(terms):
 # relative at the switch-over, and the direct formulas above it lose at most
 # ~10 ulp (Bortz, ψ - sin ψ) or ~40 ulp (the slopes) to cancellation.
 BORTZ_SERIES_BELOW = 1.0
-BORTZ_SERIES = _horner_order(bortz_coefficients(12))
+BORTZ_SERIES = horner_order(bortz_coefficients(12))
 SINE_REMAINDER_SERIES_BELOW = 1.0
-SINE_REMAINDER_SERIES = _horner_order(sine_remainder_coefficients(9))
+SINE_REMAINDER_SERIES = horner_order(sine_remainder_coefficients(9))
 SLOPE_SERIES_BELOW = 2.0
-COSINE_REMAINDER_SLOPE_SERIES = _horner_order(cosine_remainder_slope_coefficients(16))
-SINE_REMAINDER_SLOPE_SERIES = _horner_order(sine_remainder_slope_coefficients(16))
+COSINE_REMAINDER_SLOPE_SERIES = horner_order(cosine_remainder_slope_coefficients(16))
+SINE_REMAINDER_SLOPE_SERIES = horner_order(sine_remainder_slope_coefficients(16))

@@ -48,7 +48,7 @@ import numpy as np
 from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
-from . import _integrators as _k
+from . import _integrators
 from . import _rows
 from . import forces as _forces
 from . import torques as _torques
@@ -57,13 +57,13 @@ from .trajectory import Trajectory
 __all__ = ["simulate", "simulate_batch", "simulate_6dof", "METHODS"]
 
 METHODS = {
-    "dop853": _k.DOP853,
-    "splitting": _k.SPLITTING,
-    "splitting4": _k.SPLITTING4,
-    "dmv": _k.DMV,
-    "rkmk4": _k.RKMK4,
-    "midpoint": _k.MIDPOINT,
-    "rk4": _k.RK4,
+    "dop853": _integrators.DOP853,
+    "splitting": _integrators.SPLITTING,
+    "splitting4": _integrators.SPLITTING4,
+    "dmv": _integrators.DMV,
+    "rkmk4": _integrators.RKMK4,
+    "midpoint": _integrators.MIDPOINT,
+    "rk4": _integrators.RK4,
     "scipy": None,
 }
 ADAPTIVE = ("dop853", "scipy")
@@ -71,7 +71,7 @@ DEFAULT_RTOL = 1e-12
 
 _STATUS = {
     **_dop853.MESSAGES,
-    _k.NO_CONVERGENCE: "the implicit iteration did not converge (reduce dt)",
+    _integrators.NO_CONVERGENCE: "the implicit iteration did not converge (reduce dt)",
 }
 
 
@@ -240,7 +240,7 @@ def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol):
     out = np.empty((t.size, y0.size))
     if method == "scipy":
         return _scipy(t, y0, moments, mass, rows, frows, rtol, atol)
-    status = _k.run(METHODS[method], t, dt, y0, moments, mass, rows, frows, rtol, atol, _dop853.tableau(), out)
+    status = _integrators.run(METHODS[method], t, dt, y0, moments, mass, rows, frows, rtol, atol, _dop853.tableau(), out)
     _raise_status(status)
     return out
 
@@ -252,7 +252,7 @@ def _scipy(t, y0, moments, mass, rows, frows, rtol, atol):
 
     def fun(tt, y):
         dy = np.empty_like(y)
-        _k.rhs(tt, y, y.size, moments, mass, rows, frows, dy, 0, scratch)
+        _integrators.rhs(tt, y, y.size, moments, mass, rows, frows, dy, 0, scratch)
         return dy
 
     if t.size == 1:
@@ -524,7 +524,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     def integrate(lo, hi):
         out = np.empty((hi - lo, t.size, 7))
         status = np.zeros(hi - lo, dtype=np.int64)
-        _k.run_batch(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
+        _integrators.run_batch(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
                      tables, out, status)
         _raise_status(status)
         return out

@@ -20,8 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled import cached
-from .._compiled import dop853 as _dop853
+from .._compiled import cached, dop853 as _dop853
 from .._validation import as_float_array
 from ..frames.particle import _NPAR, _FIELD, _W, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin

@@ -15,8 +15,7 @@ import math
 
 import numpy as np
 
-from .._compiled import cached
-from .._compiled import dop853 as _dop853
+from .._compiled import cached, dop853 as _dop853
 from .._validation import as_float_array
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 

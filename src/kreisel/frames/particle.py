@@ -9,8 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .._compiled import cached
-from .._compiled import dop853 as _dop853
+from .._compiled import cached, dop853 as _dop853
 from .._validation import as_float_array
 from .relative import canonical_momentum, hamiltonian
 

@@ -198,6 +198,186 @@ class RigidBody:
         """
         return cls.from_properties(from_points(masses, positions))
 
+    @classmethod
+    def box(cls, mass, size):
+        """Rigid body of a homogeneous box: :func:`kreisel.inertia.box` (same arguments and axes).
+
+        Examples
+        --------
+        A 1 × 2 × 3 m box: each moment sums the squared edges across its axis:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, a, b, c = 12.0, 1.0, 2.0, 3.0
+        >>> body = kr.RigidBody.box(m, (a, b, c))
+        >>> body.inertia.diagonal().round(6).tolist()
+        [13.0, 10.0, 5.0]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m / 12 * (b**2 + c**2), m / 12 * (a**2 + c**2), m / 12 * (a**2 + b**2)], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.box(mass, size), mass)
+
+    @classmethod
+    def solid_sphere(cls, mass, radius):
+        """Rigid body of a homogeneous solid sphere: :func:`kreisel.inertia.solid_sphere` (same arguments and axes).
+
+        Examples
+        --------
+        A ball is isotropic, I = 2/5 m r² about every axis:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r = 5.0, 0.2
+        >>> body = kr.RigidBody.solid_sphere(m, r)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.08, 0.08, 0.08]
+        >>> bool(np.allclose(body.inertia.diagonal(), [2 / 5 * m * r**2] * 3, rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.solid_sphere(mass, radius), mass)
+
+    @classmethod
+    def hollow_sphere(cls, mass, radius, inner_radius=None):
+        """Rigid body of a homogeneous hollow sphere: :func:`kreisel.inertia.hollow_sphere` (same arguments and axes).
+
+        Examples
+        --------
+        A thin shell keeps all its mass at r, so I = 2/3 m r² exceeds the ball's 2/5 m r²:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r = 3.0, 0.5
+        >>> body = kr.RigidBody.hollow_sphere(m, r)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.5, 0.5, 0.5]
+        >>> bool(np.allclose(body.inertia.diagonal(), [2 / 3 * m * r**2] * 3, rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.hollow_sphere(mass, radius, inner_radius=inner_radius), mass)
+
+    @classmethod
+    def solid_cylinder(cls, mass, radius, height):
+        """Rigid body of a homogeneous solid cylinder: :func:`kreisel.inertia.solid_cylinder` (same arguments and axes).
+
+        Examples
+        --------
+        A cylinder longer than √3 r spins more easily about its axis (I_z = m r²/2) than end over end:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r, h = 6.0, 0.5, 2.0
+        >>> body = kr.RigidBody.solid_cylinder(m, r, h)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [2.375, 2.375, 0.75]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m * (3 * r**2 + h**2) / 12] * 2 + [m * r**2 / 2], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.solid_cylinder(mass, radius, height), mass)
+
+    @classmethod
+    def hollow_cylinder(cls, mass, radius, height, inner_radius=None):
+        """Rigid body of a homogeneous hollow cylinder: :func:`kreisel.inertia.hollow_cylinder` (same arguments and axes).
+
+        Examples
+        --------
+        A thick tube: the radii enter only through R² + r²:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, R, r, h = 4.0, 0.5, 0.3, 1.0
+        >>> body = kr.RigidBody.hollow_cylinder(m, R, h, inner_radius=r)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.673333, 0.673333, 0.68]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m * (3 * (R**2 + r**2) + h**2) / 12] * 2 + [m * (R**2 + r**2) / 2], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.hollow_cylinder(mass, radius, height, inner_radius=inner_radius), mass)
+
+    @classmethod
+    def solid_cone(cls, mass, radius, height, about='center_of_mass'):
+        """Rigid body of a homogeneous solid cone: :func:`kreisel.inertia.solid_cone` (same arguments and axes).
+
+        Examples
+        --------
+        A cone about its apex, the fixed point of a top: the transverse moment is the central one plus m (3h/4)² (parallel axes):
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r, h = 2.0, 0.5, 1.0
+        >>> body = kr.RigidBody.solid_cone(m, r, h, about='apex')
+        >>> body.inertia.diagonal().round(6).tolist()
+        [1.275, 1.275, 0.15]
+        >>> bool(np.allclose(body.inertia.diagonal(), [3 / 20 * m * r**2 + 3 / 80 * m * h**2 + m * (3 * h / 4) ** 2] * 2 + [3 / 10 * m * r**2], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.solid_cone(mass, radius, height, about=about), mass)
+
+    @classmethod
+    def solid_ellipsoid(cls, mass, semi_axes):
+        """Rigid body of a homogeneous solid ellipsoid: :func:`kreisel.inertia.solid_ellipsoid` (same arguments and axes).
+
+        Examples
+        --------
+        An ellipsoid: the box formula with m/5 a² in place of m/12 a²:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, a, b, c = 5.0, 1.0, 2.0, 3.0
+        >>> body = kr.RigidBody.solid_ellipsoid(m, (a, b, c))
+        >>> body.inertia.diagonal().round(6).tolist()
+        [13.0, 10.0, 5.0]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m / 5 * (b**2 + c**2), m / 5 * (a**2 + c**2), m / 5 * (a**2 + b**2)], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.solid_ellipsoid(mass, semi_axes), mass)
+
+    @classmethod
+    def thin_disk(cls, mass, radius):
+        """Rigid body of a homogeneous thin disk: :func:`kreisel.inertia.thin_disk` (same arguments and axes).
+
+        Examples
+        --------
+        A thin disk obeys the perpendicular-axis theorem, I_z = I_x + I_y:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r = 2.0, 0.3
+        >>> body = kr.RigidBody.thin_disk(m, r)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.045, 0.045, 0.09]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m * r**2 / 4] * 2 + [m * r**2 / 2], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.thin_disk(mass, radius), mass)
+
+    @classmethod
+    def thin_ring(cls, mass, radius):
+        """Rigid body of a homogeneous thin ring: :func:`kreisel.inertia.thin_ring` (same arguments and axes).
+
+        Examples
+        --------
+        A hoop has all its mass at r from its axis (I_z = m r²) and is a plate, I_z = I_x + I_y:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, r = 2.0, 0.3
+        >>> body = kr.RigidBody.thin_ring(m, r)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.09, 0.09, 0.18]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m * r**2 / 2] * 2 + [m * r**2], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.thin_ring(mass, radius), mass)
+
+    @classmethod
+    def torus(cls, mass, major_radius, minor_radius):
+        """Rigid body of a homogeneous torus: :func:`kreisel.inertia.torus` (same arguments and axes).
+
+        Examples
+        --------
+        A torus (tube radius a around a circle of radius R) tends to the hoop as a → 0:
+
+        >>> import numpy as np, kreisel as kr
+        >>> m, R, a = 3.0, 0.4, 0.1
+        >>> body = kr.RigidBody.torus(m, R, a)
+        >>> body.inertia.diagonal().round(6).tolist()
+        [0.25875, 0.25875, 0.5025]
+        >>> bool(np.allclose(body.inertia.diagonal(), [m * (R**2 / 2 + 5 / 8 * a**2)] * 2 + [m * (R**2 + 3 / 4 * a**2)], rtol=1e-12, atol=0))
+        True
+        """
+        return cls(solids.torus(mass, major_radius, minor_radius), mass)
+
     def __repr__(self):
         if self.is_principal:
             body = np.array2string(np.diagonal(self._inertia), separator=", ")
@@ -205,107 +385,3 @@ class RigidBody:
             body = np.array2string(self._inertia, separator=", ").replace("\n", "")
         return f"RigidBody({body}, mass={self._mass!r})"
 
-
-# Per solid: what the example shows, the variables, the constructor's arguments after the
-# mass, the textbook moments (I_x, I_y, I_z) as an expression in those variables, and the
-# moments the constructor returns (rounded to 6 decimals), so each generated docstring
-# checks the body against its closed form (Theory §4.1).
-_SOLID_EXAMPLES = {
-    "box": (
-        "A 1 × 2 × 3 m box: each moment sums the squared edges across its axis",
-        "m, a, b, c = 12.0, 1.0, 2.0, 3.0", "(a, b, c)",
-        "[m / 12 * (b**2 + c**2), m / 12 * (a**2 + c**2), m / 12 * (a**2 + b**2)]",
-        "[13.0, 10.0, 5.0]",
-    ),
-    "solid_sphere": (
-        "A ball is isotropic, I = 2/5 m r² about every axis",
-        "m, r = 5.0, 0.2", "r", "[2 / 5 * m * r**2] * 3", "[0.08, 0.08, 0.08]",
-    ),
-    "hollow_sphere": (
-        "A thin shell keeps all its mass at r, so I = 2/3 m r² exceeds the ball's 2/5 m r²",
-        "m, r = 3.0, 0.5", "r", "[2 / 3 * m * r**2] * 3", "[0.5, 0.5, 0.5]",
-    ),
-    "solid_cylinder": (
-        "A cylinder longer than √3 r spins more easily about its axis (I_z = m r²/2)"
-        " than end over end",
-        "m, r, h = 6.0, 0.5, 2.0", "r, h",
-        "[m * (3 * r**2 + h**2) / 12] * 2 + [m * r**2 / 2]", "[2.375, 2.375, 0.75]",
-    ),
-    "hollow_cylinder": (
-        "A thick tube: the radii enter only through R² + r²",
-        "m, R, r, h = 4.0, 0.5, 0.3, 1.0", "R, h, inner_radius=r",
-        "[m * (3 * (R**2 + r**2) + h**2) / 12] * 2 + [m * (R**2 + r**2) / 2]",
-        "[0.673333, 0.673333, 0.68]",
-    ),
-    "solid_cone": (
-        "A cone about its apex, the fixed point of a top: the transverse moment is the"
-        " central one plus m (3h/4)² (parallel axes)",
-        "m, r, h = 2.0, 0.5, 1.0", "r, h, about='apex'",
-        "[3 / 20 * m * r**2 + 3 / 80 * m * h**2 + m * (3 * h / 4) ** 2] * 2 + [3 / 10 * m * r**2]",
-        "[1.275, 1.275, 0.15]",
-    ),
-    "solid_ellipsoid": (
-        "An ellipsoid: the box formula with m/5 a² in place of m/12 a²",
-        "m, a, b, c = 5.0, 1.0, 2.0, 3.0", "(a, b, c)",
-        "[m / 5 * (b**2 + c**2), m / 5 * (a**2 + c**2), m / 5 * (a**2 + b**2)]",
-        "[13.0, 10.0, 5.0]",
-    ),
-    "thin_disk": (
-        "A thin disk obeys the perpendicular-axis theorem, I_z = I_x + I_y",
-        "m, r = 2.0, 0.3", "r", "[m * r**2 / 4] * 2 + [m * r**2 / 2]", "[0.045, 0.045, 0.09]",
-    ),
-    "thin_ring": (
-        "A hoop has all its mass at r from its axis (I_z = m r²) and is a plate, I_z = I_x + I_y",
-        "m, r = 2.0, 0.3", "r", "[m * r**2 / 2] * 2 + [m * r**2]", "[0.09, 0.09, 0.18]",
-    ),
-    "torus": (
-        "A torus (tube radius a around a circle of radius R) tends to the hoop as a → 0",
-        "m, R, a = 3.0, 0.4, 0.1", "R, a",
-        "[m * (R**2 / 2 + 5 / 8 * a**2)] * 2 + [m * (R**2 + 3 / 4 * a**2)]",
-        "[0.25875, 0.25875, 0.5025]",
-    ),
-}
-
-
-def _solid_constructor(solid):
-    def constructor(cls, mass, *args, **kwargs):
-        return cls(solid(mass, *args, **kwargs), mass)
-
-    name = solid.__name__
-    remark, variables, arguments, textbook, moments = _SOLID_EXAMPLES[name]
-    constructor.__name__ = name
-    constructor.__qualname__ = f"RigidBody.{name}"
-    constructor.__doc__ = f"""Rigid body of the homogeneous solid of :func:`kreisel.inertia.{name}`.
-
-    Same arguments, body axes and reference point as that function; the body's
-    inertia tensor is the closed form given there (Theory §4.1).
-
-    Examples
-    --------
-    {remark}:
-
-    >>> import numpy as np, kreisel as kr
-    >>> {variables}
-    >>> body = kr.RigidBody.{name}(m, {arguments})
-    >>> body.inertia.diagonal().round(6).tolist()
-    {moments}
-    >>> bool(np.allclose(body.inertia.diagonal(), {textbook}, rtol=1e-12, atol=0))
-    True
-    """
-    return classmethod(constructor)
-
-
-for _solid in (
-    solids.box,
-    solids.solid_sphere,
-    solids.hollow_sphere,
-    solids.solid_cylinder,
-    solids.hollow_cylinder,
-    solids.solid_cone,
-    solids.solid_ellipsoid,
-    solids.thin_disk,
-    solids.thin_ring,
-    solids.torus,
-):
-    setattr(RigidBody, _solid.__name__, _solid_constructor(_solid))
-del _solid

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .._compiled import dexp as k
+from .._compiled import dexp
 from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
@@ -99,14 +99,14 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
 def _rotvec_acceleration(psi, v, acc, sign, out):
     x, y, z = psi[0], psi[1], psi[2]
     angle = math.sqrt(x * x + y * y + z * z)
-    a, b = k.dexp_coefficients(angle)
-    da, db = k.dexp_coefficient_slopes(angle)
+    a, b = dexp.dexp_coefficients(angle)
+    da, db = dexp.dexp_coefficient_slopes(angle)
     radial = x * v[0] + y * v[1] + z * v[2]
-    cx, cy, cz = k.cross(x, y, z, v[0], v[1], v[2])
-    ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
-    vx, vy, vz = k.cross(v[0], v[1], v[2], cx, cy, cz)
-    ax, ay, az = k.cross(x, y, z, acc[0], acc[1], acc[2])
-    aax, aay, aaz = k.cross(x, y, z, ax, ay, az)
+    cx, cy, cz = dexp.cross(x, y, z, v[0], v[1], v[2])
+    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
+    vx, vy, vz = dexp.cross(v[0], v[1], v[2], cx, cy, cz)
+    ax, ay, az = dexp.cross(x, y, z, acc[0], acc[1], acc[2])
+    aax, aay, aaz = dexp.cross(x, y, z, ax, ay, az)
     lin = sign * (a * ax + radial * da * cx), sign * (a * ay + radial * da * cy), sign * (a * az + radial * da * cz)
     out[0] = acc[0] + lin[0] + b * aax + radial * db * ccx + b * vx
     out[1] = acc[1] + lin[1] + b * aay + radial * db * ccy + b * vy

@@ -27,8 +27,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import dexp as k
-from .._compiled import cached, parallel
+from .._compiled import cached, dexp, parallel
 from .._compiled.gufunc import gufunc
 from .._validation import check_frame
 from ..so3.euler import parse_sequence
@@ -65,7 +64,7 @@ def _code_tuple(code):
 @cached
 def _omega_element(x0, x1, x2, r0, r1, r2, code):
     """ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order."""
-    c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
     if code[3]:
         r0, r2 = r2, r0
     return (
@@ -78,12 +77,12 @@ def _omega_element(x0, x1, x2, r0, r1, r2, code):
 @cached
 def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
     """Rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2)."""
-    c0, c1, c2, det = k.euler_columns(x0, x1, x2, code)
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
     middle = c1[0] * w0 + c1[1] * w1 + c1[2] * w2
     if abs(det) <= tol:
         return math.nan, middle, math.nan
-    a0, a1, a2 = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
-    b0, b1, b2 = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
+    a0, a1, a2 = dexp.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    b0, b1, b2 = dexp.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
     inv = 1.0 / det
     r0 = (a0 * w0 + a1 * w1 + a2 * w2) * inv
     r2 = (b0 * w0 + b1 * w1 + b2 * w2) * inv
@@ -127,7 +126,7 @@ def _rates_from_omega(angles, w, code, tol, out):
 
 @gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(5)->(3,3)")
 def _matrix(angles, code, out):
-    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
+    c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     if code[3]:
         c0, c2 = c2, c0
     for i in range(3):
@@ -138,11 +137,11 @@ def _matrix(angles, code, out):
 
 @gufunc(["void(f8[:], i8[:], f8, f8[:, :])"], "(3),(5),()->(3,3)")
 def _matrix_inverse(angles, code, tol, out):
-    c0, c1, c2, det = k.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
+    c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     first, last = (2, 0) if code[3] else (0, 2)
     inv = math.nan if abs(det) <= tol else 1.0 / det
-    a = k.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
-    b = k.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
+    a = dexp.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    b = dexp.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
     for i in range(3):
         out[1, i] = c1[i]
         out[first, i] = a[i] * inv

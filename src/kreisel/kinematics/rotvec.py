@@ -24,8 +24,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import dexp as k
-from .._compiled import cached, parallel
+from .._compiled import cached, dexp, parallel
 from .._compiled.gufunc import gufunc
 from ._checks import frame_sign, tolerance, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning, warn_if_any
@@ -46,7 +45,7 @@ _SPACE, _BODY = 1.0, -1.0
 
 @gufunc(["void(f8, f8[:])"], "()->()")
 def _bortz(angle, out):
-    out[0] = k.bortz_coefficient(angle)
+    out[0] = dexp.bortz_coefficient(angle)
 
 
 # Element kernels on scalars: passing array views into a compiled call costs
@@ -57,9 +56,9 @@ def _bortz(angle, out):
 # J v = v + sign A ψ×v + B ψ×(ψ×v): sign +1 is J_l (space), −1 is J_r (body)
 @cached
 def _dexp_element(x, y, z, v0, v1, v2, sign):
-    a, b = k.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    cx, cy, cz = k.cross(x, y, z, v0, v1, v2)
-    ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
+    a, b = dexp.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
+    cx, cy, cz = dexp.cross(x, y, z, v0, v1, v2)
+    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
     sa = sign * a
     return v0 + sa * cx + b * ccx, v1 + sa * cy + b * ccy, v2 + sa * cz + b * ccz
 
@@ -68,11 +67,11 @@ def _dexp_element(x, y, z, v0, v1, v2, sign):
 @cached
 def _dexp_inverse_element(x, y, z, w0, w1, w2, sign, tol):
     angle = math.sqrt(x * x + y * y + z * z)
-    if k.rotvec_singular(angle, tol):
+    if dexp.rotvec_singular(angle, tol):
         return math.nan, math.nan, math.nan
-    f = k.bortz_coefficient(angle)
-    cx, cy, cz = k.cross(x, y, z, w0, w1, w2)
-    ccx, ccy, ccz = k.cross(x, y, z, cx, cy, cz)
+    f = dexp.bortz_coefficient(angle)
+    cx, cy, cz = dexp.cross(x, y, z, w0, w1, w2)
+    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
     h = -0.5 * sign
     return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
 
@@ -119,7 +118,7 @@ def _write_matrix(x, y, z, linear, quadratic, out):
 @gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
 def _dexp_matrix(psi, sign, out):
     x, y, z = psi[0], psi[1], psi[2]
-    a, b = k.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
+    a, b = dexp.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
     _write_matrix(x, y, z, sign * a, b, out)
 
 
@@ -127,10 +126,10 @@ def _dexp_matrix(psi, sign, out):
 def _dexp_inverse_matrix(psi, sign, tol, out):
     x, y, z = psi[0], psi[1], psi[2]
     angle = math.sqrt(x * x + y * y + z * z)
-    if k.rotvec_singular(angle, tol):
+    if dexp.rotvec_singular(angle, tol):
         out[:, :] = math.nan
         return
-    _write_matrix(x, y, z, -0.5 * sign, k.bortz_coefficient(angle), out)
+    _write_matrix(x, y, z, -0.5 * sign, dexp.bortz_coefficient(angle), out)
 
 
 def bortz_coefficient(angle):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .._compiled import kernels as k
+from .._compiled import kernels
 from .._compiled.gufunc import gufunc
 
 _F8 = "f8[:]"
@@ -28,8 +28,8 @@ def split(pose):
 # Results are packed as [q, t] in one (7,) core: one output array per call.
 @gufunc(_signature(6), "(4),(3),(4),(3),(7)->(7)")
 def _compose(q1, t1, q2, t2, carrier, out):
-    k.qmul(q1, q2, out[:4])
-    k.qrotate(q1, t2, out[4:])
+    kernels.qmul(q1, q2, out[:4])
+    kernels.qrotate(q1, t2, out[4:])
     out[4] += t1[0]
     out[5] += t1[1]
     out[6] += t1[2]
@@ -41,7 +41,7 @@ def _invert(q, t, carrier, out):
     out[1] = -q[1]
     out[2] = -q[2]
     out[3] = -q[3]
-    k.qrotate_inverse(q, t, out[4:])
+    kernels.qrotate_inverse(q, t, out[4:])
     out[4] = -out[4]
     out[5] = -out[5]
     out[6] = -out[6]
@@ -60,7 +60,7 @@ def invert(q, t):
 @gufunc(_signature(4), "(4),(3),(3)->(3)")
 def apply(q, t, p, out):
     """r_P = R r′_CP + r_C (Theory §1.3, Chasles)."""
-    k.qrotate(q, p, out)
+    kernels.qrotate(q, p, out)
     out[0] += t[0]
     out[1] += t[1]
     out[2] += t[2]
@@ -77,13 +77,13 @@ def apply_inverse(q, t, p, out):
     out[0] = d0
     out[1] = d1
     out[2] = d2
-    k.qrotate_inverse(q, out, out)
+    kernels.qrotate_inverse(q, out, out)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(4,4)")
 def as_matrix(q, t, out):
     """Homogeneous matrix [[R(q), t], [0, 0, 0, 1]]."""
-    k.write_matrix(q[0], q[1], q[2], q[3], out)
+    kernels.write_matrix(q[0], q[1], q[2], q[3], out)
     for i in range(3):
         out[i, 3] = t[i]
         out[3, i] = 0.0
@@ -98,7 +98,7 @@ def from_matrix(m, carrier, out):
     |RᵀR - 1| (inf when det R <= 0) for finite input, so one pass both
     converts and lets the caller refuse non-rigid matrices.
     """
-    q0, q1, q2, q3 = k.matrix_quat(m)
+    q0, q1, q2, q3 = kernels.matrix_quat(m)
     out[0] = q0
     out[1] = q1
     out[2] = q2

@@ -23,11 +23,9 @@ against the series ``Σ ad_ξⁿ/(n+1)!`` and finite differences.
 
 from __future__ import annotations
 
-from fractions import Fraction
-from math import factorial
-
 import numpy as np
 
+from .._compiled import series
 from .._validation import as_float_array
 from ..kinematics import angular_velocity_from_rotvec_rate, rotvec_rate
 from ..kinematics import left_jacobian as so3_left_jacobian
@@ -45,17 +43,13 @@ __all__ = [
 ]
 
 
-def _horner(coefficients):
-    return tuple(float(c) for c in reversed(coefficients))
-
-
 # Maclaurin series in θ² of the three coefficient functions of Q, from exact
 # rationals; 14 terms reach 1e-24 relative at the switch-over angle 2, and
 # the closed forms lose at most ~5 ulp above it.
 _SERIES_BELOW = 2.0
-_SINE_REMAINDER = _horner([Fraction((-1) ** n, factorial(2 * n + 3)) for n in range(14)])
-_COSINE_REMAINDER = _horner([Fraction((-1) ** n, factorial(2 * n + 4)) for n in range(14)])
-_COUPLING = _horner([Fraction((-1) ** n * (n + 1), factorial(2 * n + 5)) for n in range(14)])
+_SINE_REMAINDER = series.horner_order(series.sine_remainder_coefficients(14))
+_COSINE_REMAINDER = series.horner_order(series.cosine_remainder_coefficients(14))
+_COUPLING = series.horner_order(series.se3_coupling_coefficients(14))
 
 
 def _evaluate(theta, series, closed_form):

@@ -51,8 +51,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import cached, parallel
-from .._compiled import kernels as k
+from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD
 from .._validation import as_float_array
 
@@ -109,7 +108,7 @@ def _jacobi_top_eigenvector(K):
     for p in range(1, 4):
         if K[p, p] > K[best, best]:
             best = p
-    q0, q1, q2, q3 = k.quat_unit(V[0, best], V[1, best], V[2, best], V[3, best])
+    q0, q1, q2, q3 = kernels.quat_unit(V[0, best], V[1, best], V[2, best], V[3, best])
     if q0 < 0.0:
         return -q0, -q1, -q2, -q3
     return q0, q1, q2, q3
@@ -122,7 +121,7 @@ def _shortest_arc(ax, ay, az, bx, by, bz):
     cx, cy, cz = by * az - bz * ay, bz * ax - bx * az, bx * ay - by * ax
     d = ax * bx + ay * by + az * bz
     if d >= 0.0:
-        return k.quat_unit(1.0 + d, cx, cy, cz)
+        return kernels.quat_unit(1.0 + d, cx, cy, cz)
     # Obtuse: 1 + a·b would cancel. First a half turn about an axis u ⊥ a
     # (the direction of b × a, made exactly normal to a: near antiparallel
     # b × a is mostly rounding noise), then the short arc from the turned b,
@@ -142,10 +141,10 @@ def _shortest_arc(ax, ay, az, bx, by, bz):
     ux, uy, uz = ux / norm, uy / norm, uz / norm
     ub = 2.0 * (ux * bx + uy * by + uz * bz)
     tx, ty, tz = ub * ux - bx, ub * uy - by, ub * uz - bz
-    s0, s1, s2, s3 = k.quat_unit(
+    s0, s1, s2, s3 = kernels.quat_unit(
         1.0 + ax * tx + ay * ty + az * tz, ty * az - tz * ay, tz * ax - tx * az, tx * ay - ty * ax
     )
-    return k.quat_product(s0, s1, s2, s3, 0.0, ux, uy, uz)
+    return kernels.quat_product(s0, s1, s2, s3, 0.0, ux, uy, uz)
 
 
 @cached
@@ -183,13 +182,13 @@ def _solve(a, b, w, i, primary, out):
         for j in range(n):
             if j == primary:
                 continue
-            cx, cy, cz = k.rotated(p0, p1, p2, p3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
+            cx, cy, cz = kernels.rotated(p0, p1, p2, p3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
             ex, ey, ez = a[i, j, 0], a[i, j, 1], a[i, j, 2]
             sin_sum += w[i, j] * ((cy * ez - cz * ey) * ax + (cz * ex - cx * ez) * ay + (cx * ey - cy * ex) * az)
             cos_sum += w[i, j] * (cx * ex + cy * ey + cz * ez - (cx * ax + cy * ay + cz * az) * (ex * ax + ey * ay + ez * az))
         half = 0.5 * math.atan2(sin_sum, cos_sum)
         s = math.sin(half)
-        q0, q1, q2, q3 = k.quat_product(math.cos(half), s * ax, s * ay, s * az, p0, p1, p2, p3)
+        q0, q1, q2, q3 = kernels.quat_product(math.cos(half), s * ax, s * ay, s * az, p0, p1, p2, p3)
         if q0 < 0.0:
             q0, q1, q2, q3 = -q0, -q1, -q2, -q3
     # The rssd straight from the residuals: the textbook Σ w(|a|² + |b|²) - 2 λ_max
@@ -198,7 +197,7 @@ def _solve(a, b, w, i, primary, out):
     for j in range(n):
         if j == primary and (n > 1 or w[i, j] == np.inf):
             continue
-        x, y, z = k.rotated(q0, q1, q2, q3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
+        x, y, z = kernels.rotated(q0, q1, q2, q3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
         dx, dy, dz = a[i, j, 0] - x, a[i, j, 1] - y, a[i, j, 2] - z
         ssd += w[i, j] * (dx * dx + dy * dy + dz * dz)
     out[i, 0], out[i, 1], out[i, 2], out[i, 3] = q0, q1, q2, q3
@@ -219,7 +218,7 @@ def _sensitivity(a, b, w, i, q0, q1, q2, q3, out):
         for r in range(3):
             for c in range(3):
                 B[r, c] += w[i, j] * a[i, j, r] * b[i, j, c]
-    R = k.quat_matrix(q0, q1, q2, q3)
+    R = kernels.quat_matrix(q0, q1, q2, q3)
     M = np.empty((3, 3))
     for r in range(3):
         for c in range(3):

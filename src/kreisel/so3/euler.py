@@ -31,8 +31,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import kernels as k
-from .._compiled import cached, parallel
+from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from . import matrix as _matrix
 
@@ -196,19 +195,19 @@ def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
     a0, a1, a2, a3 = _elementary(alpha, axis0)
     b0, b1, b2, b3 = _elementary(beta, axis1)
     c0, c1, c2, c3 = _elementary(gamma, axis2)
-    r0, r1, r2, r3 = k.quat_product(a0, a1, a2, a3, b0, b1, b2, b3)
-    return k.quat_product(r0, r1, r2, r3, c0, c1, c2, c3)
+    r0, r1, r2, r3 = kernels.quat_product(a0, a1, a2, a3, b0, b1, b2, b3)
+    return kernels.quat_product(r0, r1, r2, r3, c0, c1, c2, c3)
 
 
 @cached
 def _euler_matrix(alpha, beta, gamma, axis0, axis1, axis2, reverse):
     q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
-    return k.quat_matrix(q0, q1, q2, q3)
+    return kernels.quat_matrix(q0, q1, q2, q3)
 
 
 @cached
 def _matrix_euler(r00, r01, r02, r10, r11, r12, r20, r21, r22, axis0, axis1, axis2, reverse):
-    q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
+    q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
 
 
@@ -257,7 +256,7 @@ def _euler_to_quat(angles, axes, reverse, carrier4, out):
 @gufunc(["void(f8[:], i8[:], i8, f8[:, :])"], "(3),(3),()->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1, 2))
 def _euler_to_matrix(angles, axes, reverse, out):
     q0, q1, q2, q3 = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
-    k.write_matrix(q0, q1, q2, q3, out)
+    kernels.write_matrix(q0, q1, q2, q3, out)
 
 
 @gufunc(["void(f8[:], i8[:], i8, f8[:])"], "(4),(3),()->(3)", parallel=_quat_to_euler_parallel, shared=(1, 2))
@@ -267,7 +266,7 @@ def _quat_to_euler(q, axes, reverse, out):
 
 @gufunc(["void(f8[:, :], i8[:], i8, f8[:])"], "(3,3),(3),()->(3)", parallel=_matrix_to_euler_parallel, shared=(1, 2))
 def _matrix_to_euler(R, axes, reverse, out):
-    q0, q1, q2, q3 = k.matrix_quat(R)
+    q0, q1, q2, q3 = kernels.matrix_quat(R)
     out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
 
 

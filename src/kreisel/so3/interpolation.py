@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled import kernels as k
+from .._compiled import kernels
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 
 __all__ = ["quat_slerp", "quat_mean"]
@@ -19,10 +19,10 @@ __all__ = ["quat_slerp", "quat_mean"]
 def _slerp(p, q, t, out):
     # p exp(t log(p* q)), the shorter arc; quaternions are taken as unit.
     p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
-    r0, r1, r2, r3 = k.quat_product(p0, -p1, -p2, -p3, q[0], q[1], q[2], q[3])
-    x, y, z = k.quat_rotvec(r0, r1, r2, r3)
-    s0, s1, s2, s3 = k.rotvec_quat(t * x, t * y, t * z)
-    out[0], out[1], out[2], out[3] = k.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
+    r0, r1, r2, r3 = kernels.quat_product(p0, -p1, -p2, -p3, q[0], q[1], q[2], q[3])
+    x, y, z = kernels.quat_rotvec(r0, r1, r2, r3)
+    s0, s1, s2, s3 = kernels.rotvec_quat(t * x, t * y, t * z)
+    out[0], out[1], out[2], out[3] = kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
 
 
 def quat_slerp(p, q, t):

@@ -9,8 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numba import prange
 
-from .._compiled import kernels as k
-from .._compiled import parallel
+from .._compiled import kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
 
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
@@ -23,25 +22,25 @@ def _quat_to_matrix_parallel(q, out):
             out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
             out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
             out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
-        ) = k.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
+        ) = kernels.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
 
 
 @parallel
 def _matrix_to_quat_parallel(R, out):
     for i in prange(R.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.matrix_entries_quat(
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.matrix_entries_quat(
             R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
         )
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)
 def _quat_to_matrix(q, carrier3, out):
-    k.write_matrix(q[0], q[1], q[2], q[3], out)
+    kernels.write_matrix(q[0], q[1], q[2], q[3], out)
 
 
 @gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)", parallel=_matrix_to_quat_parallel)
 def _matrix_to_quat(R, carrier4, out):
-    out[0], out[1], out[2], out[3] = k.matrix_quat(R)
+    out[0], out[1], out[2], out[3] = kernels.matrix_quat(R)
 
 
 def quat_to_matrix(q):

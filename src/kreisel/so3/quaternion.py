@@ -13,8 +13,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import cached, parallel
-from .._compiled import kernels as k
+from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array, vector_array
 from .._validation import batch_shape
 
@@ -55,15 +54,15 @@ def _inverted(q0, q1, q2, q3):
 @parallel
 def _multiply_parallel(p, q, out):
     for i in prange(p.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_product(
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_product(
             p[i, 0], p[i, 1], p[i, 2], p[i, 3], q[i, 0], q[i, 1], q[i, 2], q[i, 3]
         )
 
 
 @cached
 def _unit_product(p0, p1, p2, p3, q0, q1, q2, q3):
-    r0, r1, r2, r3 = k.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
-    return k.quat_unit(r0, r1, r2, r3)
+    r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+    return kernels.quat_unit(r0, r1, r2, r3)
 
 
 @parallel
@@ -78,13 +77,13 @@ def _compose_parallel(p, q, out):
 def _powered(q0, q1, q2, q3, p):
     # exp(p log q) with the log's angle in [0, π]; p = 0, ±1 exactly.
     if p == 1.0:
-        return k.quat_unit(q0, q1, q2, q3)
+        return kernels.quat_unit(q0, q1, q2, q3)
     if p == -1.0:
-        return k.quat_unit(q0, -q1, -q2, -q3)
+        return kernels.quat_unit(q0, -q1, -q2, -q3)
     if p == 0.0:
         return 1.0, 0.0, 0.0, 0.0
-    x, y, z = k.quat_rotvec(q0, q1, q2, q3)
-    return k.rotvec_quat(p * x, p * y, p * z)
+    x, y, z = kernels.quat_rotvec(q0, q1, q2, q3)
+    return kernels.rotvec_quat(p * x, p * y, p * z)
 
 
 @parallel
@@ -96,7 +95,7 @@ def _power_parallel(q, p, out):
 @parallel
 def _normalize_parallel(q, out):
     for i in prange(q.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_unit(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel
@@ -116,7 +115,7 @@ def _apply_parallel(q, v, sign, out):
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)
 def _multiply(p, q, out):
-    out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+    out[0], out[1], out[2], out[3] = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_compose_parallel)
@@ -126,7 +125,7 @@ def _compose(p, q, out):
 
 @gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_normalize_parallel)
 def _normalize(q, out):
-    out[0], out[1], out[2], out[3] = k.quat_unit(q[0], q[1], q[2], q[3])
+    out[0], out[1], out[2], out[3] = kernels.quat_unit(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8, f8[:])"], "(4),()->(4)", parallel=_power_parallel, shared=(1,))
@@ -147,7 +146,7 @@ def _apply(q, v, sign, out):
 @cached
 def _multiply_one(p, q):
     out = np.empty(4)
-    out[0], out[1], out[2], out[3] = k.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+    out[0], out[1], out[2], out[3] = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     finite = True
     for i in range(4):
         finite = finite and abs(out[i]) <= 1.7976931348623157e308

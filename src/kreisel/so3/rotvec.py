@@ -13,8 +13,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import kernels as k
-from .._compiled import cached, parallel
+from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
 
 __all__ = [
@@ -35,26 +34,26 @@ __all__ = [
 
 @cached
 def _rotvec_matrix(x, y, z):
-    q0, q1, q2, q3 = k.rotvec_quat(x, y, z)
-    return k.quat_matrix(q0, q1, q2, q3)
+    q0, q1, q2, q3 = kernels.rotvec_quat(x, y, z)
+    return kernels.quat_matrix(q0, q1, q2, q3)
 
 
 @cached
 def _matrix_rotvec(r00, r01, r02, r10, r11, r12, r20, r21, r22):
-    q0, q1, q2, q3 = k.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
-    return k.quat_rotvec(q0, q1, q2, q3)
+    q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
+    return kernels.quat_rotvec(q0, q1, q2, q3)
 
 
 @parallel
 def _rotvec_to_quat_parallel(psi, out):
     for i in prange(psi.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
 
 
 @parallel
 def _quat_to_rotvec_parallel(q, out):
     for i in prange(q.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = k.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
+        out[i, 0], out[i, 1], out[i, 2] = kernels.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel
@@ -77,32 +76,32 @@ def _matrix_to_rotvec_parallel(R, out):
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
 def _rotvec_to_quat(psi, carrier4, out):
-    out[0], out[1], out[2], out[3] = k.rotvec_quat(psi[0], psi[1], psi[2])
+    out[0], out[1], out[2], out[3] = kernels.rotvec_quat(psi[0], psi[1], psi[2])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_rotvec_parallel)
 def _quat_to_rotvec(q, carrier3, out):
-    out[0], out[1], out[2] = k.quat_rotvec(q[0], q[1], q[2], q[3])
+    out[0], out[1], out[2] = kernels.quat_rotvec(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)", parallel=_rotvec_to_matrix_parallel)
 def _rotvec_to_matrix(psi, out):
-    q0, q1, q2, q3 = k.rotvec_quat(psi[0], psi[1], psi[2])
-    k.write_matrix(q0, q1, q2, q3, out)
+    q0, q1, q2, q3 = kernels.rotvec_quat(psi[0], psi[1], psi[2])
+    kernels.write_matrix(q0, q1, q2, q3, out)
 
 
 @gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)", parallel=_matrix_to_rotvec_parallel)
 def _matrix_to_rotvec(R, out):
-    q0, q1, q2, q3 = k.matrix_quat(R)
-    out[0], out[1], out[2] = k.quat_rotvec(q0, q1, q2, q3)
+    q0, q1, q2, q3 = kernels.matrix_quat(R)
+    out[0], out[1], out[2] = kernels.quat_rotvec(q0, q1, q2, q3)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
 def _compose_rotvec(a, b, out):
-    p0, p1, p2, p3 = k.rotvec_quat(a[0], a[1], a[2])
-    q0, q1, q2, q3 = k.rotvec_quat(b[0], b[1], b[2])
-    r0, r1, r2, r3 = k.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
-    out[0], out[1], out[2] = k.quat_rotvec(r0, r1, r2, r3)
+    p0, p1, p2, p3 = kernels.rotvec_quat(a[0], a[1], a[2])
+    q0, q1, q2, q3 = kernels.rotvec_quat(b[0], b[1], b[2])
+    r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+    out[0], out[1], out[2] = kernels.quat_rotvec(r0, r1, r2, r3)
 
 
 def generators():

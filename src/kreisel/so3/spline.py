@@ -27,9 +27,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import cached, parallel
-from .._compiled import dexp as d
-from .._compiled import kernels as k
+from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
 from .._validation import check_frame
 from .rotation import Rotation
@@ -40,9 +38,9 @@ __all__ = ["RotationSpline", "Slerp"]
 @cached
 def _body_rate(x, y, z, vx, vy, vz):
     """``J_r(ψ) ψ̇`` and the dexp coefficients."""
-    a, b = d.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    cx, cy, cz = d.cross(x, y, z, vx, vy, vz)
-    ccx, ccy, ccz = d.cross(x, y, z, cx, cy, cz)
+    a, b = dexp.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
+    cx, cy, cz = dexp.cross(x, y, z, vx, vy, vz)
+    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
     return vx - a * cx + b * ccx, vy - a * cy + b * ccy, vz - a * cz + b * ccz
 
 
@@ -50,12 +48,12 @@ def _body_rate(x, y, z, vx, vy, vz):
 def _body_acceleration(x, y, z, vx, vy, vz, ax, ay, az):
     """``d/dt (J_r(ψ) ψ̇) = J_r ψ̈ + (ψ·ψ̇)(-A'/ψ ψ×ψ̇ + B'/ψ ψ×(ψ×ψ̇)) + B ψ̇×(ψ×ψ̇)``."""
     angle = math.sqrt(x * x + y * y + z * z)
-    _, b = d.dexp_coefficients(angle)
-    da, db = d.dexp_coefficient_slopes(angle)
+    _, b = dexp.dexp_coefficients(angle)
+    da, db = dexp.dexp_coefficient_slopes(angle)
     jx, jy, jz = _body_rate(x, y, z, ax, ay, az)
-    cx, cy, cz = d.cross(x, y, z, vx, vy, vz)
-    ccx, ccy, ccz = d.cross(x, y, z, cx, cy, cz)
-    dx, dy, dz = d.cross(vx, vy, vz, cx, cy, cz)
+    cx, cy, cz = dexp.cross(x, y, z, vx, vy, vz)
+    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
+    dx, dy, dz = dexp.cross(vx, vy, vz, cx, cy, cz)
     p = x * vx + y * vy + z * vz
     return (
         jx + p * (-da * cx + db * ccx) + b * dx,
@@ -75,10 +73,10 @@ def _evaluate_one(i, t, times, index, coeff, quats, order, space, out):
     y = ((c0y * tau + c1y) * tau + c2y) * tau
     z = ((c0z * tau + c1z) * tau + c2z) * tau
     q0, q1, q2, q3 = quats[s, 0], quats[s, 1], quats[s, 2], quats[s, 3]
-    e0, e1, e2, e3 = k.rotvec_quat(x, y, z)
-    r0, r1, r2, r3 = k.quat_product(q0, q1, q2, q3, e0, e1, e2, e3)
+    e0, e1, e2, e3 = kernels.rotvec_quat(x, y, z)
+    r0, r1, r2, r3 = kernels.quat_product(q0, q1, q2, q3, e0, e1, e2, e3)
     if order == 0:
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = k.quat_unit(r0, r1, r2, r3)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(r0, r1, r2, r3)
         return
     vx = (3.0 * c0x * tau + 2.0 * c1x) * tau + c2x
     vy = (3.0 * c0y * tau + 2.0 * c1y) * tau + c2y
@@ -90,7 +88,7 @@ def _evaluate_one(i, t, times, index, coeff, quats, order, space, out):
             x, y, z, vx, vy, vz, 6.0 * c0x * tau + 2.0 * c1x, 6.0 * c0y * tau + 2.0 * c1y, 6.0 * c0z * tau + 2.0 * c1z
         )
     if space:
-        wx, wy, wz = k.rotated(r0, r1, r2, r3, wx, wy, wz)
+        wx, wy, wz = kernels.rotated(r0, r1, r2, r3, wx, wy, wz)
     out[i, 0], out[i, 1], out[i, 2] = wx, wy, wz
 
 
@@ -112,8 +110,8 @@ def _jacobians(rotvecs, J, J_inv):
     for n in range(rotvecs.shape[0]):
         x, y, z = rotvecs[n, 0], rotvecs[n, 1], rotvecs[n, 2]
         angle = math.sqrt(x * x + y * y + z * z)
-        a, b = d.dexp_coefficients(angle)
-        c = d.bortz_coefficient(angle)
+        a, b = dexp.dexp_coefficients(angle)
+        c = dexp.bortz_coefficient(angle)
         hat = ((0.0, -z, y), (z, 0.0, -x), (-y, x, 0.0))
         for r in range(3):
             for col in range(3):
