@@ -16,6 +16,24 @@ from rich.markup import escape
 
 from .._version import __version__
 
+__all__ = [
+    "app",
+    "usage_error",
+    "say",
+    "error_line",
+    "main",
+    "convert",
+    "simulate",
+    "plot",
+    "animate",
+    "examples",
+    "tour",
+    "sweep",
+    "fit",
+    "serve",
+    "run",
+]
+
 app = typer.Typer(
     name="kreisel",
     help="Rigid-body mechanics: rotations, tops, rotating frames, strapdown attitude.",

@@ -16,6 +16,8 @@ import numpy as np
 from ..so3.euler import parse_sequence
 from ..so3.rotation import Rotation
 
+__all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows"]
+
 # name -> numbers per rotation on input; None: complex, output only
 _REPRESENTATIONS = {
     "quat": 4,

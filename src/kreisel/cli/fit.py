@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+__all__ = ["integrals_drift", "summary", "as_dict", "REGIMES"]
+
 REGIMES = {
     "about_largest_axis": "above the separatrix (J² > 2T·I_mid): ω circulates about the largest axis",
     "about_smallest_axis": "below the separatrix (J² < 2T·I_mid): ω circulates about the smallest axis",

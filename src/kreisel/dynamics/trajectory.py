@@ -7,6 +7,8 @@ import numpy as np
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
 
+__all__ = ["Trajectory"]
+
 _VECTOR = ("x", "y", "z")
 _QUAT = ("w", "x", "y", "z")
 

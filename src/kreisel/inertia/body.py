@@ -10,6 +10,8 @@ from .mesh_properties import from_mesh
 from .properties import MassProperties, combine, from_points
 from .tensors import as_symmetric_tensor, check_moments, principal_axes
 
+__all__ = ["RigidBody"]
+
 
 def _read_only(a):
     a = np.array(a, dtype=np.float64)

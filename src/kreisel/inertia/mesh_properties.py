@@ -8,6 +8,8 @@ from .._validation import as_float_array
 from .properties import MassProperties
 from .tensors import second_moment_to_inertia
 
+__all__ = ["from_mesh"]
+
 
 def _as_faces(faces, n_vertices):
     f = np.asarray(faces)

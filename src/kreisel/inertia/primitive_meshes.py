@@ -15,6 +15,8 @@ import numpy as np
 
 from .._validation import as_float_array
 
+__all__ = ["box_mesh", "surface_of_revolution", "ellipsoid_mesh", "cylinder_mesh", "cone_mesh", "torus_mesh"]
+
 _BOX_CORNERS = np.array(
     [[x, y, z] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)]
 )

@@ -16,6 +16,8 @@ from .tensors import (
     points,
 )
 
+__all__ = ["MassProperties", "from_points", "combine"]
+
 
 class MassProperties(NamedTuple):
     """Mass, centre of mass and inertia tensor about the centre of mass.

@@ -14,6 +14,20 @@ import numpy as np
 from .._validation import as_float_array
 from .tensors import _positive
 
+__all__ = [
+    "box",
+    "solid_sphere",
+    "hollow_sphere",
+    "solid_cylinder",
+    "hollow_cylinder",
+    "solid_cone",
+    "solid_ellipsoid",
+    "thin_rod",
+    "thin_disk",
+    "thin_ring",
+    "torus",
+]
+
 
 def _radii(outer, outer_name, inner, inner_name, allow_zero=True, reason=""):
     """An outer length and an inner one that must not exceed it (``inner=None``: equal to it)."""

@@ -14,6 +14,18 @@ import numpy as np
 
 from .._validation import as_float_array
 
+__all__ = [
+    "points",
+    "parallel_axis",
+    "parallel_axis_to_center_of_mass",
+    "rotate",
+    "principal_axes",
+    "moment_about_axis",
+    "radius_of_gyration",
+    "inertia_ellipsoid",
+    "InertiaEllipsoid",
+]
+
 # Relative tolerance for accepting a tensor as symmetric and as satisfying the
 # triangle inequalities / semi-definiteness. Tensors that went through a few
 # floating-point operations (R I Rᵀ, mesh integration, sums of parts) carry

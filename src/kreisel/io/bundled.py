@@ -9,6 +9,8 @@ from importlib import resources
 
 from .._fileio import atomic_output
 
+__all__ = ["example_path", "suggestion", "scenario_path", "describe", "copy_example", "EXAMPLES"]
+
 EXAMPLES = ("tennis_racket", "symmetric_top", "lagrange_cusps", "lagrange_loops", "sleeping_top", "fast_top",
             "kovalevskaya", "foucault", "coning")
 

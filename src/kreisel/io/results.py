@@ -8,6 +8,8 @@ import pathlib
 from .._fileio import atomic_output
 from ..dynamics.trajectory import Trajectory
 
+__all__ = ["ResultError", "save_result", "load_trajectory", "SUFFIXES"]
+
 SUFFIXES = (".nc", ".csv", ".parquet")
 
 

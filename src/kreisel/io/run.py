@@ -16,6 +16,15 @@ from ..inertia import RigidBody
 from ..so3 import quat_apply, quat_conjugate, quat_multiply, quat_to_rotvec
 from ..so3.rotation import Rotation
 
+__all__ = [
+    "build_body",
+    "initial_attitude",
+    "torque_model",
+    "run_scenario",
+    "trajectory_integrals",
+    "summary",
+]
+
 
 def build_body(body, base=None):
     """A :class:`RigidBody` from a scenario's ``[body]`` table (``base``: directory of mesh paths)."""

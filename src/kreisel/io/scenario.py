@@ -38,6 +38,8 @@ import pathlib
 from .bundled import scenario_path
 from .schema import Document, Key, SchemaError, read_text
 
+__all__ = ["ScenarioError", "Scenario", "load_scenario", "parse_scenario"]
+
 
 class ScenarioError(SchemaError):
     """A scenario file that does not follow the schema (names file, key and line)."""

@@ -38,6 +38,8 @@ import tomllib
 
 import numpy as np
 
+__all__ = ["SchemaError", "Key", "read_text", "Document", "dotted"]
+
 
 class SchemaError(ValueError):
     """A TOML file that does not follow its schema; each format subclasses it.

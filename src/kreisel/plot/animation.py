@@ -12,6 +12,8 @@ from matplotlib.figure import Figure
 from .._fileio import atomic_output
 from ..so3 import quat_apply
 
+__all__ = ["box_half_extents", "animate"]
+
 # unit-cube edges as pairs of corner indices (corners are the 8 sign patterns)
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
 _EDGES = [(i, j) for i in range(8) for j in range(i + 1, 8) if np.sum(_CORNERS[i] != _CORNERS[j]) == 1]

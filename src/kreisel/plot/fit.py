@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+__all__ = ["gyro_fit"]
+
 _COLORS = ("tab:blue", "tab:orange", "tab:green")
 
 

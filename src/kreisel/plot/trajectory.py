@@ -12,6 +12,8 @@ from matplotlib.figure import Figure
 
 from ..so3 import quat_apply
 
+__all__ = ["omega", "energy", "euler", "polhode", "herpolhode", "apex", "KINDS"]
+
 
 def omega(traj, frame="body"):
     """Components of the angular velocity against time (Theory §3.1).

@@ -57,6 +57,8 @@ import numpy as np
 
 from .._fileio import atomic_output, remove_stale_temporaries, temporary_prefix
 
+__all__ = ["SweepError", "SweepProgress", "write_dataset", "sweep", "SERIAL"]
+
 SERIAL = "serial"
 _CHECKPOINT_META = "sweep.json"
 _OUTPUT_SUFFIXES = (".zarr", ".nc")

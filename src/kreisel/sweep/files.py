@@ -40,6 +40,17 @@ from ..io.schema import Document, Key, SchemaError, read_text
 from .core import sweep
 from .models import MODELS
 
+__all__ = [
+    "SweepFileError",
+    "SweepFile",
+    "example_path",
+    "parse_sweep_file",
+    "load_sweep_file",
+    "run_sweep_file",
+    "plot_sweep",
+    "EXAMPLES",
+]
+
 EXAMPLES = ("tennis_racket", "lagrange_apex", "imu_monte_carlo")
 
 _TOP = {

@@ -13,6 +13,18 @@ import json
 
 import numpy as np
 
+__all__ = [
+    "tennis_racket_flip",
+    "plot_tennis_racket",
+    "lagrange_apex_locus",
+    "plot_lagrange_apex_locus",
+    "imu_attitude_error",
+    "plot_imu_attitude_error",
+    "SweepModel",
+    "APEX_LOCUS_KINDS",
+    "MODELS",
+]
+
 APEX_LOCUS_KINDS = ("monotone", "cusp", "loop")
 
 

@@ -8,6 +8,8 @@ from matplotlib.figure import Figure
 from .. import earth
 from .report import Check, Section
 
+__all__ = ["eastward_deflection", "foucault_pendulum", "SECTIONS"]
+
 # the chapter's figures for Hefei
 _LATITUDE, _G, _OMEGA = 31.8584, 9.7947, 7.27221e-5
 

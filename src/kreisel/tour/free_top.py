@@ -10,6 +10,8 @@ from ..tops import EulerTop
 from ..tops.symmetric import SymmetricTop
 from .report import Check, Section
 
+__all__ = ["inertia_ellipsoid", "tennis_racket", "poinsot_construction", "symmetric_top_cones"]
+
 
 def inertia_ellipsoid(quick):
     """Inertia tensor, principal axes and the inertia ellipsoid"""

@@ -9,6 +9,8 @@ from .. import so3
 from ..tops import KovalevskayaTop, LagrangeTop
 from .report import Check, Section
 
+__all__ = ["lagrange_top", "fast_and_sleeping_top", "kovalevskaya_top", "SECTIONS"]
+
 _TOP = LagrangeTop(1.0, 0.5, 1.0)  # I1 about the pivot, I3, mgl
 _THETA0 = 0.6
 _SPIN = 5.0  # ψ̇ at release: slow enough for the loci to be seen

@@ -10,6 +10,8 @@ from matplotlib.figure import Figure
 from ..dynamics import simulate
 from .report import Check, Section
 
+__all__ = ["work_precision", "SECTIONS"]
+
 # Hairer–Lubich–Wanner's free rigid body (Theory §4.5)
 _MOMENTS = np.array([2.0, 1.0, 2.0 / 3.0])
 _OMEGA0 = np.array([np.cos(1.1), 0.0, np.sin(1.1)]) / _MOMENTS

@@ -8,6 +8,8 @@ from matplotlib.figure import Figure
 from .. import kinematics
 from .report import Check, Section
 
+__all__ = ["rolling_wheel_centrodes", "bortz_coefficient", "SECTIONS"]
+
 
 def rolling_wheel_centrodes(quick):
     """Rolling wheel and sliding ladder: instantaneous centre and centrodes"""

@@ -8,6 +8,8 @@ from matplotlib.figure import Figure
 from .. import nav, so3
 from .report import Check, Section
 
+__all__ = ["measured_drift", "coning_drift", "SECTIONS"]
+
 # per cone period, divisible by N so that updates end on whole cones
 _SAMPLES_PER_CONE = {1: (16, 24, 32, 48, 64), 2: (16, 24, 32, 48), 3: (12, 18, 24, 30)}
 

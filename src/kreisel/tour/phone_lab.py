@@ -12,6 +12,8 @@ from ..plot.fit import gyro_fit
 from ..tops.fitting import fit_free_rotation
 from .report import Check, Section
 
+__all__ = ["phone_laboratory", "PHONE_SIZE", "NOISE", "SECTIONS"]
+
 # the bundled recording is a 146 × 71 × 8 mm slab with 0.05 rad/s of gyroscope noise
 PHONE_SIZE = (0.071, 0.146, 0.008)
 NOISE = 0.05

@@ -9,6 +9,8 @@ import io
 
 import numpy as np
 
+__all__ = ["Check", "Section", "plain", "render_html"]
+
 
 @dataclasses.dataclass
 class Check:

@@ -11,6 +11,8 @@ from scipy.spatial.transform import Rotation as ScipyRotation
 from .. import kinematics, so3
 from .report import Check, Section
 
+__all__ = ["euler_angles_and_nodal_line", "gimbal_lock", "quaternion_renormalisation", "SECTIONS"]
+
 _ALL_SEQUENCES = ("xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz")
 
 

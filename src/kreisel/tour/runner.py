@@ -15,6 +15,8 @@ from .._fileio import atomic_output
 from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, phone_lab, rotations
 from .report import Section, render_html
 
+__all__ = ["run_tour", "SECTIONS"]
+
 # in the order of the chapter: §2, §3 (with its navigation remarks), §4, §5, §6, §7, §8
 SECTIONS = (
     *rotations.SECTIONS,

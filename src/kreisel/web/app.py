@@ -58,6 +58,8 @@ from .guard import Guard
 from .presets import PRESETS, preset_text
 from .runner import Limits, Runner, Stopped
 
+__all__ = ["Form", "RunRequest", "Viewer", "create_app", "STATIC", "MAX_TOML_CHARS"]
+
 STATIC = pathlib.Path(__file__).parent / "static"
 MAX_TOML_CHARS = 100_000
 

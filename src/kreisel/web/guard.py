@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import json
 
+__all__ = ["host_name", "Refused", "Guard", "LOOPBACK", "WILDCARDS"]
+
 LOOPBACK = ("127.0.0.1", "localhost", "[::1]")
 WILDCARDS = ("0.0.0.0", "::", "")
 

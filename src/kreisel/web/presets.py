@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from ..io import example_path
 
+__all__ = ["preset_text", "PRESETS"]
+
 PRESETS = ("tennis_racket", "symmetric_top", "lagrange_cusps", "lagrange_loops", "sleeping_top", "fast_top",
            "kovalevskaya", "foucault")
 

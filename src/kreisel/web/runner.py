@@ -20,6 +20,8 @@ import dataclasses
 import multiprocessing
 import threading
 
+__all__ = ["Limits", "Stopped", "Runner"]
+
 
 @dataclasses.dataclass(frozen=True)
 class Limits:

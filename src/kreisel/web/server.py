@@ -9,6 +9,8 @@ import webbrowser
 
 from .guard import WILDCARDS
 
+__all__ = ["bind", "websocket_support", "make_server", "url_of", "serve"]
+
 
 def bind(host="127.0.0.1", port=0):
     """A listening TCP socket on ``host:port`` (port 0: a free port chosen by the system)."""

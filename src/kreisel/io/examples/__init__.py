@@ -1,1 +1,3 @@
 """Bundled scenario files (``kreisel examples``)."""
+
+__all__ = []
