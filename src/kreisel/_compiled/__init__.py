@@ -103,8 +103,8 @@ cached = njit(cache=True, nogil=True)
 #: As :data:`cached`, inlined into its callers at the numba IR level (small
 #: models called in the innermost loop of an integrator).
 inlined = njit(cache=True, nogil=True, inline="always")
-#: Routines that take a compiled function as an argument: not cacheable on
-#: their own, always inlined into a cached caller.
+#: Routines compiled anew for each argument type (a compiled function, a tuple
+#: of any length): never cached on their own, always inlined into a cached caller.
 generic = njit(nogil=True, inline="always")
 #: Cached multi-core loop (``prange``) over flattened batches.
 parallel = njit(parallel=True, cache=True)

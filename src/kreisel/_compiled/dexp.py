@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from . import cached, series
+from . import cached, generic, series
 
 
 _BORTZ_SERIES = series.BORTZ_SERIES
@@ -21,9 +21,13 @@ _SINE_REMAINDER_SLOPE_SERIES = series.SINE_REMAINDER_SLOPE_SERIES
 _SLOPE_SERIES_BELOW = series.SLOPE_SERIES_BELOW
 
 
-@cached
+@generic
 def horner(coefficients, x):
-    """Polynomial with ``coefficients`` highest order first, at ``x``."""
+    """Polynomial with ``coefficients`` highest order first, at ``x``.
+
+    Compiled for each length of ``coefficients``, so inlined into its cached
+    callers rather than cached itself (one signature per cached kernel).
+    """
     acc = 0.0
     for c in coefficients:
         acc = acc * x + c
