@@ -65,7 +65,17 @@ class FirstIntegral:
     scale: np.ndarray
 
     def relative_change(self):
-        """Largest |value(t) − value(t0)| over the trajectory, divided by ``scale`` (batch shape)."""
+        """Largest |value(t) − value(t0)| over the trajectory, divided by ``scale`` (batch shape).
+
+        Examples
+        --------
+        For the vector J the change is the length of J(t) − J(t0):
+
+        >>> J = FirstIntegral("J", "angular momentum", "kg m²/s", np.array([[0.0, 0.0, 2.0], [0.0, 0.02, 2.0]]),
+        ...                   np.array(2.0))
+        >>> float(J.relative_change())
+        0.01
+        """
         change = self.values - self.values[..., :1, :] if self.is_vector else self.values - self.values[..., :1]
         size = np.linalg.norm(change, axis=-1) if self.is_vector else np.abs(change)
         return np.max(size, axis=-1) / self.scale
@@ -92,6 +102,15 @@ class FirstIntegrals:
         ``"Kovalevskaya top"`` or ``"driven body"`` (a torque without known integrals).
     integrals : tuple of FirstIntegral
         Empty for a driven body.
+
+    Examples
+    --------
+    Iterating gives the integrals; ``len`` says how many the model has:
+
+    >>> import kreisel as kr
+    >>> found = kr.tops.first_integrals(kr.EulerTop(1, 2, 3).solve(np.linspace(0, 1, 11), [0.1, 1.0, 0.1]))
+    >>> found.model, len(found), [f.symbol for f in found]
+    ('free body', 2, ['T', 'J'])
     """
 
     model: str
