@@ -12,7 +12,7 @@ times on [0, 20] s, three ways, in one process:
 
 Also one body at 10^4 times through :meth:`kreisel.EulerTop.solve` and
 ``simulate``. Reported as samples (body × time) per second and the largest
-|Δω| between the methods. Writes ``bench/results/tops.md``.
+Δω between the methods. Writes ``bench/results/tops.md``.
 """
 
 from __future__ import annotations
@@ -84,12 +84,12 @@ def main():
     lines = header("kreisel.tops: the exact free top vs integration",
                    f"Medians of {REPEATS} runs, exact and batch integration timed in alternation; "
                    "samples = bodies × output times; time ratio relative to the exact solution; "
-                   "|Δω| = largest difference from the exact ω (rad/s, |ω0| ~ 1.6).",
+                   "Δω = largest difference from the exact ω (rad/s; ω0 of norm ~1.6).",
                    load_before=load_before)
     lines += ["", f"## {BODIES} free bodies × {TIMES} times on [0, 20] s", ""]
-    lines += markdown_table(["method", "time (s)", "samples/s", "time / exact", "max |Δω|"], rows, align="-rrrr")
+    lines += markdown_table(["method", "time (s)", "samples/s", "time / exact", "max abs Δω"], rows, align="-rrrr")
     lines += ["", f"## One body, {long_t.size} times on [0, 200] s", ""]
-    lines += markdown_table(["method", "time (ms)", "samples/s", "time / solve", "max |Δω|"], single_rows,
+    lines += markdown_table(["method", "time (ms)", "samples/s", "time / solve", "max abs Δω"], single_rows,
                             align="-rrrr")
     write_results("tops", "\n".join(lines))
 
