@@ -22,7 +22,7 @@ from .._compiled import cached, inlined, parallel
 from .._compiled.dop853 import NOT_FINITE, OK, integrate
 from .._compiled.kernels import _rotated as rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
-from ._rows import CALLBACK
+from ._model_tables import CALLBACK
 from .forces import evaluate_force
 from .torques import DAMPING, evaluate_torque
 

@@ -49,7 +49,7 @@ from .._compiled import dop853 as _dop853
 from .._validation import as_float_array
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from . import _integrators
-from . import _rows
+from . import _model_tables
 from . import forces as _forces
 from . import torques as _torques
 from .trajectory import Trajectory
@@ -183,7 +183,7 @@ def _torque_rows(torque, axes, t0, q0_body, omega0_body):
         def fn(t, q, w):  # principal-frame state -> user's body frame and back
             return axes.T @ np.asarray(torque(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w), dtype=float)
 
-    return _rows.register_callback(fn)
+    return _model_tables.register_callback(fn)
 
 
 def _table(rows):
@@ -300,8 +300,8 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
         atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
         y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v)
     finally:
-        _rows.release_callback(rows)
-        _rows.release_callback(frows)
+        _model_tables.release_callback(rows)
+        _model_tables.release_callback(frows)
     omega, q = _to_body_frame(y[:, 0:3], _normalized(y[:, 3:7]), axes)
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
@@ -390,7 +390,7 @@ def _force_rows(force, axes, t0, q_body, w_body, translation):
         def fn(t, q, w, r, v):
             return force(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
 
-    return _rows.register_callback(fn, translation=True)
+    return _model_tables.register_callback(fn, translation=True)
 
 
 def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),

@@ -15,7 +15,7 @@ import numpy as np
 from .._compiled import cached, inlined
 from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ._rows import RowModel, RowSum, row, sum_rows
+from ._model_tables import RowModel, RowSum, row, sum_rows
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 

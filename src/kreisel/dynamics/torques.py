@@ -7,7 +7,7 @@ code. A plain Python callable ``torque(t, q, omega_body) -> (3,)`` is also
 accepted by :func:`kreisel.simulate`; it is called back from the compiled loop
 (through numba's object mode), which costs a few microseconds per evaluation.
 
-Table layout (:mod:`kreisel.dynamics._rows`): one row of ``ROW_SIZE`` floats
+Table layout (:mod:`kreisel.dynamics._model_tables`): one row of ``ROW_SIZE`` floats
 per model, ``row[0]`` the kind, ``row[1:]`` its parameters, all in the frame
 the integrator works in (the principal frame of the body).
 """
@@ -21,7 +21,7 @@ import numpy as np
 from .._compiled import cached, inlined
 from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ._rows import RowModel, RowSum, row, sum_rows
+from ._model_tables import RowModel, RowSum, row, sum_rows
 
 __all__ = [
     "TorqueModel",
