@@ -13,12 +13,12 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "src" / "kreisel"
 
 #: Layers from the bottom: a module may import its own layer and those below.
 LAYERS = (
-    ("_compiled", "_validation", "_fileio", "_version"),
+    ("_compiled", "_validation", "_fileio", "_version", "_html"),
     ("so3",),
     ("kinematics",),
     ("inertia", "dynamics"),
     ("tops", "frames", "earth", "nav", "se3"),
-    ("io", "plot", "cli", "web", "sweep", "tour", "__init__", "__main__"),
+    ("io", "plot", "cli", "web", "sweep", "tour", "notebook", "__init__", "__main__"),
 )
 LAYER = {name: level for level, names in enumerate(LAYERS) for name in names}
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
 
@@ -71,6 +72,23 @@ class Trajectory:
         batch = self.q.shape[:-2]
         b = f", batch={batch}" if batch else ""
         return f"Trajectory(n={self.t.size}, t=[{self.t[0]:g}, {self.t[-1]:g}]{b})"
+
+    def _repr_html_(self):
+        rows = [("samples", self.t.size), ("t", f"{self.t[0]:g} … {self.t[-1]:g} s")]
+        if self.batch_shape:
+            rows.append(("batch shape", self.batch_shape))
+        else:
+            drift = self.drift()
+            rows += [
+                ("principal moments", number(np.linalg.eigvalsh(self.inertia)) + " kg m²"),
+                ("ω′(t0)", number(self.omega[0]) + " rad/s"),
+                ("T(t0)", number(self.energy[0]) + " J"),
+                ("J(t0)", number(self.angular_momentum_space[0]) + " kg m²/s"),
+                ("max relative change of T, |J|", f"{number(drift['energy'], 3)}, {number(drift['angular_momentum'], 3)}"),
+            ]
+        rows += [(key, value) for key, value in self.meta.items()]
+        rows += [("extra arrays", ", ".join(self._extra))] if self._extra else []
+        return html_table("Trajectory", rows, note="quaternions scalar-first, R maps body to space; ω′ in body axes")
 
     @property
     def batch_shape(self):

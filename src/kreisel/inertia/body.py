@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array
 from . import solids
 from .mesh_properties import from_mesh
@@ -387,3 +388,9 @@ class RigidBody:
             body = np.array2string(self._inertia, separator=", ").replace("\n", "")
         return f"RigidBody({body}, mass={self._mass!r})"
 
+    def _repr_html_(self):
+        rows = [("mass", number(self._mass) + " kg"),
+                ("principal moments", number(self.principal_moments) + " kg m²")]
+        if not self.is_principal:
+            rows.append(("inertia tensor (body axes)", number(self._inertia.ravel()) + " kg m², row by row"))
+        return html_table("RigidBody", rows, note="body origin at the centre of mass; SI units")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from ..so3 import (
     Rotation,
@@ -18,6 +19,7 @@ from ..so3 import (
     quat_multiply,
     quat_normalize,
     quat_to_matrix,
+    quat_to_rotvec,
 )
 from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from ..so3.interpolation import gather_samples, mean_over
@@ -656,6 +658,21 @@ class RigidTransform:
             t = "[" + ", ".join(repr(float(x)) for x in self._translation) + "]"
             return f"RigidTransform(quat={q}, translation={t})"
         return f"RigidTransform(shape={self.shape}, quat={fmt(self._quat)}, translation={fmt(self._translation)})"
+
+    def _repr_html_(self):
+        note = "r_P = R r′_P + r_C; quaternion scalar-first, R maps body to space"
+        if self.single:
+            rows = [
+                ("quaternion", number(self._quat)),
+                ("angle", number(np.degrees(np.linalg.norm(quat_to_rotvec(self._quat)))) + "°"),
+                ("translation r_C", number(self._translation)),
+            ]
+        else:
+            rows = [("shape", self.shape), ("count", int(np.prod(self.shape)))]
+            if np.prod(self.shape):
+                rows += [("first quaternion", number(self._quat.reshape(-1, 4)[0])),
+                         ("first translation", number(self._translation.reshape(-1, 3)[0]))]
+        return html_table("RigidTransform", rows, note=note)
 
 
 def change_base_point(transform, offset):

@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from . import alignment as _alignment
 from . import davenport as _davenport
@@ -812,3 +813,21 @@ class Rotation:
             return "Rotation.from_quat([" + ", ".join(fmt(x) for x in self._q) + "])"
         body = np.array2string(self._q, precision=6, suppress_small=True, separator=", ", threshold=20)
         return f"Rotation.from_quat({body})  # shape {self.shape}"
+
+    def _repr_html_(self):
+        note = "quaternion scalar-first [q0, q1, q2, q3], active, R maps body to space; ZXZ intrinsic"
+        if self.single:
+            rows = [
+                ("quaternion", number(self._q)),
+                ("rotation vector ψ", number(self.as_rotvec()) + " rad"),
+                ("angle", number(np.degrees(self.magnitude())) + "°"),
+                ("Euler ZXZ (φ, θ, ψ)", number(self.as_euler("ZXZ", degrees=True)) + "°"),
+            ]
+        else:
+            angles = np.degrees(self.magnitude())
+            rows = [("shape", self.shape), ("count", angles.size)]
+            if angles.size:
+                first = self._q.reshape(-1, 4)[0]
+                rows += [("first quaternion", number(first)),
+                         ("angles", f"{number(angles.min())}° … {number(angles.max())}°")]
+        return html_table("Rotation", rows, note=note)

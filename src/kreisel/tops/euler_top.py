@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
@@ -199,6 +200,15 @@ class EulerTop:
 
     def __repr__(self):
         return "EulerTop({:g}, {:g}, {:g})".format(*self.moments)
+
+    def _repr_html_(self):
+        axis = "xyz"[int(np.argsort(self.moments, kind="stable")[1])]
+        rows = [("moments I1, I2, I3", number(self.moments) + " kg m²")]
+        if len(set(self.moments.tolist())) == 3:
+            rows.append(("unstable axis (intermediate moment)", axis))
+        else:
+            rows.append(("symmetry", "spherical" if self.moments.min() == self.moments.max() else "symmetric"))
+        return html_table("EulerTop (free rigid body)", rows, note="exact solution; quaternions scalar-first, R maps body to space")
 
     # ---- first integrals -------------------------------------------------------------
     def energy(self, omega):

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._html import html_table, number
 from .._validation import as_float_array
 from ..so3 import rotvec_to_matrix
 from .euler_top import EulerTop
@@ -180,6 +181,28 @@ class FreeRotationFit:
         ((300, 3), True)
         """
         return self.omega - self.predict(self.t)
+
+    def __repr__(self):
+        return (f"FreeRotationFit(moments={number(self.moments)}, regime={self.regime!r}, "
+                f"rms={self.rms:.3g} rad/s, n={self.t.size})")
+
+    def _repr_html_(self):
+        drift = self.integrals_drift()
+        rows = [
+            ("samples", f"{self.t.size}, t = {self.t[0]:g} … {self.t[-1]:g} s"),
+            ("moments (largest = 1)", number(self.moments)),
+            ("± standard error", number(self.moments_stderr, 2)),
+            ("ω0 at t0", number(self.omega0) + " rad/s"),
+            ("bias", number(self.bias) + " rad/s"),
+            ("misalignment", number(np.degrees(self.misalignment), 3) + "°"),
+            ("regime", self.regime),
+            ("intermediate axis", AXES[self.intermediate_axis]),
+            ("separatrix distance", number(self.separatrix_distance, 3)),
+            ("spread of T, |J|", f"{number(drift['energy']['spread'], 3)}, {number(drift['momentum']['spread'], 3)}"),
+            ("rms residual / signal", f"{self.rms:.3g} / {self.signal_rms:.3g} rad/s"),
+            ("free rotation", self.free_rotation),
+        ]
+        return html_table("Free-rotation fit", rows, note=self.message)
 
     def first_integrals(self):
         """Energy T and |J| of the measured ω (bias removed) with the fitted moments.

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._compiled import cached as _jit
+from .._html import html_table, number
 from .._validation import as_float_array
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
@@ -329,6 +330,12 @@ class LagrangeTop:
 
     def __repr__(self):
         return f"LagrangeTop(I1={self.I1:g}, I3={self.I3:g}, mgl={self.mgl:g})"
+
+    def _repr_html_(self):
+        rows = [("I1 = I2, I3", f"{number(self.I1)}, {number(self.I3)} kg m²"),
+                ("mgl", number(self.mgl) + " N m"),
+                ("sleeping top stable for |ω3| >", number(self.sleeping_top_threshold()) + " rad/s")]
+        return html_table("LagrangeTop (heavy symmetric top)", rows, note="Euler angles ZXZ (φ, θ, ψ), θ from the vertical")
 
     # ---- state and constants ---------------------------------------------------------
     @staticmethod
