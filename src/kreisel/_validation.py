@@ -6,9 +6,15 @@ raises ``ValueError``/``TypeError`` naming the argument and the expectation.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 FRAMES = ("space", "body")
+
+#: numpy dtype kinds accepted as real numbers: bool, signed and unsigned integers, floats, and
+#: object arrays of Python numbers (converted by float(); a complex object is refused there)
+REAL_KINDS = "biufO"
 
 
 def as_float_array(x, name, tail=None, finite=True):
@@ -25,10 +31,19 @@ def as_float_array(x, name, tail=None, finite=True):
         for matrices.
     finite : bool
         Refuse NaN and infinities.
+
+    Complex, date/time, string and other non-real dtypes are refused, not
+    converted: numpy would drop an imaginary part (with only a warning) or
+    turn dates into day counts.
     """
     try:
-        a = np.asarray(x, dtype=np.float64)
+        raw = np.asarray(x)
+        if raw.dtype.kind not in REAL_KINDS:
+            raise TypeError(f"{name} must be real numbers, got an array of dtype {raw.dtype}")
+        a = raw.astype(np.float64, copy=False)
     except (TypeError, ValueError) as exc:
+        if "must be real numbers" in str(exc):
+            raise
         raise TypeError(f"{name} must be a real numeric array, got {type(x).__name__}") from exc
     if tail is not None:
         k = len(tail)
@@ -65,3 +80,29 @@ def batch_shape(shape, name="shape"):
     if any(n < 0 for n in items):
         raise ValueError(f"{name} must have non-negative entries, got {shape!r}")
     return tuple(int(n) for n in items)
+
+
+def memory_budget():
+    """Bytes one result may take: half the machine's physical memory (16 GiB if it cannot be read)."""
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") // 2
+    except (AttributeError, OSError, ValueError):
+        return 2**34
+
+
+def check_allocation(nbytes, what):
+    """Refuse, before allocating, a result of ``nbytes`` bytes over :func:`memory_budget`.
+
+    ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``.
+    """
+    budget = memory_budget()
+    if not nbytes <= budget:
+        raise ValueError(f"{what} would need {_size(nbytes)}, more than the {_size(budget)} allowed "
+                         "(half of this machine's memory)")
+
+
+def _size(nbytes):
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if nbytes >= size:
+            return f"{nbytes / size:.3g} {unit}"
+    return f"{nbytes:.0f} bytes"

@@ -1,5 +1,7 @@
 """Every ``kreisel`` command through typer's runner, including the error paths (exit status 2)."""
 
+import re
+
 import numpy as np
 import pytest
 from PIL import Image
@@ -188,3 +190,38 @@ def test_convert_reads_a_csv_file(tmp_path):
     np.testing.assert_allclose(numbers(result.stdout), expected, atol=1e-8)
     result = run("convert", "--from", "quat", "--to", "matrix", "--input", str(tmp_path / "absent.csv"))
     assert result.exit_code == 2 and "cannot read" in result.output
+
+
+RUNAWAY = SHORT.replace("n_samples = 101\n", "")  # each test adds its own sampling
+
+
+@pytest.mark.parametrize("extra,message", [
+    ('n_samples = 11\nmethod = "rk4"\ndt = 1e-300\n', r"needs 1e\+301 steps, about .* years"),
+    ("n_samples = 1000000000000\n", r"n_samples = 1000000000000: the result would need 120 TB"),
+])
+def test_simulate_refuses_runaway_scenarios_before_work(tmp_path, extra, message):
+    path = tmp_path / "runaway.toml"
+    path.write_text(RUNAWAY + extra, encoding="utf-8")
+    result = run("simulate", str(path))
+    assert result.exit_code == 2
+    assert re.search(message, " ".join(result.output.split())), result.output
+
+
+def test_simulate_reports_progress_of_a_long_run(tmp_path, monkeypatch):
+    from kreisel.dynamics import engine
+    from kreisel.io import run as io_run
+
+    path = tmp_path / "long.toml"
+    path.write_text(RUNAWAY + 'n_samples = 3\nmethod = "rk4"\ndt = 1e-2\n', encoding="utf-8")
+    monkeypatch.setattr(engine, "_CHUNK_SECONDS", 0.0)
+    monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", 1)
+    seen = []
+    original = io_run.run_scenario
+
+    def spy(spec, progress=None):
+        return original(spec, progress=lambda done: (seen.append(done), progress(done)))
+
+    monkeypatch.setattr(io_run, "run_scenario", spy)
+    result = run("simulate", str(path))
+    assert result.exit_code == 0, result.output
+    assert len(seen) > 10 and 0 <= seen[0] and seen[-1] < 1 and np.all(np.diff(seen) >= 0)

@@ -77,3 +77,15 @@ def test_bad_input():
         kr.angular_velocity(np.stack([np.eye(3)] * 2), np.zeros((3, 3, 3)))
     with pytest.raises(ValueError, match="finite"):
         kr.quat_rate([1.0, 0, 0, 0], [np.nan, 0, 1.0])
+
+
+def test_angular_velocity_and_acceleration_refuse_matrices_that_are_not_rotations():
+    # 2·1 gave 2ω and a reflection −ω before
+    R = kr.quat_to_matrix([0.9, 0.1, -0.3, 0.2])
+    Rdot = kr.hat([0.1, 0.2, 0.3]) @ R
+    for bad, match in [(2 * R, r"max \|R\^T R - 1\|"), (-R, "det > 0"), (R @ np.diag([1, 1, -1]), "det > 0")]:
+        with pytest.raises(ValueError, match=match):
+            kr.angular_velocity(bad, Rdot)
+        with pytest.raises(ValueError, match=match):
+            kr.angular_acceleration(bad, Rdot, Rdot)
+    np.testing.assert_allclose(kr.angular_velocity(R, Rdot), [0.1, 0.2, 0.3], atol=1e-15)

@@ -18,7 +18,10 @@ them cacheable by calling them from a cached kernel with a fixed module-level
 ``rhs`` (the kernel's cache then holds the whole compiled loop); only
 user-supplied callables are compiled per call.
 
-Status codes: 0 success, 1 the step fell below round-off, 2 non-finite state.
+Status codes: 0 success, 1 the step fell below round-off, 2 non-finite state,
+4 paused: :func:`integrate_steps` took its budget of steps and returns to
+Python (so that a long run can be interrupted and report progress); calling it
+again with the same state continues bit for bit as if it had not stopped.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ import numpy as np
 from . import cached, generic
 
 OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
+PAUSED = 4
 MESSAGES = {
     STEP_TOO_SMALL: "the adaptive step fell below round-off (the solution is probably singular)",
     NOT_FINITE: "the state became non-finite (step too large or model unbounded)",
@@ -78,6 +82,10 @@ def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     d1 = math.sqrt(d1 / ny)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     h0 = min(h0, span)
+    if not h0 > 0.0:
+        # d1 overflowed (a tiny atol against an order-one slope): no step can meet the tolerance;
+        # a zero step makes the integration stop with STEP_TOO_SMALL instead of dividing by it
+        return 0.0
     for i in range(ny):
         tmp[i] = y[i] + h0 * f[i]
     rhs(t + h0, tmp, args, probe, 0)
@@ -221,14 +229,43 @@ def interpolate(dense, y, x, out):
         out[i] = v + y[i]
 
 
+def new_state(y0):
+    """The resumable state of :func:`integrate_steps` for the initial state ``y0``.
+
+    Layout ``[t, h, j, y (ny), f(t, y) (ny)]``: ``j`` is the next output index,
+    0 before the first call.
+    """
+    y0 = np.asarray(y0, dtype=np.float64)
+    state = np.zeros(3 + 2 * y0.size)
+    state[3:3 + y0.size] = y0
+    return state
+
+
 @generic
 def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_outputs):
     """Write the state at every sorted time ``t_out`` (``t_out[0]`` the initial time) into ``out``.
 
-    Steps are chosen by the error control; output times inside a step are
-    filled by the dense output, or, with ``land_on_outputs``, every step is
-    shortened to end on the next output time (more steps on a fine output
-    grid, no interpolation error). Returns a status code.
+    :func:`integrate_steps` in one call, without a step budget. Returns a status code.
+    """
+    ny = y0.size
+    state = np.zeros(3 + 2 * ny)
+    for i in range(ny):
+        state[3 + i] = y0[i]
+    return integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs,
+                           2**62)
+
+
+@generic
+def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs, budget):
+    """Integrate from ``state`` (see :func:`new_state`) for at most ``budget`` accepted steps.
+
+    Writes the state at every sorted time ``t_out`` (``t_out[0]`` the initial
+    time) reached into ``out``. Steps are chosen by the error control; output
+    times inside a step are filled by the dense output, or, with
+    ``land_on_outputs``, every step is shortened to end on the next output
+    time (more steps on a fine output grid, no interpolation error). Returns a
+    status code: :data:`PAUSED` when the budget ran out before ``t_out[-1]``
+    (``state`` then holds where to continue).
 
     The step (:func:`advance`) and the dense output (:func:`dense_coefficients`)
     are written out in this one loop, their stage sums over the work arrays
@@ -238,24 +275,43 @@ def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_o
     which pass arrays without reference counting.
     """
     A, B, C, E3, E5, D = tables[0], tables[1], tables[2], tables[3], tables[4], tables[5]
-    ny = y0.size
+    ny = (state.size - 3) // 2
     n_out = t_out.size
     k = np.empty(N_STAGES_EXTENDED * ny)
-    y = y0.copy()
+    y = np.empty(ny)
     y_new = np.empty(ny)
     tmp = np.empty(ny)
     probe = np.empty(ny)
     dense = np.empty((7, ny))
     for i in range(ny):
-        out[0, i] = y[i]
-    if n_out == 1:
-        return OK
-    t = t_out[0]
+        y[i] = state[3 + i]
     t_end = t_out[n_out - 1]
-    rhs(t, y, args, k, 0)
-    h = initial_step(rhs, args, t, y, k, min(t_end - t, max_step), rtol, atol, tmp, probe)
-    j = 1
+    j = int(state[2])
+    if j == 0:
+        for i in range(ny):
+            out[0, i] = y[i]
+        if n_out == 1:
+            return OK
+        t = t_out[0]
+        rhs(t, y, args, k, 0)
+        h = initial_step(rhs, args, t, y, k, min(t_end - t, max_step), rtol, atol, tmp, probe)
+        j = 1
+    else:
+        t = state[0]
+        h = state[1]
+        for i in range(ny):
+            k[i] = state[3 + ny + i]
+    taken = 0
     while j < n_out:
+        if taken >= budget:
+            state[0] = t
+            state[1] = h
+            state[2] = j
+            for i in range(ny):
+                state[3 + i] = y[i]
+                state[3 + ny + i] = k[i]
+            return PAUSED
+        taken += 1
         target = t_out[j] if land_on_outputs else t_end
         rejected = False
         h = min(h, max_step)

@@ -141,17 +141,23 @@ def gufunc(signatures, layout, parallel=None, shared=()):
     return lambda function: LazyGufunc(function, signatures, layout, parallel, shared)
 
 
+_BIG = 1.7976931348623157e308
+
+
 @cached
-def _smallest_quat_norm2(flat, start, stop):
+def _smallest_quat_size(flat, start, stop):
     # One pass, no temporaries: the batch checks must stay cheap next to the
-    # memory-bound kernels they guard. NaN compares false, so it is mapped to -1.
+    # memory-bound kernels they guard. The size of a quaternion is its largest
+    # |component| (no squares: they would overflow or underflow far from unit
+    # size). NaN compares false, so it is mapped to -1.
     smallest = np.inf
     for i in range(start, stop, 4):
-        n2 = flat[i] * flat[i] + flat[i + 1] * flat[i + 1] + flat[i + 2] * flat[i + 2] + flat[i + 3] * flat[i + 3]
-        if not (n2 <= 1.7e308):
+        a0, a1, a2, a3 = abs(flat[i]), abs(flat[i + 1]), abs(flat[i + 2]), abs(flat[i + 3])
+        if not (a0 <= _BIG and a1 <= _BIG and a2 <= _BIG and a3 <= _BIG):
             return -1.0
-        if n2 < smallest:
-            smallest = n2
+        size = max(max(a0, a1), max(a2, a3))
+        if size < smallest:
+            smallest = size
     return smallest
 
 
@@ -170,11 +176,11 @@ _CHUNK = 36 * 4096
 
 
 @parallel
-def _smallest_quat_norm2_parallel(flat, chunk):
+def _smallest_quat_size_parallel(flat, chunk):
     pieces = (flat.size + chunk - 1) // chunk
     smallest = np.empty(pieces)
     for c in prange(pieces):
-        smallest[c] = _smallest_quat_norm2(flat, c * chunk, min(flat.size, (c + 1) * chunk))
+        smallest[c] = _smallest_quat_size(flat, c * chunk, min(flat.size, (c + 1) * chunk))
     return smallest.min()
 
 
@@ -202,8 +208,8 @@ def _large(flat, width):
     return flat.size >= PARALLEL_THRESHOLD * width
 
 
-def finite_array(x, name, tail):
-    """Float64 array with trailing shape ``tail`` and only finite entries."""
+def finite_array(x, name, tail=(3,)):
+    """Float64 array with trailing shape ``tail`` and only finite entries (the one such check of kreisel)."""
     a = as_float_array(x, name, tail, finite=False)
     flat = _read_only_flat(a)
     width = math.prod(tail or ())
@@ -222,10 +228,10 @@ def quaternion_array(q, name="q", nonzero=True):
     if a.size == 0:
         return a
     flat = _read_only_flat(a)
-    smallest = _smallest_quat_norm2_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_norm2(flat, 0, flat.size)
+    smallest = _smallest_quat_size_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_size(flat, 0, flat.size)
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
-    if nonzero and not smallest > 1e-300:
+    if nonzero and not smallest > 0.0:
         raise ValueError(f"{name} must be nonzero quaternions (a zero quaternion is not a rotation)")
     return a
 

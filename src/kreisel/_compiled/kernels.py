@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from . import cached
 
 
@@ -36,9 +38,32 @@ def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
     )
 
 
+#: Components of size in (SIZE_LOW, SIZE_HIGH) have squares that neither overflow nor lose digits
+#: to underflow; a quaternion whose largest component is outside is first divided by it (as
+#: ``hypot`` does), which leaves every scale-invariant result unchanged.
+SIZE_LOW = 1e-140
+SIZE_HIGH = 1e140
+
+
+@cached
+def size(q0, q1, q2, q3):
+    """The largest ``|component|`` of ``q``."""
+    return max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
+
+
+@cached
+def squarable(q0, q1, q2, q3):
+    """``q``, or ``q`` divided by its largest ``|component|`` when squaring it would overflow or underflow."""
+    m = size(q0, q1, q2, q3)
+    if SIZE_LOW < m < SIZE_HIGH:
+        return q0, q1, q2, q3
+    return q0 / m, q1 / m, q2 / m, q3 / m
+
+
 @cached
 def quat_unit(q0, q1, q2, q3):
-    """``q / |q|``."""
+    """``q / |q|`` for any nonzero finite ``q``."""
+    q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     return q0 / n, q1 / n, q2 / n, q3 / n
 
@@ -59,7 +84,8 @@ _rotated = rotated
 
 @cached
 def quat_matrix(q0, q1, q2, q3):
-    """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit quaternion."""
+    """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit (nonzero, finite) quaternion."""
+    q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
     s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     return (
         (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * s,
@@ -118,8 +144,13 @@ def rotvec_quat(x, y, z):
     sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
     result is accurate to the last bit at tiny angles.
     """
-    a2 = x * x + y * y + z * z
-    a = math.sqrt(a2)
+    m = size(0.0, x, y, z)
+    if m < SIZE_HIGH:
+        a2 = x * x + y * y + z * z
+        a = math.sqrt(a2)
+    else:  # the squares would overflow (a2 is then only used below 1e-4)
+        a2 = np.inf
+        a = m * math.sqrt((x / m) ** 2 + (y / m) ** 2 + (z / m) ** 2)
     if a < 1e-4:
         s = 0.5 - a2 / 48.0 + a2 * a2 / 3840.0
         c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0
@@ -139,6 +170,7 @@ def quat_rotvec(q0, q1, q2, q3):
     """
     if q0 < 0.0:
         q0, q1, q2, q3 = -q0, -q1, -q2, -q3
+    q0, q1, q2, q3 = squarable(q0, q1, q2, q3)  # the result depends only on the direction of q
     v = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
     if v < 1e-8 * q0:
         r = v / q0

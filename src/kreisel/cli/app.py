@@ -157,11 +157,19 @@ def simulate(
         spec = load_scenario(scenario)
     except ScenarioError as exc:
         usage_error(str(exc))
-    try:
-        with err.status(escape(f"simulating {spec.title} ...")):
-            result = run_scenario(spec)
-    except ValueError as exc:
-        usage_error(f"{spec.path or scenario}: cannot run: {exc}")
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    columns = (TextColumn("simulating {task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f} %"),
+               TimeElapsedColumn())
+    with Progress(*columns, console=err, transient=True) as bar:
+        task = bar.add_task(escape(spec.title), total=1.0)
+        try:
+            result = run_scenario(spec, progress=lambda done: bar.update(task, completed=done))
+        except (ValueError, TypeError) as exc:
+            usage_error(f"{spec.path or scenario}: cannot run: {exc}")
+        except RuntimeError as exc:
+            err.print(f"[bold red]error:[/] {escape(str(exc))}", soft_wrap=True)
+            raise typer.Exit(1) from None
     for line in summary(result):
         say(line)
     if output is not None:

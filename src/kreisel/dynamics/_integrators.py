@@ -8,7 +8,13 @@ and :func:`run_batch` many in parallel (``prange``) with the same code.
 
 Status codes returned by the drivers: 0 success, 1 adaptive step fell below
 round-off, 2 non-finite state, 3 implicit iteration did not converge (step
-too large for the fixed-point iteration).
+too large for the fixed-point iteration), 4 paused.
+
+The drivers take at most ``budget`` steps per call and then return
+:data:`PAUSED` with everything needed to continue in a ``state`` array
+(:func:`new_state`): the Python caller calls again until done, so a long run
+returns to Python often enough to be interrupted (Ctrl-C) and to report
+progress. Continuing is exact: a run gives the same bits for any budget.
 """
 
 from __future__ import annotations
@@ -19,7 +25,8 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, inlined, parallel
-from .._compiled.dop853 import NOT_FINITE, OK, integrate
+from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
+from .._compiled.dop853 import new_state as _dop853_state
 from .._compiled.kernels import _rotated as rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
 from ._model_tables import CALLBACK
@@ -125,15 +132,19 @@ def _strang_free(h, inertia, y, m):
 
 
 @cached
-def _strang_run(h, n, weights, inertia, y, m):
-    """``n`` free steps, each a composition of Strang steps of sizes ``weights·h``.
+def _strang_run(h, n, weights, inertia, y, m, pending, first, last):
+    """``n`` free steps, each a composition of Strang steps of sizes ``weights·h``; returns ``pending``.
 
     Consecutive half-flows about axis 0 are merged into one (they commute and
-    add: m_0 is their invariant), saving one flow in five.
+    add: m_0 is their invariant), saving one flow in five. A run cut into
+    pieces carries the body momentum ``m`` and the not yet applied flow
+    ``pending`` from one piece to the next: ``first`` starts from ω′ = y[0:3],
+    ``last`` applies the pending flow and writes ω′ back.
     """
-    for a in range(3):
-        m[a] = inertia[a] * y[a]
-    pending = 0.0
+    if first:
+        for a in range(3):
+            m[a] = inertia[a] * y[a]
+        pending = 0.0
     for _ in range(n):
         for g in weights:
             pending += 0.5 * g * h
@@ -142,9 +153,12 @@ def _strang_run(h, n, weights, inertia, y, m):
             _axis_flow(2, g * h, inertia, m, y)
             _axis_flow(1, 0.5 * g * h, inertia, m, y)
             pending = 0.5 * g * h
-    _axis_flow(0, pending, inertia, m, y)
-    for a in range(3):
-        y[a] = m[a] / inertia[a]
+    if last:
+        _axis_flow(0, pending, inertia, m, y)
+        for a in range(3):
+            y[a] = m[a] / inertia[a]
+        pending = 0.0
+    return pending
 
 
 @cached
@@ -371,20 +385,32 @@ def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
 
 
 @cached
-def _advance(method, t0, h, n, inertia, rows, y, wa, wb, wc, wd, scratch):
-    """``n`` rotation steps from ``t0``: one loop per method keeps the dispatch out of the hot loop."""
+def _advance(method, t0, h, s0, n, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch, carry):
+    """Rotation steps ``s0 … s0+n-1`` of ``n_sub`` steps of size ``h`` from ``t0``; returns a status.
+
+    One loop per method keeps the dispatch out of the hot loop. ``carry`` is
+    the part of the driver state that :func:`_strang_run` continues from
+    (``[pending, m0, m1, m2]``).
+    """
     if method == RK4:
-        for s in range(n):
+        for s in range(s0, s0 + n):
             _rk4(t0 + s * h, h, inertia, rows, y, wa, wc, wb, scratch)
     elif method == RKMK4:
-        for s in range(n):
+        for s in range(s0, s0 + n):
             _rkmk4(t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-    elif method == SPLITTING and rows is None:
-        _strang_run(h, n, (1.0,), inertia, y, wa)
-    elif method == SPLITTING4 and rows is None:
-        _strang_run(h, n, (YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), inertia, y, wa)
+    elif (method == SPLITTING or method == SPLITTING4) and rows is None:
+        for a in range(3):
+            wa[a] = carry[1 + a]
+        first, last = s0 == 0, s0 + n == n_sub
+        if method == SPLITTING:
+            carry[0] = _strang_run(h, n, (1.0,), inertia, y, wa, carry[0], first, last)
+        else:
+            weights = (YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER)
+            carry[0] = _strang_run(h, n, weights, inertia, y, wa, carry[0], first, last)
+        for a in range(3):
+            carry[1 + a] = wa[a]
     else:
-        for s in range(n):
+        for s in range(s0, s0 + n):
             status = _rotation_step(method, t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
             if status != OK:
                 return status
@@ -400,22 +426,71 @@ def _translation_kick(t, h, mass, frows, y, scratch):
         y[10 + k] += h * scratch[10 + k] / mass
 
 
+def new_state(method, y0):
+    """The resumable state of :func:`run` for one body starting at ``y0``.
+
+    DOP853 keeps the layout of :func:`kreisel._compiled.dop853.new_state`; a fixed-step
+    method keeps ``[interval, step, pending, m0, m1, m2, y…]`` (interval −1
+    before the first call).
+    """
+    if method == DOP853:
+        return _dop853_state(y0)
+    state = np.zeros(6 + len(y0))
+    state[0] = -1.0
+    state[6:] = y0
+    return state
+
+
+def reached(method, t_out, dt, state):
+    """The earliest time reached by the paused bodies with states ``state (count, size)``."""
+    if method == DOP853:
+        return float(state[:, 0].min())
+    k = np.clip(state[:, 0].astype(np.int64), 0, t_out.size - 2)
+    span = t_out[k + 1] - t_out[k]
+    return float(np.min(t_out[k] + state[:, 1] * span / substeps(span, dt)))
+
+
+def substeps(span, dt):
+    """Steps of the fixed-step drivers over intervals ``span``: ``ceil(span/dt)``, as floats (they may not fit an int)."""
+    return np.maximum(1.0, np.ceil(span / dt * (1.0 - 1e-12)))
+
+
 @cached
-def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
-    """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps."""
-    ny = y0.size
-    y = y0.copy()
-    wa, wb, wc, wd, scratch = np.empty(8), np.empty(8), np.empty(28), np.empty(12), np.empty(13)
+def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget):
+    """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps.
+
+    At most ``budget`` steps per call (see the module note). The caller has
+    checked with :func:`substeps` that every step count fits an int.
+    """
+    ny = state.size - 6
+    y = np.empty(ny)
     for i in range(ny):
-        out[0, i] = y[i]
-    for k in range(t_out.size - 1):
+        y[i] = state[6 + i]
+    wa, wb, wc, wd, scratch = np.empty(8), np.empty(8), np.empty(28), np.empty(12), np.empty(13)
+    carry = state[2:6]
+    k = int(state[0])
+    s0 = int(state[1])
+    if k < 0:
+        for i in range(ny):
+            out[0, i] = y[i]
+        k = 0
+    taken = 0
+    while k < t_out.size - 1:
+        if taken >= budget:
+            state[0] = k
+            state[1] = s0
+            for i in range(ny):
+                state[6 + i] = y[i]
+            return PAUSED
         span = t_out[k + 1] - t_out[k]
         n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
         h = span / n_sub
+        n = min(n_sub - s0, budget - taken)
+        taken += n
         if ny == 7:
-            if _advance(method, t_out[k], h, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
+            if _advance(method, t_out[k], h, s0, n, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch, carry) != OK:
                 return NO_CONVERGENCE
-        for s in range(n_sub if ny == 13 else 0):
+        for s in range(s0, s0 + n if ny == 13 else 0):
             t = t_out[k] + s * h
             # velocity Verlet for the centre of mass around the rotation step
             _translation_kick(t, 0.5 * h, mass, frows, y, scratch)
@@ -424,31 +499,40 @@ def fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out):
             if _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
                 return NO_CONVERGENCE
             _translation_kick(t + h, 0.5 * h, mass, frows, y, scratch)
+        s0 += n
+        if s0 < n_sub:
+            continue
         for i in range(ny):
             if not math.isfinite(y[i]):
                 return NOT_FINITE
             out[k + 1, i] = y[i]
+        k += 1
+        s0 = 0
     return OK
 
 
 @cached
-def _dop853_run(t_out, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
+def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
     # its own function, not inlined into run: LLVM optimises the stage loop better alone
     model = (inertia, mass, rows, frows, np.empty(13))
-    return integrate(_model_rhs, model, t_out, y0, rtol, atol, np.inf, tables, out, False)
+    return integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget)
 
 
 @cached
-def run(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, out):
-    """One body: dispatch to DOP853 or a fixed-step method."""
+def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
+    """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method."""
     if method == DOP853:
-        return _dop853_run(t_out, y0, inertia, mass, rows, frows, rtol, atol, tables, out)
-    return fixed_step(method, t_out, dt, y0, inertia, mass, rows, frows, out)
+        return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
+    return fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget)
 
 
 @parallel
-def run_batch(method, t_out, dt, y0, inertia, mass, rows, frows, rtol, atol, tables, out, status):
-    """Many bodies, one per ``prange`` iteration: the same code as :func:`run`."""
-    for b in prange(y0.shape[0]):
-        status[b] = run(method, t_out, dt, y0[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
-                        tables, out[b])
+def run_batch(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, status, budget):
+    """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
+
+    Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
+    """
+    for b in prange(state.shape[0]):
+        if status[b] == PAUSED:
+            status[b] = run(method, t_out, dt, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
+                            tables, out[b], budget)

@@ -32,6 +32,14 @@ Fixed-step methods need ``dt``: each interval between requested times is cut
 into ``ceil(Δt/dt)`` equal steps, so the step never exceeds ``dt`` and the
 requested times are hit exactly (no interpolation).
 
+Every run is bounded and interruptible: a fixed-step run whose step count
+exceeds ``max_steps`` (default ``MAX_STEPS`` = 10¹⁰) is refused before it starts,
+with its estimated time; an adaptive run stops with ``RuntimeError`` once it
+has taken ``max_steps`` steps; outputs that would not fit in memory are refused
+with their size. The compiled loops return to Python every ~50 ms, so Ctrl-C
+stops any run with a ``KeyboardInterrupt`` and ``progress`` is told how far
+the run got.
+
 A body given by a non-diagonal tensor is integrated in its principal frame
 (Euler's equations take their principal-axis form there, and ``splitting``
 needs it) and the result is transformed back: ``q = q_principal ⊗ q_axes*``,
@@ -40,21 +48,26 @@ needs it) and the result is transformed back: ``q = q_principal ⊗ q_axes*``,
 
 from __future__ import annotations
 
+import contextlib
 import math
 import operator
+import signal
+import threading
+import time
 
 import numpy as np
 
 from .._compiled import dop853 as _dop853
-from .._validation import as_float_array
+from .._validation import as_float_array, check_allocation
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
+from ..so3._coercion import as_quaternion
 from . import _integrators
 from . import _model_tables
 from . import forces as _forces
 from . import torques as _torques
 from .trajectory import Trajectory
 
-__all__ = ["simulate", "simulate_batch", "simulate_6dof", "METHODS"]
+__all__ = ["simulate", "simulate_batch", "simulate_6dof", "METHODS", "MAX_STEPS"]
 
 METHODS = {
     "dop853": _integrators.DOP853,
@@ -68,6 +81,18 @@ METHODS = {
 }
 ADAPTIVE = ("dop853", "scipy")
 DEFAULT_RTOL = 1e-12
+
+#: Default step budget of a run (per body): about an hour of the slowest method.
+MAX_STEPS = 10**10
+
+# rough single-core cost of one step of each compiled method (free body; a torque adds to it), for the
+# time estimate in the message that refuses a run over its step budget
+_SECONDS_PER_STEP = {"dop853": 1.5e-6, "splitting": 3e-7, "splitting4": 1e-6, "dmv": 1e-6, "rkmk4": 6e-7,
+                     "midpoint": 5e-7, "rk4": 3.5e-7}
+# a compiled call returns to Python after about this long (checks for Ctrl-C, reports progress)
+_CHUNK_SECONDS = 0.05
+# steps of the first call (shared by the bodies of a batch); later calls adapt to the measured speed
+_FIRST_CHUNK_STEPS = 2**16
 
 _STATUS = {
     **_dop853.MESSAGES,
@@ -153,16 +178,25 @@ def _check_method(method, dt, t):
     return method, dt
 
 
+def _check_omega_range(w, moments):
+    """Refuse ω0 for which Euler's equations overflow: they multiply two components, scaled by I_max/I_min."""
+    size = np.abs(w).max(axis=-1) if w.size else np.zeros(0)
+    spread = moments.max(axis=-1) / moments.min(axis=-1)
+    with np.errstate(over="ignore"):
+        worst = size * size * spread
+    if np.any(worst > 1e300):
+        raise ValueError(f"omega0 = {np.asarray(w).reshape(-1, 3)[np.argmax(np.ravel(worst > 1e300))]} is out of "
+                         "range: Euler's equations multiply its components (times I_max/I_min), which overflows "
+                         "double precision above about 1e150 rad/s")
+
+
 def _initial_quaternion(q0, batch_shape=()):
     if q0 is None:
         q = np.zeros(batch_shape + (4,))
         q[..., 0] = 1.0
         return q
-    q = as_float_array(q0, "q0", tail=(4,))
-    norm = np.linalg.norm(q, axis=-1, keepdims=True)
-    if np.any(np.abs(norm - 1.0) > 1e-6):
-        raise ValueError("q0 must be a unit quaternion (|q0| = 1 to within 1e-6)")
-    return np.broadcast_to(q / norm, batch_shape + (4,)).copy() if batch_shape else q / norm
+    q = as_quaternion(q0, "q0")
+    return np.broadcast_to(q, batch_shape + (4,)).copy() if batch_shape else q
 
 
 def _torque_rows(torque, axes, t0, q0_body, omega0_body):
@@ -174,14 +208,15 @@ def _torque_rows(torque, axes, t0, q0_body, omega0_body):
     if not callable(torque):
         raise TypeError(f"torque must be None, a torque model or a callable torque(t, q, omega_body), "
                         f"got {type(torque).__name__}")
-    _check_callable_output(torque, (t0, q0_body.copy(), omega0_body.copy()), "torque")
+    checked = _checked_callable(torque, "torque")
+    checked(t0, q0_body.copy(), omega0_body.copy())
     if axes is None:
-        fn = torque
+        fn = checked
     else:
         q_axes = matrix_to_quat(axes)
 
         def fn(t, q, w):  # principal-frame state -> user's body frame and back
-            return axes.T @ np.asarray(torque(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w), dtype=float)
+            return axes.T @ checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w)
 
     return _model_tables.register_callback(fn)
 
@@ -191,16 +226,130 @@ def _table(rows):
     return np.ascontiguousarray(rows) if rows.shape[0] else None
 
 
-def _check_callable_output(fn, args, name):
-    out = fn(*args)
+def _checked_callable(fn, name):
+    """``fn`` with its output checked at every call: a real, finite array of shape (3,).
+
+    The compiled loop reads exactly three numbers from what a callable returns,
+    so a wrong shape must never reach it; a non-finite value stops the run at
+    once (instead of the step size collapsing towards it).
+    """
+
+    def call(t, *state):
+        value = fn(t, *state)
+        out = np.asarray(value)
+        if out.dtype.kind not in "biuf":
+            raise TypeError(f"{name} callable must return a real array of shape (3,), got "
+                            f"{type(value).__name__} of dtype {out.dtype} at t = {t!r}")
+        if out.shape != (3,):
+            raise ValueError(f"{name} callable must return shape (3,), got {out.shape} at t = {t!r}")
+        out = out.astype(np.float64)
+        if not np.isfinite(out).all():
+            raise ValueError(f"{name} callable returned {out} at t = {t!r} (not finite)")
+        return out
+
+    return call
+
+
+def _run(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress=None):
+    """Integrate bodies ``y0 (count, ny)`` in compiled chunks of ~:data:`_CHUNK_SECONDS`; returns ``(out, status)``.
+
+    Between chunks Python runs: a pending Ctrl-C raises ``KeyboardInterrupt``
+    there, ``progress(t_reached)`` is called (the earliest time over the
+    bodies), and the adaptive step budget ``max_steps`` is enforced. The chunk
+    length adapts to the measured speed; results do not depend on it.
+    """
+    with _interrupts_between_chunks() as interrupted:
+        return _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress, interrupted)
+
+
+@contextlib.contextmanager
+def _interrupts_between_chunks():
+    """Hold back Ctrl-C during a compiled chunk; yields a list that records it (raise it between chunks).
+
+    A ``KeyboardInterrupt`` raised while a torque callable runs inside the
+    compiled loop would reach numba's object-mode glue and come out as a
+    ``SystemError``; deferring it by at most one chunk keeps it clean. Only
+    the main thread can install handlers; elsewhere nothing changes.
+    """
+    seen = []
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield seen
+        return
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
     try:
-        out = np.asarray(out, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} callable must return a real array of shape (3,), got {type(out).__name__}") from exc
-    if out.shape != (3,):
-        raise ValueError(f"{name} callable must return shape (3,), got {out.shape}")
-    if not np.all(np.isfinite(out)):
-        raise ValueError(f"{name} callable returned a non-finite value at the initial state")
+        yield seen
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress, interrupted):
+    count, ny = y0.shape
+    out = np.empty((count, t.size, ny))
+    state = np.stack([_integrators.new_state(code, y) for y in y0])
+    status = np.full(count, _dop853.PAUSED, dtype=np.int64)
+    tables = _dop853.tableau()
+    # the first chunk is short only when a Python callable (up to ~1 ms a step) is in the loop
+    callbacks = any(r is not None and np.any(r[:, 0] == _rows.CALLBACK) for r in (rows, frows))
+    budget = 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count)
+    taken = 0
+    while True:
+        budget = min(budget, max_steps - taken + 1)
+        start = time.perf_counter()
+        if count == 1:
+            status[0] = _integrators.run(code, t, dt, state[0], moments[0], mass[0], rows, frows, rtol, atol[0], tables,
+                               out[0], budget)
+        else:
+            _integrators.run_batch(code, t, dt, state, moments, mass, rows, frows, rtol, atol, tables, out, status, budget)
+        elapsed = time.perf_counter() - start
+        if interrupted:
+            raise KeyboardInterrupt
+        paused = status == _dop853.PAUSED
+        if not paused.any():
+            return out, status
+        taken += budget
+        if taken > max_steps:
+            raise RuntimeError(f"integration stopped after max_steps = {max_steps} steps at "
+                               f"t = {_integrators.reached(code, t, dt, state[paused]):.6g} of {t[-1]:.6g} "
+                               "(pass a larger max_steps to go on)")
+        if progress is not None:
+            progress(_integrators.reached(code, t, dt, state[paused]))
+        budget = int(min(8 * budget, max(1.0, budget * _CHUNK_SECONDS / max(elapsed, 1e-9))))
+
+
+def _check_workload(method, t, dt, count, ny, max_steps):
+    """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget."""
+    if max_steps is None:
+        max_steps = MAX_STEPS
+    else:
+        if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)):
+            raise TypeError(f"max_steps must be a positive integer, got {type(max_steps).__name__}")
+        max_steps = int(max_steps)
+        if max_steps < 1:
+            raise ValueError(f"max_steps must be a positive integer, got {max_steps}")
+    check_allocation(count * t.size * ny * 8.0, f"the output ({count} × {t.size} samples × {ny} states)")
+    if method in ADAPTIVE:
+        return max_steps
+    steps = _integrators.substeps(np.diff(t), dt)
+    total = float(np.sum(steps))
+    if not (total <= max_steps):
+        seconds = total * count * _SECONDS_PER_STEP[method]
+        per_body = f" per body ({count} bodies)" if count > 1 else ""
+        raise ValueError(f"method {method!r} with dt = {dt:g} over t = {t[0]:g} … {t[-1]:g} needs "
+                         f"{total:.3g} steps{per_body}, about {_duration(seconds)} of computing; over the "
+                         f"budget max_steps = {max_steps:.3g}: raise dt, or pass a larger max_steps")
+    if not steps.max() < 2.0**62:
+        raise ValueError(f"method {method!r} with dt = {dt:g} needs {steps.max():.3g} steps for one output "
+                         f"interval: more than can be counted (2^62); raise dt")
+    return max_steps
+
+
+def _duration(seconds):
+    """A rough duration in the largest fitting unit, for messages."""
+    for unit, size in (("years", 3.15e7), ("days", 86400.0), ("hours", 3600.0), ("minutes", 60.0)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
 
 
 def _raise_status(status):
@@ -217,6 +366,9 @@ def _atol(atol, omega_scale, ny, rtol):
         a = float(atol)
         if not (math.isfinite(a) and a > 0.0):
             raise ValueError(f"atol must be a positive finite number, got {atol}")
+        if a < 1e-150:
+            raise ValueError(f"atol = {a:g} is below 1e-150: the error estimate is squared after dividing by "
+                             "atol, which overflows for order-one states; use a larger atol")
         return np.full(omega_scale.shape + (ny,), a)
     out = np.empty(omega_scale.shape + (ny,))
     out[...] = rtol
@@ -234,15 +386,15 @@ def _check_rtol(rtol):
 # ---------------------------------------------------------------------------- drivers
 
 
-def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol):
+def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress):
     # a fresh writable C array: numba compiles one specialisation per array layout
     moments = np.array(moments, dtype=np.float64, order="C")
-    out = np.empty((t.size, y0.size))
     if method == "scipy":
         return _scipy(t, y0, moments, mass, rows, frows, rtol, atol)
-    status = _integrators.run(METHODS[method], t, dt, y0, moments, mass, rows, frows, rtol, atol, _dop853.tableau(), out)
-    _raise_status(status)
-    return out
+    out, status = _run(METHODS[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
+                       rtol, atol[None, :], max_steps, progress)
+    _raise_status(status[0])
+    return out[0]
 
 
 def _scipy(t, y0, moments, mass, rows, frows, rtol, atol):
@@ -273,16 +425,20 @@ def _normalized(q):
     return q / np.linalg.norm(q, axis=-1, keepdims=True)
 
 
-def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, translation=None,
-            force=None):
+def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, max_steps, progress,
+            translation=None, force=None):
     """Shared validation and integration of :func:`simulate` and :func:`simulate_6dof`."""
     tensor, moments, axes, mass = resolve_body(body, allow_unphysical)
     t = _check_times(t)
     method, dt = _check_method(method, dt, t)
     rtol = _check_rtol(rtol)
+    max_steps = _check_workload(method, t, dt, 1, 7 if translation is None else 13, max_steps)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable, got {type(progress).__name__}")
     w_body = as_float_array(omega0, "omega0", tail=(3,))
     if w_body.ndim != 1:
         raise ValueError(f"omega0 must have shape (3,), got {w_body.shape}")
+    _check_omega_range(w_body, moments)
     q_body = _initial_quaternion(q0)
     if q_body.ndim != 1:
         raise ValueError(f"q0 must have shape (4,), got {q_body.shape}")
@@ -298,7 +454,7 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
         rows = _torque_rows(torque, axes, t[0], q_body, w_body)
         frows = _force_rows(force, axes, t[0], q_body, w_body, translation)
         atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
-        y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v)
+        y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v, max_steps, progress)
     finally:
         _model_tables.release_callback(rows)
         _model_tables.release_callback(frows)
@@ -309,7 +465,7 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
 
 
 def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
-             allow_unphysical=False):
+             allow_unphysical=False, max_steps=None, progress=None):
     """Integrate Euler's dynamic equations with quaternion attitude (Theory §4.4–5).
 
     Parameters
@@ -322,8 +478,10 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
         Strictly increasing output times; the initial state is at ``t[0]``.
     omega0 : (3,) array_like
         Initial body angular velocity ω′, rad/s.
-    q0 : (4,) array_like, optional
-        Initial attitude, body -> space, scalar first (default identity).
+    q0 : (4,) or (3, 3) array_like or Rotation, optional
+        Initial attitude, body -> space (default identity): a quaternion
+        (scalar first, any nonzero norm), a rotation matrix or a rotation
+        object.
     torque : TorqueModel or callable, optional
         A built-in model (:class:`GravityTorque`, :class:`ConstantTorque`,
         :class:`MagneticTorque`, :class:`LinearDamping`, sums of them: run
@@ -343,6 +501,13 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     allow_unphysical : bool
         Accept positive moments that violate the triangle inequality
         I_i <= I_j + I_k (textbook test problems); refused by default.
+    max_steps : int, optional
+        Step budget (default 10¹⁰): a fixed-step run needing
+        more steps is refused before it starts, an adaptive run is stopped
+        when it has taken that many.
+    progress : callable, optional
+        ``progress(t_reached)``, called about every 50 ms of a long run
+        with the time the integration has reached.
 
     Returns
     -------
@@ -353,10 +518,15 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     ------
     ValueError, TypeError
         For non-physical bodies, non-finite initial states, non-increasing
-        ``t``, unknown methods, a missing ``dt``, or a torque callable with
-        the wrong output; all raised before integrating.
+        ``t``, unknown methods, a missing ``dt``, a step count over the
+        budget, an output too large for memory, or a torque callable with
+        the wrong output (checked at every call); raised before
+        integrating, or for the callable as soon as it returns a bad value.
     RuntimeError
-        If the integration itself fails (step size collapse, divergence).
+        If the integration itself fails (step size collapse, divergence,
+        step budget exhausted).
+    KeyboardInterrupt
+        On Ctrl-C, within a fraction of a second.
 
     Examples
     --------
@@ -368,7 +538,7 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     ((5, 4), (5, 3))
     """
     tensor, _, t, omega, q, _, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
-                                            allow_unphysical)
+                                            allow_unphysical, max_steps, progress)
     return Trajectory(t, q, omega, tensor, meta=meta)
 
 
@@ -381,21 +551,22 @@ def _force_rows(force, axes, t0, q_body, w_body, translation):
         raise TypeError(f"force must be None, a force model or a callable "
                         f"force(t, q, omega_body, position, velocity), got {type(force).__name__}")
     r0, v0 = translation
-    _check_callable_output(force, (t0, q_body.copy(), w_body.copy(), r0.copy(), v0.copy()), "force")
+    checked = _checked_callable(force, "force")
+    checked(t0, q_body.copy(), w_body.copy(), r0.copy(), v0.copy())
     if axes is None:
-        fn = force
+        fn = checked
     else:
         q_axes = matrix_to_quat(axes)
 
         def fn(t, q, w, r, v):
-            return force(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
+            return checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
 
     return _model_tables.register_callback(fn, translation=True)
 
 
 def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),
                   force=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
-                  allow_unphysical=False):
+                  allow_unphysical=False, max_steps=None, progress=None):
     """A free rigid body in six degrees of freedom: centre of mass and attitude (Theory §4.4, §4.7).
 
     The centre of mass obeys m r̈ = F (space frame, Theory §4.7 with r_C the
@@ -408,7 +579,7 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     ----------
     body : RigidBody or (3,) / (3, 3) array_like
         Inertia about the centre of mass; a plain array means mass 1 kg.
-    t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical
+    t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, max_steps, progress
         As in :func:`simulate`.
     position0, velocity0 : (3,) array_like
         Centre-of-mass position (m) and velocity (m/s) in space.
@@ -436,14 +607,15 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     if r0.ndim != 1 or v0.ndim != 1:
         raise ValueError("position0 and velocity0 must have shape (3,)")
     tensor, mass, t, omega, q, y, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
-                                                 allow_unphysical, translation=(r0, v0), force=force)
+                                                 allow_unphysical, max_steps, progress, translation=(r0, v0),
+                                                 force=force)
     meta["mass"] = mass
     meta["force"] = repr(force) if force is not None else "none"
     return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10].copy(), velocity=y[:, 10:13].copy())
 
 
 def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None, reduce=None,
-                   rtol=DEFAULT_RTOL, atol=None, chunk_size=None, allow_unphysical=False):
+                   rtol=DEFAULT_RTOL, atol=None, chunk_size=None, allow_unphysical=False, max_steps=None):
     """Many rigid bodies in one compiled, parallel call (numba ``prange``).
 
     Parameters
@@ -459,8 +631,8 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     torque : TorqueModel, optional
         One built-in model shared by every body (Python callables are not
         accepted here: they would serialise the parallel loop).
-    method, dt, rtol, atol, allow_unphysical
-        As in :func:`simulate`; results agree with :func:`simulate` body by body
+    method, dt, rtol, atol, allow_unphysical, max_steps
+        As in :func:`simulate` (``max_steps`` per body); results agree with :func:`simulate` body by body
         to round-off (the same compiled code runs for each body).
     reduce : callable, optional
         ``reduce(trajectory) -> array (k, ...)`` applied to each chunk of ``k``
@@ -502,6 +674,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
         batch = np.broadcast_shapes(*shapes)
     except ValueError as exc:
         raise ValueError(f"bodies, omega0 and q0 batch shapes do not broadcast: {shapes}") from exc
+    _check_omega_range(np.broadcast_to(w, batch + (3,)), np.broadcast_to(moments, batch + (3,)))
     if torque is not None and not isinstance(torque, _torques.TorqueModel):
         raise TypeError("simulate_batch takes a built-in torque model (GravityTorque, ConstantTorque, "
                         f"MagneticTorque, LinearDamping or a sum); got {type(torque).__name__}")
@@ -509,6 +682,10 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     if reduce is not None and not callable(reduce):
         raise TypeError(f"reduce must be callable, got {type(reduce).__name__}")
     count = int(np.prod(batch))
+    chunk = 4096 if chunk_size is None else operator.index(chunk_size)
+    if chunk < 1:
+        raise ValueError(f"chunk_size must be a positive integer, got {chunk}")
+    max_steps = _check_workload(method, t, dt, count if reduce is None else min(count, chunk), 7, max_steps)
     # writable C copies: the batch kernel then reuses the single-body specialisation of the integrators
     moments = np.array(np.broadcast_to(moments, batch + (3,)).reshape(count, 3), order="C")
     y0 = np.empty((count, 7))
@@ -516,16 +693,13 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     y0[:, 3:7] = _initial_quaternion(q_in, batch).reshape(count, 4) if q_in is not None else [1.0, 0, 0, 0]
     atol_v = _atol(atol, np.linalg.norm(y0[:, 0:3], axis=-1), 7, rtol)
     mass = np.ones(count)
-    tables = _dop853.tableau()
     code = METHODS[method]
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
 
     def integrate(lo, hi):
-        out = np.empty((hi - lo, t.size, 7))
-        status = np.zeros(hi - lo, dtype=np.int64)
-        _integrators.run_batch(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
-                     tables, out, status)
+        out, status = _run(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
+                           max_steps)
         _raise_status(status)
         return out
 
@@ -534,9 +708,6 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
         omega = y[..., 0:3].reshape(batch + (t.size, 3))
         q = _normalized(y[..., 3:7]).reshape(batch + (t.size, 4))
         return Trajectory(t, q, omega, moments.reshape(batch + (3,))[..., None] * np.eye(3), meta=meta)
-    chunk = 4096 if chunk_size is None else operator.index(chunk_size)
-    if chunk < 1:
-        raise ValueError(f"chunk_size must be a positive integer, got {chunk}")
     pieces = []
     for lo in range(0, count, chunk):
         hi = min(count, lo + chunk)

@@ -13,6 +13,8 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validation import as_float_array
+from ..so3._coercion import as_rotation_matrix
+from ..so3._norms import unit
 
 __all__ = [
     "points",
@@ -105,12 +107,14 @@ def _positive(x, name, allow_zero=False):
 
 
 def _outer_term(mass, r):
-    """M (r² 1 − r rᵀ), the inertia of a point mass M at r about the origin."""
+    """M (r² 1 − r rᵀ), the inertia of a point mass M at r about the origin; refused when it overflows."""
     r = np.asarray(r)
-    rr = r[..., :, None] * r[..., None, :]
-    return np.asarray(mass)[..., None, None] * (
-        np.einsum("...i,...i->...", r, r)[..., None, None] * np.eye(3) - rr
-    )
+    with np.errstate(over="ignore", invalid="ignore"):
+        rr = r[..., :, None] * r[..., None, :]
+        out = np.asarray(mass)[..., None, None] * (np.einsum("...i,...i->...", r, r)[..., None, None] * np.eye(3) - rr)
+    if not np.isfinite(out).all():
+        raise ValueError("r_c is out of range: M (r_C² 1 − r_C r_Cᵀ) overflows double precision")
+    return out
 
 
 def second_moment_to_inertia(second_moment):
@@ -229,36 +233,6 @@ def parallel_axis_to_center_of_mass(I_point, mass, r_c):
     return I_o - _outer_term(m, r)
 
 
-def as_rotation_matrix(rotation, name="rotation"):
-    """Rotation matrices ``(..., 3, 3)`` from matrices, unit quaternions or rotation objects.
-
-    Accepts ``(..., 3, 3)`` proper orthogonal matrices, ``(..., 4)``
-    scalar-first quaternions (scaled to unit norm) and any object with an
-    ``as_matrix()`` method (``kreisel.Rotation``, ``scipy.spatial.transform.Rotation``).
-    """
-    if hasattr(rotation, "as_matrix"):
-        rotation = rotation.as_matrix()
-    a = as_float_array(rotation, name)
-    if a.shape[-1:] == (4,):
-        norm = np.linalg.norm(a, axis=-1)
-        if np.any(norm == 0.0):
-            raise ValueError(f"{name} quaternion must be nonzero")
-        from ._compiled import quaternions_to_matrices
-
-        flat = np.ascontiguousarray(a.reshape(-1, 4))
-        return quaternions_to_matrices(flat).reshape(a.shape[:-1] + (3, 3))
-    if a.ndim < 2 or a.shape[-2:] != (3, 3):
-        raise ValueError(
-            f"{name} must be a (..., 3, 3) rotation matrix or a (..., 4) quaternion, got shape {a.shape}"
-        )
-    error = np.max(np.abs(np.swapaxes(a, -1, -2) @ a - np.eye(3)), axis=(-2, -1))
-    if np.any(error > 1e-9):
-        raise ValueError(f"{name} must be orthogonal (RᵀR = 1); deviation {float(np.max(error)):.3g}")
-    if np.any(np.linalg.det(a) < 0):
-        raise ValueError(f"{name} must be a proper rotation (det R = +1), got a reflection")
-    return a
-
-
 def rotate(I, rotation):
     """Express an inertia tensor in rotated axes: I′ = R I Rᵀ.
 
@@ -337,11 +311,7 @@ def principal_axes(I):
 
 
 def _unit(axis, name="axis"):
-    n = as_float_array(axis, name, tail=(3,))
-    norm = np.linalg.norm(n, axis=-1)
-    if np.any(norm == 0.0):
-        raise ValueError(f"{name} must be a nonzero vector")
-    return n / norm[..., None]
+    return unit(as_float_array(axis, name, tail=(3,)), name)
 
 
 def moment_about_axis(I, axis):

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import earth, nav
+from .._validation import check_allocation
 from ..dynamics import Trajectory, simulate
 from ..dynamics.torques import ConstantTorque, GravityTorque, LinearDamping
 from ..inertia import RigidBody
@@ -82,8 +83,10 @@ def torque_model(entries):
     return total
 
 
-def run_scenario(scenario):
+def run_scenario(scenario, progress=None):
     """Run ``scenario``; a Trajectory (rigid body) or an ``xarray.Dataset`` (Foucault, coning).
+
+    ``progress(fraction)``, if given, is told how far a long rigid-body run has got (0 … 1).
 
     Examples
     --------
@@ -98,10 +101,17 @@ def run_scenario(scenario):
     >>> bool(np.allclose(traj.energy, 0.5 * (1.0 * 0.01**2 + 2.0 * 1.0**2 + 3.0 * 0.01**2), rtol=1e-10))
     True
     """
+    if scenario.kind == "rigid_body":
+        return _rigid_body(scenario, progress)
     return _RUNNERS[scenario.kind](scenario)
 
 
-def _rigid_body(scenario):
+def _check_samples(count, floats_per_sample, table):
+    """Refuse a sample count whose arrays would not fit in memory, before allocating them."""
+    check_allocation(count * floats_per_sample * 8.0, f"{table}.n_samples = {count}: the result")
+
+
+def _rigid_body(scenario, progress=None):
     data = scenario.data
     base = scenario.path.parent if scenario.path is not None else None
     body = build_body(data["body"], base)
@@ -110,9 +120,11 @@ def _rigid_body(scenario):
     if data["initial"]["frame"] == "space":
         omega0 = quat_apply(q0, omega0, inverse=True)
     grid = data["integration"]
+    _check_samples(grid["n_samples"], 15, "integration")  # times, the integrator's states, ω′ and q
     t = np.linspace(grid["t_start"], grid["t_start"] + grid["t_end"], grid["n_samples"])
+    tell = None if progress is None else (lambda t_now: progress((t_now - t[0]) / (t[-1] - t[0])))
     traj = simulate(body, t, omega0, q0=q0, torque=torque_model(data.get("torque", [])),
-                    method=grid.get("method"), dt=grid.get("dt"))
+                    method=grid.get("method"), dt=grid.get("dt"), progress=tell)
     traj.meta["scenario"] = scenario.title
     # the torque as data, so that a saved run still knows its first integrals (trajectory_integrals)
     traj.meta["torques"] = [{k: np.asarray(v).tolist() if k != "kind" else v for k, v in entry.items()}
@@ -169,6 +181,7 @@ def _coning(scenario):
     spec = scenario.data["coning"]
     n_update = spec["samples_per_update"]
     n = spec["n_samples"] - spec["n_samples"] % n_update
+    _check_samples(n, 30, "coning")  # time, the motion's q and increments, estimate, truth and error
     alpha, rate = np.deg2rad(spec["half_angle_deg"]), 2 * np.pi * spec["rate_hz"]
     motion = nav.coning_motion(alpha, rate, spec["sample_time"], n)
     estimate = nav.attitude_from_increments(motion.q[0], motion.dtheta, samples_per_update=n_update)

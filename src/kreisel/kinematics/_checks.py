@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled.gufunc import finite_array
+from .._compiled.gufunc import finite_array, matrix_array
 from .._validation import as_float_array, check_frame
 
 
@@ -35,9 +35,15 @@ def vector_batch(length=3, **named):
     return same_batch(1, **{name: vectors(x, name, length) for name, x in named.items()})
 
 
-def matrix_batch(**named):
-    """Float ``(..., 3, 3)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
-    return same_batch(2, **{name: as_float_array(x, name, (3, 3)) for name, x in named.items()})
+def rotation_batch(R, **derivatives):
+    """``R`` as rotation matrices and its ``derivatives`` as float ``(..., 3, 3)`` arrays, with broadcastable batch shapes.
+
+    ``R`` is checked like every rotation matrix of kreisel (orthogonal to
+    within ``ORTHOGONALITY_TOLERANCE``, det > 0): a scaled matrix or a
+    reflection would silently scale or flip the angular velocity.
+    """
+    return same_batch(2, R=matrix_array(R, "R"), **{name: as_float_array(x, name, (3, 3))
+                                                    for name, x in derivatives.items()})
 
 
 def frame_sign(frame):

@@ -15,7 +15,7 @@ from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
 from ..so3.euler import parse_sequence
-from ._checks import batch_shape, frame_sign, matrix_batch, same_batch, vector_batch, vectors
+from ._checks import batch_shape, frame_sign, rotation_batch, same_batch, vector_batch, vectors
 from .euler import _angles, euler_rate_matrix
 from .rates import _skew_part_vee
 
@@ -55,7 +55,7 @@ def angular_acceleration(R, Rdot, Rddot, frame="space"):
     array([0., 0., 1.])
     """
     body = check_frame(frame)
-    R, Rdot, Rddot = matrix_batch(R=R, Rdot=Rdot, Rddot=Rddot)
+    R, Rdot, Rddot = rotation_batch(R, Rdot=Rdot, Rddot=Rddot)
     Rt = np.swapaxes(R, -1, -2)
     return _skew_part_vee(Rt @ Rddot if body else Rddot @ Rt)
 

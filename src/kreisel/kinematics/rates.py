@@ -10,7 +10,7 @@ import numpy as np
 
 from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
-from ._checks import frame_sign, matrix_batch, same_batch, vectors
+from ._checks import frame_sign, rotation_batch, same_batch, vectors
 
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
 
@@ -33,8 +33,8 @@ def angular_velocity(R, Rdot, frame="space"):
     Parameters
     ----------
     R, Rdot : array_like, shape (..., 3, 3)
-        Rotation matrices (body → space) and their time derivatives; batch
-        shapes broadcast.
+        Rotation matrices (body → space; anything else is refused) and their
+        time derivatives; batch shapes broadcast.
     frame : {"space", "body"}
         Components of the returned angular velocity.
 
@@ -52,7 +52,7 @@ def angular_velocity(R, Rdot, frame="space"):
     array([0., 0., 2.])
     """
     body = check_frame(frame)
-    R, Rdot = matrix_batch(R=R, Rdot=Rdot)
+    R, Rdot = rotation_batch(R, Rdot=Rdot)
     A = np.swapaxes(R, -1, -2) @ Rdot if body else Rdot @ np.swapaxes(R, -1, -2)
     return _skew_part_vee(A)
 

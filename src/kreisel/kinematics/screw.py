@@ -15,6 +15,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ._checks import batch_shape, vectors
+from ..so3._norms import norm
 
 __all__ = ["ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "centrodes"]
 
@@ -80,20 +81,25 @@ def screw_axis(omega, velocity, point=0.0, rtol=1e-12, omega_atol=0.0):
         raise ValueError(f"rtol must be in [0, 1), got {rtol!r}")
     if not omega_atol >= 0.0:
         raise ValueError(f"omega_atol must be >= 0, got {omega_atol!r}")
-    w2 = np.einsum("...i,...i->...", omega, omega)
-    wn = np.sqrt(w2)
-    vn = np.linalg.norm(velocity, axis=-1)
-    wv = np.einsum("...i,...i->...", omega, velocity)
+    # through the unit vector ω̂ = ω/|ω| and norms scaled before squaring: no product of two
+    # large or two small magnitudes is formed, so any finite ω, v within range give finite results
+    wn = norm(omega)
+    vn = norm(velocity)
     translation = np.broadcast_to(wn <= omega_atol, shape)
     rotating = ~translation
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv_w2 = np.where(rotating, 1.0 / np.where(rotating, w2, 1.0), np.nan)
-        pitch = np.where(rotating, wv * inv_w2, np.inf)
-        axis_point = point + np.cross(omega, velocity) * inv_w2[..., None]
+    w_safe = np.where(rotating, wn, 1.0)[..., None]
+    w_hat = omega / w_safe
+    wv = np.einsum("...i,...i->...", w_hat, velocity)  # ω̂·v
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        pitch = np.where(rotating, wv / w_safe[..., 0], np.inf)
+        axis_point = point + np.where(rotating[..., None], np.cross(w_hat, velocity) / w_safe, np.nan)
         along_v = velocity / vn[..., None]
-        direction = np.where(translation[..., None], along_v, omega / wn[..., None])
-        axial = np.where(translation[..., None], velocity, pitch[..., None] * omega)
-    rotation = rotating & (np.abs(wv) <= rtol * wn * vn)
+        direction = np.where(translation[..., None], along_v, w_hat)
+        axial = np.where(translation[..., None], velocity, wv[..., None] * w_hat)
+    if not (np.isfinite(pitch[rotating]).all() and np.isfinite(axis_point[rotating]).all()):
+        raise ValueError("omega is out of range: |v|/|ω| overflows double precision (treat tiny ω as a "
+                         "translation with omega_atol)")
+    rotation = rotating & (np.abs(wv) <= rtol * vn)
     pitch = np.where(rotation, 0.0, pitch)
     axial = np.where(rotation[..., None], 0.0, axial)
     kind = np.where(translation, "translation", np.where(rotation, "rotation", "screw"))

@@ -31,7 +31,7 @@ from ..kinematics import angular_velocity_from_rotvec_rate, rotvec_rate
 from ..kinematics import left_jacobian as so3_left_jacobian
 from ..kinematics import left_jacobian_inverse as so3_left_jacobian_inverse
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
-from ._checks import finite_array
+from .._compiled.gufunc import finite_array
 
 __all__ = [
     "se3_hat",

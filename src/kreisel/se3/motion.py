@@ -15,8 +15,9 @@ from ..kinematics import (
     point_velocity,
 )
 from ..so3 import quat_apply
-from ._checks import finite_array
-from .transform import RigidTransform, rotation_to_quat
+from ..so3._coercion import as_quaternion
+from .._compiled.gufunc import finite_array
+from .transform import RigidTransform
 
 __all__ = ["sclerp", "PointMotion", "point_trajectory"]
 
@@ -177,7 +178,7 @@ def point_trajectory(body_point, t=None, rotation=None, translation=None, trajec
         if rotation is None or t is None:
             raise ValueError("give t and rotation (or a trajectory)")
         t = as_float_array(t, "t")
-        quat = _continuous(rotation_to_quat(rotation, "rotation"))
+        quat = _continuous(as_quaternion(rotation, "rotation"))
         omega = None
     if t.ndim != 1 or t.size < 3 or not np.all(np.diff(t) > 0.0):
         raise ValueError(f"t must be increasing sample times, at least 3 of them, got shape {t.shape}")

@@ -14,8 +14,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._checks import finite_array
 from .._validation import as_float_array
+from .._compiled.gufunc import finite_array
 
 __all__ = ["Screw"]
 

@@ -14,17 +14,15 @@ from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from ..so3 import (
     Rotation,
-    matrix_to_quat,
     quat_apply,
     quat_multiply,
-    quat_normalize,
     quat_to_matrix,
     quat_to_rotvec,
 )
-from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from ..so3.interpolation import gather_samples, mean_over
+from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
-from ._checks import finite_array
+from .._compiled.gufunc import finite_array
 from .screw import screw_parameters, screw_pose
 
 __all__ = ["RigidTransform", "change_base_point"]
@@ -35,30 +33,6 @@ __all__ = ["RigidTransform", "change_base_point"]
 RIGIDITY_TOLERANCE = ORTHOGONALITY_TOLERANCE
 
 
-def _is_scipy_rotation(obj):
-    # Checked by module name so that scipy is imported only when it is used.
-    return type(obj).__name__ == "Rotation" and type(obj).__module__.startswith("scipy.spatial.transform")
-
-
-def rotation_to_quat(rotation, name="rotation"):
-    """Unit quaternions ``(..., 4)`` from a kreisel/scipy ``Rotation``, matrices or quaternions.
-
-    Arrays ending in ``(3, 3)`` are rotation matrices (refused beyond
-    ``ORTHOGONALITY_TOLERANCE``), arrays ending in ``(4,)`` are scalar-first
-    quaternions of any nonzero norm (normalised).
-    """
-    if isinstance(rotation, Rotation):
-        return rotation.as_quat()
-    if _is_scipy_rotation(rotation):
-        return rotation.as_quat(scalar_first=True)
-    a = as_float_array(rotation, name, finite=False)
-    if a.shape[-2:] == (3, 3):
-        return matrix_to_quat(matrix_array(a, name))
-    if a.shape[-1:] == (4,):
-        return quat_normalize(quaternion_array(a, name))
-    raise ValueError(
-        f"{name} must be a Rotation, rotation matrices (..., 3, 3) or quaternions (..., 4), got shape {a.shape}"
-    )
 
 
 class RigidTransform:
@@ -97,7 +71,7 @@ class RigidTransform:
     __array_ufunc__ = None  # ndarray * RigidTransform raises instead of looping elementwise
 
     def __init__(self, rotation, translation):
-        quat = rotation_to_quat(rotation, "rotation")
+        quat = as_quaternion(rotation, "rotation")
         translation = finite_array(translation, "translation")
         self._set(quat, translation)
 
@@ -172,7 +146,7 @@ class RigidTransform:
         >>> RigidTransform.from_rotation([0.0, 0.0, 0.0, 1.0]).apply([1.0, 0.0, 0.0]) + 0.0
         array([-1.,  0.,  0.])
         """
-        return cls._from_arrays(rotation_to_quat(rotation, "rotation"), np.zeros(3))
+        return cls._from_arrays(as_quaternion(rotation, "rotation"), np.zeros(3))
 
     @classmethod
     def from_translation(cls, translation):

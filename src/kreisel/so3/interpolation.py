@@ -11,6 +11,7 @@ import numpy as np
 
 from .._compiled import kernels
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
+from ._norms import unit
 
 __all__ = ["quat_slerp", "quat_mean"]
 
@@ -47,9 +48,7 @@ def quat_slerp(p, q, t):
     p = quaternion_array(p, "p")
     q = quaternion_array(q, "q")
     t = finite_array(t, "t", ())
-    p = p / np.linalg.norm(p, axis=-1, keepdims=True)
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
-    return _slerp(p, q, t)
+    return _slerp(unit(p, "p"), unit(q, "q"), t)
 
 
 def quat_mean(q, weights=None, axis=-2):
@@ -83,10 +82,16 @@ def quat_mean(q, weights=None, axis=-2):
     q = quaternion_array(q, "q")
     if q.ndim < 2:
         raise ValueError(f"q must have shape (..., n, 4) with a sample axis, got {q.shape}")
+    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)):
+        raise TypeError(f"axis must be an integer, got {type(axis).__name__}")
+    if not -q.ndim <= axis < q.ndim:
+        raise ValueError(f"axis {axis} is out of range for q of shape {q.shape}")
+    if axis % q.ndim == q.ndim - 1:
+        raise ValueError("axis must be a sample axis of q, not the last one (which holds the 4 components)")
     q = np.moveaxis(q, axis, -2)
     if q.shape[-2] == 0:
         raise ValueError("q must hold at least one rotation along axis: the mean of an empty set is undefined")
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    q = unit(q, "q")
     if weights is None:
         w = np.ones(q.shape[:-1])
     else:

@@ -16,6 +16,7 @@ from numba import prange
 from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array, vector_array
 from .._validation import batch_shape
+from ._norms import norm
 
 __all__ = [
     "quat_multiply",
@@ -31,7 +32,8 @@ __all__ = [
 
 @cached
 def _applied(q0, q1, q2, q3, x, y, z):
-    # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any norm.
+    # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any nonzero norm.
+    q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
     c0 = q2 * z - q3 * y
     c1 = q3 * x - q1 * z
@@ -47,7 +49,13 @@ def _applied(q0, q1, q2, q3, x, y, z):
 
 @cached
 def _inverted(q0, q1, q2, q3):
-    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    m = kernels.size(q0, q1, q2, q3)
+    if kernels.SIZE_LOW < m < kernels.SIZE_HIGH:
+        n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+        return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
+    # q* / |q|² = (q/m)* / (|q/m|² m): no square of a huge or tiny component
+    q0, q1, q2, q3 = q0 / m, q1 / m, q2 / m, q3 / m
+    n2 = (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) * m
     return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
 
 
@@ -232,8 +240,7 @@ def quat_norm(q):
     >>> float(quat_norm([1.0, 1.0, 1.0, 1.0]))
     2.0
     """
-    q = quaternion_array(q, "q", nonzero=False)
-    return np.sqrt(np.einsum("...i,...i->...", q, q))
+    return norm(quaternion_array(q, "q", nonzero=False))
 
 
 def quat_inverse(q):
@@ -244,7 +251,12 @@ def quat_inverse(q):
     >>> quat_inverse([0.0, 0.0, 2.0, 0.0])
     array([ 0. , -0. , -0.5, -0. ])
     """
-    return _inverse(quaternion_array(q, "q"))
+    q = quaternion_array(q, "q")
+    with np.errstate(over="ignore"):
+        out = _inverse(q)
+    if not np.isfinite(out).all():
+        raise ValueError("q is out of range: the inverse of a quaternion this small (|q| < ~1e-308) overflows")
+    return out
 
 
 def quat_normalize(q):

@@ -12,13 +12,14 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled.gufunc import quaternion_array, vector_array
+from ._norms import norm, unit
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
 
 
 def _canonical_unit(q):
     q = quaternion_array(q, "q")
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    q = unit(q, "q")
     return np.where(q[..., :1] < 0.0, -q, q)
 
 
@@ -46,8 +47,7 @@ def gibbs_to_quat(g):
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
     g = vector_array(g, "g")
-    q = np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1)
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g")
 
 
 def quat_to_mrp(q):
@@ -72,5 +72,10 @@ def mrp_to_quat(p):
     array([0., 1., 0., 0.])
     """
     p = vector_array(p, "p")
+    # |p| > 1 goes through its shadow -p/|p|² (the same rotation, q -> -q): |p|² never overflows
+    length = norm(p, keepdims=True)
+    shadow = length > 1.0
+    p = np.where(shadow, -(p / np.where(shadow, length, 1.0)) / np.where(shadow, length, 1.0), p)
     p2 = np.sum(p * p, axis=-1, keepdims=True)
-    return np.concatenate([1.0 - p2, 2.0 * p], axis=-1) / (1.0 + p2)
+    q = np.concatenate([1.0 - p2, 2.0 * p], axis=-1) / (1.0 + p2)
+    return np.where(shadow, -q, q)

@@ -15,6 +15,7 @@ from numba import prange
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
+from ._norms import norm, unit
 
 __all__ = [
     "generators",
@@ -249,7 +250,7 @@ def rotvec_to_axis_angle(psi):
     (array([0. , 0.6, 0.8]), 5.0)
     """
     psi = vector_array(psi, "psi")
-    angle = np.linalg.norm(psi, axis=-1)
+    angle = norm(psi)
     zero = angle == 0.0
     axis = psi / np.where(zero, 1.0, angle)[..., None]
     axis[zero] = (0.0, 0.0, 1.0)
@@ -268,10 +269,7 @@ def axis_angle_to_rotvec(axis, angle, degrees=False):
     angle = finite_array(angle, "angle", ())
     if degrees:
         angle = np.deg2rad(angle)
-    length = np.linalg.norm(axis, axis=-1)
-    if np.any(length == 0.0):
-        raise ValueError("axis must be nonzero vectors")
-    return axis * (angle / length)[..., None]
+    return unit(axis, "axis") * angle[..., None]
 
 
 def compose_rotvec(a, b):

@@ -16,6 +16,7 @@ import numpy as np
 
 from .._compiled.gufunc import quaternion_array
 from .._validation import as_float_array
+from ._norms import unit
 
 __all__ = [
     "quat_to_su2",
@@ -32,8 +33,7 @@ SU2_TOLERANCE = 1e-6
 
 
 def _unit(q):
-    q = quaternion_array(q, "q")
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return unit(quaternion_array(q, "q"), "q")
 
 
 def _complex_array(x, name, tail):

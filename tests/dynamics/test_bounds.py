@@ -1,0 +1,193 @@
+"""Runs are bounded and interruptible: step budgets, memory, callable outputs, Ctrl-C, progress."""
+
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+from kreisel.dynamics import ConstantTorque, LinearDamping, engine
+
+FIXED = ["splitting", "splitting4", "dmv", "rkmk4", "midpoint", "rk4"]
+
+
+@pytest.mark.parametrize("dt", [1e-300, 5e-19, 1e-12])
+@pytest.mark.parametrize("method", ["rk4", "splitting"])
+def test_step_count_over_budget_is_refused_with_its_cost(method, dt):
+    # dt = 1e-300 and 5e-19 overflowed the step count into one 10 s step before
+    with pytest.raises(ValueError, match=r"needs .* steps.*(years|days|hours).*max_steps") as info:
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], method=method, dt=dt)
+    assert f"{method!r}" in str(info.value)
+
+
+def test_step_count_that_cannot_be_counted_is_refused_even_with_a_huge_budget():
+    with pytest.raises(ValueError, match="more than can be counted"):
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], method="rk4", dt=1e-300, max_steps=10**400)
+
+
+def test_batch_budget_and_6dof_budget():
+    with pytest.raises(ValueError, match="per body"):
+        kr.simulate_batch([[1, 2, 3], [2, 2, 3]], [0, 1e6], [0.1, 1, 0.1], method="rk4", dt=1e-6)
+    with pytest.raises(ValueError, match="max_steps"):
+        kr.simulate_6dof([1, 2, 3], [0, 10], [0.1, 1, 0.1], method="rk4", dt=1e-20)
+
+
+def test_max_steps_is_validated():
+    for bad, exc in [(0, ValueError), (-5, ValueError), (1.5, TypeError), (True, TypeError)]:
+        with pytest.raises(exc, match="max_steps"):
+            kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], max_steps=bad)
+
+
+def test_fixed_step_run_just_inside_the_budget_runs():
+    tr = kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01, max_steps=100)
+    ref = kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1])
+    np.testing.assert_allclose(tr.omega[-1], ref.omega[-1], atol=1e-8)
+    with pytest.raises(ValueError, match="max_steps = 99"):
+        kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01, max_steps=99)
+
+
+def test_adaptive_run_stops_at_its_step_budget():
+    with pytest.raises(RuntimeError, match=r"max_steps = 50 steps at t = .* of 1e\+09"):
+        kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], max_steps=50)
+    with pytest.raises(RuntimeError, match="max_steps = 50"):
+        kr.simulate_batch([[1, 2, 3]] * 3, [0, 1e9], [0.1, 1, 0.1], max_steps=50)
+
+
+def test_output_too_large_for_memory_is_refused_with_its_size():
+    bodies = np.broadcast_to([1.0, 2.0, 3.0], (10**6, 3))
+    t = np.linspace(0.0, 1.0, 10**6)
+    with pytest.raises(ValueError, match=r"10\^?.*samples.*would need 5.6 ?\d* ?TB|would need 56 TB"):
+        kr.simulate_batch(bodies, t, [0.1, 1, 0.1])
+
+
+def test_tiny_atol_is_refused_with_the_reason_not_a_zero_division():
+    with pytest.raises(ValueError, match="atol = 1e-300 is below 1e-150"):
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], atol=1e-300)
+    # still fine where the error norm does not overflow
+    tr = kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], atol=1e-100)
+    assert np.isfinite(tr.omega).all()
+
+
+def late(bad, t_switch=1.0):
+    """A torque that is fine until ``t_switch``, then returns ``bad``."""
+
+    def torque(t, q, w):
+        return bad if t > t_switch else np.zeros(3)
+
+    return torque
+
+
+@pytest.mark.parametrize("method,dt", [("rk4", 0.01), ("dop853", None), ("splitting", 0.01)])
+@pytest.mark.parametrize("bad,match", [(np.zeros(2), r"\(2,\)"), (1.0, r"\(\)"), (np.zeros((3, 1)), r"\(3, 1\)"),
+                                       (np.zeros(5), r"\(5,\)")])
+def test_torque_callable_shape_is_checked_at_every_call(method, dt, bad, match):
+    with pytest.raises(ValueError, match=r"torque callable must return shape \(3,\), got " + match):
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], torque=late(bad), method=method, dt=dt)
+
+
+def test_torque_callable_non_real_and_non_finite_outputs_stop_the_run_at_once():
+    with pytest.raises(TypeError, match="real array.*complex128"):
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], torque=late(np.ones(3) * 1j), method="rk4", dt=0.01)
+    with pytest.raises(TypeError, match="real array.*datetime64"):
+        kr.simulate([1, 2, 3], [0, 10], [0.1, 1, 0.1], torque=late(np.zeros(3, "datetime64[s]")))
+    # a NaN late in a long run is reported where it happens, not as a step-size collapse later
+    with pytest.raises(ValueError, match=r"torque callable returned \[ 0\.  0\. nan\] at t = 5\.\d+ \(not finite\)"):
+        kr.simulate([1, 2, 3], [0, 1e6], [0.1, 1, 0.1], torque=late(np.array([0, 0, np.nan]), 5.0))
+
+
+def test_force_callable_output_is_checked_at_every_call():
+    def force(t, q, w, r, v):
+        return np.zeros(3) if t < 0.5 else np.zeros(4)
+
+    with pytest.raises(ValueError, match=r"force callable must return shape \(3,\), got \(4,\)"):
+        kr.simulate_6dof([1, 2, 3], [0, 1], [0.1, 1, 0.1], force=force)
+
+
+@pytest.mark.parametrize("method", ["dop853"] + FIXED)
+def test_results_do_not_depend_on_where_the_run_pauses(monkeypatch, method):
+    dt = None if method == "dop853" else 0.01
+    t = np.linspace(0.0, 30.0, 7)
+    torque = ConstantTorque([0.1, 0.0, 0.2]) + LinearDamping(0.01)
+    runs = []
+    for chunk_seconds, first in ((engine._CHUNK_SECONDS, engine._FIRST_CHUNK_STEPS), (0.0, 1)):
+        # (0, 1): every call takes one step, then pauses
+        monkeypatch.setattr(engine, "_CHUNK_SECONDS", chunk_seconds)
+        monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", first)
+        free = kr.simulate([1, 2, 3], t, [0.1, 1, 0.1], method=method, dt=dt)
+        forced = kr.simulate([1, 2, 3], t, [0.1, 1, 0.1], method=method, dt=dt, torque=torque)
+        six = kr.simulate_6dof([1, 2, 3], t, [0.1, 1, 0.1], velocity0=[1, 0, 0], method=method, dt=dt,
+                               torque=lambda tt, q, w: [0.1 * np.sin(tt), 0.0, 0.0])
+        batch = kr.simulate_batch([[1, 2, 3], [2, 2, 3]], t, [0.1, 1, 0.1], method=method, dt=dt)
+        runs.append([free.omega, free.q, forced.omega, forced.q, six.position, six.q, batch.omega, batch.q])
+    for a, b in zip(*runs):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_progress_reports_increasing_times_up_to_the_end(monkeypatch):
+    monkeypatch.setattr(engine, "_CHUNK_SECONDS", 0.0)
+    monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", 1)
+    for method, dt, end in [("rk4", 1e-2, 10.0), ("dop853", None, 100.0)]:
+        seen = []
+        kr.simulate([1, 2, 3], [0, end / 2, end], [0.1, 1, 0.1], method=method, dt=dt, progress=seen.append)
+        assert len(seen) > 10
+        assert np.all(np.diff(seen) >= 0) and 0 <= seen[0] and seen[-1] < end
+        assert any(end / 2 < s < end for s in seen)
+    with pytest.raises(TypeError, match="progress must be callable"):
+        kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], progress=3)
+
+
+def test_angular_velocity_whose_squares_overflow_is_refused_as_out_of_range():
+    for w in ([1e200, 0, 0], [1e151, 1e151, 0]):
+        with pytest.raises(ValueError, match="out of range"):
+            kr.simulate([1, 2, 3], [0, 1], w)
+        with pytest.raises(ValueError, match="out of range"):
+            kr.simulate_batch([[1, 2, 3], [1, 2, 3]], [0, 1], [[0.1, 1, 0.1], w])
+    # Euler's equations are homogeneous: ω0 scaled by s runs s times faster (in range, fast bodies are fine)
+    fast = kr.simulate([1, 2, 3], [0, 1e-140], [1e140, 1e140, 1e140])
+    slow = kr.simulate([1, 2, 3], [0, 1], [1.0, 1.0, 1.0])
+    np.testing.assert_allclose(fast.omega[-1], 1e140 * slow.omega[-1], rtol=1e-9)
+    np.testing.assert_allclose(fast.q[-1], slow.q[-1], atol=1e-9)
+
+
+CHILD = textwrap.dedent("""
+    import sys, time, numpy as np, kreisel as kr
+    from kreisel.dynamics import ConstantTorque
+    cases = [
+        dict(omega0=[0.1, 1, 0.1], method="rk4", dt=1e-3, max_steps=10**13),
+        dict(omega0=[0.1, 1, 0.1]),
+        dict(omega0=[1e5, 1e5, 1e5]),
+        dict(omega0=[0.1, 1, 0.1], torque=ConstantTorque([1e12, 0, 1e12])),
+        dict(omega0=[0.1, 1, 0.1], torque=lambda t, q, w: np.sin(t) * np.ones(3)),
+        "batch",
+    ]
+    for case in cases:
+        run = (lambda t: kr.simulate_batch([[1, 2, 3]] * 4, t, [0.1, 1, 0.1])) if case == "batch" else (
+            lambda t: kr.simulate([1, 2, 3], t, **case))
+        run([0, 1e-3])  # compile (or load) first
+        print("ready", flush=True)
+        try:
+            run([0, 1e9])
+        except KeyboardInterrupt:
+            print(time.perf_counter(), flush=True)
+""")
+
+
+def test_ctrl_c_stops_a_long_simulation_promptly():
+    # a chunk of compiled work lasts ~50 ms: generous for a loaded machine, each run would take hours
+    child = subprocess.Popen([sys.executable, "-c", CHILD], stdout=subprocess.PIPE, text=True)
+    try:
+        for _ in range(6):
+            assert child.stdout.readline().strip() == "ready"
+            time.sleep(0.2)
+            sent = time.perf_counter()
+            child.send_signal(signal.SIGINT)
+            assert float(child.stdout.readline()) - sent < 2.0
+        assert child.wait(timeout=30) == 0
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
