@@ -239,12 +239,12 @@ def _checked_callable(fn, name):
         out = np.asarray(value)
         if out.dtype.kind not in "biuf":
             raise TypeError(f"{name} callable must return a real array of shape (3,), got "
-                            f"{type(value).__name__} of dtype {out.dtype} at t = {t!r}")
+                            f"{type(value).__name__} of dtype {out.dtype} at t = {float(t)!r}")
         if out.shape != (3,):
-            raise ValueError(f"{name} callable must return shape (3,), got {out.shape} at t = {t!r}")
+            raise ValueError(f"{name} callable must return shape (3,), got {out.shape} at t = {float(t)!r}")
         out = out.astype(np.float64)
         if not np.isfinite(out).all():
-            raise ValueError(f"{name} callable returned {out} at t = {t!r} (not finite)")
+            raise ValueError(f"{name} callable returned a non-finite value {out} at t = {float(t)!r}")
         return out
 
     return call
@@ -338,7 +338,7 @@ def _check_workload(method, t, dt, count, ny, max_steps):
         raise ValueError(f"method {method!r} with dt = {dt:g} over t = {t[0]:g} … {t[-1]:g} needs "
                          f"{total:.3g} steps{per_body}, about {_duration(seconds)} of computing; over the "
                          f"budget max_steps = {max_steps:.3g}: raise dt, or pass a larger max_steps")
-    if not steps.max() < 2.0**62:
+    if steps.size and not steps.max() < 2.0**62:
         raise ValueError(f"method {method!r} with dt = {dt:g} needs {steps.max():.3g} steps for one output "
                          f"interval: more than can be counted (2^62); raise dt")
     return max_steps
