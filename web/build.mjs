@@ -1,4 +1,4 @@
-// Bundle the viewer into the Python package: src/kreisel/web/static/{index.html, viewer.js, favicon.svg, BUILD.json}.
+// Bundle the viewer into the Python package: src/kreisel/web/static/{index.html, viewer.js, widget.js, favicon.svg, BUILD.json}.
 // The bundle is committed, so that an installed kreisel serves the viewer without Node.js; BUILD.json holds
 // the hash of the sources it was built from, which tests/web/test_bundle.py compares with web/.
 // KREISEL_WEB_OUT=dir writes the bundle elsewhere (the test rebuilds into a temporary folder).
@@ -23,15 +23,18 @@ function sources() {
 }
 
 mkdirSync(out, { recursive: true });
-await build({
-  entryPoints: [here("src/main.js")],
-  bundle: true,
-  minify: true,
-  format: "esm",
-  target: "es2020",
-  outfile: out + "viewer.js",
-  logLevel: "warning",
-});
+// the viewer's page, and the notebook widget of kreisel.show (the same scene, as an anywidget module)
+for (const name of ["main", "widget"]) {
+  await build({
+    entryPoints: [here(`src/${name}.js`)],
+    bundle: true,
+    minify: true,
+    format: "esm",
+    target: "es2020",
+    outfile: out + (name === "main" ? "viewer.js" : "widget.js"),
+    logLevel: "warning",
+  });
+}
 copyFileSync(here("index.html"), out + "index.html");
 copyFileSync(here("favicon.svg"), out + "favicon.svg");
 writeFileSync(out + "BUILD.json", JSON.stringify(sources(), null, 1) + "\n");

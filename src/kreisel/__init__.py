@@ -18,13 +18,13 @@ from ._version import __version__
 _STAR = ("so3", "kinematics", "dynamics", "tops", "se3")   # subpackages whose public names kreisel re-exports
 _SUBPACKAGES = ("so3", "kinematics", "inertia", "dynamics", "tops", "se3", "frames", "earth", "nav", "io", "sweep",
                 "plot", "cli", "web")
-_FROM = {"RigidBody": "inertia"}
+_FROM = {"RigidBody": "inertia", "show": "notebook"}
 
 
 def __getattr__(name):
     if name == "__all__":
         names = [n for package in _STAR for n in importlib.import_module(f"{__name__}.{package}").__all__]
-        value = [*names, "inertia", "RigidBody", "frames", "earth", "nav", "io", "sweep", "__version__"]
+        value = [*names, "inertia", "RigidBody", "frames", "earth", "nav", "io", "sweep", "show", "__version__"]
     elif name in _SUBPACKAGES:
         value = importlib.import_module(f"{__name__}.{name}")
     elif name in _FROM:

@@ -1,0 +1,57 @@
+"""kreisel.show: the notebook widget's Python side (what it sends to the browser, and what it refuses)."""
+
+import sys
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+from kreisel.notebook import widget_data
+
+
+@pytest.fixture(scope="module")
+def trajectory():
+    return kr.EulerTop(1.0, 2.0, 3.0).solve(np.linspace(0.0, 10.0, 3001), [0.1, 2.0, 0.1])
+
+
+def test_show_sends_bounded_arrays_of_the_viewer_shapes(trajectory):
+    widget = kr.show(trajectory, max_samples=500)
+    data = widget.data
+    m = len(data["t"])
+    assert m == data["n_samples"] == 500
+    assert np.asarray(data["q"]).shape == (m, 4)
+    for key in ("omega", "omega_space", "J"):
+        assert np.asarray(data[key]).shape == (m, 3), key
+    assert data["t"][0] == 0.0 and data["t"][-1] == 10.0            # the ends are kept
+    kept = np.searchsorted(trajectory.t, data["t"])
+    np.testing.assert_array_equal(np.asarray(data["q"]), trajectory.q[kept])
+    np.testing.assert_allclose(np.asarray(data["J"]), trajectory.angular_momentum_space[kept], rtol=0, atol=1e-12)
+    assert data["analysis"]["T"] == pytest.approx(0.5 * (0.01 + 8.0 + 0.03), rel=1e-12)
+    assert data["analysis"]["principal_moments"] == pytest.approx([1.0, 2.0, 3.0])
+    assert widget.index == 0 and "render" in widget._esm
+
+
+def test_short_trajectories_are_sent_whole(trajectory):
+    short = kr.Trajectory(trajectory.t[:7], trajectory.q[:7], trajectory.omega[:7], [1.0, 2.0, 3.0])
+    assert widget_data(short)["t"] == trajectory.t[:7].tolist()
+
+
+@pytest.mark.parametrize("bad", [None, np.zeros((10, 4)), kr.Rotation.identity()])
+def test_refuses_what_is_not_a_trajectory(bad):
+    with pytest.raises(TypeError, match="trajectory must be a kreisel Trajectory"):
+        kr.show(bad)
+
+
+def test_refuses_batches_and_bad_sizes(trajectory):
+    batch = kr.simulate_batch(np.array([[1.0, 2.0, 3.0]] * 2), np.linspace(0.0, 1.0, 11), [0.1, 1.0, 0.1])
+    with pytest.raises(ValueError, match="single body"):
+        kr.show(batch)
+    for bad in (1, 2.5, True):
+        with pytest.raises(ValueError, match="max_samples"):
+            kr.show(trajectory, max_samples=bad)
+
+
+def test_without_anywidget_the_error_names_the_extra(trajectory, monkeypatch):
+    monkeypatch.setitem(sys.modules, "anywidget", None)
+    with pytest.raises(ImportError, match=r"kreisel\[notebook\]"):
+        kr.show(trajectory)
