@@ -290,7 +290,7 @@ def _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_ste
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
     # the first chunk is short only when a Python callable (up to ~1 ms a step) is in the loop
-    callbacks = any(r is not None and np.any(r[:, 0] == _rows.CALLBACK) for r in (rows, frows))
+    callbacks = any(r is not None and np.any(r[:, 0] == _model_tables.CALLBACK) for r in (rows, frows))
     budget = 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count)
     taken = 0
     while True:
