@@ -3,7 +3,7 @@
 The widget is an `anywidget <https://anywidget.dev>`_ whose front end is the web
 viewer's own scene (``web/src/widget.js``, bundled into ``kreisel/web/static``):
 the body with its principal axes, ω and J, the energy ellipsoid on the
-invariable plane, polhode and herpolhode (Theory §5.4), with a time slider.
+invariable plane, polhode and herpolhode (Theory §5.5), with a time slider.
 Install it with ``pip install kreisel[notebook]``.
 """
 
