@@ -55,7 +55,7 @@ def _lines(path):
 OUTSIDE = re.compile("|".join(re.escape(s) for s in ("MATH" + ".md", "../" + "shared", "/work/" + "shared")))
 
 # "seed" meaning the lecture notes, as opposed to the seed of a random generator: names built on it
-# (seed_R, SEED_OMEGA, test_seed_…), "the seed", "(seed: …)", "seed/", "seed 五.4", "seed §3",
+# (seed_R, SEED_OMEGA, test_seed_…), "the seed", "(seed: …)", "seed/", "seed" with a section numeral, "seed §3",
 # "seed series", "…, seed" as a source, and the like.
 LECTURE = re.compile(
     r"""(?ix)
@@ -88,7 +88,7 @@ def test_no_text_cites_the_lecture_notes_as_seed():
 
 
 def test_the_seed_pattern_tells_lecture_citations_from_random_seeds():
-    lecture = ["after the chapter in ``seed/``", "The seed uses 7.27221e-5", "(seed: φ̇)", "seed 五.4",
+    lecture = ["after the chapter in ``seed/``", "The seed uses 7.27221e-5", "(seed: φ̇)", "seed \u4e94.4",
                "source=\"m g l/(I3 ω3), seed\"", "seed_R = R", "SEED_OMEGA = 7.27e-5", "def _seed_zxz(",
                "test_zxz_matrices_are_the_seeds", "the seed series", "seed §3.5"]
     random = ["rate_error(5, 0.01, seed=7)", "seed : int, numpy.random.Generator or None",

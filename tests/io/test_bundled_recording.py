@@ -30,7 +30,14 @@ def make_phone_toss(seed=2025):
 
 
 def test_bundled_file_is_reproduced():
-    assert kr.io.recording_path("phone_toss").read_text(encoding="utf-8") == make_phone_toss()
+    # the file holds 10 significant digits: a rewrite of the solver may move the last one, nothing more
+    def numbers(text):
+        return np.array([[float(v) for v in line.split(",")] for line in text.splitlines()[1:]])
+
+    bundled = kr.io.recording_path("phone_toss").read_text(encoding="utf-8")
+    remade = make_phone_toss()
+    assert bundled.splitlines()[0] == remade.splitlines()[0] == HEADER
+    np.testing.assert_allclose(numbers(bundled), numbers(remade), rtol=2e-9, atol=1e-12)
 
 
 def test_bundled_recording_fits_to_the_slab():

@@ -191,6 +191,9 @@ def plot(
     from ..io.results import ResultError, load_result
     from ..io.run import trajectory_integrals
 
+    known = set(plots.KINDS).union(*plots.DATASET_KINDS.values())
+    if kind is not None and kind not in known:
+        usage_error(f"--kind: unknown plot kind {kind!r}; kinds are {', '.join(sorted(known))}")
     try:
         result = load_result(trajectory)
         if isinstance(result, Trajectory):

@@ -35,6 +35,7 @@ from __future__ import annotations
 import dataclasses
 import pathlib
 
+from ..dynamics.engine import METHODS
 from .bundled import scenario_path
 from .schema import Document, Key, SchemaError, read_text
 
@@ -92,7 +93,7 @@ _SCHEMA = {
         "t_end": Key("number", required=True, positive=True, doc="final time, s"),
         "t_start": Key("number", default=0.0, doc="initial time, s"),
         "n_samples": Key("int", default=1001, positive=True, doc="output times, evenly spaced"),
-        "method": Key("str", choices=("dop853", "splitting", "dmv", "rkmk4", "midpoint", "rk4", "scipy"),
+        "method": Key("str", choices=tuple(METHODS),
                       doc="integrator (default dop853)"),
         "dt": Key("number", positive=True, doc="step of fixed-step methods, s"),
     }),
