@@ -42,7 +42,7 @@ extensions = [
 
 # Private base classes (kreisel.*._module.Name) are not documented by design; the standard library
 # and scipy are not linked because the docs build without network access (no intersphinx).
-nitpick_ignore_regex = [("py:class", r"kreisel\.(\w+\.)*_\w+\.\w+"), ("py:(func|class|meth)", r"(functools|numpy|scipy)\..*")]
+nitpick_ignore_regex = [("py:class", r"kreisel\.(\w+\.)*_\w+\.\w+"), ("py:(func|class|meth)", r"(functools|numpy|scipy|enum)\..*")]
 
 # Equations are numbered by theory section: (5.12) is the twelfth of section 5.
 numfig = True
