@@ -15,12 +15,15 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "src" / "kreisel"
 LAYERS = (
     ("_compiled", "_validation", "_fileio", "_version", "_html"),
     ("so3",),
-    ("kinematics",),
+    ("kinematics", "se3"),
     ("inertia", "dynamics"),
-    ("tops", "frames", "earth", "nav", "se3"),
+    ("tops", "frames", "earth", "nav"),
     ("io", "plot", "cli", "web", "sweep", "tour", "notebook", "__init__", "__main__"),
 )
 LAYER = {name: level for level, names in enumerate(LAYERS) for name in names}
+#: Packages of one layer that stand side by side: neither imports the other
+#: (SE(3) is built on SO(3) alone, as rate kinematics is).
+SIDE_BY_SIDE = ({"kinematics", "se3"},)
 
 
 def _modules(root):
@@ -61,10 +64,15 @@ def import_graph(root=PACKAGE):
     return modules, edges
 
 
+def package(module):
+    """The subpackage (or top-level module) of kreisel that ``module`` belongs to."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
 def layer(module):
     """Layer index of a dotted module name (the package facade ``kreisel`` is in the top layer)."""
-    parts = module.split(".")
-    return LAYER[parts[1] if len(parts) > 1 else "__init__"]
+    return LAYER[package(module)]
 
 
 def cycles(nodes, edges):
@@ -120,6 +128,13 @@ def test_no_import_of_a_higher_layer():
     assert upward == []
 
 
+def test_no_import_between_side_by_side_packages():
+    _, edges = import_graph()
+    across = [f"{a} -> {b} (line {line})" for a, b, line in edges
+              if package(a) != package(b) and any({package(a), package(b)} <= group for group in SIDE_BY_SIDE)]
+    assert across == []
+
+
 def test_every_package_has_a_layer():
     assert {path.name for path in PACKAGE.iterdir() if path.is_dir() and (path / "__init__.py").exists()} <= set(LAYER)
     assert {path.stem for path in PACKAGE.glob("*.py")} <= set(LAYER)
@@ -127,16 +142,20 @@ def test_every_package_has_a_layer():
 
 def test_the_checks_see_function_local_imports_and_upward_imports(tmp_path):
     root = tmp_path / "kreisel"
-    for package in ("so3", "kinematics"):
-        (root / package).mkdir(parents=True)
-        (root / package / "__init__.py").write_text("")
+    for name in ("so3", "kinematics", "se3"):
+        (root / name).mkdir(parents=True)
+        (root / name / "__init__.py").write_text("")
     (root / "__init__.py").write_text("")
     (root / "so3" / "a.py").write_text("def f():\n    from . import b\n")
     (root / "so3" / "b.py").write_text("from .a import f\n")
     (root / "so3" / "c.py").write_text("import kreisel.kinematics\n")
+    (root / "se3" / "d.py").write_text("from ..kinematics import c\n")
     modules, edges = import_graph(root)
     assert cycles(modules, edges) == [["kreisel.so3.a", "kreisel.so3.b"]]
     assert [(a, b) for a, b, _ in edges if layer(b) > layer(a)] == [("kreisel.so3.c", "kreisel.kinematics")]
+    assert [(a, b) for a, b, _ in edges if package(a) != package(b) and {package(a), package(b)} in SIDE_BY_SIDE] == [
+        ("kreisel.se3.d", "kreisel.kinematics")
+    ]
 
 
 @pytest.mark.parametrize("module", ["kreisel", "kreisel.__main__", "kreisel._compiled.gufunc", "kreisel.tour.runner"])

@@ -2,7 +2,8 @@
 
 Layers, each depending only on the ones before it::
 
-    so3 <- kinematics <- inertia, dynamics <- tops, frames, earth, nav, se3
+    so3 <- kinematics <- inertia, dynamics <- tops, frames, earth, nav
+    so3 <- se3 (side by side with kinematics: neither imports the other)
 
 Conventions: scalar-first Hamilton quaternions, active rotations, ``R`` maps
 body components to space components, uppercase Euler sequences intrinsic and

@@ -7,6 +7,7 @@ raises ``ValueError``/``TypeError`` naming the argument and the expectation.
 from __future__ import annotations
 
 import os
+import warnings
 
 import numpy as np
 
@@ -60,6 +61,21 @@ def check_frame(frame):
     if frame not in FRAMES:
         raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
     return frame == "body"
+
+
+def check_tolerance(tol, name="tol"):
+    """``tol`` as a float in [0, 1) (a singularity threshold on a sine or a determinant), or ValueError."""
+    t = float(tol)
+    if not (0.0 <= t < 1.0):
+        raise ValueError(f"{name} must be in [0, 1), got {tol!r}")
+    return t
+
+
+def warn_if_any(mask, category, message):
+    """Issue ``category`` once, counting the samples, when any entry of ``mask`` (set to NaN by the caller) is set."""
+    if mask.any():
+        count = int(mask.sum())
+        warnings.warn(f"{message} ({count} of {mask.size} samples; entries set to NaN)", category, stacklevel=3)
 
 
 def batch_shape(shape, name="shape"):

@@ -1,15 +1,23 @@
-"""Scalar kernels of the kinematic maps (one element each, compiled by numba).
+"""Kernels of the exponential map's differential: the SO(3) Jacobians and the rate maps.
 
-They take and return plain floats and tuples so that the gufunc loops in
-this package (and integrators in higher layers) can inline them without
-allocating. Conventions as in :mod:`kreisel._compiled.kernels`.
+The scalar kernels take and return plain floats and tuples so that gufunc
+loops (and integrators in higher layers) can call them without allocating.
+The SO(3) Jacobians ``J = 1 + sign A hat(ψ) + B hat(ψ)²`` (sign +1: left,
+−1: right) and their inverses are also broadcast here over batches
+(:data:`apply_jacobian`, :data:`jacobian_matrix`, ...), because three
+layers use them: ``kreisel.so3`` (the Jacobian matrices), ``kreisel.kinematics``
+(the rate maps of Theory §3.4–5) and ``kreisel.se3`` (exp/log of twists).
+Conventions as in :mod:`kreisel._compiled.kernels`.
 """
 
 from __future__ import annotations
 
 import math
 
-from . import cached, generic, series
+from numba import prange
+
+from . import cached, generic, parallel, series
+from .gufunc import gufunc
 
 
 _BORTZ_SERIES = series.BORTZ_SERIES
@@ -19,6 +27,9 @@ _SINE_REMAINDER_SERIES_BELOW = series.SINE_REMAINDER_SERIES_BELOW
 _COSINE_REMAINDER_SLOPE_SERIES = series.COSINE_REMAINDER_SLOPE_SERIES
 _SINE_REMAINDER_SLOPE_SERIES = series.SINE_REMAINDER_SLOPE_SERIES
 _SLOPE_SERIES_BELOW = series.SLOPE_SERIES_BELOW
+_SE3_SERIES_BELOW = series.SE3_SERIES_BELOW
+_COSINE_REMAINDER_SERIES = series.COSINE_REMAINDER_SERIES
+_SE3_COUPLING_SERIES = series.SE3_COUPLING_SERIES
 
 
 @generic
@@ -73,6 +84,21 @@ def dexp_coefficient_slopes(angle):
 
 
 @cached
+def se3_coupling_coefficients(angle):
+    """The coefficients of the coupling block Q of the SE(3) Jacobians (Barfoot):
+    ``(ψ − sin ψ)/ψ³`` (B of :func:`dexp_coefficients`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
+    and ``(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, the last two from their series below ψ = 2."""
+    _, b = dexp_coefficients(angle)
+    if angle < _SE3_SERIES_BELOW:
+        x = angle * angle
+        return b, horner(_COSINE_REMAINDER_SERIES, x), horner(_SE3_COUPLING_SERIES, x)
+    sn = math.sin(angle)
+    cs = math.cos(angle)
+    a2 = angle * angle
+    return b, (a2 + 2.0 * cs - 2.0) / (2.0 * a2 * a2), (2.0 * angle - 3.0 * sn + angle * cs) / (2.0 * a2 * a2 * angle)
+
+
+@cached
 def bortz_coefficient(angle):
     """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of Theory §3.5, written as
     ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
@@ -87,6 +113,90 @@ def bortz_coefficient(angle):
 def rotvec_singular(angle, tol):
     """True where dexp⁻¹ has a pole: |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``."""
     return angle > math.pi and abs(math.sin(0.5 * angle)) <= tol
+
+
+@cached
+def jacobian_times(x, y, z, v0, v1, v2, sign):
+    """``J v = v + sign A ψ×v + B ψ×(ψ×v)``: sign +1 is J_l (ψ̇ -> ω), −1 is J_r (ψ̇ -> ω′)."""
+    a, b = dexp_coefficients(math.sqrt(x * x + y * y + z * z))
+    cx, cy, cz = cross(x, y, z, v0, v1, v2)
+    ccx, ccy, ccz = cross(x, y, z, cx, cy, cz)
+    sa = sign * a
+    return v0 + sa * cx + b * ccx, v1 + sa * cy + b * ccy, v2 + sa * cz + b * ccz
+
+
+@cached
+def jacobian_inverse_times(x, y, z, w0, w1, w2, sign, tol):
+    """``J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w)``, NaN at the poles |ψ| = 2πk (:func:`rotvec_singular`)."""
+    angle = math.sqrt(x * x + y * y + z * z)
+    if rotvec_singular(angle, tol):
+        return math.nan, math.nan, math.nan
+    f = bortz_coefficient(angle)
+    cx, cy, cz = cross(x, y, z, w0, w1, w2)
+    ccx, ccy, ccz = cross(x, y, z, cx, cy, cz)
+    h = -0.5 * sign
+    return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
+
+
+@cached
+def write_jacobian(x, y, z, linear, quadratic, out):
+    """``out = 1 + linear hat(ψ) + quadratic hat(ψ)²``, with ``hat(ψ)² = ψψᵀ − |ψ|² 1``."""
+    n2 = x * x + y * y + z * z
+    out[0, 0] = 1.0 + quadratic * (x * x - n2)
+    out[1, 1] = 1.0 + quadratic * (y * y - n2)
+    out[2, 2] = 1.0 + quadratic * (z * z - n2)
+    out[0, 1] = quadratic * x * y - linear * z
+    out[1, 0] = quadratic * x * y + linear * z
+    out[0, 2] = quadratic * x * z + linear * y
+    out[2, 0] = quadratic * x * z - linear * y
+    out[1, 2] = quadratic * y * z - linear * x
+    out[2, 1] = quadratic * y * z + linear * x
+
+
+@parallel
+def _apply_jacobian_parallel(psi, v, sign, out):
+    for i in prange(psi.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = jacobian_times(psi[i, 0], psi[i, 1], psi[i, 2], v[i, 0], v[i, 1], v[i, 2], sign)
+
+
+@parallel
+def _apply_jacobian_inverse_parallel(psi, w, sign, tol, out):
+    for i in prange(psi.shape[0]):
+        out[i, 0], out[i, 1], out[i, 2] = jacobian_inverse_times(
+            psi[i, 0], psi[i, 1], psi[i, 2], w[i, 0], w[i, 1], w[i, 2], sign, tol
+        )
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(3),(3),()->(3)", parallel=_apply_jacobian_parallel, shared=(2,))
+def apply_jacobian(psi, v, sign, out):
+    """``J(ψ) v`` for validated ``(..., 3)`` batches; ``sign`` +1.0 (left) or −1.0 (right)."""
+    out[0], out[1], out[2] = jacobian_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], sign)
+
+
+@gufunc(["void(f8[:], f8[:], f8, f8, f8[:])"], "(3),(3),(),()->(3)", parallel=_apply_jacobian_inverse_parallel,
+        shared=(2, 3))
+def apply_jacobian_inverse(psi, w, sign, tol, out):
+    """``J(ψ)⁻¹ w``, NaN where |sin(|ψ|/2)| <= ``tol`` and |ψ| > π."""
+    out[0], out[1], out[2] = jacobian_inverse_times(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
+
+
+@gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
+def jacobian_matrix(psi, sign, out):
+    """The matrices ``J(ψ)`` of validated ``(..., 3)`` rotation vectors."""
+    x, y, z = psi[0], psi[1], psi[2]
+    a, b = dexp_coefficients(math.sqrt(x * x + y * y + z * z))
+    write_jacobian(x, y, z, sign * a, b, out)
+
+
+@gufunc(["void(f8[:], f8, f8, f8[:, :])"], "(3),(),()->(3,3)")
+def jacobian_inverse_matrix(psi, sign, tol, out):
+    """The matrices ``J(ψ)⁻¹``, all NaN at the poles as in :data:`apply_jacobian_inverse`."""
+    x, y, z = psi[0], psi[1], psi[2]
+    angle = math.sqrt(x * x + y * y + z * z)
+    if rotvec_singular(angle, tol):
+        out[:, :] = math.nan
+        return
+    write_jacobian(x, y, z, -0.5 * sign, bortz_coefficient(angle), out)
 
 
 @cached

@@ -67,3 +67,8 @@ SINE_REMAINDER_SERIES = horner_order(sine_remainder_coefficients(9))
 SLOPE_SERIES_BELOW = 2.0
 COSINE_REMAINDER_SLOPE_SERIES = horner_order(cosine_remainder_slope_coefficients(16))
 SINE_REMAINDER_SLOPE_SERIES = horner_order(sine_remainder_slope_coefficients(16))
+# The SE(3) coupling coefficients: 14 terms reach 1e-24 relative at 2, and the
+# closed forms lose at most ~5 ulp above it.
+SE3_SERIES_BELOW = 2.0
+COSINE_REMAINDER_SERIES = horner_order(cosine_remainder_coefficients(14))
+SE3_COUPLING_SERIES = horner_order(se3_coupling_coefficients(14))

@@ -49,10 +49,3 @@ def rotation_batch(R, **derivatives):
 def frame_sign(frame):
     """+1 for space components, −1 for body components: the sign that tells the two rate maps apart."""
     return -1.0 if check_frame(frame) else 1.0
-
-
-def tolerance(tol, name="tol"):
-    t = float(tol)
-    if not (0.0 <= t < 1.0):
-        raise ValueError(f"{name} must be in [0, 1), got {tol!r}")
-    return t

@@ -10,24 +10,6 @@ number, and one of these warnings is issued. Each rate function has a
 
 from __future__ import annotations
 
-import warnings
-
-# Defined in so3 so that Rotation.as_euler can issue it too; re-exported here.
+# Defined in so3, whose Rotation.as_euler and inverse Jacobians issue them too; re-exported here.
 from ..so3.euler import GimbalLockWarning, KinematicSingularityWarning  # noqa: F401
-
-#: Default singularity threshold on the determinant of the rate map
-#: (|sin β| or |cos β| for Euler angles, |sin(ψ/2)| for rotation vectors).
-#: Away from it the rates are returned with relative error ≲ 1e-16/|det|,
-#: i.e. at worst ~1e-8.
-SINGULAR_TOL = 1e-8
-
-
-class RotationVectorSingularityWarning(KinematicSingularityWarning):
-    """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
-
-
-def warn_if_any(mask, category, message):
-    """Issue ``category`` once when any entry of ``mask`` is set."""
-    if mask.any():
-        count = int(mask.sum())
-        warnings.warn(f"{message} ({count} of {mask.size} samples; entries set to NaN)", category, stacklevel=3)
+from ..so3.jacobians import SINGULAR_TOL, RotationVectorSingularityWarning  # noqa: F401

@@ -29,10 +29,10 @@ from numba import prange
 
 from .._compiled import cached, dexp, parallel
 from .._compiled.gufunc import gufunc
-from .._validation import check_frame
+from .._validation import check_frame, check_tolerance, warn_if_any
 from ..so3.euler import parse_sequence
-from ._checks import same_batch, tolerance, vectors
-from ._singularity import SINGULAR_TOL, GimbalLockWarning, warn_if_any
+from ._checks import same_batch, vectors
+from ._singularity import SINGULAR_TOL, GimbalLockWarning
 
 __all__ = [
     "euler_rate_matrix",
@@ -214,7 +214,7 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
     True
     """
     code = _code(seq, frame)
-    tol = tolerance(tol)
+    tol = check_tolerance(tol)
     out = _matrix_inverse(_angles(angles, degrees), code, tol)
     warn_if_any(np.isnan(out[..., 0, 0]), GimbalLockWarning, f"Euler-rate matrix inverse of {seq!r} at gimbal lock")
     return np.rad2deg(out) if degrees else out
@@ -286,7 +286,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     array([       nan, 0.87758256,        nan])
     """
     code = _code(seq, frame)
-    tol = tolerance(tol)
+    tol = check_tolerance(tol)
     angles = _angles(angles, degrees)
     angles, omega = same_batch(1, angles=angles, omega=vectors(omega, "omega"))
     out = _rates_from_omega(angles, omega, code, tol)
@@ -317,7 +317,7 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL):
     True
     """
     axes, _ = parse_sequence(seq)
-    tol = tolerance(tol)
+    tol = check_tolerance(tol)
     middle = _angles(angles, degrees)[..., 1]
     det = np.sin(middle) if axes[0] == axes[2] else np.cos(middle)
     return np.abs(det) <= tol

@@ -1,11 +1,11 @@
-"""Rigid displacements SE(3) (Theory §1.3 Chasles' theorem, §3.7–8 point velocity and screw motion).
+"""Rigid displacements SE(3) (Theory §1.3 Chasles' theorem, §3.8 screw motion).
 
 :class:`RigidTransform` holds batched poses (R, r_C); :func:`change_base_point`
 re-expresses a displacement about another body point (R unchanged);
 :class:`Screw` carries the Chasles/Mozzi screw of finite displacements;
 ``kreisel.se3.lie`` has twists ``ξ = (ω, v)``, exp/log and the SE(3)
-Jacobians; :func:`sclerp` interpolates along screws and
-:func:`point_trajectory` follows body points of a moving body.
+Jacobians; :func:`sclerp` interpolates along screws. The package builds on
+:mod:`kreisel.so3` only (the SE(3) Jacobians are built on those of :mod:`kreisel.so3.jacobians`).
 """
 
 from . import lie, motion, screw, transform

@@ -12,11 +12,12 @@ Jacobians follow the left/right perturbation convention:
 ``exp(ξ + δ) ≈ exp(J_l(ξ) δ) exp(ξ) ≈ exp(ξ) exp(J_r(ξ) δ)``. With twists
 ordered (ω, v) they are block lower-triangular,
 ``J_l = [[J, 0], [Q(ω, v), J]]``, ``J`` the SO(3) left Jacobian (from
-:mod:`kreisel.kinematics`) and ``Q`` the coupling matrix given by Barfoot
+:mod:`kreisel.so3.jacobians`) and ``Q`` the coupling matrix given by Barfoot
 (*State Estimation for Robotics*, 2017, section on SE(3) Jacobians; blocks
 swapped here for the (ω, v) order). The three coefficient functions of
-``Q`` are summed from their Maclaurin series below angle 2, where the
-closed forms lose digits, so the Jacobians keep full accuracy at small
+``Q`` are summed from their Maclaurin series at small angles, where the
+closed forms lose digits (the series of :mod:`kreisel._compiled.series`,
+shared with SO(3)), so the Jacobians keep full accuracy at small
 angles and have no singularity below 2π (near π in particular). Tested
 against the series ``Σ ad_ξⁿ/(n+1)!`` and finite differences.
 """
@@ -25,13 +26,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled import series
+from .._compiled import dexp
+from .._compiled.gufunc import finite_array, gufunc
 from .._validation import as_float_array
-from ..kinematics import angular_velocity_from_rotvec_rate, rotvec_rate
-from ..kinematics import left_jacobian as so3_left_jacobian
-from ..kinematics import left_jacobian_inverse as so3_left_jacobian_inverse
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
-from .._compiled.gufunc import finite_array
+from ..so3.jacobians import SINGULAR_TOL
+from ..so3.jacobians import left_jacobian as so3_left_jacobian
+from ..so3.jacobians import left_jacobian_inverse as so3_left_jacobian_inverse
 
 __all__ = [
     "se3_hat",
@@ -43,33 +44,18 @@ __all__ = [
 ]
 
 
-# Maclaurin series in θ² of the three coefficient functions of Q, from exact
-# rationals; 14 terms reach 1e-24 relative at the switch-over angle 2, and
-# the closed forms lose at most ~5 ulp above it.
-_SERIES_BELOW = 2.0
-_SINE_REMAINDER = series.horner_order(series.sine_remainder_coefficients(14))
-_COSINE_REMAINDER = series.horner_order(series.cosine_remainder_coefficients(14))
-_COUPLING = series.horner_order(series.se3_coupling_coefficients(14))
+_LEFT = 1.0
 
 
-def _evaluate(theta, series, closed_form):
-    small = theta < _SERIES_BELOW
-    theta2 = theta * theta
-    value = np.zeros_like(theta)
-    for c in series:
-        value = value * theta2 + c
-    if np.all(small):
-        return value
-    # The closed form only sees angles >= 2 (small ones are replaced).
-    return np.where(small, value, closed_form(np.where(small, _SERIES_BELOW, theta)))
+@gufunc(["void(f8, f8[:], f8[:])"], "(),(3)->(3)")
+def _coupling_coefficients(theta, carrier3, out):
+    out[0], out[1], out[2] = dexp.se3_coupling_coefficients(theta)
 
 
 def _q_coefficients(theta):
-    """(θ - sin θ)/θ³, (θ² + 2 cos θ - 2)/(2θ⁴), (2θ - 3 sin θ + θ cos θ)/(2θ⁵)."""
-    c1 = _evaluate(theta, _SINE_REMAINDER, lambda t: (t - np.sin(t)) / t**3)
-    c2 = _evaluate(theta, _COSINE_REMAINDER, lambda t: (t * t + 2.0 * np.cos(t) - 2.0) / (2.0 * t**4))
-    c3 = _evaluate(theta, _COUPLING, lambda t: (2.0 * t - 3.0 * np.sin(t) + t * np.cos(t)) / (2.0 * t**5))
-    return c1, c2, c3
+    """(θ - sin θ)/θ³, (θ² + 2 cos θ - 2)/(2θ⁴), (2θ - 3 sin θ + θ cos θ)/(2θ⁵) of angles θ >= 0."""
+    c = _coupling_coefficients(theta)
+    return c[..., 0], c[..., 1], c[..., 2]
 
 
 def _split(xi):
@@ -110,15 +96,15 @@ def se3_vee(matrix):
 def exp(xi):
     """``(q, r_C)`` of ``exp(ξ^)`` for validated twists ``(..., 6)``."""
     omega, v = _split(xi)
-    # r_C = J_l(ω) v is the dexp map ψ̇ -> ω (space) of Theory §3.4, applied to v
-    return rotvec_to_quat(omega), angular_velocity_from_rotvec_rate(omega, v, frame="space")
+    # r_C = J_l(ω) v: the dexp map ψ̇ -> ω (space) of Theory §3.4, applied to v
+    return rotvec_to_quat(omega), dexp.apply_jacobian(omega, v, _LEFT)
 
 
 def log(quat, translation):
     """Twists ``(ω, v)`` with ``|ω| <= π`` of poses given as unit quaternions and translations."""
     omega = quat_to_rotvec(quat)
     # v = J_l(ω)⁻¹ r_C: the inverse dexp map of Theory §3.5 (no pole for |ω| <= π)
-    v = rotvec_rate(omega, translation, frame="space")
+    v = dexp.apply_jacobian_inverse(omega, translation, _LEFT, SINGULAR_TOL)
     return np.concatenate([omega, v], axis=-1)
 
 

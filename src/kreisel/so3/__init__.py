@@ -7,6 +7,7 @@ uppercase Euler sequences intrinsic and lowercase extrinsic.
 
 Modules: ``quaternion`` (algebra, Theory §2.4), ``matrix`` (DCM, §2.1),
 ``rotvec`` (generators, exp/log, BCH, adjoint action, §2.2),
+``jacobians`` (left/right Jacobians and their inverses, §3.4–5),
 ``euler`` (§2.3), ``su2`` (SU(2), Cayley–Klein, Euler parameters,
 appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
 (slerp, mean), ``alignment`` (Wahba's problem), ``davenport``
@@ -14,12 +15,15 @@ appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
 (``RotationSpline``, ``Slerp``).
 """
 
-from . import alignment, davenport, euler, groups, interpolation, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2
+from . import (
+    alignment, davenport, euler, groups, interpolation, jacobians, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2,
+)
 from .alignment import *  # noqa: F401,F403
 from .davenport import *  # noqa: F401,F403
 from .euler import *  # noqa: F401,F403
 from .groups import *  # noqa: F401,F403
 from .interpolation import *  # noqa: F401,F403
+from .jacobians import *  # noqa: F401,F403
 from .matrix import *  # noqa: F401,F403
 from .quaternion import *  # noqa: F401,F403
 from .rodrigues import *  # noqa: F401,F403
@@ -32,6 +36,7 @@ __all__ = [
     *quaternion.__all__,
     *matrix.__all__,
     *rotvec.__all__,
+    *jacobians.__all__,
     *euler.__all__,
     *su2.__all__,
     *rodrigues.__all__,

@@ -1,0 +1,144 @@
+"""The Jacobians of SO(3): the differential of the exponential map and its inverse (Theory §3.4–5).
+
+With ``R = exp(ψ·X)`` (:func:`~kreisel.so3.rotvec_to_matrix`),
+
+    J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X) = 1 + A hat(ψ) + B hat(ψ)²,    J_r(ψ) = J_l(−ψ) = J_l(ψ)ᵀ,
+
+``A = (1 − cos ψ)/ψ²``, ``B = (ψ − sin ψ)/ψ³``: ``exp(ψ + δ) ≈ exp(J_l δ) exp(ψ)
+≈ exp(ψ) exp(J_r δ)``, and ``ω = J_l ψ̇``, ``ω′ = J_r ψ̇``
+(:mod:`kreisel.kinematics` has these rate maps). The inverses are
+
+    J_l⁻¹ = 1 − ½ hat(ψ) + f hat(ψ)²,    J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²,
+
+``f = (1 − (ψ/2) cot(ψ/2))/ψ²`` the Bortz coefficient, with poles at
+|ψ| = 2π, 4π, … where the entries are NaN and a
+:class:`RotationVectorSingularityWarning` is issued. Every coefficient is
+summed from its series at small ψ, so the matrices are accurate to a few ulp.
+The group, its exp/log and its Jacobians live together here, as in Sophus
+and manif; the SE(3) Jacobians of :mod:`kreisel.se3` are built on these.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._compiled import dexp
+from .._compiled.gufunc import vector_array
+from .._validation import check_tolerance, warn_if_any
+from .euler import KinematicSingularityWarning
+
+__all__ = ["left_jacobian", "right_jacobian", "left_jacobian_inverse", "right_jacobian_inverse"]
+
+#: Default singularity threshold on the determinant of a rate map (|sin β| or
+#: |cos β| for Euler angles, |sin(ψ/2)| for rotation vectors). Away from it
+#: the rates are returned with relative error ≲ 1e-16/|det|, i.e. at worst ~1e-8.
+SINGULAR_TOL = 1e-8
+
+_LEFT, _RIGHT = 1.0, -1.0
+
+
+class RotationVectorSingularityWarning(KinematicSingularityWarning):
+    """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
+
+
+def _inverse(psi, sign, tol):
+    psi = vector_array(psi, "psi")
+    out = dexp.jacobian_inverse_matrix(psi, sign, check_tolerance(tol))
+    warn_if_any(np.isnan(out[..., 0, 0]), RotationVectorSingularityWarning, "SO(3) Jacobian inverse at |psi| = 2*pi*k")
+    return out
+
+
+def left_jacobian(psi):
+    """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
+
+    ``J_l = 1 + A hat(ψ) + B hat(ψ)²`` maps ψ̇ to the space angular velocity,
+    ``ω = J_l(ψ) ψ̇``; also ``exp(ψ + δ) ≈ exp(J_l δ) exp(ψ)``.
+
+    Parameters
+    ----------
+    psi : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> left_jacobian([0.0, 0.0, 0.0])
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT)
+
+
+def right_jacobian(psi):
+    """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
+
+    Maps ψ̇ to the body angular velocity, ``ω′ = J_r(ψ) ψ̇`` (Theory §3.4).
+
+    Parameters
+    ----------
+    psi : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> np.allclose(right_jacobian([0.1, 0.2, 0.3]), left_jacobian([0.1, 0.2, 0.3]).T)
+    True
+    """
+    return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT)
+
+
+def left_jacobian_inverse(psi, tol=SINGULAR_TOL):
+    """Inverse left Jacobian, ``J_l⁻¹ = 1 − ½ hat(ψ) + f hat(ψ)²``.
+
+    ``ψ̇ = J_l⁻¹(ψ) ω`` (space components); ``f`` is the Bortz coefficient
+    (:func:`kreisel.kinematics.bortz_coefficient`). Singular (NaN, with
+    :class:`RotationVectorSingularityWarning`) at |ψ| = 2πk.
+
+    Parameters
+    ----------
+    psi : array_like, shape (..., 3)
+    tol : float
+        Samples with |ψ| > π and |sin(|ψ|/2)| <= tol are singular.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> psi = [0.3, -0.2, 0.5]
+    >>> np.allclose(left_jacobian_inverse(psi) @ left_jacobian(psi), np.eye(3))
+    True
+    """
+    return _inverse(psi, _LEFT, tol)
+
+
+def right_jacobian_inverse(psi, tol=SINGULAR_TOL):
+    """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (Theory §3.5).
+
+    ``ψ̇ = J_r⁻¹(ψ) ω′`` (body components). Singular at |ψ| = 2πk.
+
+    Parameters
+    ----------
+    psi : array_like, shape (..., 3)
+    tol : float
+        As in :func:`left_jacobian_inverse`.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    ``J_r⁻¹(ψ) = J_l⁻¹(−ψ)``:
+
+    >>> np.allclose(right_jacobian_inverse([0.3, -0.2, 0.5]), left_jacobian_inverse([-0.3, 0.2, -0.5]))
+    True
+    """
+    return _inverse(psi, _RIGHT, tol)
