@@ -12,10 +12,9 @@ lowercase extrinsic, SI units, ``frame="space" | "body"``.
 
 import importlib
 
-from ._version import __version__
-
 # Names are imported on first use (module __getattr__), so that ``import kreisel`` and the command line's
-# help and ``convert`` do not load the simulation, plotting, Dask or web stacks they do not need.
+# help and ``convert`` do not load the simulation, plotting, Dask or web stacks they do not need; even
+# ``__version__``, whose importlib.metadata takes most of a bare ``import kreisel``.
 _STAR = ("so3", "kinematics", "dynamics", "tops", "se3")   # subpackages whose public names kreisel re-exports
 _SUBPACKAGES = ("so3", "kinematics", "inertia", "dynamics", "tops", "se3", "frames", "earth", "nav", "io", "sweep",
                 "plot", "cli", "web")
@@ -30,6 +29,8 @@ def __getattr__(name):
         value = importlib.import_module(f"{__name__}.{name}")
     elif name in _FROM:
         value = getattr(importlib.import_module(f"{__name__}.{_FROM[name]}"), name)
+    elif name == "__version__":
+        from ._version import __version__ as value
     elif name.startswith("__"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     else:

@@ -6,15 +6,12 @@ on standard error and exit with status 2; they never show a traceback.
 
 from __future__ import annotations
 
+import functools
 import pathlib
 import sys
 from typing import List, Optional
 
 import typer
-from rich.console import Console
-from rich.markup import escape
-
-from .._version import __version__
 
 __all__ = [
     "app",
@@ -40,9 +37,28 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # click's plain help and usage errors: typer's rich help imports rich's Markdown, Syntax and
+    # Traceback renderers, which alone take longer than the help's start-up budget
+    rich_markup_mode=None,
 )
-err = Console(stderr=True, highlight=False)
-out = Console(highlight=False)
+
+
+@functools.cache
+def _console(stderr=False):
+    """The rich console of standard output (standard error with ``stderr``), made on first use.
+
+    rich is imported here, not with the module, so that ``kreisel --help`` does not load it.
+    """
+    from rich.console import Console
+
+    return Console(stderr=stderr, highlight=False)
+
+
+def _escape(text):
+    """``text`` with its square brackets escaped, so that rich prints them instead of reading markup."""
+    from rich.markup import escape as rich_escape
+
+    return rich_escape(str(text))
 
 
 def usage_error(message):
@@ -53,17 +69,19 @@ def usage_error(message):
 
 def say(text):
     """Print ``text`` on standard output as it is (brackets are text, not rich markup)."""
-    out.print(escape(str(text)), soft_wrap=True)
+    _console().print(_escape(text), soft_wrap=True)
 
 
 def error_line(message):
     """Print ``message`` on standard error after a red "error:"; its brackets are text, not rich markup."""
-    err.print(f"[bold red]error:[/] {escape(str(message))}", soft_wrap=True)
+    _console(stderr=True).print(f"[bold red]error:[/] {_escape(message)}", soft_wrap=True)
 
 
 def _version(value: bool):
     if value:
-        out.print(f"kreisel {__version__}")
+        from .._version import __version__
+
+        _console().print(f"kreisel {__version__}")
         raise typer.Exit()
 
 
@@ -85,7 +103,8 @@ _CONVERT_HELP = (
 )
 
 
-@app.command(help=_CONVERT_HELP, context_settings={"ignore_unknown_options": True})
+@app.command(help=_CONVERT_HELP, short_help="Convert rotations between representations.",
+             context_settings={"ignore_unknown_options": True})
 def convert(
     values: Optional[List[str]] = typer.Argument(
         None, metavar="NUMBERS", help="Numbers of one rotation; none: rows from --input or standard input.",
@@ -161,14 +180,14 @@ def simulate(
 
     columns = (TextColumn("simulating {task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f} %"),
                TimeElapsedColumn())
-    with Progress(*columns, console=err, transient=True) as bar:
-        task = bar.add_task(escape(spec.title), total=1.0)
+    with Progress(*columns, console=_console(stderr=True), transient=True) as bar:
+        task = bar.add_task(_escape(spec.title), total=1.0)
         try:
             result = run_scenario(spec, progress=lambda done: bar.update(task, completed=done))
         except (ValueError, TypeError) as exc:
             usage_error(f"{spec.path or scenario}: cannot run: {exc}")
         except RuntimeError as exc:
-            err.print(f"[bold red]error:[/] {escape(str(exc))}", soft_wrap=True)
+            error_line(exc)
             raise typer.Exit(1) from None
     for line in summary(result):
         say(line)
@@ -241,7 +260,7 @@ def examples(
 
     if name is None:
         for example, text in describe().items():
-            out.print(f"[bold]{example:<16}[/] {escape(text)}")
+            _console().print(f"[bold]{example:<16}[/] {_escape(text)}")
         return
     if name not in EXAMPLES:
         usage_error(f"no bundled example {name!r}{suggestion(name, EXAMPLES)}")
@@ -260,7 +279,7 @@ def tour(
     """Run every demonstration of the chapter and write DIR/index.html."""
     from ..tour import run_tour
 
-    ok = run_tour(out_dir, quick=quick, console=out)
+    ok = run_tour(out_dir, quick=quick, console=_console())
     raise typer.Exit(0 if ok else 1)
 
 
@@ -287,7 +306,8 @@ def sweep(
         if output is None and load_sweep_file(sweep_file).output is None:
             # results (and the checkpoint that lets an interrupted run resume) go to the working directory
             output = pathlib.Path(f"{sweep_file.stem}.zarr")
-        dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output, console=err)
+        dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output,
+                                 console=_console(stderr=True))
     except SweepError as exc:
         error_line(exc)
         raise typer.Exit(1)
@@ -341,16 +361,16 @@ def fit(
         except ValueError as exc:
             usage_error(f"{recording}: {exc}")
     for line in summary(result):
-        (out if result.free_rotation else err).print(line, soft_wrap=True)
+        _console(stderr=not result.free_rotation).print(line, soft_wrap=True)
     if plot_file is not None:
         from .. import plot as plots
 
         plots.save(plots.gyro_fit(result), plot_file)
-        out.print(f"wrote {plot_file}")
+        say(f"wrote {plot_file}")
     if json_file is not None:
         with atomic_output(json_file) as tmp:
             tmp.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
-        out.print(f"wrote {json_file}")
+        say(f"wrote {json_file}")
     if not result.free_rotation:
         raise typer.Exit(1)
 
