@@ -1,3 +1,4 @@
+import mpmath as mp
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
@@ -207,11 +208,63 @@ def test_bad_input():
 
 
 def test_turning_points_of_a_top_that_reaches_the_vertical():
-    # J3 = Jz: u = 1 is an exact root; the computed one used to round above 1 (θ_min = NaN)
+    # J3 = Jz to rounding: u = 1 is nearly a root (exactly, θ_min = 4.98e-16 for these doubles);
+    # the computed u2 used to round above 1 (θ_min = NaN)
     euler0, rates0 = [0.0, np.radians(60.0), 0.0], [1.2000000000000002, 0.0, 3.0]
     theta_min, theta_max = TOP.turning_points(euler0, rates0)
-    assert theta_min == 0.0 and theta_max == pytest.approx(np.radians(60.0), abs=1e-15)
-    assert TOP.cubic_roots(euler0, rates0)[1] == 1.0
+    assert 0.0 <= theta_min < 2e-15 and theta_max == pytest.approx(np.radians(60.0), abs=1e-15)
+    assert TOP.cubic_roots(euler0, rates0)[1] == 1.0  # 1 − 1.2e-31
+
+
+def _theta_reference(euler0, rates0, t, dps=60):
+    """θ(t) and m1 at ``dps`` digits from the exact values of the doubles given (Theory §6.3).
+
+    The roots of f(u) by mpmath's ``polyroots``, u = u1 + (u2 − u1) sn²(λt + v0 | m) by its
+    ``ellipfun`` (q-series) and ``ellipf``: nothing shared with kreisel's root finding or its
+    m1-carrying elliptic functions.
+    """
+    mp.mp.dps = dps
+    I1, I3, mgl = (mp.mpf(x) for x in (TOP.I1, TOP.I3, TOP.mgl))
+    theta0 = mp.mpf(euler0[1])
+    phidot, thetadot, psidot = (mp.mpf(x) for x in rates0)
+    u0, s = mp.cos(theta0), mp.sin(theta0)
+    J3 = I3 * (u0 * phidot + psidot)
+    Jz = I1 * phidot * s**2 + J3 * u0
+    E = (I1 * (thetadot**2 + phidot**2 * s**2) + J3**2 / I3) / 2 + mgl * u0
+    a, b = J3 / I1, Jz / I1
+    alpha, beta = (2 * E - J3**2 / I3) / I1, 2 * mgl / I1
+    roots = mp.polyroots([beta, -(alpha + a * a), 2 * a * b - beta, alpha - b * b], maxsteps=500, extraprec=4 * dps)
+    u1, u2, u3 = sorted(mp.re(r) for r in roots)
+    m = (u2 - u1) / (u3 - u1)
+    lam = mp.sqrt(beta * (u3 - u1)) / 2
+    v0 = mp.ellipf(mp.asin(mp.sqrt(min((u0 - u1) / (u2 - u1), 1))), m)
+    v0 = -v0 if s * thetadot > 0 else v0  # u̇0 = −sin θ0 θ̇0
+    theta = [mp.acos(u1 + (u2 - u1) * mp.ellipfun("sn", lam * mp.mpf(x) + v0, m=m) ** 2) for x in t]
+    return np.array([float(x) for x in theta]), float(1 - m)
+
+
+# a top spinning below the sleeping-top threshold (ω3 = 2 < 4) started ε from the vertical: at rest
+# (it falls from its upper turning point, u2 = cos ε, u3 -> 1) or kicked with θ̇0 = ε (above the
+# upright's energy, u2 -> 1): m1 ≈ 4ε²/9 in both, the separatrix of the upright top
+NEAR_VERTICAL = {
+    f"{side}-{eps:g}": ([0.2, eps, -0.1], [0.0, eps if side == "kicked" else 0.0, 2.0], m1)
+    for eps, m1 in [(1.5e-5, 1e-10), (1.5e-6, 1e-12), (1.5e-7, 1e-14)]
+    for side in ("rest", "kicked")
+}
+
+
+@pytest.mark.filterwarnings("ignore:Descending:DeprecationWarning")  # mpmath 1.4 polyroots; asc= is not in 1.3
+@pytest.mark.parametrize("label", NEAR_VERTICAL)
+def test_next_to_the_separatrix_theta_agrees_with_a_60_digit_reference(label):
+    euler0, rates0, m1 = NEAR_VERTICAL[label]
+    period = TOP.nutation_period(euler0, rates0)
+    t = np.linspace(0.0, 3.0 * period, 25)
+    theta_ref, m1_ref = _theta_reference(euler0, rates0, t)
+    assert 0.9 * m1 < m1_ref < m1
+    tr = TOP.solve(t, euler0, rates0)
+    np.testing.assert_allclose(tr.zxz_angles[:, 1], theta_ref, rtol=0.0, atol=1e-11)
+    # the top swings down to θ_max and back near the vertical, three times
+    assert theta_ref.max() > 1.5 and theta_ref.min() < 1e-3
 
 
 @pytest.mark.parametrize("thetadot0", [0.0, 0.8, -1.5, 2.9, -3.5])

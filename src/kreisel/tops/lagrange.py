@@ -128,67 +128,103 @@ def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTR
 
 
 class _Quadrature:
-    """Roots of f(u) and the elliptic solution for one initial state (Theory §6.3)."""
+    """Roots of f(u) and the elliptic solution for one initial state (Theory §6.3).
 
-    def __init__(self, top, constants, u0, udot0):
+    The roots are found as w = 1 − u, the distance from the upright position:
+    with δb = b − a and δα = α − β formed from the state without cancelling
+    O(1) terms,
+
+        F(w) = f(1 − w) = −β w³ + (2β − a² − δα) w² + 2(δα − a δb) w − δb²,
+
+    whose small coefficients keep their relative accuracy when the top only just
+    reaches (or only just misses) the vertical. There u2 and u3 meet at u = 1,
+    m1 = (w2 − w3)/(w1 − w3) → 0, and w2 >= 0 >= w3 makes w2 − w3 a sum: the
+    two small roots come, by Vieta's relations, from the quadratic left after
+    deflating F by a root found by bracketing, never as differences of numbers
+    near 1.
+    """
+
+    def __init__(self, top, euler0, rates0, constants):
         I1 = top.I1
+        theta0 = euler0[1]
+        phidot, thetadot, _ = rates0
         self.a = constants.J3 / I1
-        self.b = constants.Jz / I1
-        self.alpha = (2.0 * constants.E - constants.J3**2 / top.I3) / I1
-        self.beta = 2.0 * top.mgl / I1
-        a, b, alpha, beta = self.a, self.b, self.alpha, self.beta
-        # f(u) = c3 u³ + c2 u² + c1 u + c0
-        coefficients = (beta, -(alpha + a * a), 2.0 * a * b - beta, alpha - b * b)
-        f = lambda u: ((coefficients[0] * u + coefficients[1]) * u + coefficients[2]) * u + coefficients[3]
-        if udot0 != 0.0:
-            from scipy.optimize import brentq  # 0.13 s to import: only when a root must be searched for
+        beta = 2.0 * top.mgl / I1
+        a = self.a
+        # 1 ∓ u0 and sin²θ0 = (1 − u0)(1 + u0) from the half angle: relative accuracy at both verticals
+        h = 2.0 * math.sin(0.5 * theta0) ** 2
+        g = 2.0 * math.cos(0.5 * theta0) ** 2
+        # δb = φ̇ sin²θ − a(1 − u0) = (Jz − J3)/I1, δα = θ̇² + φ̇² sin²θ − β(1 − u0) = α − β
+        self.delta_b = delta_b = h * (phidot * g - a)
+        delta_alpha = thetadot * thetadot + h * (phidot * phidot * g - beta)
+        self.b = a + delta_b
+        c2 = 2.0 * beta - a * a - delta_alpha
+        c1 = 2.0 * (delta_alpha - a * delta_b)
+        c0 = -delta_b * delta_b
+        F = lambda w: ((-beta * w + c2) * w + c1) * w + c0
+        # F(1 − u0) = u̇0² >= 0 and F(2) = f(−1) = −(b + a)² <= 0 bracket w1 = 1 − u1
+        root = h  # released at a turning point (θ̇0 = 0): 1 − u0 itself is a root
+        if thetadot != 0.0 and F(h) > 0.0:
+            if F(2.0) >= 0.0:
+                root = 2.0
+            else:
+                from scipy.optimize import brentq  # 0.13 s to import: only when a root must be searched for
 
-            # f(u0) = u̇0² > 0 and f(±1) = −(b ∓ a)² <= 0 bracket one root on each side
-            root = brentq(f, -1.0, u0, xtol=1e-16, rtol=1e-15, maxiter=200)
+                root = brentq(F, h, 2.0, xtol=1e-300, rtol=1e-15, maxiter=200)
+        # the other two roots: product q = c0/(β root) <= 0, sum from whichever Vieta relation
+        # cancels less (c2/β − root when root is the small one, (−c1/β − q)/root when it is w1)
+        q = c0 / (beta * root) if root > 0.0 else 0.0
+        if root > 0.0 and (abs(c1 / beta) + abs(q)) / root < abs(c2 / beta) + root:
+            total = (-c1 / beta - q) / root
         else:
-            root = u0  # released at a turning point: u0 itself is a root
-        # deflate f by (u − root): f = β (u − root)(u² + p u + r)
-        p = coefficients[1] / beta + root
-        r = coefficients[2] / beta + root * p
-        discriminant = max(p * p - 4.0 * r, 0.0)
-        # numerically stable quadratic roots
-        w = -0.5 * (p + np.copysign(np.sqrt(discriminant), p))
-        others = [w, r / w] if w != 0.0 else [0.0, -p]
-        # f(±1) <= 0 and f -> +inf: two roots in [−1, 1], the third above 1
-        u1, u2, u3 = sorted([root, *others])
-        # f(±1) = −(b ∓ a)² <= 0 < f on (u1, u2) puts the exact u1, u2 in [−1, 1]; the deflated
-        # quadratic's rounding (a few ulp of its coefficients, amplified where two roots meet)
-        # can carry a root that is exactly ±1 (a top that reaches the vertical, b = ±a) past it
-        u1, u2 = max(u1, -1.0), min(u2, 1.0)
-        self.u1, self.u2, self.u3 = u1, u2, u3
-        self.lam = 0.5 * np.sqrt(beta * (u3 - u1))
-        self.m1 = (u3 - u2) / (u3 - u1)
-        self.kc = np.sqrt(self.m1)
+            total = c2 / beta - root
+        spread = math.sqrt(total * total - 4.0 * q)  # q <= 0: no cancellation
+        big = 0.5 * (total + math.copysign(spread, total))
+        small = q / big if big != 0.0 else 0.0
+        others = (max(big, small), min(big, small))  # >= 0 and <= 0
+        # clamped to the physical ranges: exactly, f(±1) <= 0 puts u1, u2 in [−1, 1] and u3 >= 1
+        w1, w2 = min(max(root, others[0]), 2.0), max(min(root, others[0]), 0.0)
+        w3 = min(others[1], 0.0)
+        self.w1, self.w2, self.w3 = w1, w2, w3
+        self.u1, self.u2, self.u3 = 1.0 - w1, 1.0 - w2, 1.0 - w3
+        self.lam = 0.5 * math.sqrt(beta * (w1 - w3))
+        self.m1 = (w2 - w3) / (w1 - w3)
+        self.kc = math.sqrt(self.m1)
         self.quarter = _elliptic.complete_k(self.m1, self.kc)
-        # phase at t = 0: sn² v0 = (u0 − u1)/(u2 − u1), cn² v0 = (u2 − u0)/(u2 − u1), sign from u̇0
-        sn0 = np.copysign(np.sqrt(max(u0 - u1, 0.0)), udot0)
-        self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, np.sqrt(max(u2 - u0, 0.0)), self.m1, self.kc)
+        # phase at t = 0: sn² v0 ∝ u0 − u1 = w1 − h, cn² v0 ∝ u2 − u0 = h − w2, sign from u̇0. The
+        # smaller of the two differences (next to a turning point, where the phase moves by
+        # √difference/k′) comes from u̇0² = F(h) = β (w1 − h)(h − w2)(h − w3) instead
+        d1, d2 = max(w1 - h, 0.0), max(h - w2, 0.0)
+        udot0_squared = h * g * thetadot * thetadot
+        if d2 <= d1:
+            d2 = udot0_squared / (beta * d1 * (h - w3)) if d1 > 0.0 else 0.0
+        else:
+            d1 = udot0_squared / (beta * d2 * (h - w3))
+        if d1 == 0.0 and d2 == 0.0:  # w1 = w2 = 1 − u0: steady precession, any phase
+            d2 = 1.0
+        sn0 = math.copysign(math.sqrt(d1), -thetadot)  # u̇0 = −sin θ0 θ̇0
+        self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, math.sqrt(d2), self.m1, self.kc)
 
     def _partial_fraction_terms(self):
         """(coefficient, characteristic n, 1 − n) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
-        a, b, u1, u2 = self.a, self.b, self.u1, self.u2
+        a, w1, w2 = self.a, self.w1, self.w2
         return (
-            ((b - a) / (1.0 - u1), (u2 - u1) / (1.0 - u1), (1.0 - u2) / (1.0 - u1)),
-            ((b + a) / (1.0 + u1), -(u2 - u1) / (1.0 + u1), (1.0 + u2) / (1.0 + u1)),
+            (self.delta_b / w1, (w1 - w2) / w1, w2 / w1),
+            ((2.0 * a + self.delta_b) / (2.0 - w1), -(w1 - w2) / (2.0 - w1), (2.0 - w2) / (2.0 - w1)),
         )
 
     def angles_and_rates(self, t, top):
         t = np.asarray(t, dtype=float)
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
-        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.u1, self.u2, terms, out)
+        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, terms, out)
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
-        udot = 2.0 * (self.u2 - self.u1) * self.lam * sn * cn * dn
+        udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
         theta = np.arctan2(sin_theta, u)
         phi = (plus + minus) / (2.0 * self.lam)
         psi = self.a * (top.I1 / top.I3 - 1.0) * t - (plus - minus) / (2.0 * self.lam)
-        phidot = (self.b - self.a * u) / (one_minus_u * one_plus_u)
+        phidot = (self.delta_b + self.a * one_minus_u) / (one_minus_u * one_plus_u)  # (b − a u)/(1 − u²)
         thetadot = -udot / sin_theta
         psidot = self.a * top.I1 / top.I3 - u * phidot
         return np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1)
@@ -201,7 +237,7 @@ class _Quadrature:
 
 
 @_jit
-def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, u1, u2, terms, out):
+def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, w1, w2, terms, out):
     """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
     pic = np.zeros(2)
     pi0 = np.zeros(2)
@@ -216,10 +252,10 @@ def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, u1, u2, terms, out):
         n = n0 + j
         sr, cr, dr = _elliptic.jacobi_near(r, m1, kc)
         sn, cn, dn = _elliptic.quarter_shift(n, sr, cr, dr, kc)
-        # 1 ∓ u from the factored forms keep their relative accuracy near θ = 0, π
-        out[i, 0] = u1 + (u2 - u1) * sn * sn
-        out[i, 1] = (1.0 - u2) + (u2 - u1) * cn * cn
-        out[i, 2] = (1.0 + u1) + (u2 - u1) * sn * sn
+        # 1 − u = w2 + (w1 − w2) cn² keeps its relative accuracy near the vertical
+        out[i, 0] = (1.0 - w1) + (w1 - w2) * sn * sn
+        out[i, 1] = w2 + (w1 - w2) * cn * cn
+        out[i, 2] = (2.0 - w1) + (w1 - w2) * sn * sn
         out[i, 3], out[i, 4], out[i, 5] = sn, cn, dn
         for k in range(2):
             value = 0.0
@@ -242,7 +278,7 @@ class _PlanarPendulum:
     constant.
     """
 
-    a = b = 0.0
+    a = b = delta_b = 0.0
 
     def __init__(self, top, theta0, thetadot0):
         g = top.I1 * thetadot0**2 / (4.0 * top.mgl)
@@ -257,12 +293,13 @@ class _PlanarPendulum:
         if self.circulating:
             self.sign = -np.sign(thetadot0)
             sn0, cn0 = self.sign * np.sin(half), np.cos(half)
-            self.u1, self.u2, self.u3 = -1.0, 1.0, 2.0 * level - 1.0  # α/β
+            self.w1, self.w2, self.w3 = 2.0, 0.0, 2.0 - 2.0 * level  # u3 = α/β
         else:
             self.sign = 1.0
             # sn v0 = sin(χ0/2)/k, cn v0 = χ̇0/(2kλ) = −θ̇0 √(I1/(4 mgl))/k: both times k, exact
             sn0, cn0 = np.cos(0.5 * theta0), -thetadot0 * np.sqrt(top.I1 / (4.0 * top.mgl))
-            self.u1, self.u2, self.u3 = -1.0, min(np.cos(theta0) + 2.0 * g, 1.0), 1.0
+            self.w1, self.w2, self.w3 = 2.0, 2.0 * max(s2 - g, 0.0), 0.0  # u2 = cos θ0 + 2g
+        self.u1, self.u2, self.u3 = 1.0 - self.w1, 1.0 - self.w2, 1.0 - self.w3
         if self.m1 == 0.0:
             self.quarter = np.inf
             self.n0, self.r0 = 0, np.arcsinh(sn0 / cn0)
@@ -391,9 +428,7 @@ class LagrangeTop:
         constants = self._constants(euler0, rates0)
         if constants.J3 == 0.0 and constants.Jz == 0.0:
             return _PlanarPendulum(self, euler0[1], rates0[1]), euler0, rates0
-        u0 = np.cos(euler0[1])
-        udot0 = -np.sin(euler0[1]) * rates0[1]
-        return _Quadrature(self, constants, u0, udot0), euler0, rates0
+        return _Quadrature(self, euler0, rates0, constants), euler0, rates0
 
     # ---- nutation and the apex ------------------------------------------------------
     def turning_points(self, euler0, rates0):
@@ -414,7 +449,8 @@ class LagrangeTop:
         [True, True]
         """
         quad, _, _ = self._quadrature(euler0, rates0)
-        return float(np.arccos(quad.u2)), float(np.arccos(quad.u1))
+        # θ from 1 − cos θ = w: 2 atan2(√w, √(2 − w)) keeps the relative accuracy of w near θ = 0
+        return tuple(float(2.0 * np.arctan2(np.sqrt(w), np.sqrt(2.0 - w))) for w in (quad.w2, quad.w1))
 
     def cubic_roots(self, euler0, rates0):
         """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (Theory §6.4).
@@ -450,8 +486,9 @@ class LagrangeTop:
         ['cusp', 'monotone', 'loop']
         """
         quad, _, _ = self._quadrature(euler0, rates0)
-        g1 = quad.b - quad.a * quad.u1
-        g2 = quad.b - quad.a * quad.u2
+        # b − a u = δb + a w
+        g1 = quad.delta_b + quad.a * quad.w1
+        g2 = quad.delta_b + quad.a * quad.w2
         tol = rtol * (abs(quad.a) + abs(quad.b))
         if min(abs(g1), abs(g2)) <= tol:
             return "cusp"
@@ -562,7 +599,7 @@ class LagrangeTop:
             approx_nutation_amplitude=2.0 * self.I1 * self.mgl * np.sin(theta0) ** 2 / J3**2,
             approx_nutation_frequency=abs(J3) / self.I1,
             approx_precession_rate=self.mgl / J3,
-            exact_nutation_amplitude=float(quad.u2 - quad.u1),
+            exact_nutation_amplitude=float(quad.w1 - quad.w2),
             exact_nutation_frequency=float(np.pi * quad.lam / quad.quarter),
             exact_precession_rate=quad.mean_precession_rate(),
         )
