@@ -123,6 +123,7 @@ API_MODULES = [
     ("kreisel.plot", "Figures"),
     ("kreisel.sweep", "Parameter sweeps"),
     ("kreisel.web", "The local web viewer"),
+    ("kreisel.notebook", "Jupyter: the 3D trajectory player (the notebook extra)"),
     ("kreisel.cli", "The command line (Python entry points)"),
 ]
 

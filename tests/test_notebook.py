@@ -55,3 +55,24 @@ def test_without_anywidget_the_error_names_the_extra(trajectory, monkeypatch):
     monkeypatch.setitem(sys.modules, "anywidget", None)
     with pytest.raises(ImportError, match=r"kreisel\[notebook\]"):
         kr.show(trajectory)
+
+
+def test_trajectory_show_is_kreisel_show(trajectory):
+    widget = trajectory.show(max_samples=50)
+    assert widget.data == kr.show(trajectory, max_samples=50).data
+
+
+def test_trajectory_show_without_anywidget_names_the_extra(trajectory, monkeypatch):
+    monkeypatch.setitem(sys.modules, "anywidget", None)
+    with pytest.raises(ImportError, match=r"kreisel\[notebook\]"):
+        trajectory.show()
+
+
+def test_dynamics_does_not_load_the_widget_until_shown():
+    import subprocess
+
+    code = ("import sys, numpy as np, kreisel.dynamics as d; "
+            "tr = d.Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3]); "
+            "before = 'kreisel.notebook' in sys.modules; tr.show(); print(before, 'kreisel.notebook' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=300)
+    assert out.stdout.split() == ["False", "True"]

@@ -12,6 +12,8 @@ lowercase extrinsic, SI units, ``frame="space" | "body"``.
 
 import importlib
 
+from . import _display
+
 # Names are imported on first use (module __getattr__), so that ``import kreisel`` and the command line's
 # help and ``convert`` do not load the simulation, plotting, Dask or web stacks they do not need; even
 # ``__version__``, whose importlib.metadata takes most of a bare ``import kreisel``.
@@ -19,6 +21,8 @@ _STAR = ("so3", "kinematics", "dynamics", "tops", "se3")   # subpackages whose p
 _SUBPACKAGES = ("so3", "kinematics", "inertia", "dynamics", "tops", "se3", "frames", "earth", "nav", "io", "sweep",
                 "plot", "cli", "web")
 _FROM = {"RigidBody": "inertia", "show": "notebook"}
+# Trajectory.show (a lower layer) plays through kreisel.notebook, imported when first used
+_display.register_player(lambda: importlib.import_module(f"{__name__}.notebook").show)
 
 
 def __getattr__(name):

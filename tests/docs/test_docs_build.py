@@ -66,3 +66,10 @@ def test_sections_are_numbered_as_in_the_chapter(built):
     page = (built / "theory" / "3_angular_velocity.html").read_text(encoding="utf-8")
     assert re.search(r'<span class="section-number">3\.5\. </span>The Bortz equation', page)
     assert re.search(r'<span class="eqno">\(3\.\d+\)', page)
+
+
+def test_notebook_module_is_in_the_api_reference(built):
+    page = (built / "api" / "kreisel.notebook.html").read_text(encoding="utf-8")
+    assert "kreisel.notebook.show" in page
+    assert (built / "api" / "generated" / "kreisel.notebook.show.html").exists()
+    assert 'href="api/kreisel.notebook.html"' in (built / "reference.html").read_text(encoding="utf-8")

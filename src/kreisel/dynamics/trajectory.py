@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import _display
 from .._html import html_table, number
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
@@ -89,6 +90,31 @@ class Trajectory:
         rows += [(key, value) for key, value in self.meta.items()]
         rows += [("extra arrays", ", ".join(self._extra))] if self._extra else []
         return html_table("Trajectory", rows, note="quaternions scalar-first, R maps body to space; ω′ in body axes")
+
+    def show(self, **options):
+        """Play the trajectory in 3D in a notebook: :func:`kreisel.show` (needs ``pip install 'kreisel[notebook]'``).
+
+        Body, principal axes, ω, J, the inertia (energy) ellipsoid on the invariable plane,
+        polhode and herpolhode (Theory §5.5), with a time slider.
+
+        Parameters
+        ----------
+        **options
+            Passed to :func:`kreisel.show` (``max_samples``: longer trajectories are thinned evenly).
+
+        Returns
+        -------
+        anywidget.AnyWidget
+            Displayed when it is the last expression of a cell.
+
+        Examples
+        --------
+        >>> import kreisel as kr
+        >>> widget = kr.EulerTop(1.0, 2.0, 3.0).solve(np.linspace(0.0, 10.0, 301), [0.1, 2.0, 0.1]).show()
+        >>> len(widget.data["t"])
+        301
+        """
+        return _display.player()(self, **options)
 
     @property
     def batch_shape(self):
