@@ -51,7 +51,8 @@ docs: $(VENV)/.installed-docs docs/node_modules/.installed
 clean:
 	rm -rf $(VENV) build src/*.egg-info .numba_cache
 
-# The viewer's front end (kreisel serve): three.js bundled by esbuild into src/kreisel/web/static/.
+# The viewer's front end (kreisel serve, kreisel.show): three.js bundled by esbuild into src/kreisel/web/static/
+# (widget.js with three.js and the scene; viewer.js, the page logic, imports it).
 # The bundle is committed (an installed kreisel serves it without Node.js); after editing web/, run
 # `make web` and commit the new bundle: tests/web/test_bundle.py fails while it is stale.
 .PHONY: web
@@ -61,7 +62,7 @@ web/node_modules/.installed: web/package.json web/package-lock.json
 	cd web && npm ci --no-audit --no-fund
 	touch $@
 
-$(WEB_BUNDLE): web/node_modules/.installed web/build.mjs web/index.html $(wildcard web/src/*.js)
+$(WEB_BUNDLE): web/node_modules/.installed web/build.mjs $(wildcard web/src/*.js)
 	cd web && npm run build
 
 web: $(WEB_BUNDLE)

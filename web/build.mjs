@@ -1,17 +1,21 @@
-// Bundle the viewer into the Python package: src/kreisel/web/static/{index.html, viewer.js, widget.js, favicon.svg, BUILD.json}.
+// Bundle the front end into the Python package: src/kreisel/web/static/{widget.js, viewer.js, BUILD.json}.
+// widget.js is the notebook widget of kreisel.show (an anywidget module, loaded from one string, so it holds
+// three.js and the scene); viewer.js is the page logic of `kreisel serve` and imports the scene from
+// ./widget.js at run time, so three.js is shipped once. The page itself (static/index.html, favicon.svg)
+// needs no build and lives only in the package.
 // The bundle is committed, so that an installed kreisel serves the viewer without Node.js; BUILD.json holds
 // the hash of the sources it was built from, which tests/web/test_bundle.py compares with web/.
 // KREISEL_WEB_OUT=dir writes the bundle elsewhere (the test rebuilds into a temporary folder).
 import { build } from "esbuild";
 import { createHash } from "node:crypto";
-import { copyFileSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
+import { mkdirSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
 
 const here = (path) => new URL(path, import.meta.url).pathname;
 const out = (process.env.KREISEL_WEB_OUT || here("../src/kreisel/web/static")).replace(/\/?$/, "/");
 
 // the files the bundle is made from, in a fixed order, with their contents
 function sources() {
-  const names = ["build.mjs", "index.html", "favicon.svg", "package-lock.json",
+  const names = ["build.mjs", "package-lock.json",
     ...readdirSync(here("src")).filter((n) => n.endsWith(".js")).sort().map((n) => `src/${n}`)];
   const digest = createHash("sha256");
   for (const name of names) {
@@ -22,19 +26,26 @@ function sources() {
   return { files: names, sha256: digest.digest("hex") };
 }
 
+// main.js's import of ./widget.js stays an import of the sibling file
+const widgetIsSibling = {
+  name: "widget-is-sibling",
+  setup(b) {
+    b.onResolve({ filter: /^\.\/widget\.js$/ }, (args) =>
+      (args.importer.endsWith("main.js") ? { path: "./widget.js", external: true } : undefined));
+  },
+};
+
 mkdirSync(out, { recursive: true });
-// the viewer's page, and the notebook widget of kreisel.show (the same scene, as an anywidget module)
-for (const name of ["main", "widget"]) {
+for (const [entry, file, plugins] of [["widget", "widget.js", []], ["main", "viewer.js", [widgetIsSibling]]]) {
   await build({
-    entryPoints: [here(`src/${name}.js`)],
+    entryPoints: [here(`src/${entry}.js`)],
     bundle: true,
     minify: true,
     format: "esm",
     target: "es2020",
-    outfile: out + (name === "main" ? "viewer.js" : "widget.js"),
+    outfile: out + file,
+    plugins,
     logLevel: "warning",
   });
 }
-copyFileSync(here("index.html"), out + "index.html");
-copyFileSync(here("favicon.svg"), out + "favicon.svg");
 writeFileSync(out + "BUILD.json", JSON.stringify(sources(), null, 1) + "\n");

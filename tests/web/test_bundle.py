@@ -32,12 +32,23 @@ def source_hash(files):
 
 def test_bundle_was_built_from_the_current_sources():
     build = json.loads((STATIC / "BUILD.json").read_text(encoding="utf-8"))
-    sources = ["build.mjs", "index.html", "favicon.svg", "package-lock.json",
-               *sorted(f"src/{p.name}" for p in (WEB / "src").glob("*.js"))]
+    sources = ["build.mjs", "package-lock.json", *sorted(f"src/{p.name}" for p in (WEB / "src").glob("*.js"))]
     assert build["files"] == sources, "web/ has files the bundle was not built from: run `make web`"
     assert build["sha256"] == source_hash(sources), "web/ changed since the bundle was built: run `make web`"
-    assert (STATIC / "index.html").read_bytes() == (WEB / "index.html").read_bytes()
-    assert (STATIC / "favicon.svg").read_bytes() == (WEB / "favicon.svg").read_bytes()
+
+
+def test_three_js_is_shipped_once():
+    """The page's script imports the scene from the widget module, which alone carries three.js."""
+    viewer = (STATIC / "viewer.js").read_text(encoding="utf-8")
+    widget = (STATIC / "widget.js").read_text(encoding="utf-8")
+    assert len(viewer) < 50_000 and "Three.js Authors" not in viewer and "Three.js Authors" in widget
+    imported = re.search(r'import\{([^}]*)\}from"\./widget\.js"', viewer)
+    exported = re.search(r"export\{([^}]*)\}\s*;?\s*(/\*.*)?$", widget, re.S)
+    assert imported and exported
+    names = lambda text, k: {part.split(" as ")[k].strip() for part in text.split(",")}
+    assert names(imported.group(1), 0) <= names(exported.group(1), 1) and "default" in names(exported.group(1), 1)
+    assert not re.search(r"\bimport\b\s*[{*\w]|\bimport\s*\(", widget.split("/*! Bundled license")[0]), \
+        "the widget module must be self-contained: anywidget loads it from one string"
 
 
 @pytest.mark.skipif(shutil.which("node") is None or not (WEB / "node_modules" / "esbuild").is_dir(),
@@ -45,7 +56,8 @@ def test_bundle_was_built_from_the_current_sources():
 def test_rebuilding_gives_the_committed_bundle(tmp_path):
     subprocess.run(["node", str(WEB / "build.mjs")], check=True, env={**os.environ, "KREISEL_WEB_OUT": str(tmp_path)},
                    timeout=300)
-    for name in ("viewer.js", "index.html", "favicon.svg", "BUILD.json"):
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["BUILD.json", "viewer.js", "widget.js"]
+    for name in ("viewer.js", "widget.js", "BUILD.json"):
         assert (tmp_path / name).read_bytes() == (STATIC / name).read_bytes(), name
 
 
@@ -54,7 +66,7 @@ def test_static_files_are_package_data():
 
     config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
     patterns = config["tool"]["setuptools"]["package-data"]["kreisel.web"]
-    for name in ("viewer.js", "index.html", "favicon.svg", "BUILD.json"):
+    for name in ("viewer.js", "widget.js", "index.html", "favicon.svg", "BUILD.json"):
         assert any(pathlib.PurePath(f"static/{name}").match(p) for p in patterns), name
 
 
@@ -133,7 +145,9 @@ def test_installed_viewer_serves_the_page_and_its_script(served):
     page = httpx.get(served, timeout=60)
     assert page.status_code == 200 and '<script type="module" src="/static/viewer.js">' in page.text
     script = httpx.get(served + "static/viewer.js", timeout=60)
-    assert script.status_code == 200 and len(script.content) > 100_000
+    assert script.status_code == 200 and 'from"./widget.js"' in script.text
+    scene = httpx.get(served + "static/widget.js", timeout=60)
+    assert scene.status_code == 200 and len(scene.content) > 100_000
     assert httpx.get(served + "favicon.ico", timeout=60).headers["content-type"].startswith("image/svg+xml")
 
 

@@ -1,6 +1,7 @@
 // The viewer's page logic: form <-> API, playback clock, plots and readouts.
 import { drawPlot } from "./plots.js";
-import { legendItems, Viewer, webglAvailable } from "./scene.js";
+// the scene comes from the widget's module, which carries three.js (web/build.mjs keeps it a separate file)
+import { legendItems, Viewer, webglAvailable } from "./widget.js";
 
 const $ = (id) => document.getElementById(id);
 // window.kreisel is read by the end-to-end tests: the data, the playback position, what is plotted and

@@ -1,7 +1,11 @@
 // The notebook widget (anywidget) of kreisel.show: the viewer's scene with a time slider.
 // The Python side (kreisel.notebook) sends one JSON object, model.get("data"), shaped like the viewer's
 // run results: t, q, omega, omega_space, J and the analysis (principal axes and moments, T, J).
+// The built module is self-contained (three.js inside), as anywidget loads it from one string; it also
+// exports the scene, which the viewer's page (main.js) imports from it instead of bundling three.js twice.
 import { Viewer, webglAvailable } from "./scene.js";
+
+export { legendItems, Viewer, webglAvailable } from "./scene.js";
 
 function render({ model, el }) {
   const box = document.createElement("div");
