@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
 from ..so3 import euler_to_quat, quat_to_euler
 from . import _elliptic
+from ._free_top import _two_product
 from .euler_top import _check_moments
 
 __all__ = ["LagrangeTop", "LagrangeConstants", "FastTop", "larmor_precession_rate"]
@@ -127,12 +129,71 @@ def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTR
     return np.abs(q) * b / (2.0 * m)
 
 
+# ---- double-double arithmetic for the constants of a state next to the separatrix
+# (pairs (hi, lo) with |lo| <= ulp(hi)/2; about 2^-104 relative)
+
+
+def _two_sum(a, b):
+    s = a + b
+    bb = s - a
+    return s, (a - (s - bb)) + (b - bb)
+
+
+def _dd_add(x, y):
+    s, e = _two_sum(x[0], y[0])
+    e += x[1] + y[1]
+    hi = s + e
+    return hi, e - (hi - s)
+
+
+def _dd_mul(x, y):
+    p, e = _two_product(x[0], y[0])
+    e += x[0] * y[1] + x[1] * y[0]
+    hi = p + e
+    return hi, e - (hi - p)
+
+
+def _dd_div(x, d):
+    """x / d for a double d."""
+    q = x[0] / d
+    p, e = _two_product(q, d)
+    r = ((x[0] - p) - e + x[1]) / d  # x[0] − p is exact (Sterbenz)
+    hi = q + r
+    return hi, r - (hi - q)
+
+
+def _dd(x):
+    return float(x), float(Fraction(x) - Fraction(float(x)))
+
+
+#: ±1/n! (sign of the Taylor terms of sin and cos folded in), n = 0 … 29, as double-doubles
+_TAYLOR = [_dd(Fraction((-1) ** (n // 2), math.factorial(n))) for n in range(30)]
+#: π/2 = _HALF_PI[0] + _HALF_PI[1] + _HALF_PI[2] to about 2^-160
+_HALF_PI = (1.5707963267948966, 6.123233995736766e-17, -1.4973849048591698e-33)
+
+
+def _dd_sin_cos(x):
+    """(sin x, cos x) as double-doubles for a double 0 <= x <= π/2 (Taylor series about 0 or π/2)."""
+    swap = x > 0.5 * _HALF_PI[0]
+    z = (x, 0.0)
+    if swap:  # π/2 − x: the first difference is exact (Sterbenz)
+        z = _dd_add(_dd_add((_HALF_PI[0] - x, 0.0), (_HALF_PI[1], 0.0)), (_HALF_PI[2], 0.0))
+    z2 = _dd_mul(z, z)
+    sin, cos = _TAYLOR[29], _TAYLOR[28]  # |z| <= π/4: the first term left out is below 2^-110
+    for n in range(27, 0, -2):
+        sin = _dd_add(_dd_mul(sin, z2), _TAYLOR[n])
+        cos = _dd_add(_dd_mul(cos, z2), _TAYLOR[n - 1])
+    sin = _dd_mul(sin, z)
+    return (cos, sin) if swap else (sin, cos)
+
+
 class _Quadrature:
     """Roots of f(u) and the elliptic solution for one initial state (Theory §6.3).
 
     The roots are found as w = 1 − u, the distance from the upright position:
-    with δb = b − a and δα = α − β formed from the state without cancelling
-    O(1) terms,
+    with δb = b − a and δα = α − β formed from the state in double-double
+    (from sin and cos of θ0/2 to about 2^-104: next to the separatrix their O(1)
+    terms cancel to O(m1)),
 
         F(w) = f(1 − w) = −β w³ + (2β − a² − δα) w² + 2(δα − a δb) w − δb²,
 
@@ -144,19 +205,26 @@ class _Quadrature:
     near 1.
     """
 
-    def __init__(self, top, euler0, rates0, constants):
+    def __init__(self, top, euler0, rates0):
         I1 = top.I1
-        theta0 = euler0[1]
-        phidot, thetadot, _ = rates0
-        self.a = constants.J3 / I1
-        beta = 2.0 * top.mgl / I1
-        a = self.a
-        # 1 ∓ u0 and sin²θ0 = (1 − u0)(1 + u0) from the half angle: relative accuracy at both verticals
-        h = 2.0 * math.sin(0.5 * theta0) ** 2
-        g = 2.0 * math.cos(0.5 * theta0) ** 2
-        # δb = φ̇ sin²θ − a(1 − u0) = (Jz − J3)/I1, δα = θ̇² + φ̇² sin²θ − β(1 − u0) = α − β
-        self.delta_b = delta_b = h * (phidot * g - a)
-        delta_alpha = thetadot * thetadot + h * (phidot * phidot * g - beta)
+        phidot, thetadot, psidot = (float(x) for x in rates0)
+        # 1 ∓ u0 = 2 sin²(θ0/2), 2 cos²(θ0/2) (relative accuracy at both verticals), u0 = cos θ0
+        half_sin, half_cos = _dd_sin_cos(0.5 * float(euler0[1]))
+        h2, g2 = _dd_mul(half_sin, half_sin), _dd_mul(half_cos, half_cos)
+        h2, g2 = (2.0 * h2[0], 2.0 * h2[1]), (2.0 * g2[0], 2.0 * g2[1])
+        u0 = _dd_add(g2, (-h2[0], -h2[1]))
+        u0 = (0.5 * u0[0], 0.5 * u0[1])
+        # a = J3/I1 = I3 (u0 φ̇ + ψ̇)/I1, β = 2 mgl/I1
+        a2 = _dd_div(_dd_mul(_dd_add(_dd_mul(u0, (phidot, 0.0)), (psidot, 0.0)), (top.I3, 0.0)), I1)
+        beta2 = _dd_div((2.0 * top.mgl, 0.0), I1)
+        # δb = φ̇ sin²θ − a(1 − u0) = (1 − u0)(φ̇(1 + u0) − a) = (Jz − J3)/I1,
+        # δα = θ̇² + φ̇² sin²θ − β(1 − u0) = θ̇² + (1 − u0)(φ̇²(1 + u0) − β) = α − β
+        phig = _dd_mul((phidot, 0.0), g2)
+        delta_b2 = _dd_mul(h2, _dd_add(phig, (-a2[0], -a2[1])))
+        inner = _dd_add(_dd_mul(phig, (phidot, 0.0)), (-beta2[0], -beta2[1]))
+        delta_alpha2 = _dd_add(_two_product(thetadot, thetadot), _dd_mul(h2, inner))
+        h, g, beta, delta_alpha = h2[0], g2[0], beta2[0], delta_alpha2[0]
+        self.a, self.delta_b = a, delta_b = a2[0], delta_b2[0]
         self.b = a + delta_b
         c2 = 2.0 * beta - a * a - delta_alpha
         c1 = 2.0 * (delta_alpha - a * delta_b)
@@ -428,7 +496,7 @@ class LagrangeTop:
         constants = self._constants(euler0, rates0)
         if constants.J3 == 0.0 and constants.Jz == 0.0:
             return _PlanarPendulum(self, euler0[1], rates0[1]), euler0, rates0
-        return _Quadrature(self, euler0, rates0, constants), euler0, rates0
+        return _Quadrature(self, euler0, rates0), euler0, rates0
 
     # ---- nutation and the apex ------------------------------------------------------
     def turning_points(self, euler0, rates0):
