@@ -18,9 +18,13 @@ timing (scipy scalar-last ``Rotation`` objects, numpy-quaternion arrays of
 
 from __future__ import annotations
 
+import json
+import resource
+import subprocess
+import sys
+
 import numpy as np
 import quaternion as npq
-import sys
 
 from _common import (
     NOTES_MARKER,
@@ -238,20 +242,119 @@ def parity(repeats=3):
     return lines
 
 
-def write_parity(lines):
-    """Put the parity section into results/so3.md (replacing an earlier one), above the kept notes."""
+#: Heading of the section on large fresh outputs in a script-like order of calls (kept above the notes).
+FRESH_HEADING = "## Large fresh outputs in a script's order of calls"
+
+
+def _fresh_output_cases(rng):
+    """name, kreisel, scipy, kreisel into a caller-owned out=, doubles per result (72 or 128 MB each)."""
+    q = rng.normal(size=(N, 4))
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    psi = kr.quat_to_rotvec(q)
+    euler = kr.quat_to_euler("ZXZ", q)
+    poses = kr.RigidTransform.from_rotation_translation(q, rng.normal(size=(N, 3)))
+    q_last, spose = np.ascontiguousarray(q[:, [1, 2, 3, 0]]), poses.to_scipy()
+    R, M = np.empty((N, 3, 3)), np.empty((N, 4, 4))
+    return [
+        ("quat -> matrix", lambda: kr.quat_to_matrix(q), lambda: S.from_quat(q_last).as_matrix(),
+         lambda: kr.quat_to_matrix(q, out=R), 9),
+        ("Euler ZXZ -> matrix", lambda: kr.euler_to_matrix("ZXZ", euler), lambda: S.from_euler("ZXZ", euler).as_matrix(),
+         lambda: kr.euler_to_matrix("ZXZ", euler, out=R), 9),
+        ("rotvec -> matrix", lambda: kr.rotvec_to_matrix(psi), lambda: S.from_rotvec(psi).as_matrix(),
+         lambda: kr.rotvec_to_matrix(psi, out=R), 9),
+        ("se3 as 4x4 matrix", lambda: poses.as_matrix(), lambda: spose.as_matrix(), lambda: poses.as_matrix(out=M), 16),
+    ]
+
+
+def _faults():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+
+
+def fresh_outputs_child(recycle):
+    """Run in a new process: the order of calls of a script, timed; prints one JSON row per operation.
+
+    Other 10^6-sized arrays are allocated first (the inputs and their
+    conversions), then each operation is called once (compilation, cache
+    load) and timed in alternation with scipy and an allocating copy of the
+    same output size. ``recycle=False`` switches kreisel's recycling of large
+    results off (:mod:`kreisel._compiled.outputs`), the state before it.
+    """
+    from kreisel._compiled import outputs
+
+    if not recycle:
+        outputs.RECYCLED_BYTES = float("inf")
+    for name, ours, scipy_run, into, n_out in _fresh_output_cases(np.random.default_rng(0)):
+        new_copy = allocating_copy(0, n_out * N)
+        faults = []
+
+        def counted():
+            before = _faults()
+            result = ours()
+            faults.append(_faults() - before)
+            return result
+
+        ours()
+        t_ours, t_scipy, t_new, t_into = interleaved(counted, scipy_run, new_copy, into, repeats=REPEATS,
+                                                     warmup=(False, True, True, True))
+        print(json.dumps({"name": name, "ours": t_ours.times, "scipy": t_scipy.times, "new": t_new.times,
+                          "into": t_into.times, "faults": faults}), flush=True)
+
+
+def fresh_outputs():
+    """The section's lines: large fresh outputs with and without recycling, each in a new process."""
+    load_before = load_average()
+    rows = []
+    for recycle in (False, True):
+        child = subprocess.run([sys.executable, __file__, "--fresh-outputs-child", str(int(recycle))],
+                               capture_output=True, text=True, check=True)
+        for line in child.stdout.splitlines():
+            r = json.loads(line)
+            med = {key: float(np.median(r[key])) for key in ("ours", "scipy", "new", "into")}
+            rows.append([
+                r["name"], "on" if recycle else "off", " ".join(_ms(t) for t in r["ours"]), _ms(med["ours"]),
+                _ms(med["scipy"]), f"{med['scipy'] / med['ours']:.1f}×", _ms(med["new"]),
+                f"{med['ours'] / med['new']:.2f}", _ms(med["into"]), str(int(np.median(r["faults"]))),
+            ])
+            print(" | ".join(rows[-1]), flush=True)
+    lines = [FRESH_HEADING, ""] + header(
+        None,
+        f"The order of calls that exposed quat -> matrix at 0.4× scipy: a new process allocates other 10^6-sized "
+        f"arrays first, then times each operation in alternation with scipy and a copy into a newly allocated "
+        f"output of the same size ({REPEATS} runs after one untimed call; every run returns a new 72 MB or 128 MB "
+        "array). 'recycled off' is kreisel with its recycling of large results switched off (each result on "
+        "freshly mapped pages, as numpy allocates it), 'on' the default. Page faults: minor faults of one "
+        "kreisel call (median).",
+        load_before=load_before,
+    )
+    lines += markdown_table(
+        ["operation", "recycled", "kreisel runs (ms)", "kreisel (ms)", "scipy (ms)", "vs scipy",
+         "copy to new output (ms)", "kreisel / copy to new", "kreisel into out= (ms)", "page faults"],
+        rows, "ll" + "r" * 8,
+    )
+    return lines
+
+
+def write_section(heading, lines):
+    """Put a section into results/so3.md (replacing an earlier one of that heading), above the kept notes."""
     path = RESULTS / "so3.md"
     old = path.read_text(encoding="utf-8")
     notes = old.find(NOTES_MARKER)
     body, tail = (old[:notes], old[notes:]) if notes >= 0 else (old, "")
-    if PARITY_HEADING in body:
-        body = body[: body.index(PARITY_HEADING)]
+    if heading in body:
+        start = body.index(heading)
+        following = body.find("\n## ", start + len(heading))
+        body = body[:start] + (body[following + 1:] if following >= 0 else "")
     atomic_write(path, body.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n\n" + tail)
 
 
 if __name__ == "__main__":
-    if sys.argv[1:] == ["--parity"]:
-        write_parity(parity())
+    if sys.argv[1:2] == ["--fresh-outputs-child"]:
+        fresh_outputs_child(bool(int(sys.argv[2])))
+    elif sys.argv[1:] == ["--parity"]:
+        write_section(PARITY_HEADING, parity())
+    elif sys.argv[1:] == ["--fresh-outputs"]:
+        write_section(FRESH_HEADING, fresh_outputs())
     else:
         main()
-        write_parity(parity())
+        write_section(FRESH_HEADING, fresh_outputs())
+        write_section(PARITY_HEADING, parity())

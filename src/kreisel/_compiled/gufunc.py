@@ -23,6 +23,8 @@ from numba import guvectorize, prange
 
 from .._validation import as_float_array
 from . import cached, parallel
+from . import outputs
+from .outputs import check_out, empty
 
 #: Nearly orthogonal matrices (max |RᵀR - 1| below this) are projected onto
 #: SO(3); farther ones are refused as "not a rotation".
@@ -95,41 +97,78 @@ class LazyGufunc:
         self._carriers = tuple(np.empty(s) for s in ins)
         self._gufunc = None
 
-    def __call__(self, *args):
+    def __call__(self, *args, out=None):
+        """The gufunc of ``args`` (the caller's inputs; size carriers are added here).
+
+        ``out`` (keyword only): a writable float64 array of exactly the
+        result's shape, filled and returned; it may share memory with an
+        input (the result is as if it did not). Without it, results of at
+        least :data:`~kreisel._compiled.outputs.RECYCLED_BYTES` are
+        allocated on recycled pages (:func:`~kreisel._compiled.outputs.empty`).
+        """
+        batch = self._batch(args)
+        shape = (*batch, *self._out)
+        if out is not None:
+            check_out(out, shape)
+        elif 8 * math.prod(shape) >= outputs.RECYCLED_BYTES:
+            out = empty(shape)
         if self._parallel is not None:
-            out = self._call_parallel(args)
-            if out is not None:
-                return out
+            result = self._call_parallel(args, batch, out)
+            if result is not None:
+                return result
         gufunc = self._gufunc
         if gufunc is None:
             gufunc = self._gufunc = guvectorize(
                 self._signatures, self._layout, nopython=True, cache=True
             )(self._function)
-        return gufunc(*args, *self._carriers[len(args):])
+        if out is None:
+            return gufunc(*args, *self._carriers[len(args):])
+        # numpy copies an input that overlaps out before the loop
+        gufunc(*args, *self._carriers[len(args):], out=out)
+        return out
 
-    def _call_parallel(self, args):
-        """Result of the parallel loop, or None if the batch is small or broadcast."""
-        batch = None
-        for index, (a, core) in enumerate(zip(args, self._cores)):
-            shape = np.shape(a)[: np.ndim(a) - len(core)]
-            if index in self._shared:
-                if shape != ():
-                    return None
-                continue
-            if batch is None:
-                batch = shape
-            elif shape != batch:
-                return None
+    def _batch(self, args):
+        """Broadcast batch shape of the caller's inputs (ValueError naming the shapes if none)."""
+        batches = [np.shape(a)[: np.ndim(a) - len(core)] for a, core in zip(args, self._cores)]
+        first = batches[0]
+        if all(b == first for b in batches):
+            return first
+        try:
+            return np.broadcast_shapes(*batches)
+        except ValueError:
+            raise ValueError(
+                "the inputs' batch shapes " + ", ".join(map(str, batches)) + " do not broadcast together"
+            ) from None
+
+    def _call_parallel(self, args, batch, out):
+        """The parallel loop's result in ``out`` (allocated here if None), or None if the batch is small or broadcast."""
         n = math.prod(batch) if batch else 0
-        if n < PARALLEL_THRESHOLD:
+        if n < PARALLEL_THRESHOLD or (out is not None and not out.flags.c_contiguous):
             return None
+        for index, (a, core) in enumerate(zip(args, self._cores)):
+            if np.shape(a)[: np.ndim(a) - len(core)] != (() if index in self._shared else batch):
+                return None
+        if out is None:
+            out = np.empty((*batch, *self._out))
+        flat_out = out.reshape(n, *self._out)
         flat = [
-            a if index in self._shared else _writable(np.ascontiguousarray(a)).reshape(n, *core)
+            a if index in self._shared else _loop_input(a, flat_out).reshape(n, *core)
             for index, (a, core) in enumerate(zip(args, self._cores))
         ]
-        out = np.empty((*batch, *self._out))
-        self._parallel(*flat, out.reshape(n, *self._out))
+        self._parallel(*flat, flat_out)
         return out
+
+
+def _loop_input(a, out):
+    """C-contiguous writable ``a`` for a parallel loop writing ``out``.
+
+    Each element is read whole before its result is written, so ``a`` may
+    be ``out`` itself; an input overlapping ``out`` any other way is copied.
+    """
+    a = _writable(np.ascontiguousarray(a))
+    if np.may_share_memory(a, out) and not (a.ctypes.data == out.ctypes.data and a.size == out.size):
+        a = a.copy()
+    return a
 
 
 def _writable(a):

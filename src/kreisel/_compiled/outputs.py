@@ -1,0 +1,121 @@
+"""Output arrays of kreisel's array functions: caller-owned ``out=`` buffers and recycled large ones.
+
+Every array function of :mod:`kreisel.so3`, :mod:`kreisel.kinematics` and
+:mod:`kreisel.se3` takes ``out=`` (checked by :func:`check_out`). Without
+it, the result is a new array from :func:`empty`.
+
+Why large results are recycled
+------------------------------
+glibc's ``malloc`` serves a block above its mmap threshold (at most 32 MiB)
+with a fresh ``mmap`` and unmaps it on ``free``. numpy allocates arrays with
+``malloc``, so a 10^6-rotation result of 72 MB (matrices) or 128 MB (4×4
+poses) arrives as untouched pages every call, and the first write to each
+page faults it in: the kernel zeroes it and, in a virtual machine whose free
+memory has been returned to the host, the host maps it again. That costs far
+more than the computation (quat → matrix: ~5 ms of compiled loop, 30–500 ms
+of faults depending on where the pages come from, worst with numpy's
+transparent huge pages taken from memory the host has reclaimed). Smaller
+blocks stay in malloc's heap after the first ``free`` and are reused with
+their pages already mapped.
+
+So results of at least :data:`RECYCLED_BYTES` come from a pool of slabs that
+kreisel keeps mapped: the returned array is a view of a slab whose base
+object gives the slab back to the pool when the last view of it dies.
+At most :data:`IDLE_BYTES` of unused slabs are kept (the most recently
+released); the rest go back to the operating system as usual.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+
+import numpy as np
+
+#: Results of at least this many bytes come from the pool (glibc's largest mmap threshold).
+RECYCLED_BYTES = 32 * 2**20
+#: Unused slabs kept mapped for the next large result, in bytes.
+IDLE_BYTES = 512 * 2**20
+
+_lock = threading.RLock()  # re-entrant: a result may die (and release its slab) inside the pool's own code
+#: Unused slabs (1-D float64 arrays), most recently released last.
+_idle: list[np.ndarray] = []
+
+
+def _release(slab):
+    with _lock:
+        _idle.append(slab)
+        kept = 0
+        for index in range(len(_idle) - 1, -1, -1):
+            kept += _idle[index].nbytes
+            if kept > IDLE_BYTES:
+                del _idle[: index + 1]
+                break
+
+
+def _take(size):
+    """An unused slab of ``size`` to ``size * 5/4`` doubles (the closest fit), or None."""
+    with _lock:
+        fits = [slab for slab in _idle if size <= slab.size <= size + size // 4]
+        if not fits:
+            return None
+        best = min(fits, key=lambda slab: slab.size)
+        for index, slab in enumerate(_idle):
+            if slab is best:
+                del _idle[index]
+                break
+        return best
+
+
+class _Lease:
+    """Base object of a recycled result: holds its slab and returns it when the result dies."""
+
+    __slots__ = ("_slab", "__array_interface__")
+
+    def __init__(self, slab, shape):
+        self._slab = slab
+        self.__array_interface__ = {"shape": shape, "typestr": "<f8", "data": (slab.ctypes.data, False), "version": 3}
+
+    def __del__(self, release=_release):  # bound now: module globals may be gone at interpreter exit
+        release(self._slab)
+
+
+def empty(shape):
+    """A new float64 array of ``shape``; recycled pages when it has at least :data:`RECYCLED_BYTES`."""
+    size = math.prod(shape)
+    if 8 * size < RECYCLED_BYTES:
+        return np.empty(shape)
+    slab = _take(size)
+    if slab is None:
+        slab = np.empty(size)
+    return np.asarray(_Lease(slab, tuple(shape)))
+
+
+def check_out(out, shape, name="out"):
+    """Refuse an ``out=`` that is not a writable float64 ndarray of exactly ``shape``; return it.
+
+    Raises
+    ------
+    TypeError
+        ``out`` is not a numpy array or not float64.
+    ValueError
+        Wrong shape or read-only.
+    """
+    if not isinstance(out, np.ndarray):
+        raise TypeError(f"{name} must be a numpy array (float64, shape {tuple(shape)}), got {type(out).__name__}")
+    if out.dtype != np.float64:
+        raise TypeError(f"{name} must have dtype float64, got {out.dtype}")
+    if out.shape != tuple(shape):
+        raise ValueError(f"{name} must have shape {tuple(shape)}, got {out.shape}")
+    if not out.flags.writeable:
+        raise ValueError(f"{name} must be writable (it is read-only)")
+    return out
+
+
+def deliver(result, out, name="out"):
+    """``result``, or ``result`` copied into a checked ``out`` (for functions not built on a gufunc)."""
+    if out is None:
+        return result
+    check_out(out, np.shape(result), name)
+    np.copyto(out, result)
+    return out
