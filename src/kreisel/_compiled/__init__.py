@@ -7,6 +7,9 @@ holds
 - :mod:`.gufunc`: :class:`~.gufunc.LazyGufunc` (per-element kernels broadcast
   by ``numba.guvectorize``, compiled on first call, with an optional multi-core
   ``prange`` loop for large batches) and the batch input checks;
+- :mod:`.outputs`: the ``out=`` checks and the recycled pages of large
+  results (fresh 10^6-element outputs would otherwise fault their pages in
+  on every call);
 - :mod:`.kernels`: the scalar quaternion kernels (product, rotation, matrix,
   exp/log) and their array shells;
 - :mod:`.dexp`: the scalar kernels of the exponential map's differential

@@ -91,20 +91,21 @@ def empty(shape):
     return np.asarray(_Lease(slab, tuple(shape)))
 
 
-def check_out(out, shape, name="out"):
-    """Refuse an ``out=`` that is not a writable float64 ndarray of exactly ``shape``; return it.
+def check_out(out, shape, dtype=np.float64, name="out"):
+    """Refuse an ``out=`` that is not a writable ndarray of exactly ``shape`` and ``dtype``; return it.
 
     Raises
     ------
     TypeError
-        ``out`` is not a numpy array or not float64.
+        ``out`` is not a numpy array, or has another dtype.
     ValueError
-        Wrong shape or read-only.
+        Wrong shape, or read-only.
     """
+    dtype = np.dtype(dtype)
     if not isinstance(out, np.ndarray):
-        raise TypeError(f"{name} must be a numpy array (float64, shape {tuple(shape)}), got {type(out).__name__}")
-    if out.dtype != np.float64:
-        raise TypeError(f"{name} must have dtype float64, got {out.dtype}")
+        raise TypeError(f"{name} must be a numpy array ({dtype}, shape {tuple(shape)}), got {type(out).__name__}")
+    if out.dtype != dtype:
+        raise TypeError(f"{name} must have dtype {dtype}, got {out.dtype}")
     if out.shape != tuple(shape):
         raise ValueError(f"{name} must have shape {tuple(shape)}, got {out.shape}")
     if not out.flags.writeable:
@@ -113,9 +114,14 @@ def check_out(out, shape, name="out"):
 
 
 def deliver(result, out, name="out"):
-    """``result``, or ``result`` copied into a checked ``out`` (for functions not built on a gufunc)."""
+    """``result``, or ``result`` copied into a checked ``out`` of its shape and dtype, which is returned.
+
+    For array functions not built on a gufunc: they compute into a new array
+    first, so ``out`` may share memory with any input.
+    """
     if out is None:
         return result
-    check_out(out, np.shape(result), name)
+    result = np.asarray(result)
+    check_out(out, result.shape, result.dtype, name)
     np.copyto(out, result)
     return out

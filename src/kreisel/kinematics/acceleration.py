@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from .._compiled import dexp
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc, quaternion_array
 from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
@@ -27,7 +28,7 @@ __all__ = [
 ]
 
 
-def angular_acceleration(R, Rdot, Rddot, frame="space"):
+def angular_acceleration(R, Rdot, Rddot, frame="space", *, out=None):
     """Angular acceleration from a rotation matrix and its first two derivatives.
 
     ``hat(ε) = skew(R̈ Rᵀ)`` (space) and ``hat(ε′) = skew(Rᵀ R̈)`` (body): the
@@ -37,6 +38,9 @@ def angular_acceleration(R, Rdot, Rddot, frame="space"):
     ----------
     R, Rdot, Rddot : array_like, shape (..., 3, 3)
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -57,10 +61,10 @@ def angular_acceleration(R, Rdot, Rddot, frame="space"):
     body = check_frame(frame)
     R, Rdot, Rddot = rotation_batch(R, Rdot=Rdot, Rddot=Rddot)
     Rt = np.swapaxes(R, -1, -2)
-    return _skew_part_vee(Rt @ Rddot if body else Rddot @ Rt)
+    return deliver(_skew_part_vee(Rt @ Rddot if body else Rddot @ Rt), out)
 
 
-def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
+def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
     """Angular acceleration from a quaternion and its first two derivatives.
 
     With ``ω = 2 vec(q̇ q⁻¹)``: ``ε = 2 vec(q̈ q⁻¹ − (q̇ q⁻¹)²)`` (space) and
@@ -71,6 +75,9 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
     ----------
     q, qdot, qddot : array_like, shape (..., 4)
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -90,7 +97,7 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space"):
         rate, curvature = quat_multiply(q_inv, qdot), quat_multiply(q_inv, qddot)
     else:
         rate, curvature = quat_multiply(qdot, q_inv), quat_multiply(qddot, q_inv)
-    return 2.0 * (curvature - quat_multiply(rate, rate))[..., 1:]
+    return deliver(2.0 * (curvature - quat_multiply(rate, rate))[..., 1:], out)
 
 
 # ε = J ψ̈ + (dJ/dt) ψ̇ with J = 1 + sign A hat(ψ) + B hat(ψ)²; since
@@ -113,7 +120,7 @@ def _rotvec_acceleration(psi, v, acc, sign, out):
     out[2] = acc[2] + lin[2] + b * aaz + radial * db * ccz + b * vz
 
 
-def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
+def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out=None):
     """Angular acceleration from a rotation vector and its first two derivatives.
 
     Differentiates the dexp map of Theory §3.4, ``ω = J(ψ) ψ̇``; the
@@ -124,6 +131,9 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
     ----------
     psi, psidot, psiddot : array_like, shape (..., 3)
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -136,10 +146,10 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space"):
     """
     sign = frame_sign(frame)
     psi, psidot, psiddot = vector_batch(psi=psi, psidot=psidot, psiddot=psiddot)
-    return _rotvec_acceleration(psi, psidot, psiddot, sign)
+    return _rotvec_acceleration(psi, psidot, psiddot, sign, out=out)
 
 
-def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="space", degrees=False):
+def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="space", degrees=False, *, out=None):
     """Angular acceleration from Euler angles and their first two derivatives (Theory §3.6, §3.9).
 
     With the rate-matrix columns c₀, c₁, c₂ in the order of the equivalent
@@ -154,6 +164,9 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
         degrees with ``degrees=True``).
     frame : {"space", "body"}
     degrees : bool
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -175,8 +188,9 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
     r = rates[..., order]
     c0, c1, c2 = c[..., 0, :], c[..., 1, :], c[..., 2, :]
     r0, r1, r2 = r[..., 0:1], r[..., 1:2], r[..., 2:3]
-    return (
+    epsilon = (
         np.einsum("...ij,...i->...j", M.swapaxes(-1, -2), accelerations)
         + r0 * r1 * np.cross(c0, c1)
         + r2 * np.cross(r0 * c0 + r1 * c1, c2)
     )
+    return deliver(epsilon, out)

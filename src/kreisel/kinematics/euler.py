@@ -28,6 +28,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, dexp, parallel
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
 from .._validation import check_frame, check_tolerance, warn_if_any
 from ..so3.euler import parse_sequence
@@ -153,7 +154,7 @@ def _angles(angles, degrees, name="angles"):
     return np.deg2rad(a) if degrees else a
 
 
-def euler_rate_matrix(seq, angles, frame="space", degrees=False):
+def euler_rate_matrix(seq, angles, frame="space", degrees=False, *, out=None):
     """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (Theory §3.6).
 
     For ``"ZXZ"`` (φ, θ, ψ) the space matrix is the chapter's
@@ -169,6 +170,9 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False):
     frame : {"space", "body"}
     degrees : bool
         Angles in degrees (M is dimensionless either way).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -182,10 +186,10 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False):
            [0., 0., 1.]])
     """
     code = _code(seq, frame)
-    return _matrix(_angles(angles, degrees), code)
+    return _matrix(_angles(angles, degrees), code, out=out)
 
 
-def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SINGULAR_TOL):
+def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SINGULAR_TOL, *, out=None):
     """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (Theory §3.6).
 
     For ``"ZXZ"`` body components this is the chapter's
@@ -202,6 +206,9 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
         Angles in degrees; the matrix then maps rad/s to deg/s.
     tol : float
         Singularity threshold on |det M| = |sin β| (proper Euler) or |cos β| (Tait–Bryan).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -215,12 +222,12 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
     """
     code = _code(seq, frame)
     tol = check_tolerance(tol)
-    out = _matrix_inverse(_angles(angles, degrees), code, tol)
+    out = _matrix_inverse(_angles(angles, degrees), code, tol, out=out)
     warn_if_any(np.isnan(out[..., 0, 0]), GimbalLockWarning, f"Euler-rate matrix inverse of {seq!r} at gimbal lock")
-    return np.rad2deg(out) if degrees else out
+    return np.rad2deg(out, out=out) if degrees else out
 
 
-def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees=False):
+def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees=False, *, out=None):
     """Angular velocity from Euler angles and their rates (Theory §3.6, Euler kinematic equations).
 
     Parameters
@@ -233,6 +240,9 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     frame : {"space", "body"}
         Components of the returned angular velocity (always rad/s).
     degrees : bool
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -248,10 +258,10 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     code = _code(seq, frame)
     angles = _angles(angles, degrees)
     angles, rates = same_batch(1, angles=angles, rates=_angles(rates, degrees, "rates"))
-    return _omega_from_rates(angles, rates, code)
+    return _omega_from_rates(angles, rates, code, out=out)
 
 
-def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_TOL):
+def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_TOL, *, out=None):
     """Euler-angle rates from the angular velocity (Theory §3.6, inverted Euler kinematic equations).
 
     At gimbal lock (|sin β| ≤ ``tol`` for proper Euler sequences, |cos β| ≤ ``tol``
@@ -270,6 +280,9 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     degrees : bool
         Angles in degrees; rates are then returned in deg/s.
     tol : float
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -289,12 +302,12 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     tol = check_tolerance(tol)
     angles = _angles(angles, degrees)
     angles, omega = same_batch(1, angles=angles, omega=vectors(omega, "omega"))
-    out = _rates_from_omega(angles, omega, code, tol)
+    out = _rates_from_omega(angles, omega, code, tol, out=out)
     warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out
 
 
-def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL):
+def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL, *, out=None):
     """Mask of the Euler angles at which :func:`euler_rates` is singular (no warning).
 
     Parameters
@@ -304,6 +317,9 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL):
     degrees : bool
     tol : float
         As in :func:`euler_rates`.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -320,4 +336,4 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL):
     tol = check_tolerance(tol)
     middle = _angles(angles, degrees)[..., 1]
     det = np.sin(middle) if axes[0] == axes[2] else np.cos(middle)
-    return np.abs(det) <= tol
+    return deliver(np.abs(det) <= tol, out)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from .._compiled.outputs import deliver
 
 from ._checks import vector_batch
 
@@ -23,7 +24,7 @@ __all__ = [
 ]
 
 
-def point_velocity(omega, r, reference_velocity=0.0):
+def point_velocity(omega, r, reference_velocity=0.0, *, out=None):
     """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (Theory §3.7).
 
     Parameters
@@ -34,6 +35,9 @@ def point_velocity(omega, r, reference_velocity=0.0):
         Position r_CP of the point relative to the reference point C.
     reference_velocity : array_like, shape (..., 3)
         Velocity v_C of the reference point (default at rest).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -44,10 +48,10 @@ def point_velocity(omega, r, reference_velocity=0.0):
     >>> point_velocity([0.0, 0.0, 2.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0])
     array([1., 2., 0.])
     """
-    return three_term_velocity(omega, r, 0.0, reference_velocity).total
+    return deliver(three_term_velocity(omega, r, 0.0, reference_velocity).total, out)
 
 
-def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
+def point_acceleration(omega, epsilon, r, reference_acceleration=0.0, *, out=None):
     """Acceleration of a body-fixed point (Theory §3.9).
 
     ``a_P = a_C + ε × r_CP + ω × (ω × r_CP)``: translational, rotational
@@ -61,6 +65,9 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
         Position r_CP relative to the reference point C.
     reference_acceleration : array_like, shape (..., 3)
         Acceleration a_C of the reference point (default 0).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -71,10 +78,10 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0):
     >>> point_acceleration([0.0, 0.0, 2.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
     array([-4.,  0.,  0.])
     """
-    return five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total
+    return deliver(five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total, out)
 
 
-def relative_derivative(omega, vector, relative_rate):
+def relative_derivative(omega, vector, relative_rate, *, out=None):
     """Rate of change of a vector from its rate relative to the body (Theory §4.6).
 
     ``B′ = dA′/dt + ω′ × A′``: the components of B = dA/dt on the body axes
@@ -89,6 +96,9 @@ def relative_derivative(omega, vector, relative_rate):
         The vector A.
     relative_rate : array_like, shape (..., 3)
         dA′/dt, the rate seen from the body.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -102,7 +112,7 @@ def relative_derivative(omega, vector, relative_rate):
     array([0., 1., 0.])
     """
     omega, a, rate = vector_batch(omega=omega, vector=vector, relative_rate=relative_rate)
-    return rate + np.cross(omega, a)
+    return deliver(rate + np.cross(omega, a), out)
 
 
 class VelocityTerms(NamedTuple):

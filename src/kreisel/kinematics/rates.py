@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled.gufunc import gufunc, quaternion_array
+from .._compiled.outputs import deliver
 from .._validation import check_frame
 from ._checks import frame_sign, rotation_batch, same_batch, vectors
 
@@ -23,7 +24,7 @@ def _skew_part_vee(A):
     )
 
 
-def angular_velocity(R, Rdot, frame="space"):
+def angular_velocity(R, Rdot, frame="space", *, out=None):
     """Angular velocity from the rotation matrix and its time derivative (Theory §3.1).
 
     ``hat(ω) = Ṙ Rᵀ`` in space components, ``hat(ω′) = Rᵀ Ṙ`` in body
@@ -37,6 +38,9 @@ def angular_velocity(R, Rdot, frame="space"):
         time derivatives; batch shapes broadcast.
     frame : {"space", "body"}
         Components of the returned angular velocity.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -54,7 +58,7 @@ def angular_velocity(R, Rdot, frame="space"):
     body = check_frame(frame)
     R, Rdot = rotation_batch(R, Rdot=Rdot)
     A = np.swapaxes(R, -1, -2) @ Rdot if body else Rdot @ np.swapaxes(R, -1, -2)
-    return _skew_part_vee(A)
+    return deliver(_skew_part_vee(A), out)
 
 
 # sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
@@ -87,7 +91,7 @@ def _quat_angular_velocity(q, qd, sign, carrier3, out):
     out[2] = s * (q0 * pz - p0 * vz - sign * cz)
 
 
-def quat_rate(q, omega, frame="space"):
+def quat_rate(q, omega, frame="space", *, out=None):
     """Quaternion rate from the angular velocity (Theory §3.3).
 
     ``q̇ = ½ ω q`` with space components, ``q̇ = ½ q ω′`` with body
@@ -101,6 +105,9 @@ def quat_rate(q, omega, frame="space"):
     omega : array_like, shape (..., 3)
         Angular velocity in the components given by ``frame``.
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -114,10 +121,10 @@ def quat_rate(q, omega, frame="space"):
     """
     sign = frame_sign(frame)
     q, omega = same_batch(1, q=quaternion_array(q), omega=vectors(omega, "omega"))
-    return _quat_rate(q, omega, sign)
+    return _quat_rate(q, omega, sign, out=out)
 
 
-def angular_velocity_from_quat_rate(q, qdot, frame="space"):
+def angular_velocity_from_quat_rate(q, qdot, frame="space", *, out=None):
     """Angular velocity from a quaternion and its rate (Theory §3.3).
 
     ``ω = 2 q̇ q*`` (space) and ``ω′ = 2 q* q̇`` (body), taking the vector
@@ -128,6 +135,9 @@ def angular_velocity_from_quat_rate(q, qdot, frame="space"):
     ----------
     q, qdot : array_like, shape (..., 4)
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -140,4 +150,4 @@ def angular_velocity_from_quat_rate(q, qdot, frame="space"):
     """
     sign = frame_sign(frame)
     q, qdot = same_batch(1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4))
-    return _quat_angular_velocity(q, qdot, sign)
+    return _quat_angular_velocity(q, qdot, sign, out=out)

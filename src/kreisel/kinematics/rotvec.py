@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import dexp
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
 from .._validation import check_tolerance, warn_if_any
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
@@ -44,7 +45,7 @@ def _bortz(angle, out):
     out[0] = dexp.bortz_coefficient(angle)
 
 
-def bortz_coefficient(angle):
+def bortz_coefficient(angle, *, out=None):
     """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (Theory §3.5).
 
     Evaluated as ``(1 − (ψ/2) cot(ψ/2))/ψ²``, which is the same function
@@ -57,6 +58,9 @@ def bortz_coefficient(angle):
     ----------
     angle : array_like
         Rotation angle(s) ψ = |ψ| in radians (the function is even).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -72,11 +76,13 @@ def bortz_coefficient(angle):
     a = np.abs(np.asarray(angle, dtype=np.float64))
     if not np.all(np.isfinite(a)):
         raise ValueError("angle must be finite")
-    out = _bortz(a)
-    return out if out.ndim else float(out)
+    if out is not None:
+        return _bortz(a, out=out)
+    value = _bortz(a)
+    return value if value.ndim else float(value)
 
 
-def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
+def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
     """Angular velocity from a rotation vector and its rate, the dexp map (Theory §3.4).
 
     ``ω = ((e^{ψ·X} − 1)/(ψ·X)) ψ̇ = ψ̇ + A ψ×ψ̇ + B ψ×(ψ×ψ̇)`` (space),
@@ -88,6 +94,9 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
     psi, psidot : array_like, shape (..., 3)
         Rotation vector ψ (any length, not only |ψ| ≤ π) and its time derivative.
     frame : {"space", "body"}
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -100,10 +109,10 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space"):
     """
     sign = frame_sign(frame)
     psi, psidot = vector_batch(psi=psi, psidot=psidot)
-    return dexp.apply_jacobian(psi, psidot, sign)
+    return dexp.apply_jacobian(psi, psidot, sign, out=out)
 
 
-def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
+def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL, *, out=None):
     """Rotation-vector rate from the angular velocity: dexp⁻¹ (Theory §3.5).
 
     With body components this is the Bortz equation
@@ -121,6 +130,9 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
         Samples with |ψ| > π and |sin(|ψ|/2)| ≤ tol (the poles |ψ| = 2πk)
         are singular: their rates are NaN and a
         :class:`RotationVectorSingularityWarning` is issued.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -135,12 +147,12 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL):
     """
     sign = frame_sign(frame)
     psi, omega = vector_batch(psi=psi, omega=omega)
-    out = dexp.apply_jacobian_inverse(psi, omega, sign, check_tolerance(tol))
+    out = dexp.apply_jacobian_inverse(psi, omega, sign, check_tolerance(tol), out=out)
     warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out
 
 
-def rotvec_rate_singular(psi, tol=SINGULAR_TOL):
+def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     """Mask of rotation vectors where :func:`rotvec_rate` is singular (no warning).
 
     Parameters
@@ -148,6 +160,9 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL):
     psi : array_like, shape (..., 3)
     tol : float
         As in :func:`rotvec_rate`.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -161,4 +176,4 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL):
     psi = vectors(psi, "psi")
     tol = check_tolerance(tol)
     angle = np.linalg.norm(psi, axis=-1)
-    return (angle > np.pi) & (np.abs(np.sin(0.5 * angle)) <= tol)
+    return deliver((angle > np.pi) & (np.abs(np.sin(0.5 * angle)) <= tol), out)

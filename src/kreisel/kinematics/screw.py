@@ -14,6 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validation import as_float_array
+from .._compiled.outputs import deliver
 from ._checks import batch_shape, vectors
 from ..so3._norms import norm
 
@@ -112,7 +113,7 @@ def _planar(x, name, shape_tail):
     return as_float_array(x, name, shape_tail)
 
 
-def instantaneous_centre(omega, velocity, point=0.0):
+def instantaneous_centre(omega, velocity, point=0.0, *, out=None):
     """Instantaneous centre of a planar motion (Theory §3.8).
 
     For ω ≠ 0 the point with zero velocity is unique:
@@ -126,6 +127,9 @@ def instantaneous_centre(omega, velocity, point=0.0):
         Velocity of the reference point C.
     point : array_like, shape (..., 2)
         Position of C (default origin).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -146,7 +150,7 @@ def instantaneous_centre(omega, velocity, point=0.0):
     with np.errstate(divide="ignore", invalid="ignore"):
         inv = np.where(omega != 0.0, 1.0 / np.where(omega != 0.0, omega, 1.0), np.nan)
     perp = np.stack([-velocity[..., 1], velocity[..., 0]], axis=-1)
-    return point + perp * inv[..., None]
+    return deliver(point + perp * inv[..., None], out)
 
 
 class Centrodes(NamedTuple):

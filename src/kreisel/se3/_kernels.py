@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import math
 
-from .._compiled import kernels
+from numba import prange
+
+from .._compiled import kernels, parallel
 from .._compiled.gufunc import gufunc
 
 _F8 = "f8[:]"
@@ -80,7 +82,19 @@ def apply_inverse(q, t, p, out):
     kernels.qrotate_inverse(q, out, out)
 
 
-@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(4,4)")
+@parallel
+def _as_matrix_parallel(q, t, out):
+    for i in prange(q.shape[0]):
+        (
+            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
+            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
+            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
+        ) = kernels.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
+        out[i, 0, 3], out[i, 1, 3], out[i, 2, 3] = t[i, 0], t[i, 1], t[i, 2]
+        out[i, 3, 0], out[i, 3, 1], out[i, 3, 2], out[i, 3, 3] = 0.0, 0.0, 0.0, 1.0
+
+
+@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(4,4)", parallel=_as_matrix_parallel)
 def as_matrix(q, t, out):
     """Homogeneous matrix [[R(q), t], [0, 0, 0, 1]]."""
     kernels.write_matrix(q[0], q[1], q[2], q[3], out)

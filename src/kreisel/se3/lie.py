@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import dexp
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc
 from .._validation import as_float_array
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
@@ -62,8 +63,14 @@ def _split(xi):
     return xi[..., :3], xi[..., 3:]
 
 
-def se3_hat(xi):
+def se3_hat(xi, *, out=None):
     """4×4 twist matrices ``[[hat ω, v], [0, 0]]`` of twists ``ξ = (ω, v)``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -78,11 +85,17 @@ def se3_hat(xi):
     m = np.zeros(xi.shape[:-1] + (4, 4))
     m[..., :3, :3] = hat(omega)
     m[..., :3, 3] = v
-    return m
+    return deliver(m, out)
 
 
-def se3_vee(matrix):
+def se3_vee(matrix, *, out=None):
     """Twists ``(ω, v)`` of 4×4 twist matrices (inverse of :func:`se3_hat`).
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -90,7 +103,7 @@ def se3_vee(matrix):
     array([1., 2., 3., 4., 5., 6.])
     """
     m = as_float_array(matrix, "matrix", (4, 4))
-    return np.concatenate([vee(m[..., :3, :3]), m[..., :3, 3]], axis=-1)
+    return deliver(np.concatenate([vee(m[..., :3, :3]), m[..., :3, 3]], axis=-1), out)
 
 
 def exp(xi):
@@ -139,7 +152,7 @@ def _blocks(diagonal, lower):
     return j
 
 
-def se3_left_jacobian(xi):
+def se3_left_jacobian(xi, *, out=None):
     """Left Jacobian of SE(3), ``(..., 6, 6)``: ``exp(ξ + δ) ≈ exp(J_l δ) exp(ξ)``.
 
     Also the map from ``ξ̇`` to the space twist ``(Ṫ T⁻¹)^∨`` of ``T = exp(ξ)``.
@@ -148,6 +161,9 @@ def se3_left_jacobian(xi):
     ----------
     xi : array_like, shape (..., 6)
         Twists ``(ω, v)``.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -157,11 +173,17 @@ def se3_left_jacobian(xi):
     """
     xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
-    return _blocks(so3_left_jacobian(omega), _coupling(omega, v))
+    return deliver(_blocks(so3_left_jacobian(omega), _coupling(omega, v)), out)
 
 
-def se3_right_jacobian(xi):
+def se3_right_jacobian(xi, *, out=None):
     """Right Jacobian of SE(3): ``exp(ξ + δ) ≈ exp(ξ) exp(J_r δ)``; ``J_r(ξ) = J_l(-ξ)``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -171,13 +193,19 @@ def se3_right_jacobian(xi):
     True
     """
     xi = finite_array(xi, "xi", (6,))
-    return se3_left_jacobian(-xi)
+    return deliver(se3_left_jacobian(-xi), out)
 
 
-def se3_left_jacobian_inverse(xi):
+def se3_left_jacobian_inverse(xi, *, out=None):
     """Inverse of :func:`se3_left_jacobian`, ``[[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]``, without a matrix solve.
 
     Finite for ``|ω| < 2π`` (logarithms have ``|ω| <= π``).
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -189,11 +217,17 @@ def se3_left_jacobian_inverse(xi):
     xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
     inverse = so3_left_jacobian_inverse(omega)
-    return _blocks(inverse, -inverse @ _coupling(omega, v) @ inverse)
+    return deliver(_blocks(inverse, -inverse @ _coupling(omega, v) @ inverse), out)
 
 
-def se3_right_jacobian_inverse(xi):
+def se3_right_jacobian_inverse(xi, *, out=None):
     """Inverse of :func:`se3_right_jacobian`; ``J_r⁻¹(ξ) = J_l⁻¹(-ξ)``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -203,4 +237,4 @@ def se3_right_jacobian_inverse(xi):
     True
     """
     xi = finite_array(xi, "xi", (6,))
-    return se3_left_jacobian_inverse(-xi)
+    return deliver(se3_left_jacobian_inverse(-xi), out)

@@ -356,8 +356,11 @@ class RigidTransform:
         """
         return self.rotation, self.translation
 
-    def as_matrix(self):
+    def as_matrix(self, *, out=None):
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
+
+        ``out`` (keyword only): a float64 array of shape ``(..., 4, 4)`` to
+        write them into, returned (see :ref:`out-arrays`).
 
         Examples
         --------
@@ -372,7 +375,7 @@ class RigidTransform:
         >>> bool(np.allclose((T * T).as_matrix(), M @ M))
         True
         """
-        return _kernels.as_matrix(self._quat, self._translation)
+        return _kernels.as_matrix(self._quat, self._translation, out=out)
 
     def as_dual_quat(self):
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.

@@ -3,7 +3,10 @@ rotation, conversions between them, the exponential map and the ``Rotation`` cla
 
 Conventions: scalar-first Hamilton quaternions, active rotations with ``R``
 mapping body to space components, rotation vectors with |ψ| <= π from logs,
-uppercase Euler sequences intrinsic and lowercase extrinsic.
+uppercase Euler sequences intrinsic and lowercase extrinsic. Every array
+function broadcasts over leading axes and takes a keyword-only ``out=``, an
+array of the result's shape and dtype to fill and return, which may be one of
+the inputs (see :ref:`out-arrays`).
 
 Modules: ``quaternion`` (algebra, Theory §2.4), ``matrix`` (DCM, §2.1),
 ``rotvec`` (generators, exp/log, BCH, adjoint action, §2.2),

@@ -28,6 +28,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, parallel
+from .._compiled.outputs import deliver
 from .._compiled import kernels as k
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._validation import as_float_array
@@ -169,7 +170,7 @@ def _conjugate(q):
     return q * np.array([1.0, -1.0, -1.0, -1.0])
 
 
-def davenport_to_quat(axes, order, angles, degrees=False):
+def davenport_to_quat(axes, order, angles, degrees=False, *, out=None):
     """Quaternions of Davenport angles about ``axes`` (scipy's ``Rotation.from_davenport``).
 
     Parameters
@@ -180,6 +181,9 @@ def davenport_to_quat(axes, order, angles, degrees=False):
     order : {"i", "intrinsic", "e", "extrinsic"}
     angles : array_like, shape (..., k)
         Radians unless ``degrees=True`` (a scalar for one axis).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -202,16 +206,16 @@ def davenport_to_quat(axes, order, angles, degrees=False):
         if degrees:
             a = np.deg2rad(a)
         if a.shape == (3,) and a.flags.writeable:
-            return _one_quat(a, before, after, lam, int(reverse))
-        return _to_quat(a, before, after, lam, int(reverse))
+            return deliver(_one_quat(a, before, after, lam, int(reverse)), out)
+        return deliver(_to_quat(a, before, after, lam, int(reverse)), out)
     angles = _euler._short_angles(angles, count, degrees)[..., :count]
     if reverse:
         angles = angles[..., ::-1]
     # R = F R_x(α) R_y(β) Fᵀ (λ = 0 for fewer than three axes).
-    return quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after)
+    return deliver(quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after), out)
 
 
-def quat_to_davenport(axes, order, q, degrees=False):
+def quat_to_davenport(axes, order, q, degrees=False, *, out=None):
     """Davenport angles about ``axes`` of rotations ``q`` (scipy's ``Rotation.as_davenport``).
 
     The outer angles are in [-π, π]; the middle one is in [λ, λ + π] or in
@@ -220,6 +224,12 @@ def quat_to_davenport(axes, order, q, degrees=False):
     agree with scipy's away from gimbal lock. At gimbal lock (middle angle λ
     or λ + π) they are exact without a warning, the third intrinsic angle
     being 0. One- and two-axis sets refuse rotations they cannot represent.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -243,18 +253,24 @@ def quat_to_davenport(axes, order, q, degrees=False):
             angles = _one_angles(q, before, inverse_after, lam, int(other), int(reverse))
         else:
             angles = _to_angles(quaternion_array(q, "q"), before, inverse_after, lam, int(other), int(reverse))
-        return np.rad2deg(angles) if degrees else angles
+        return deliver(np.rad2deg(angles) if degrees else angles, out)
     angles = _euler.quat_to_euler(seq, quat_multiply(quat_multiply(_conjugate(before), q), inverse_after))
     if reverse:
         angles = np.ascontiguousarray(angles[..., ::-1])
-    return np.rad2deg(angles) if degrees else angles
+    return deliver(np.rad2deg(angles) if degrees else angles, out)
 
 
-def davenport_gimbal_lock(axes, order, angles, degrees=False, tolerance=1e-7):
+def davenport_gimbal_lock(axes, order, angles, degrees=False, tolerance=1e-7, *, out=None):
     """Which Davenport angle triples have the middle angle within ``tolerance`` of λ or λ + π.
 
     There the first and third axes line up and only the sum or difference of
     the outer angles is determined.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -266,4 +282,4 @@ def davenport_gimbal_lock(axes, order, angles, degrees=False, tolerance=1e-7):
     a = as_float_array(angles, "angles", (3,))
     offset = np.abs(np.angle(np.exp(1j * ((np.deg2rad(a[..., 1]) if degrees else a[..., 1]) - lam))))
     tol = np.deg2rad(tolerance) if degrees else tolerance
-    return np.minimum(offset, np.pi - offset) <= tol
+    return deliver(np.minimum(offset, np.pi - offset) <= tol, out)

@@ -32,6 +32,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, kernels, parallel
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from . import matrix as _matrix
 
@@ -342,7 +343,7 @@ def _angles_array(seq, angles, degrees):
     return seq, (np.deg2rad(a) if degrees else a)
 
 
-def euler_to_quat(seq, angles, degrees=False):
+def euler_to_quat(seq, angles, degrees=False, *, out=None):
     """Quaternion of Euler angles in any of the 24 conventions (Theory §2.3).
 
     Parameters
@@ -351,6 +352,9 @@ def euler_to_quat(seq, angles, degrees=False):
         Axis sequence, e.g. ``"ZXZ"`` (the mechanics angles φ, θ, ψ of Theory §2.3).
     angles : array_like, shape (..., 3)
         Angles in the order of ``seq``; radians unless ``degrees=True``.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -369,11 +373,17 @@ def euler_to_quat(seq, angles, degrees=False):
     """
     seq, angles = _angles_array(seq, angles, degrees)
     axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_quat(angles, axes, reverse)
+    return _euler_to_quat(angles, axes, reverse, out=out)
 
 
-def euler_to_matrix(seq, angles, degrees=False):
+def euler_to_matrix(seq, angles, degrees=False, *, out=None):
     """Rotation matrix of Euler angles, e.g. the chapter's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -385,14 +395,14 @@ def euler_to_matrix(seq, angles, degrees=False):
     """
     seq, angles = _angles_array(seq, angles, degrees)
     axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_matrix(angles, axes, reverse)
+    return _euler_to_matrix(angles, axes, reverse, out=out)
 
 
 def _finish(angles, degrees):
     return np.rad2deg(angles, out=angles) if degrees else angles
 
 
-def quat_to_euler(seq, q, degrees=False):
+def quat_to_euler(seq, q, degrees=False, *, out=None):
     """Euler angles of nonzero quaternions (direct half-angle method).
 
     Ranges: first and third angle in [-π, π]; middle angle in [0, π] for
@@ -403,6 +413,12 @@ def quat_to_euler(seq, q, degrees=False):
     One- and two-axis sequences return ``(..., 1)`` and ``(..., 2)`` angles in
     [-π, π], unique and exact everywhere; a rotation that the sequence cannot
     represent (departure above ``SHORT_SEQUENCE_TOLERANCE``) raises ``ValueError``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -416,17 +432,23 @@ def quat_to_euler(seq, q, degrees=False):
     q = quaternion_array(q, "q")
     short = _short_sequence(seq)
     if short is not None:
-        return _finish(_short_sequence_angles(seq, *short, q), degrees)
+        return deliver(_finish(_short_sequence_angles(seq, *short, q), degrees), out)
     axes, reverse = _intrinsic_axes(seq)
-    return _finish(_quat_to_euler(q, axes, reverse), degrees)
+    return _finish(_quat_to_euler(q, axes, reverse, out=out), degrees)
 
 
-def matrix_to_euler(seq, R, degrees=False):
+def matrix_to_euler(seq, R, degrees=False, *, out=None):
     """Euler angles of rotation matrices, exact through gimbal lock.
 
     Goes through Shepperd's quaternion and the half-angle method, so no
     warning is raised and no digit is lost near the singular middle angle;
     use :func:`gimbal_lock` to find the singular inputs.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -438,12 +460,12 @@ def matrix_to_euler(seq, R, degrees=False):
     R = matrix_array(R, "R")
     short = _short_sequence(seq)
     if short is not None:
-        return _finish(_short_sequence_angles(seq, *short, _matrix._matrix_to_quat(R)), degrees)
+        return deliver(_finish(_short_sequence_angles(seq, *short, _matrix._matrix_to_quat(R)), degrees), out)
     axes, reverse = _intrinsic_axes(seq)
-    return _finish(_matrix_to_euler(R, axes, reverse), degrees)
+    return _finish(_matrix_to_euler(R, axes, reverse, out=out), degrees)
 
 
-def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):
+def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7, *, out=None):
     """Which Euler-angle triples are within ``tolerance`` of gimbal lock.
 
     Gimbal lock (Theory §2.3 (3)) is a middle angle of 0 or π for proper Euler
@@ -458,6 +480,9 @@ def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):
     tolerance : float
         Distance of the middle angle from the singular value, in radians
         (in degrees when ``degrees=True``).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -476,4 +501,4 @@ def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7):
         distance = np.minimum(np.abs(middle), np.abs(np.abs(middle) - np.pi))
     else:
         distance = np.abs(np.abs(middle) - 0.5 * np.pi)
-    return distance <= tol
+    return deliver(distance <= tol, out)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import kernels
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from ._norms import unit
 
@@ -26,7 +27,7 @@ def _slerp(p, q, t, out):
     out[0], out[1], out[2], out[3] = kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
 
 
-def quat_slerp(p, q, t):
+def quat_slerp(p, q, t, *, out=None):
     """Spherical linear interpolation from rotation ``p`` (t = 0) to ``q`` (t = 1).
 
     ``p exp(t log(p⁻¹ q))`` along the shorter great arc, at constant angular
@@ -37,6 +38,9 @@ def quat_slerp(p, q, t):
     p, q : array_like, shape (..., 4)
     t : array_like, shape (...)
         Broadcast with the leading axes of ``p`` and ``q``.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -48,10 +52,10 @@ def quat_slerp(p, q, t):
     p = quaternion_array(p, "p")
     q = quaternion_array(q, "q")
     t = finite_array(t, "t", ())
-    return _slerp(unit(p, "p"), unit(q, "q"), t)
+    return _slerp(unit(p, "p"), unit(q, "q"), t, out=out)
 
 
-def quat_mean(q, weights=None, axis=-2):
+def quat_mean(q, weights=None, axis=-2, *, out=None):
     """Chordal L2 mean of rotations (Markley et al. 2007), sign-independent.
 
     The rotation minimising ``Σ w_i ‖R - R_i‖_F²`` is the eigenvector of
@@ -65,6 +69,9 @@ def quat_mean(q, weights=None, axis=-2):
         Non-negative weights, not all zero.
     axis : int
         Axis of ``q`` holding the samples (not the last one).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -101,7 +108,7 @@ def quat_mean(q, weights=None, axis=-2):
     M = np.einsum("...n,...ni,...nj->...ij", np.broadcast_to(w, q.shape[:-1]), q, q)
     _, vectors = np.linalg.eigh(M)
     mean = vectors[..., :, -1]
-    return np.where(mean[..., :1] < 0.0, -mean, mean)
+    return deliver(np.where(mean[..., :1] < 0.0, -mean, mean), out)
 
 
 def sample_axes(batch_shape, axis):

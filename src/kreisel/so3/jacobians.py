@@ -41,14 +41,14 @@ class RotationVectorSingularityWarning(KinematicSingularityWarning):
     """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
 
 
-def _inverse(psi, sign, tol):
+def _inverse(psi, sign, tol, out):
     psi = vector_array(psi, "psi")
-    out = dexp.jacobian_inverse_matrix(psi, sign, check_tolerance(tol))
+    out = dexp.jacobian_inverse_matrix(psi, sign, check_tolerance(tol), out=out)
     warn_if_any(np.isnan(out[..., 0, 0]), RotationVectorSingularityWarning, "SO(3) Jacobian inverse at |psi| = 2*pi*k")
     return out
 
 
-def left_jacobian(psi):
+def left_jacobian(psi, *, out=None):
     """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
 
     ``J_l = 1 + A hat(ψ) + B hat(ψ)²`` maps ψ̇ to the space angular velocity,
@@ -57,6 +57,9 @@ def left_jacobian(psi):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -69,10 +72,10 @@ def left_jacobian(psi):
            [0., 1., 0.],
            [0., 0., 1.]])
     """
-    return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT)
+    return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT, out=out)
 
 
-def right_jacobian(psi):
+def right_jacobian(psi, *, out=None):
     """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
 
     Maps ψ̇ to the body angular velocity, ``ω′ = J_r(ψ) ψ̇`` (Theory §3.4).
@@ -80,6 +83,9 @@ def right_jacobian(psi):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -90,10 +96,10 @@ def right_jacobian(psi):
     >>> np.allclose(right_jacobian([0.1, 0.2, 0.3]), left_jacobian([0.1, 0.2, 0.3]).T)
     True
     """
-    return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT)
+    return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT, out=out)
 
 
-def left_jacobian_inverse(psi, tol=SINGULAR_TOL):
+def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     """Inverse left Jacobian, ``J_l⁻¹ = 1 − ½ hat(ψ) + f hat(ψ)²``.
 
     ``ψ̇ = J_l⁻¹(ψ) ω`` (space components); ``f`` is the Bortz coefficient
@@ -105,6 +111,9 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL):
     psi : array_like, shape (..., 3)
     tol : float
         Samples with |ψ| > π and |sin(|ψ|/2)| <= tol are singular.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -116,10 +125,10 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL):
     >>> np.allclose(left_jacobian_inverse(psi) @ left_jacobian(psi), np.eye(3))
     True
     """
-    return _inverse(psi, _LEFT, tol)
+    return _inverse(psi, _LEFT, tol, out)
 
 
-def right_jacobian_inverse(psi, tol=SINGULAR_TOL):
+def right_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (Theory §3.5).
 
     ``ψ̇ = J_r⁻¹(ψ) ω′`` (body components). Singular at |ψ| = 2πk.
@@ -129,6 +138,9 @@ def right_jacobian_inverse(psi, tol=SINGULAR_TOL):
     psi : array_like, shape (..., 3)
     tol : float
         As in :func:`left_jacobian_inverse`.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -141,4 +153,4 @@ def right_jacobian_inverse(psi, tol=SINGULAR_TOL):
     >>> np.allclose(right_jacobian_inverse([0.3, -0.2, 0.5]), left_jacobian_inverse([-0.3, 0.2, -0.5]))
     True
     """
-    return _inverse(psi, _RIGHT, tol)
+    return _inverse(psi, _RIGHT, tol, out)

@@ -10,6 +10,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import kernels, parallel
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
 
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
@@ -43,7 +44,7 @@ def _matrix_to_quat(R, carrier4, out):
     out[0], out[1], out[2], out[3] = kernels.matrix_quat(R)
 
 
-def quat_to_matrix(q):
+def quat_to_matrix(q, *, out=None):
     """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
     ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
@@ -53,6 +54,9 @@ def quat_to_matrix(q):
     ----------
     q : array_like, shape (..., 4)
         Scalar-first quaternions.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -67,10 +71,10 @@ def quat_to_matrix(q):
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    return _quat_to_matrix(quaternion_array(q, "q"))
+    return _quat_to_matrix(quaternion_array(q, "q"), out=out)
 
 
-def matrix_to_quat(R):
+def matrix_to_quat(R, *, out=None):
     """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
 
     Shepperd's method (largest of q0², q1², q2², q3² taken from the diagonal):
@@ -81,6 +85,9 @@ def matrix_to_quat(R):
     Parameters
     ----------
     R : array_like, shape (..., 3, 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -91,10 +98,10 @@ def matrix_to_quat(R):
     >>> matrix_to_quat([[-1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]])    # π about z
     array([0., 0., 0., 1.])
     """
-    return _matrix_to_quat(matrix_array(R, "R"))
+    return _matrix_to_quat(matrix_array(R, "R"), out=out)
 
 
-def orthonormalize(R):
+def orthonormalize(R, *, out=None):
     """Nearest rotation matrix (in the Frobenius norm) to each 3×3 matrix.
 
     Uses the SVD ``R = U S Vᵀ`` and returns ``U diag(1, 1, ±1) Vᵀ`` with the
@@ -105,6 +112,9 @@ def orthonormalize(R):
     ----------
     R : array_like, shape (..., 3, 3)
         Finite matrices of full rank.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -120,4 +130,4 @@ def orthonormalize(R):
     M = finite_array(R, "R", (3, 3))
     if M.size and np.min(np.linalg.svd(M, compute_uv=False)) <= 1e-12 * np.max(np.abs(M)):
         raise ValueError("R must have full rank (a singular matrix has no unique nearest rotation)")
-    return nearest_rotation(M)
+    return deliver(nearest_rotation(M), out)

@@ -14,6 +14,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, kernels, parallel
+from .._compiled.outputs import check_out, deliver
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array, vector_array
 from .._validation import batch_shape
 from ._norms import norm
@@ -152,13 +153,13 @@ def _apply(q, v, sign, out):
 
 
 @cached
-def _multiply_one(p, q):
-    out = np.empty(4)
-    out[0], out[1], out[2], out[3] = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
-    finite = True
-    for i in range(4):
-        finite = finite and abs(out[i]) <= 1.7976931348623157e308
-    return out, finite
+def _multiply_one(p, q, out):
+    # Writes p q into out only if it is finite (out may be p or q), and says whether it was.
+    r0, r1, r2, r3 = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
+    finite = max(max(abs(r0), abs(r1)), max(abs(r2), abs(r3))) <= 1.7976931348623157e308
+    if finite:
+        out[0], out[1], out[2], out[3] = r0, r1, r2, r3
+    return finite
 
 
 @cached
@@ -185,7 +186,7 @@ def _is_single(x):
     return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64 and x.flags.writeable
 
 
-def quat_multiply(p, q):
+def quat_multiply(p, q, *, out=None):
     """Hamilton product ``p q`` (Theory §2.4), broadcasting over leading axes.
 
     ``R(p q) = R(p) R(q)``: the product first applies ``q``, then ``p``.
@@ -194,6 +195,9 @@ def quat_multiply(p, q):
     ----------
     p, q : array_like, shape (..., 4)
         Scalar-first quaternions (any finite values; not necessarily unit).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -205,21 +209,27 @@ def quat_multiply(p, q):
     >>> quat_multiply([0, 1, 0, 0], [0, 0, 1, 0])      # i1 i2 = i3
     array([0., 0., 0., 1.])
     """
-    if _is_single(p) and _is_single(q):
+    if _is_single(p) and _is_single(q) and (out is None or (_is_single(out) and out.flags.c_contiguous)):
         # One-rotation fast path (the gufunc dispatch plus two validation
         # calls cost several µs). Any NaN/inf in p or q makes some product
         # component non-finite, so a finite result proves finite inputs;
         # otherwise the checked path below raises the proper error.
-        out, finite = _multiply_one(p, q)
-        if finite:
-            return out
+        product = np.empty(4) if out is None else out
+        if _multiply_one(p, q, product):
+            return product
     p = quaternion_array(p, "p", nonzero=False)
     q = quaternion_array(q, "q", nonzero=False)
-    return _multiply(p, q)
+    return _multiply(p, q, out=out)
 
 
-def quat_conjugate(q):
+def quat_conjugate(q, *, out=None):
     """Conjugate ``q* = q0 - q·i`` (Theory §2.4); the inverse rotation for unit ``q``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -227,24 +237,40 @@ def quat_conjugate(q):
     array([ 1., -2., -3., -4.])
     """
     q = quaternion_array(q, "q", nonzero=False)
-    out = -q
-    out[..., 0] = q[..., 0]
+    if out is None:
+        out = np.empty(q.shape)
+    check_out(out, q.shape)
+    first = q[..., 0].copy() if np.may_share_memory(q, out) else q[..., 0]
+    np.negative(q, out=out)
+    out[..., 0] = first
     return out
 
 
-def quat_norm(q):
+def quat_norm(q, *, out=None):
     """Norm ``|q| = sqrt(q* q)``, shape ``(...)``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
     >>> float(quat_norm([1.0, 1.0, 1.0, 1.0]))
     2.0
     """
-    return norm(quaternion_array(q, "q", nonzero=False))
+    return deliver(norm(quaternion_array(q, "q", nonzero=False)), out)
 
 
-def quat_inverse(q):
+def quat_inverse(q, *, out=None):
     """Inverse ``q⁻¹ = q* / |q|²`` (Theory §2.4) of nonzero quaternions.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -253,16 +279,22 @@ def quat_inverse(q):
     """
     q = quaternion_array(q, "q")
     with np.errstate(over="ignore"):
-        out = _inverse(q)
-    if not np.isfinite(out).all():
+        inverse = _inverse(q, out=out)
+    if not np.isfinite(inverse).all():
         raise ValueError("q is out of range: the inverse of a quaternion this small (|q| < ~1e-308) overflows")
-    return out
+    return inverse
 
 
-def quat_normalize(q):
+def quat_normalize(q, *, out=None):
     """Scale nonzero quaternions to unit norm (the renormalisation of Theory §2.4 (2) ②).
 
     Raises ``ValueError`` for zero or non-finite input rather than returning NaN.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -270,10 +302,10 @@ def quat_normalize(q):
     array([1., 0., 0., 0.])
     """
     q = quaternion_array(q, "q")
-    return _normalize(q)
+    return _normalize(q, out=out)
 
 
-def quat_apply(q, v, inverse=False):
+def quat_apply(q, v, inverse=False, *, out=None):
     """Rotate vectors: ``R(q) v`` (or ``R(q)ᵀ v`` with ``inverse=True``).
 
     With ``R`` mapping body to space components this turns body components
@@ -286,6 +318,9 @@ def quat_apply(q, v, inverse=False):
     v : array_like, shape (..., 3)
         Broadcast against ``q`` over the leading axes.
     inverse : bool
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -300,10 +335,10 @@ def quat_apply(q, v, inverse=False):
     """
     q = quaternion_array(q, "q")
     v = vector_array(v, "v")
-    return _apply(q, v, -1.0 if inverse else 1.0)
+    return _apply(q, v, -1.0 if inverse else 1.0, out=out)
 
 
-def quat_power(q, p):
+def quat_power(q, p, *, out=None):
     """Powers ``q^p = exp(p log q)`` of rotations: the same axis, ``p`` times the angle.
 
     The logarithm takes the rotation angle in [0, π] (the double cover's
@@ -317,6 +352,9 @@ def quat_power(q, p):
         Nonzero quaternions (normalised here).
     p : float or array_like, shape (...)
         Exponents, broadcast against the batch.
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -334,14 +372,20 @@ def quat_power(q, p):
     """
     if _is_single(q) and type(p) in (int, float) and math.isfinite(p) and q.any() and np.isfinite(q).all():
         # One rotation: the compiled kernel without the gufunc dispatch.
-        return np.array(_powered(q[0], q[1], q[2], q[3], float(p)))
+        return deliver(np.array(_powered(q[0], q[1], q[2], q[3], float(p))), out)
     q = quaternion_array(q, "q")
     p = finite_array(p, "p", ())
-    return _power(q, float(p) if p.ndim == 0 else p)
+    return _power(q, float(p) if p.ndim == 0 else p, out=out)
 
 
-def quat_identity(shape=()):
+def quat_identity(shape=(), *, out=None):
     """Identity quaternions ``[1, 0, 0, 0]`` of batch shape ``shape``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -349,6 +393,6 @@ def quat_identity(shape=()):
     array([[1., 0., 0., 0.],
            [1., 0., 0., 0.]])
     """
-    out = np.zeros((*batch_shape(shape), 4))
-    out[..., 0] = 1.0
-    return out
+    identity = np.zeros((*batch_shape(shape), 4))
+    identity[..., 0] = 1.0
+    return deliver(identity, out)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled.gufunc import quaternion_array, vector_array
+from .._compiled.outputs import deliver
 from ._norms import norm, unit
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
@@ -23,8 +24,14 @@ def _canonical_unit(q):
     return np.where(q[..., :1] < 0.0, -q, q)
 
 
-def quat_to_gibbs(q):
+def quat_to_gibbs(q, *, out=None):
     """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -35,11 +42,17 @@ def quat_to_gibbs(q):
     q = _canonical_unit(q)
     if np.any(q[..., 0] == 0.0):
         raise ValueError("q must not be a half-turn (ψ = π): its Gibbs vector is infinite")
-    return q[..., 1:] / q[..., :1]
+    return deliver(q[..., 1:] / q[..., :1], out)
 
 
-def gibbs_to_quat(g):
+def gibbs_to_quat(g, *, out=None):
     """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -47,11 +60,17 @@ def gibbs_to_quat(g):
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
     g = vector_array(g, "g")
-    return unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g")
+    return deliver(unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g"), out)
 
 
-def quat_to_mrp(q):
+def quat_to_mrp(q, *, out=None):
     """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -60,11 +79,17 @@ def quat_to_mrp(q):
     array([1., 0., 0.])
     """
     q = _canonical_unit(q)
-    return q[..., 1:] / (1.0 + q[..., :1])
+    return deliver(q[..., 1:] / (1.0 + q[..., :1]), out)
 
 
-def mrp_to_quat(p):
+def mrp_to_quat(p, *, out=None):
     """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -78,4 +103,4 @@ def mrp_to_quat(p):
     p = np.where(shadow, -(p / np.where(shadow, length, 1.0)) / np.where(shadow, length, 1.0), p)
     p2 = np.sum(p * p, axis=-1, keepdims=True)
     q = np.concatenate([1.0 - p2, 2.0 * p], axis=-1) / (1.0 + p2)
-    return np.where(shadow, -q, q)
+    return deliver(np.where(shadow, -q, q), out)

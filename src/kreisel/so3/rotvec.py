@@ -14,6 +14,7 @@ import numpy as np
 from numba import prange
 
 from .._compiled import cached, kernels, parallel
+from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
 from ._norms import norm, unit
 
@@ -120,12 +121,15 @@ def generators():
     return hat(np.eye(3))
 
 
-def hat(v):
+def hat(v, *, out=None):
     """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
     Parameters
     ----------
     v : array_like, shape (..., 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -139,19 +143,25 @@ def hat(v):
            [-2.,  1.,  0.]])
     """
     v = vector_array(v, "v")
-    out = np.zeros(v.shape + (3,))
+    A = np.zeros(v.shape + (3,))
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
-    out[..., 0, 1], out[..., 0, 2] = -z, y
-    out[..., 1, 0], out[..., 1, 2] = z, -x
-    out[..., 2, 0], out[..., 2, 1] = -y, x
-    return out
+    A[..., 0, 1], A[..., 0, 2] = -z, y
+    A[..., 1, 0], A[..., 1, 2] = z, -x
+    A[..., 2, 0], A[..., 2, 1] = -y, x
+    return deliver(A, out)
 
 
-def vee(A):
+def vee(A, *, out=None):
     """Inverse of :func:`hat`: the vector of the skew part of ``A``.
 
     Uses ``(A - Aᵀ)/2``, so a matrix that is skew up to rounding maps to the
     nearest vector.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -159,12 +169,11 @@ def vee(A):
     array([1., 2., 3.])
     """
     A = finite_array(A, "A", (3, 3))
-    return 0.5 * np.stack(
-        [A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1
-    )
+    v = 0.5 * np.stack([A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1)
+    return deliver(v, out)
 
 
-def rotvec_to_matrix(psi):
+def rotvec_to_matrix(psi, *, out=None):
     """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
     Evaluated through the half-angle quaternion so that every entry is
@@ -174,6 +183,9 @@ def rotvec_to_matrix(psi):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -187,28 +199,40 @@ def rotvec_to_matrix(psi):
            [ 0.,  0., -1.],
            [ 0.,  1.,  0.]])
     """
-    return _rotvec_to_matrix(vector_array(psi, "psi"))
+    return _rotvec_to_matrix(vector_array(psi, "psi"), out=out)
 
 
-def matrix_to_rotvec(R):
+def matrix_to_rotvec(R, *, out=None):
     """Logarithm ``ψ = log R`` with |ψ| <= π.
 
     Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
     digits at ψ → 0 or ψ → π (unlike arccos((tr R - 1)/2)). At exactly
     ψ = π both ±ψ are logarithms; the sign follows the extracted quaternion.
 
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
+
     Examples
     --------
     >>> matrix_to_rotvec(np.diag([1.0, -1.0, -1.0]))
     array([3.14159265, 0.        , 0.        ])
     """
-    return _matrix_to_rotvec(matrix_array(R, "R"))
+    return _matrix_to_rotvec(matrix_array(R, "R"), out=out)
 
 
-def rotvec_to_quat(psi):
+def rotvec_to_quat(psi, *, out=None):
     """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (Theory §A (4)).
 
     No sign flip: ψ = 2π n gives ``q = -1`` — the double cover SU(2) → SO(3).
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -216,21 +240,27 @@ def rotvec_to_quat(psi):
     >>> np.round(rotvec_to_quat([0.0, 0.0, 2 * np.pi]), 12) + 0.0
     array([-1.,  0.,  0.,  0.])
     """
-    return _rotvec_to_quat(vector_array(psi, "psi"))
+    return _rotvec_to_quat(vector_array(psi, "psi"), out=out)
 
 
-def quat_to_rotvec(q):
+def quat_to_rotvec(q, *, out=None):
     """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
 
     ``q`` and ``-q`` give the same ψ; ψ = 2 atan2(|v|, |q0|) is accurate at
     every angle.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
     >>> quat_to_rotvec([0.0, 0.0, 0.0, 1.0])
     array([0.        , 0.        , 3.14159265])
     """
-    return _quat_to_rotvec(quaternion_array(q, "q"))
+    return _quat_to_rotvec(quaternion_array(q, "q"), out=out)
 
 
 def rotvec_to_axis_angle(psi):
@@ -257,8 +287,14 @@ def rotvec_to_axis_angle(psi):
     return axis, angle
 
 
-def axis_angle_to_rotvec(axis, angle, degrees=False):
+def axis_angle_to_rotvec(axis, angle, degrees=False, *, out=None):
     """Rotation vector ψ n from an axis (any nonzero length) and an angle.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -269,14 +305,20 @@ def axis_angle_to_rotvec(axis, angle, degrees=False):
     angle = finite_array(angle, "angle", ())
     if degrees:
         angle = np.deg2rad(angle)
-    return unit(axis, "axis") * angle[..., None]
+    return deliver(unit(axis, "axis") * angle[..., None], out)
 
 
-def compose_rotvec(a, b):
+def compose_rotvec(a, b, *, out=None):
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
     BCH series (:func:`bch`) approximates, computed through quaternions.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -286,7 +328,7 @@ def compose_rotvec(a, b):
     """
     a = vector_array(a, "a")
     b = vector_array(b, "b")
-    return _compose_rotvec(a, b)
+    return _compose_rotvec(a, b, out=out)
 
 
 def _bernoulli_even(n_max):
@@ -297,7 +339,7 @@ def _bernoulli_even(n_max):
     return B
 
 
-def bch(a, b, order=3):
+def bch(a, b, order=3, *, out=None):
     """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (Theory §2.2 (4)).
 
     ``a + b + [a, b]/2 + [a - b, [a, b]]/12 + …`` truncated after the terms of
@@ -312,6 +354,9 @@ def bch(a, b, order=3):
     ----------
     a, b : array_like, shape (..., 3)
     order : int >= 1
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -337,7 +382,7 @@ def bch(a, b, order=3):
                     nested = np.cross(Z[kk], nested)
                 term = term + coeff * nested
         Z.append(term / (n + 1))
-    return np.sum(Z[1:], axis=0)
+    return deliver(np.sum(Z[1:], axis=0), out)
 
 
 def _compositions(n, parts):
@@ -346,7 +391,7 @@ def _compositions(n, parts):
         yield tuple(j - i for i, j in zip((0, *cuts), (*cuts, n)))
 
 
-def adjoint_action(Q, psi):
+def adjoint_action(Q, psi, *, out=None):
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
     Implements the identity of Theory §2.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
@@ -358,6 +403,9 @@ def adjoint_action(Q, psi):
     Q : array_like, shape (..., 3, 3)
         Rotation matrices.
     psi : array_like, shape (..., 3)
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -367,4 +415,4 @@ def adjoint_action(Q, psi):
     """
     Q = matrix_array(Q, "Q")
     psi = vector_array(psi, "psi")
-    return np.einsum("...ij,...j->...i", Q, psi)
+    return deliver(np.einsum("...ij,...j->...i", Q, psi), out)

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled.gufunc import quaternion_array
+from .._compiled.outputs import deliver
 from .._validation import as_float_array
 from ._norms import unit
 
@@ -55,13 +56,16 @@ def _quat_from_ab(a, b, name):
     return q / norm
 
 
-def quat_to_su2(q):
+def quat_to_su2(q, *, out=None):
     """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (Theory §A (1), (4)).
 
     Parameters
     ----------
     q : array_like, shape (..., 4)
         Nonzero quaternions (normalised here).
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -77,14 +81,20 @@ def quat_to_su2(q):
     q = _unit(q)
     a = q[..., 0] - 1j * q[..., 3]
     b = -q[..., 2] - 1j * q[..., 1]
-    return np.stack([np.stack([a, b], axis=-1), np.stack([-b.conj(), a.conj()], axis=-1)], axis=-2)
+    return deliver(np.stack([np.stack([a, b], axis=-1), np.stack([-b.conj(), a.conj()], axis=-1)], axis=-2), out)
 
 
-def su2_to_quat(u):
+def su2_to_quat(u, *, out=None):
     """Quaternion of each SU(2) matrix (inverse of :func:`quat_to_su2`, sign kept).
 
     ``u`` must be ``[[a, b], [-b*, a*]]`` with ``|a|² + |b|² = 1`` up to 1e-6;
     the two copies of ``a`` and ``b`` are averaged and the result normalised.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -97,13 +107,19 @@ def su2_to_quat(u):
     mismatch = np.maximum(np.abs(u[..., 0, 0] - u[..., 1, 1].conj()), np.abs(u[..., 0, 1] + u[..., 1, 0].conj()))
     if mismatch.size and np.max(mismatch) > SU2_TOLERANCE:
         raise ValueError("u must have the SU(2) form [[a, b], [-conj(b), conj(a)]]")
-    return _quat_from_ab(a, b, "u")
+    return deliver(_quat_from_ab(a, b, "u"), out)
 
 
-def quat_to_cayley_klein(q):
+def quat_to_cayley_klein(q, *, out=None):
     """Cayley–Klein parameters ``(α, β, γ, δ)`` = the entries of ``u`` (Theory §A (3)).
 
     ``u = [[α, β], [γ, δ]]`` with ``δ = α*``, ``γ = -β*``, ``αδ - βγ = 1``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Returns
     -------
@@ -115,11 +131,17 @@ def quat_to_cayley_klein(q):
     array([1.+0.j, 0.+0.j, 0.+0.j, 1.+0.j])
     """
     u = quat_to_su2(q)
-    return u.reshape(u.shape[:-2] + (4,))
+    return deliver(u.reshape(u.shape[:-2] + (4,)), out)
 
 
-def cayley_klein_to_quat(ck):
+def cayley_klein_to_quat(ck, *, out=None):
     """Quaternion from Cayley–Klein parameters ``(α, β, γ, δ)`` (inverse of :func:`quat_to_cayley_klein`).
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -127,10 +149,10 @@ def cayley_klein_to_quat(ck):
     array([ 1., -0., -0., -0.])
     """
     ck = _complex_array(ck, "ck", (4,))
-    return su2_to_quat(ck.reshape(ck.shape[:-1] + (2, 2)))
+    return deliver(su2_to_quat(ck.reshape(ck.shape[:-1] + (2, 2))), out)
 
 
-def quat_to_euler_parameters(q):
+def quat_to_euler_parameters(q, *, out=None):
     """Euler parameters ``(e0, e1, e2, e3)`` as defined in the Theory §A (2).
 
     ``e0 = cos(ψ/2)``, ``e_j = -n_j sin(ψ/2)``, i.e. ``e = q*/|q|``. The
@@ -143,32 +165,50 @@ def quat_to_euler_parameters(q):
     ``e = q``. The two readings agree because ``A(q) = R(q)ᵀ = R(q*)``; pass
     ``q`` itself to :func:`euler_parameters_to_matrix` to get Goldstein's ``A``.
 
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
+
     Examples
     --------
     >>> quat_to_euler_parameters([0.0, 0.0, 0.0, 1.0])
     array([ 0., -0., -0., -1.])
     """
     e = _unit(q) * np.array([1.0, -1.0, -1.0, -1.0])
-    return e
+    return deliver(e, out)
 
 
-def euler_parameters_to_quat(e):
+def euler_parameters_to_quat(e, *, out=None):
     """Inverse of :func:`quat_to_euler_parameters`: ``q = e*``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
     >>> euler_parameters_to_quat([0.0, 0.0, 0.0, -1.0])
     array([ 0., -0., -0.,  1.])
     """
-    return _unit(e) * np.array([1.0, -1.0, -1.0, -1.0])
+    return deliver(_unit(e) * np.array([1.0, -1.0, -1.0, -1.0]), out)
 
 
-def euler_parameters_to_matrix(e):
+def euler_parameters_to_matrix(e, *, out=None):
     """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
     ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
     ``e = q*`` it is the active ``R(q)``; with Goldstein's ``e = q`` it is the
     passive ``A = R(q)ᵀ``. ``e`` is normalised first.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Array of the result's shape and dtype to write it into (keyword only); it is returned.
+        It may share memory with an input. See :ref:`out-arrays`.
 
     Examples
     --------
@@ -180,7 +220,7 @@ def euler_parameters_to_matrix(e):
            [ 0.      ,  0.      ,  1.      ]])
     """
     e0, e1, e2, e3 = np.moveaxis(_unit(e), -1, 0)
-    return np.stack(
+    matrix = np.stack(
         [
             np.stack([e0**2 + e1**2 - e2**2 - e3**2, 2 * (e1 * e2 + e0 * e3), 2 * (e1 * e3 - e0 * e2)], axis=-1),
             np.stack([2 * (e1 * e2 - e0 * e3), e0**2 - e1**2 + e2**2 - e3**2, 2 * (e2 * e3 + e0 * e1)], axis=-1),
@@ -188,3 +228,4 @@ def euler_parameters_to_matrix(e):
         ],
         axis=-2,
     )
+    return deliver(matrix, out)
