@@ -14,17 +14,18 @@ $(VENV)/.created:
 	$(PY) -m pip install --quiet --upgrade pip
 	touch $@
 
+# every target installs every feature (the extras); `pip install kreisel` alone is the core
 $(VENV)/.installed-run: pyproject.toml $(VENV)/.created
-	$(PY) -m pip install --quiet -e .
+	$(PY) -m pip install --quiet -e ".[all]"
 	touch $@
 
 # the tests build the documentation too (tests/docs/test_docs_build.py)
 $(VENV)/.installed-dev: pyproject.toml $(VENV)/.created
-	$(PY) -m pip install --quiet -e ".[dev,docs]"
+	$(PY) -m pip install --quiet -e ".[all,dev,docs]"
 	touch $@
 
 $(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
-	$(PY) -m pip install --quiet -e ".[docs]"
+	$(PY) -m pip install --quiet -e ".[all,docs]"
 	touch $@
 
 demo: $(VENV)/.installed-run
@@ -34,7 +35,7 @@ test: $(VENV)/.installed-dev docs/node_modules/.installed
 	$(PY) -m pytest -n 2 --dist loadfile -q
 
 $(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
-	$(PY) -m pip install --quiet -e ".[dev,bench]"
+	$(PY) -m pip install --quiet -e ".[all,dev,bench]"
 	touch $@
 
 bench: $(VENV)/.installed-bench

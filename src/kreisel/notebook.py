@@ -4,7 +4,7 @@ The widget is an `anywidget <https://anywidget.dev>`_ whose front end is the web
 viewer's own scene (``web/src/widget.js``, bundled into ``kreisel/web/static``):
 the body with its principal axes, ω and J, the energy ellipsoid on the
 invariable plane, polhode and herpolhode (Theory §5.5), with a time slider.
-Install it with ``pip install kreisel[notebook]``.
+Install it with ``pip install "kreisel[notebook]"``.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ import importlib.resources
 
 import numpy as np
 
+from ._optional import require
 from .dynamics import Trajectory
 from .web.session import analysis, samples
 
@@ -62,11 +63,8 @@ def widget_data(trajectory, max_samples=MAX_SAMPLES):
 
 
 def _widget_class():
-    try:
-        import anywidget
-        import traitlets
-    except ImportError:
-        raise ImportError("kreisel.show needs anywidget: pip install 'kreisel[notebook]'") from None
+    anywidget = require("anywidget", extra="notebook", feature="kreisel.show")
+    traitlets = require("traitlets", extra="notebook", feature="kreisel.show")
 
     class TrajectoryWidget(anywidget.AnyWidget):
         """The 3D player of :func:`show`; ``index`` is the sample on screen."""

@@ -70,29 +70,14 @@ def test_static_files_are_package_data():
         assert any(pathlib.PurePath(f"static/{name}").match(p) for p in patterns), name
 
 
-def _tracked_copy(target):
-    """The files of the repository a clone has (tracked or about to be), without build products."""
-    listed = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
-                            capture_output=True, text=True, check=True).stdout.split("\n")
-    for name in filter(None, listed):
-        source = ROOT / name
-        if source.is_file():
-            (target / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(source, target / name)
-
-
 @pytest.fixture(scope="module")
-def installed(tmp_path_factory):
+def installed(tmp_path_factory, repository_copy):
     """A fresh virtual environment with kreisel installed from a copy of the repository, not editable.
 
     The environment sees this interpreter's packages (numpy, fastapi, ...), so only the build backend is
     fetched (or taken from pip's cache); its own site-packages, where kreisel goes, comes first on its path.
     """
-    if shutil.which("git") is None or not (ROOT / ".git").exists():
-        pytest.skip("needs a git checkout to know the repository's files")
     base = tmp_path_factory.mktemp("install")
-    clone = base / "clone"
-    _tracked_copy(clone)
     venv = base / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
     python = venv / "bin" / "python"
@@ -103,7 +88,7 @@ def installed(tmp_path_factory):
     pathlib.Path(own, "dependencies.pth").write_text("\n".join(site.getsitepackages()) + "\n", encoding="utf-8")
     # pip builds the wheel in an isolated environment with the setuptools pyproject.toml asks for, as a
     # user's `pip install` does (the runtime dependencies come from this interpreter's packages)
-    subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-deps", str(clone)], check=True,
+    subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-deps", str(repository_copy)], check=True,
                    timeout=900, cwd=base)
     where = subprocess.run([str(python), "-c", "import kreisel.web.app as a; print(a.STATIC)"],
                            capture_output=True, text=True, timeout=300, cwd=base,

@@ -13,6 +13,8 @@ from typing import List, Optional
 
 import typer
 
+from .._optional import MissingExtraError
+
 __all__ = [
     "app",
     "usage_error",
@@ -31,7 +33,19 @@ __all__ = [
     "run",
 ]
 
+
+class _Commands(typer.core.TyperGroup):
+    """The commands; one whose optional dependencies are not installed names the extra in one line (status 2)."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except MissingExtraError as exc:
+            usage_error(str(exc))
+
+
 app = typer.Typer(
+    cls=_Commands,
     name="kreisel",
     help="Rigid-body mechanics: rotations, tops, rotating frames, strapdown attitude.",
     no_args_is_help=True,
@@ -293,7 +307,6 @@ def sweep(
     plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Also draw the map: fig.png | .svg | .pdf"),
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
-    from .. import plot as plots
     from ..io.bundled import suggestion
     from ..sweep import EXAMPLES, SweepError, example_path, load_sweep_file, plot_sweep, run_sweep_file
 
@@ -315,6 +328,8 @@ def sweep(
         usage_error(str(exc))
     say(f"{dict(dataset.sizes)} points" + (f", wrote {output}" if output else ""))
     if plot_file is not None:
+        from .. import plot as plots
+
         plots.save(plot_sweep(dataset), plot_file)
         say(f"wrote {plot_file}")
 
@@ -418,5 +433,6 @@ def run():
     exit status 0
     >>> kreisel("run", "no-such-scenario.toml")
     exit status 2
+
     """
     app()

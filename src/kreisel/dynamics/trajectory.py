@@ -6,6 +6,7 @@ import numpy as np
 
 from .. import _display
 from .._html import html_table, number
+from .._optional import require
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
 
@@ -231,8 +232,7 @@ class Trajectory:
         """
         import json
 
-        import xarray as xr
-
+        xr = require("xarray", extra="io", feature="Trajectory.to_xarray")
         b = self._batch_dims()
         data = {
             "q": (b + ("time", "quaternion"), self.q),
@@ -287,8 +287,7 @@ class Trajectory:
         >>> list(tr.to_pandas().columns[:4])
         ['q0', 'q1', 'q2', 'q3']
         """
-        import pandas as pd
-
+        pd = require("pandas", extra="io", feature="Trajectory.to_pandas")
         n = self.t.size
         columns = {}
         for k in range(4):
@@ -378,13 +377,11 @@ class Trajectory:
 
         path = os.fspath(path)
         if path.endswith(".nc"):
-            import xarray as xr
-
+            xr = require("xarray", extra="io", feature="Trajectory.load")
             with xr.open_dataset(path, engine="scipy") as ds:
                 return cls.from_xarray(ds.load())
         if path.endswith(".csv"):
-            import pandas as pd
-
+            pd = require("pandas", extra="io", feature="Trajectory.load")
             with open(path, encoding="utf-8") as fh:
                 first = fh.readline()
                 if not first.startswith("# kreisel-trajectory "):

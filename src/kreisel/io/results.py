@@ -6,6 +6,7 @@ import json
 import pathlib
 
 from .._fileio import atomic_output
+from .._optional import require
 from ..dynamics.trajectory import Trajectory
 
 __all__ = ["ResultError", "save_result", "load_trajectory", "SUFFIXES"]
@@ -43,6 +44,7 @@ def save_result(result, path):
     path = pathlib.Path(path)
     if path.suffix not in SUFFIXES:
         raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}, got {path.name!r}")
+    _require_backends(path.suffix, "writing results")
     with atomic_output(path) as tmp:
         if isinstance(result, Trajectory):
             if path.suffix == ".parquet":
@@ -128,11 +130,10 @@ def load_trajectory(path):
         raise ResultError(f"{path}: no such file")
     if path.suffix not in SUFFIXES:
         raise ResultError(f"{path}: unknown trajectory format (expected {', '.join(SUFFIXES)})")
+    _require_backends(path.suffix, "reading results")
     try:
         if path.suffix == ".parquet":
-            import pandas as pd
-
-            frame = pd.read_parquet(path)
+            frame = require("pandas", extra="io", feature="reading results").read_parquet(path)
             header = json.loads(frame.attrs["kreisel"])
             return Trajectory(frame.index.to_numpy(), frame[[f"q{k}" for k in range(4)]].to_numpy(),
                               frame[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
@@ -147,13 +148,18 @@ def load_trajectory(path):
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {reason})") from None
 
 
+def _require_backends(suffix, feature):
+    """Import what reads and writes ``suffix`` files (the ``io`` extra), or fail with the one line naming it."""
+    for module in ("xarray", "pyarrow") if suffix == ".parquet" else ("xarray",):
+        require(module, extra="io", feature=f"{feature} as {suffix}")
+
+
 def _dataset_kind(path):
     """The ``kreisel`` attribute of a NetCDF result that is not a trajectory (Foucault, coning), else None."""
     if path.suffix != ".nc":
         return None
+    xr = require("xarray", extra="io", feature="reading results")
     try:
-        import xarray as xr
-
         with xr.open_dataset(path, engine="scipy") as ds:
             kind = ds.attrs.get("kreisel")
     except (OSError, ValueError, TypeError):
@@ -179,7 +185,6 @@ def load_result(path):
     except ResultError:
         if _dataset_kind(path) is None:
             raise
-    import xarray as xr
-
+    xr = require("xarray", extra="io", feature="reading results")
     with xr.open_dataset(path, engine="scipy") as ds:
         return ds.load()

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import earth, nav
+from .._optional import require
 from .._validation import check_allocation
 from ..dynamics import Trajectory, simulate
 from ..dynamics.torques import ConstantTorque, GravityTorque, LinearDamping
@@ -35,8 +36,7 @@ def build_body(body, base=None):
     if "tensor" in body:
         return RigidBody(body["tensor"], mass=mass)
     if "mesh" in body:
-        import meshio
-
+        meshio = require("meshio", extra="io", feature="a mesh body")
         path = (base / body["mesh"]) if base is not None else body["mesh"]
         mesh = meshio.read(path)
         faces = mesh.cells_dict.get("triangle")
@@ -159,8 +159,7 @@ _UNKNOWN_TORQUE = object()
 
 
 def _foucault(scenario):
-    import xarray as xr
-
+    xr = require("xarray", extra="io", feature="the Foucault scenario")
     spec = scenario.data["foucault"]
     extra = {"omega": spec["omega"]} if "omega" in spec else {}
     swing = earth.foucault_pendulum(spec["length"], spec["latitude_deg"], spec["duration"], spec["amplitude"],
@@ -176,8 +175,7 @@ def _foucault(scenario):
 
 
 def _coning(scenario):
-    import xarray as xr
-
+    xr = require("xarray", extra="io", feature="the coning scenario")
     spec = scenario.data["coning"]
     n_update = spec["samples_per_update"]
     n = spec["n_samples"] - spec["n_samples"] % n_update

@@ -26,6 +26,7 @@ import os
 import numpy as np
 
 from .._fileio import atomic_output
+from .._optional import require
 from .._validation import as_float_array
 from .coning import coning_coefficients
 from .strapdown import attitude_from_increments, attitude_from_rates
@@ -138,9 +139,7 @@ class ImuLog:
 
 def _pandas():
     # pandas costs most of a second to import; only log reading and writing need it
-    import pandas
-
-    return pandas
+    return require("pandas", extra="io", feature="reading and writing IMU logs")
 
 
 def _show(value):

@@ -9,9 +9,14 @@ from __future__ import annotations
 import pathlib
 
 from .._fileio import atomic_output
+from .._optional import require
+
+# every module of the package draws with matplotlib: without it, one line naming the extra
+require("matplotlib", extra="plot", feature="plotting (kreisel.plot)")
+
 from .fit import gyro_fit
-from .trajectory import (DATASET_KINDS, KINDS, apex, coning, energy, euler, foucault, herpolhode, omega, polhode,
-                         regular_sequence)
+from .trajectory import (DATASET_KINDS, KINDS, apex, coning, energy, euler, foucault, herpolhode, omega,
+                         polhode, regular_sequence)
 
 __all__ = ["KINDS", "DATASET_KINDS", "apex", "coning", "energy", "euler", "foucault", "gyro_fit", "herpolhode",
            "omega", "polhode", "regular_sequence", "save"]

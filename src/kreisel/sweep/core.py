@@ -56,6 +56,7 @@ import zipfile
 import numpy as np
 
 from .._fileio import atomic_output, remove_stale_temporaries, temporary_prefix
+from .._optional import require
 
 __all__ = ["SweepError", "SweepProgress", "write_dataset", "sweep", "SERIAL"]
 
@@ -319,8 +320,7 @@ class _DaskExecutor:
     """Submits chunks to a distributed client and yields them as they complete."""
 
     def __init__(self, client, key):
-        from distributed import as_completed
-
+        as_completed = require("distributed", extra="sweep", feature="kreisel.sweep").as_completed
         self.client = client
         self.key = key[:12]
         self.futures = {}
@@ -354,8 +354,8 @@ class _Session:
 def _open_session(scheduler, n_workers, threads_per_worker, key):
     if scheduler == SERIAL:
         return _Session(_SerialExecutor(), lambda: None)
-    from distributed import Client, LocalCluster
-
+    distributed = require("distributed", extra="sweep", feature="kreisel.sweep")
+    Client, LocalCluster = distributed.Client, distributed.LocalCluster
     if isinstance(scheduler, Client):
         return _Session(_DaskExecutor(scheduler, key), lambda: None)
     if scheduler is None:
@@ -375,9 +375,7 @@ def _open_session(scheduler, n_workers, threads_per_worker, key):
 
 def _check_scheduler(scheduler, n_workers, threads_per_worker):
     if scheduler is not None and scheduler != SERIAL and not isinstance(scheduler, str):
-        from distributed import Client
-
-        if not isinstance(scheduler, Client):
+        if not isinstance(scheduler, require("distributed", extra="sweep", feature="kreisel.sweep").Client):
             raise TypeError(f"scheduler must be None, 'serial', an address string or a distributed.Client, "
                             f"got {type(scheduler).__name__}")
     for name, value in (("n_workers", n_workers), ("threads_per_worker", threads_per_worker)):
@@ -421,8 +419,7 @@ class _Reporter:
 
 # ---- assembly and output --------------------------------------------------------------------
 def _assemble(grid, shape, chunk_size, results, variable_attrs, attrs):
-    import xarray as xr
-
+    xr = require("xarray", extra="sweep", feature="kreisel.sweep")
     first = results[0]
     total = math.prod(shape)
     data = {}
@@ -483,6 +480,7 @@ def write_dataset(dataset, output):
     tag = uuid.uuid4().hex[:8]
     tmp = output.with_name(f"{temporary_prefix(output)}{tag}.tmp")
     old = output.with_name(f"{temporary_prefix(output)}{tag}.old")
+    require("zarr", extra="sweep", feature="kreisel.sweep")
     try:
         dataset.to_zarr(tmp, mode="w", zarr_format=2, consolidated=True)  # v2 + consolidated: widest reader support
         if output.exists():
@@ -584,6 +582,11 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
         raise TypeError(f"progress must be callable, got {type(progress).__name__}")
     _check_scheduler(scheduler, n_workers, threads_per_worker)
     output = _check_output(output)
+    # what the run needs, checked before any chunk is computed
+    for module, needed in (("xarray", True), ("distributed", scheduler != SERIAL),
+                           ("zarr", output is not None and output.suffix == ".zarr")):
+        if needed:
+            require(module, extra="sweep", feature="kreisel.sweep")
     chunk_size = int(chunk_size)
     shape = tuple(values.size for values in grid.values())
     total = math.prod(shape)

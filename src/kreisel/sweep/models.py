@@ -13,6 +13,8 @@ import json
 
 import numpy as np
 
+from .._optional import require
+
 __all__ = [
     "tennis_racket_flip",
     "plot_tennis_racket",
@@ -125,8 +127,8 @@ def plot_tennis_racket(dataset):
     >>> type(plot_tennis_racket(ds)).__name__
     'Figure'
     """
-    from matplotlib.colors import LogNorm
-    from matplotlib.figure import Figure
+    LogNorm = require("matplotlib.colors", extra="plot", feature="sweep plots").LogNorm
+    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
 
     fig = Figure(figsize=(6.4, 4.8), layout="constrained")
     ax = fig.add_subplot()
@@ -197,15 +199,15 @@ def plot_lagrange_apex_locus(dataset):
     >>> type(plot_lagrange_apex_locus(ds)).__name__
     'Figure'
     """
-    from matplotlib.colors import BoundaryNorm, ListedColormap
-    from matplotlib.figure import Figure
+    colors = require("matplotlib.colors", extra="plot", feature="sweep plots")
+    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
 
     fig = Figure(figsize=(6.4, 4.8), layout="constrained")
     ax = fig.add_subplot()
     x, y = dataset["phi_dot"].values, dataset["psi_dot"].values
     kind = dataset["kind"].transpose("psi_dot", "phi_dot").values
-    cmap = ListedColormap(["#4c72b0", "#dd8452", "#55a868"])
-    mesh = ax.pcolormesh(x, y, kind, shading="nearest", cmap=cmap, norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3))
+    cmap = colors.ListedColormap(["#4c72b0", "#dd8452", "#55a868"])
+    mesh = ax.pcolormesh(x, y, kind, shading="nearest", cmap=cmap, norm=colors.BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3))
     bar = fig.colorbar(mesh, ax=ax, ticks=[0, 1, 2])
     bar.ax.set_yticklabels(APEX_LOCUS_KINDS)
     ax.set_xlabel("initial precession rate φ̇ (rad/s)")
@@ -280,7 +282,7 @@ def plot_imu_attitude_error(dataset):
     >>> type(plot_imu_attitude_error(ds)).__name__
     'Figure'
     """
-    from matplotlib.figure import Figure
+    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
 
     fig = Figure(figsize=(6.4, 4.8), layout="constrained")
     ax = fig.add_subplot()

@@ -4,7 +4,15 @@
 :func:`serve` runs it with uvicorn on the loopback interface.
 """
 
-from .app import create_app
 from .server import serve
 
 __all__ = ["create_app", "serve"]
+
+
+def __getattr__(name):
+    # the app needs FastAPI (the viewer extra); kreisel.show uses this package's session module without it
+    if name != "create_app":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from .app import create_app
+
+    return create_app

@@ -45,6 +45,10 @@ import tempfile
 import tomllib
 from typing import Annotated, Literal
 
+from .._optional import require
+
+require("fastapi", extra="viewer", feature="the viewer (kreisel serve)")
+
 from fastapi import FastAPI, HTTPException, Query, Request, WebSocket, WebSocketDisconnect
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse

@@ -7,6 +7,7 @@ import socket
 import threading
 import webbrowser
 
+from .._optional import require
 from .guard import WILDCARDS
 
 __all__ = ["bind", "websocket_support", "make_server", "url_of", "serve"]
@@ -44,8 +45,7 @@ def make_server(app):
     WebSocket messages are limited to the app's body limit, so a huge run request is refused by uvicorn
     before it is buffered.
     """
-    import uvicorn
-
+    uvicorn = require("uvicorn", extra="viewer", feature="the viewer (kreisel serve)")
     limits = getattr(getattr(app.state, "viewer", None), "limits", None)
     size = {"ws_max_size": limits.max_body} if limits is not None else {}
     return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off", **size))
@@ -95,6 +95,8 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
     """
     from .app import create_app
     from .session import MAX_SAMPLES, load
+
+    require("uvicorn", extra="viewer", feature="the viewer (kreisel serve)")  # before any work
 
     text = None
     if scenario is not None:

@@ -1,0 +1,28 @@
+"""Fixtures shared by the tests that install kreisel the way a user does."""
+
+import pathlib
+import shutil
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def repository_copy(tmp_path_factory):
+    """A copy of the repository's files as a clone has them (tracked or about to be), without build products.
+
+    pip builds an installed kreisel from it, so the working tree gets no ``build/`` or ``*.egg-info``.
+    """
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("needs a git checkout to know the repository's files")
+    target = tmp_path_factory.mktemp("repository") / "kreisel"
+    listed = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
+                            capture_output=True, text=True, check=True).stdout.split("\n")
+    for name in filter(None, listed):
+        source = ROOT / name
+        if source.is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name)
+    return target
