@@ -11,6 +11,20 @@ lowercase extrinsic, SI units, ``frame="space" | "body"``.
 """
 
 import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    # what __getattr__ returns, spelled out for type checkers and editors (tests/test_typing.py checks that
+    # every name of __all__ is here)
+    from ._version import __version__ as __version__
+    from . import dynamics, earth, frames, inertia, io, kinematics, nav, se3, so3, sweep, tops
+    from .dynamics import *  # noqa: F403
+    from .inertia import RigidBody as RigidBody
+    from .kinematics import *  # noqa: F403
+    from .notebook import show as show
+    from .se3 import *  # noqa: F403
+    from .so3 import *  # noqa: F403
+    from .tops import *  # noqa: F403
 
 from . import _display
 
@@ -25,7 +39,8 @@ _FROM = {"RigidBody": "inertia", "show": "notebook"}
 _display.register_player(lambda: importlib.import_module(f"{__name__}.notebook").show)
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
+    value: Any
     if name == "__all__":
         names = [n for package in _STAR for n in importlib.import_module(f"{__name__}.{package}").__all__]
         value = [*names, "inertia", "RigidBody", "frames", "earth", "nav", "io", "sweep", "show", "__version__"]
@@ -49,5 +64,5 @@ def __getattr__(name):
     return value
 
 
-def __dir__():
+def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__getattr__("__all__")))

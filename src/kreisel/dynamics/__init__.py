@@ -13,4 +13,7 @@ from .forces import *  # noqa: F403
 from .torques import *  # noqa: F403
 from .trajectory import Trajectory
 
-__all__ = ["simulate", "simulate_batch", "simulate_6dof", "Trajectory", *torques.__all__, *forces.__all__]
+# built with += so that type checkers read it (they do not read a list with * unpacking)
+__all__: list[str] = ["simulate", "simulate_batch", "simulate_6dof", "Trajectory"]
+__all__ += torques.__all__
+__all__ += forces.__all__

@@ -26,15 +26,13 @@ from .point_motion import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
 from .screw import *  # noqa: F401,F403
 
-__all__ = [
-    *rates.__all__,
-    *rotvec.__all__,
-    *euler.__all__,
-    *acceleration.__all__,
-    *motion.__all__,
-    *point_motion.__all__,
-    *screw.__all__,
-    "KinematicSingularityWarning",
-    "GimbalLockWarning",
-    "RotationVectorSingularityWarning",
-]
+# built with += so that type checkers read it (they do not read a list with * unpacking)
+__all__: list[str] = []
+__all__ += rates.__all__
+__all__ += rotvec.__all__
+__all__ += euler.__all__
+__all__ += acceleration.__all__
+__all__ += motion.__all__
+__all__ += point_motion.__all__
+__all__ += screw.__all__
+__all__ += ["KinematicSingularityWarning", "GimbalLockWarning", "RotationVectorSingularityWarning"]

@@ -14,4 +14,9 @@ from .motion import *  # noqa: F401,F403
 from .screw import *  # noqa: F401,F403
 from .transform import *  # noqa: F401,F403
 
-__all__ = [*transform.__all__, *screw.__all__, *lie.__all__, *motion.__all__]
+# built with += so that type checkers read it (they do not read a list with * unpacking)
+__all__: list[str] = []
+__all__ += transform.__all__
+__all__ += screw.__all__
+__all__ += lie.__all__
+__all__ += motion.__all__

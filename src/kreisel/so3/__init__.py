@@ -35,18 +35,18 @@ from .rotvec import *  # noqa: F401,F403
 from .spline import *  # noqa: F401,F403
 from .su2 import *  # noqa: F401,F403
 
-__all__ = [
-    *quaternion.__all__,
-    *matrix.__all__,
-    *rotvec.__all__,
-    *jacobians.__all__,
-    *euler.__all__,
-    *su2.__all__,
-    *rodrigues.__all__,
-    *interpolation.__all__,
-    *alignment.__all__,
-    *davenport.__all__,
-    *groups.__all__,
-    *rotation.__all__,
-    *spline.__all__,
-]
+# built with += so that type checkers read it (they do not read a list with * unpacking)
+__all__: list[str] = []
+__all__ += quaternion.__all__
+__all__ += matrix.__all__
+__all__ += rotvec.__all__
+__all__ += jacobians.__all__
+__all__ += euler.__all__
+__all__ += su2.__all__
+__all__ += rodrigues.__all__
+__all__ += interpolation.__all__
+__all__ += alignment.__all__
+__all__ += davenport.__all__
+__all__ += groups.__all__
+__all__ += rotation.__all__
+__all__ += spline.__all__
