@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import os
 import warnings
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 FRAMES = ("space", "body")
 
@@ -18,7 +20,8 @@ FRAMES = ("space", "body")
 REAL_KINDS = "biufO"
 
 
-def as_float_array(x, name, tail=None, finite=True):
+def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = None,
+                   finite: bool = True) -> NDArray[np.float64]:
     """Return ``x`` as a float64 array, checking its trailing shape.
 
     Parameters
@@ -56,14 +59,14 @@ def as_float_array(x, name, tail=None, finite=True):
     return a
 
 
-def check_frame(frame):
+def check_frame(frame: str) -> bool:
     """Return True for ``frame="body"``, False for ``"space"``; refuse anything else."""
     if frame not in FRAMES:
         raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
     return frame == "body"
 
 
-def check_tolerance(tol, name="tol"):
+def check_tolerance(tol: float, name: str = "tol") -> float:
     """``tol`` as a float in [0, 1) (a singularity threshold on a sine or a determinant), or ValueError."""
     t = float(tol)
     if not (0.0 <= t < 1.0):
@@ -71,14 +74,14 @@ def check_tolerance(tol, name="tol"):
     return t
 
 
-def warn_if_any(mask, category, message):
+def warn_if_any(mask: NDArray[np.bool_], category: type[Warning], message: str) -> None:
     """Issue ``category`` once, counting the samples, when any entry of ``mask`` (set to NaN by the caller) is set."""
     if mask.any():
         count = int(mask.sum())
         warnings.warn(f"{message} ({count} of {mask.size} samples; entries set to NaN)", category, stacklevel=3)
 
 
-def batch_shape(shape, name="shape"):
+def batch_shape(shape: Any, name: str = "shape") -> tuple[int, ...]:
     """Return ``shape`` (``None``, a non-negative int or a sequence of them) as a tuple.
 
     Floats such as ``2.5`` (or ``2.0``), strings and negative sizes raise
@@ -86,9 +89,10 @@ def batch_shape(shape, name="shape"):
     """
     if shape is None:
         return ()
-    items = (shape,) if np.ndim(shape) == 0 else shape
+    given = (shape,) if np.ndim(shape) == 0 else shape
+    items: tuple[Any, ...] | None
     try:
-        items = tuple(items)
+        items = tuple(given)
     except TypeError:
         items = None
     if items is None or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) for n in items):
@@ -98,7 +102,7 @@ def batch_shape(shape, name="shape"):
     return tuple(int(n) for n in items)
 
 
-def memory_budget():
+def memory_budget() -> int:
     """Bytes one result may take: half the machine's physical memory (16 GiB if it cannot be read)."""
     try:
         return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") // 2
@@ -106,7 +110,7 @@ def memory_budget():
         return 2**34
 
 
-def check_allocation(nbytes, what):
+def check_allocation(nbytes: float, what: str) -> None:
     """Refuse, before allocating, a result of ``nbytes`` bytes over :func:`memory_budget`.
 
     ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``.
@@ -117,7 +121,7 @@ def check_allocation(nbytes, what):
                          "(half of this machine's memory)")
 
 
-def _size(nbytes):
+def _size(nbytes: float) -> str:
     for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
         if nbytes >= size:
             return f"{nbytes / size:.3g} {unit}"

@@ -2,13 +2,22 @@
 
 from __future__ import annotations
 
+import json
+import os
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import _display
 from .._html import html_table, number
 from .._optional import require
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import xarray as xr
 
 __all__ = ["Trajectory"]
 
@@ -48,18 +57,19 @@ class Trajectory:
     1.5
     """
 
-    def __init__(self, t, q, omega, inertia, meta=None, **extra):
+    def __init__(self, t: ArrayLike, q: ArrayLike, omega: ArrayLike, inertia: ArrayLike,
+                 meta: dict[str, Any] | None = None, **extra: ArrayLike) -> None:
         self.t = as_float_array(t, "t")
         if self.t.ndim != 1:
             raise ValueError(f"t must be one-dimensional, got shape {self.t.shape}")
         self.q = as_float_array(q, "q", tail=(self.t.size, 4), finite=False)
         self.omega = as_float_array(omega, "omega", tail=(self.t.size, 3), finite=False)
-        inertia = as_float_array(inertia, "inertia")
-        if inertia.shape[-1:] == (3,) and (inertia.ndim == 1 or inertia.shape[-2:] != (3, 3)):
-            inertia = inertia[..., :, None] * np.eye(3)
-        if inertia.shape[-2:] != (3, 3):
-            raise ValueError(f"inertia must have shape (..., 3) or (..., 3, 3), got {inertia.shape}")
-        self.inertia = inertia
+        tensor = as_float_array(inertia, "inertia")
+        if tensor.shape[-1:] == (3,) and (tensor.ndim == 1 or tensor.shape[-2:] != (3, 3)):
+            tensor = tensor[..., :, None] * np.eye(3)
+        if tensor.shape[-2:] != (3, 3):
+            raise ValueError(f"inertia must have shape (..., 3) or (..., 3, 3), got {tensor.shape}")
+        self.inertia = tensor
         self.meta = dict(meta or {})
         for key, value in extra.items():
             if hasattr(type(self), key) or key in vars(self):
@@ -67,16 +77,16 @@ class Trajectory:
             setattr(self, key, np.asarray(value))
         self._extra = tuple(extra)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return self.t.size
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         batch = self.q.shape[:-2]
         b = f", batch={batch}" if batch else ""
         return f"Trajectory(n={self.t.size}, t=[{self.t[0]:g}, {self.t[-1]:g}]{b})"
 
-    def _repr_html_(self):
-        rows = [("samples", self.t.size), ("t", f"{self.t[0]:g} … {self.t[-1]:g} s")]
+    def _repr_html_(self) -> str:
+        rows: list[tuple[str, Any]] = [("samples", self.t.size), ("t", f"{self.t[0]:g} … {self.t[-1]:g} s")]
         if self.batch_shape:
             rows.append(("batch shape", self.batch_shape))
         else:
@@ -118,35 +128,35 @@ class Trajectory:
         return _display.player()(self, **options)
 
     @property
-    def batch_shape(self):
+    def batch_shape(self) -> tuple[int, ...]:
         """Leading batch shape (``()`` for a single body)."""
         return self.q.shape[:-2]
 
-    def _inertia_t(self):
+    def _inertia_t(self) -> NDArray[np.float64]:
         # inertia broadcast against the time axis: (..., 1, 3, 3)
         return self.inertia[..., None, :, :]
 
     @property
-    def angular_momentum_body(self):
+    def angular_momentum_body(self) -> NDArray[np.float64]:
         """J′ = I ω′ in body components (Theory §4.4)."""
         return np.einsum("...ij,...j->...i", self._inertia_t(), self.omega)
 
     @property
-    def energy(self):
+    def energy(self) -> NDArray[np.float64]:
         """Rotational kinetic energy T = ½ ω′·I ω′ (Theory §5.2)."""
         return 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
 
     @property
-    def omega_space(self):
+    def omega_space(self) -> NDArray[np.float64]:
         """ω = R ω′ in space components (Theory §3.1)."""
         return quat_apply(self.q, self.omega)
 
     @property
-    def angular_momentum_space(self):
+    def angular_momentum_space(self) -> NDArray[np.float64]:
         """J = R J′ in space components; constant for a free body (Theory §4.4)."""
         return quat_apply(self.q, self.angular_momentum_body)
 
-    def angular_momentum(self, frame="space"):
+    def angular_momentum(self, frame: str = "space") -> NDArray[np.float64]:
         """Angular momentum J (``frame="space"``) or J′ (``frame="body"``), kg m²/s.
 
         Examples
@@ -166,7 +176,7 @@ class Trajectory:
         """
         return self.angular_momentum_body if check_frame(frame) else self.angular_momentum_space
 
-    def euler(self, seq, degrees=False):
+    def euler(self, seq: str, degrees: bool = False) -> NDArray[np.float64]:
         """Euler angles of the attitude in any sequence, e.g. ``"ZXZ"`` (Theory §2.3).
 
         Examples
@@ -179,7 +189,7 @@ class Trajectory:
 
         return quat_to_euler(seq, self.q, degrees=degrees)
 
-    def drift(self):
+    def drift(self) -> dict[str, NDArray[np.float64]]:
         """Drift of the free-body first integrals over the trajectory (Theory §5.2).
 
         Returns
@@ -213,10 +223,10 @@ class Trajectory:
 
     # ------------------------------------------------------------------ export
 
-    def _batch_dims(self):
+    def _batch_dims(self) -> tuple[str, ...]:
         return tuple(f"batch_{k}" for k in range(len(self.batch_shape)))
 
-    def to_xarray(self):
+    def to_xarray(self) -> xr.Dataset:
         """An ``xarray.Dataset`` with dims ``(batch_k..., time, component)``.
 
         Variables ``q``, ``omega``, ``omega_space``, ``angular_momentum``
@@ -230,8 +240,6 @@ class Trajectory:
         >>> ds["omega"].dims
         ('time', 'axis')
         """
-        import json
-
         xr = require("xarray", extra="io", feature="Trajectory.to_xarray")
         b = self._batch_dims()
         data = {
@@ -253,7 +261,7 @@ class Trajectory:
                                         "axis_col": list(_VECTOR)}, attrs=attrs)
 
     @classmethod
-    def from_xarray(cls, ds):
+    def from_xarray(cls, ds: xr.Dataset) -> Trajectory:
         """Rebuild a trajectory from :meth:`to_xarray` output.
 
         Examples
@@ -268,14 +276,12 @@ class Trajectory:
         >>> back.energy.tolist()   # ½ I3 ω3² = ½ · 3 · 1
         [1.5, 1.5]
         """
-        import json
-
         extra_names = json.loads(ds.attrs.get("extra", "[]"))
         extra = {name: ds[name].values for name in extra_names}
         return cls(ds["time"].values, ds["q"].values, ds["omega"].values, ds["inertia"].values,
                    meta=json.loads(ds.attrs.get("meta", "{}")), **extra)
 
-    def to_pandas(self):
+    def to_pandas(self) -> pd.DataFrame:
         """A ``pandas.DataFrame`` indexed by time (and by body for a batch).
 
         Columns ``q0..q3``, ``omega_1..3`` (body), ``omega_space_x..z``,
@@ -317,7 +323,7 @@ class Trajectory:
             index = pd.Index(self.t, name="t")
         return pd.DataFrame(flat, index=index)
 
-    def save(self, path):
+    def save(self, path: str | os.PathLike[str]) -> None:
         """Write to NetCDF (``.nc``, via xarray's scipy engine) or CSV (``.csv``, one body).
 
         CSV keeps the inertia tensor and ``meta`` in a leading ``#`` comment
@@ -336,9 +342,6 @@ class Trajectory:
         >>> bool(np.array_equal(back.q, tr.q) and np.array_equal(back.inertia, tr.inertia)), back.meta
         (True, {'method': 'closed form'})
         """
-        import json
-        import os
-
         path = os.fspath(path)
         if path.endswith(".nc"):
             self.to_xarray().to_netcdf(path, engine="scipy")
@@ -354,7 +357,7 @@ class Trajectory:
             raise ValueError(f"path must end in .nc or .csv, got {path!r}")
 
     @classmethod
-    def load(cls, path):
+    def load(cls, path: str | os.PathLike[str]) -> Trajectory:
         """Read a file written by :meth:`save` (format from the extension).
 
         Examples
@@ -372,9 +375,6 @@ class Trajectory:
         >>> back.batch_shape, back.energy.tolist()   # ½ I3 ω3²
         ((2,), [[1.5, 1.5], [6.0, 6.0]])
         """
-        import json
-        import os
-
         path = os.fspath(path)
         if path.endswith(".nc"):
             xr = require("xarray", extra="io", feature="Trajectory.load")
