@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
 from .._validation import as_float_array
@@ -14,7 +18,7 @@ from .tensors import as_symmetric_tensor, check_moments, principal_axes
 __all__ = ["RigidBody"]
 
 
-def _read_only(a):
+def _read_only(a: ArrayLike) -> NDArray[np.float64]:
     a = np.array(a, dtype=np.float64)
     a.setflags(write=False)
     return a
@@ -71,7 +75,7 @@ class RigidBody:
 
     __slots__ = ("_inertia", "_mass", "_moments", "_axes")
 
-    def __init__(self, inertia, mass=1.0):
+    def __init__(self, inertia: ArrayLike, mass: float = 1.0) -> None:
         if not np.isscalar(mass) and np.ndim(mass) != 0:
             raise ValueError(f"mass must be a scalar, got shape {np.shape(mass)}")
         m = float(as_float_array(mass, "mass"))
@@ -94,27 +98,27 @@ class RigidBody:
         self._axes = _read_only(axes)
 
     @property
-    def inertia(self):
+    def inertia(self) -> NDArray[np.float64]:
         """(3, 3) inertia tensor in body axes, kg m² (read-only)."""
         return self._inertia
 
     @property
-    def mass(self):
+    def mass(self) -> float:
         """Mass, kg."""
         return self._mass
 
     @property
-    def principal_moments(self):
+    def principal_moments(self) -> NDArray[np.float64]:
         """(3,) principal moments in ascending order, kg m²."""
         return self._moments
 
     @property
-    def principal_axes(self):
+    def principal_axes(self) -> NDArray[np.float64]:
         """(3, 3) proper rotation whose columns are the principal axes in body components."""
         return self._axes
 
     @property
-    def mass_properties(self):
+    def mass_properties(self) -> MassProperties:
         """The body's :class:`~kreisel.inertia.MassProperties`: centre of mass at the body origin.
 
         Examples
@@ -127,12 +131,12 @@ class RigidBody:
         return MassProperties(self._mass, np.zeros(3), self._inertia)
 
     @property
-    def is_principal(self):
+    def is_principal(self) -> bool:
         """Whether the body axes are principal axes (tensor exactly diagonal)."""
         return bool(np.count_nonzero(self._inertia - np.diag(np.diagonal(self._inertia))) == 0)
 
     @classmethod
-    def from_properties(cls, properties):
+    def from_properties(cls, properties: MassProperties) -> RigidBody:
         """Rigid body of a :class:`MassProperties`: body origin at its centre of mass, same axes.
 
         Examples
@@ -152,7 +156,7 @@ class RigidBody:
         return cls(properties.inertia, properties.mass)
 
     @classmethod
-    def from_mesh(cls, vertices, faces, density=1.0):
+    def from_mesh(cls, vertices: ArrayLike, faces: ArrayLike, density: float = 1.0) -> RigidBody:
         """Rigid body of a homogeneous closed triangle mesh (:func:`kreisel.inertia.from_mesh`).
 
         The body origin is the mesh's centre of mass, the body axes are the
@@ -169,7 +173,7 @@ class RigidBody:
         return cls.from_properties(from_mesh(vertices, faces, density))
 
     @classmethod
-    def from_parts(cls, parts):
+    def from_parts(cls, parts: Iterable[Any]) -> RigidBody:
         """Rigid body assembled from parts at poses (:func:`kreisel.inertia.combine`).
 
         The body origin is the composite centre of mass, the body axes those
@@ -186,7 +190,7 @@ class RigidBody:
         return cls.from_properties(combine(parts))
 
     @classmethod
-    def from_points(cls, masses, positions):
+    def from_points(cls, masses: ArrayLike, positions: ArrayLike) -> RigidBody:
         """Rigid body of point masses, body origin at their centre of mass (:func:`kreisel.inertia.from_points`).
 
         Examples
@@ -202,7 +206,7 @@ class RigidBody:
         return cls.from_properties(from_points(masses, positions))
 
     @classmethod
-    def box(cls, mass, size):
+    def box(cls, mass: float, size: ArrayLike) -> RigidBody:
         """Rigid body of a homogeneous box: :func:`kreisel.inertia.box` (same arguments and axes).
 
         Examples
@@ -220,7 +224,7 @@ class RigidBody:
         return cls(solids.box(mass, size), mass)
 
     @classmethod
-    def solid_sphere(cls, mass, radius):
+    def solid_sphere(cls, mass: float, radius: float) -> RigidBody:
         """Rigid body of a homogeneous solid sphere: :func:`kreisel.inertia.solid_sphere` (same arguments and axes).
 
         Examples
@@ -238,7 +242,7 @@ class RigidBody:
         return cls(solids.solid_sphere(mass, radius), mass)
 
     @classmethod
-    def hollow_sphere(cls, mass, radius, inner_radius=None):
+    def hollow_sphere(cls, mass: float, radius: float, inner_radius: float | None = None) -> RigidBody:
         """Rigid body of a homogeneous hollow sphere: :func:`kreisel.inertia.hollow_sphere` (same arguments and axes).
 
         Examples
@@ -256,7 +260,7 @@ class RigidBody:
         return cls(solids.hollow_sphere(mass, radius, inner_radius=inner_radius), mass)
 
     @classmethod
-    def solid_cylinder(cls, mass, radius, height):
+    def solid_cylinder(cls, mass: float, radius: float, height: float) -> RigidBody:
         """Rigid body of a homogeneous solid cylinder: :func:`kreisel.inertia.solid_cylinder` (same arguments and axes).
 
         Examples
@@ -274,7 +278,8 @@ class RigidBody:
         return cls(solids.solid_cylinder(mass, radius, height), mass)
 
     @classmethod
-    def hollow_cylinder(cls, mass, radius, height, inner_radius=None):
+    def hollow_cylinder(cls, mass: float, radius: float, height: float,
+                        inner_radius: float | None = None) -> RigidBody:
         """Rigid body of a homogeneous hollow cylinder: :func:`kreisel.inertia.hollow_cylinder` (same arguments and axes).
 
         Examples
@@ -292,7 +297,7 @@ class RigidBody:
         return cls(solids.hollow_cylinder(mass, radius, height, inner_radius=inner_radius), mass)
 
     @classmethod
-    def solid_cone(cls, mass, radius, height, about='center_of_mass'):
+    def solid_cone(cls, mass: float, radius: float, height: float, about: str = 'center_of_mass') -> RigidBody:
         """Rigid body of a homogeneous solid cone: :func:`kreisel.inertia.solid_cone` (same arguments and axes).
 
         Examples
@@ -310,7 +315,7 @@ class RigidBody:
         return cls(solids.solid_cone(mass, radius, height, about=about), mass)
 
     @classmethod
-    def solid_ellipsoid(cls, mass, semi_axes):
+    def solid_ellipsoid(cls, mass: float, semi_axes: ArrayLike) -> RigidBody:
         """Rigid body of a homogeneous solid ellipsoid: :func:`kreisel.inertia.solid_ellipsoid` (same arguments and axes).
 
         Examples
@@ -328,7 +333,7 @@ class RigidBody:
         return cls(solids.solid_ellipsoid(mass, semi_axes), mass)
 
     @classmethod
-    def thin_disk(cls, mass, radius):
+    def thin_disk(cls, mass: float, radius: float) -> RigidBody:
         """Rigid body of a homogeneous thin disk: :func:`kreisel.inertia.thin_disk` (same arguments and axes).
 
         Examples
@@ -346,7 +351,7 @@ class RigidBody:
         return cls(solids.thin_disk(mass, radius), mass)
 
     @classmethod
-    def thin_ring(cls, mass, radius):
+    def thin_ring(cls, mass: float, radius: float) -> RigidBody:
         """Rigid body of a homogeneous thin ring: :func:`kreisel.inertia.thin_ring` (same arguments and axes).
 
         Examples
@@ -364,7 +369,7 @@ class RigidBody:
         return cls(solids.thin_ring(mass, radius), mass)
 
     @classmethod
-    def torus(cls, mass, major_radius, minor_radius):
+    def torus(cls, mass: float, major_radius: float, minor_radius: float) -> RigidBody:
         """Rigid body of a homogeneous torus: :func:`kreisel.inertia.torus` (same arguments and axes).
 
         Examples
@@ -381,14 +386,14 @@ class RigidBody:
         """
         return cls(solids.torus(mass, major_radius, minor_radius), mass)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         if self.is_principal:
             body = np.array2string(np.diagonal(self._inertia), separator=", ")
         else:
             body = np.array2string(self._inertia, separator=", ").replace("\n", "")
         return f"RigidBody({body}, mass={self._mass!r})"
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         rows = [("mass", number(self._mass) + " kg"),
                 ("principal moments", number(self.principal_moments) + " kg m²")]
         if not self.is_principal:

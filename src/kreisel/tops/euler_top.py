@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
 from .._validation import as_float_array
@@ -43,7 +45,7 @@ class Regime(enum.IntEnum):
     SEPARATRIX = _free_top.SEPARATRIX
 
     @property
-    def label(self):
+    def label(self) -> str:
         """``"steady"``, ``"symmetric"``, ``"about_largest_axis"``, ``"about_smallest_axis"``, ``"separatrix"``.
 
         Examples
@@ -53,7 +55,7 @@ class Regime(enum.IntEnum):
         """
         return self.name.lower()
 
-    def __str__(self):
+    def __str__(self) -> str:
         return self.label
 
 
@@ -92,18 +94,19 @@ class SolutionAccuracy:
     attitude_error: float
 
 
-def _check_moments(values, names):
+def _check_moments(values: tuple[ArrayLike, ...], names: tuple[str, ...]) -> NDArray[np.float64]:
     """Positive finite scalar moments of inertia, as a float array."""
     moments = []
-    for value, name in zip(values, names):
-        value = as_float_array(value, name)
+    for given, name in zip(values, names):
+        value = as_float_array(given, name)
         if value.ndim != 0 or not value > 0.0:
             raise ValueError(f"{name} must be a positive scalar moment of inertia, got {value!r}")
         moments.append(float(value))
     return np.array(moments)
 
 
-def _zxz_quat_from_half_angles(cos_half_theta, sin_half_theta, half_sum, half_difference):
+def _zxz_quat_from_half_angles(cos_half_theta: NDArray[np.float64], sin_half_theta: NDArray[np.float64], half_sum: NDArray[np.float64],
+                               half_difference: NDArray[np.float64]) -> NDArray[np.float64]:
     """Quaternion of Rz(φ) Rx(θ) Rz(ψ) from cos, sin of θ/2 and (φ ± ψ)/2.
 
     Taking the half-angles directly lets θ come from atan2 of the angular
@@ -193,15 +196,15 @@ class EulerTop:
     'about_largest_axis'
     """
 
-    def __init__(self, I1, I2, I3, allow_unphysical=False):
+    def __init__(self, I1: float, I2: float, I3: float, allow_unphysical: bool = False) -> None:
         moments = _check_moments((I1, I2, I3), ("I1", "I2", "I3"))
         self.moments = check_principal_moments(moments, "EulerTop moments", allow_unphysical=allow_unphysical)
         self.allow_unphysical = bool(allow_unphysical)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "EulerTop({:g}, {:g}, {:g})".format(*self.moments)
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         axis = "xyz"[int(np.argsort(self.moments, kind="stable")[1])]
         rows = [("moments I1, I2, I3", number(self.moments) + " kg m²")]
         if len(set(self.moments.tolist())) == 3:
@@ -211,7 +214,7 @@ class EulerTop:
         return html_table("EulerTop (free rigid body)", rows, note="exact solution; quaternions scalar-first, R maps body to space")
 
     # ---- first integrals -------------------------------------------------------------
-    def energy(self, omega):
+    def energy(self, omega: ArrayLike) -> NDArray[np.float64]:
         """Kinetic energy T = ½ Σ I_i ω_i² for body ω (Theory §5.2), broadcast over ``omega``.
 
         Examples
@@ -231,7 +234,7 @@ class EulerTop:
         omega = as_float_array(omega, "omega", tail=(3,))
         return 0.5 * np.sum(self.moments * omega**2, axis=-1)
 
-    def angular_momentum(self, omega):
+    def angular_momentum(self, omega: ArrayLike) -> NDArray[np.float64]:
         """|J| = √(Σ I_i² ω_i²) for body ω (Theory §5.2).
 
         Examples
@@ -253,7 +256,7 @@ class EulerTop:
         return np.sqrt(np.sum((self.moments * omega) ** 2, axis=-1))
 
     # ---- classification -------------------------------------------------------------
-    def _info(self, omega0):
+    def _info(self, omega0: ArrayLike) -> dict[str, Any]:
         """:data:`_free_top.INFO_FIELDS` of one initial state, as a dict."""
         omega0 = as_float_array(omega0, "omega0", tail=(3,))
         if omega0.ndim != 1:
@@ -264,7 +267,7 @@ class EulerTop:
         values["regime"] = Regime(int(values["regime"]))
         return values
 
-    def regime(self, omega0):
+    def regime(self, omega0: ArrayLike) -> str:
         """Kind of motion started by body ω0.
 
         Returns one of ``"steady"`` (rest, rotation about a principal axis, or
@@ -284,7 +287,7 @@ class EulerTop:
         """
         return self._info(omega0)["regime"].label
 
-    def omega_period(self, omega0):
+    def omega_period(self, omega0: ArrayLike) -> float:
         """Period of ω(t) in the body, seconds: 4K(m)/λ (asymmetric), 2π/|Ω| (symmetric).
 
         Infinite for steady rotation and on the separatrix.
@@ -300,7 +303,7 @@ class EulerTop:
             return float("inf")
         return info["period"]
 
-    def dzhanibekov_flip_time(self, omega0):
+    def dzhanibekov_flip_time(self, omega0: ArrayLike) -> float:
         """Time between two successive flips of a body spun near its middle axis, seconds.
 
         Half the period of ω: the middle-axis component ω_mid ∝ sn(λt + u0)
@@ -321,7 +324,7 @@ class EulerTop:
             return float("inf")
         return 2.0 * info["quarter_period"] / info["rate"]
 
-    def separatrix_distance(self, omega0):
+    def separatrix_distance(self, omega0: ArrayLike) -> float:
         """(J² − 2T I_mid)/(2T I_mid) of body ω0, without cancellation (Theory §5.3).
 
         Positive about the largest axis, negative about the smallest, zero on
@@ -338,7 +341,7 @@ class EulerTop:
             return float("nan")
         return info["separatrix_distance"]
 
-    def accuracy(self, omega0, duration=20.0):
+    def accuracy(self, omega0: ArrayLike, duration: float = 20.0) -> SolutionAccuracy:
         """Distance from the separatrix and the error bound of :meth:`solve` over |t| <= ``duration``.
 
         The solution evaluates ω and the attitude from the elliptic phase
@@ -394,7 +397,7 @@ class EulerTop:
         )
 
     # ---- stability (tennis-racket theorem) ------------------------------------------
-    def steady_rotations(self, spin=1.0):
+    def steady_rotations(self, spin: float = 1.0) -> tuple[SteadyRotation, ...]:
         """Stability of steady rotation at rate ``spin`` about each principal axis (Theory §5.4).
 
         The linearised Euler equations about ω = Ω e_k give
@@ -435,7 +438,7 @@ class EulerTop:
         return tuple(result)
 
     # ---- exact solution ------------------------------------------------------------
-    def omega(self, t, omega0):
+    def omega(self, t: ArrayLike, omega0: ArrayLike) -> NDArray[np.float64]:
         """Body angular velocity ω′(t) alone, without the attitude (Theory §5.3).
 
         The same exact ω as :meth:`solve` returns, for a fraction of its cost:
@@ -472,7 +475,7 @@ class EulerTop:
         _free_top.body_omega(self.moments, np.ascontiguousarray(omega0), np.ascontiguousarray(t), out)
         return out
 
-    def solve(self, t, omega0, q0=None):
+    def solve(self, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None) -> Trajectory:
         """Exact motion of the free top at times ``t`` (no time stepping).
 
         Body ω(t) by Jacobi elliptic functions (both regimes, the separatrix,
@@ -514,7 +517,8 @@ class EulerTop:
         return _solve(self.moments, t, omega0, q0, meta_body="EulerTop")
 
 
-def _check_inputs(t, omega0, q0):
+def _check_inputs(t: ArrayLike, omega0: ArrayLike,
+                  q0: ArrayLike | None) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     t = as_float_array(t, "t")
     if t.ndim != 1:
         raise ValueError(f"t must be one-dimensional, got shape {t.shape}")
@@ -528,7 +532,7 @@ def _check_inputs(t, omega0, q0):
     return t, omega0, q0 / norms[..., None]
 
 
-def _solve(moments, t, omega0, q0, meta_body):
+def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, meta_body: str) -> Trajectory:
     """Broadcast (bodies, ω0, q0), run the compiled samples, wrap a Trajectory."""
     t, omega0, q0 = _check_inputs(t, omega0, q0)
     batch = np.broadcast_shapes(moments.shape[:-1], omega0.shape[:-1], q0.shape[:-1])
@@ -544,7 +548,7 @@ def _solve(moments, t, omega0, q0, meta_body):
     info = np.empty((count, len(_free_top.INFO_FIELDS)))
     _free_top.setup_info(flat[0], flat[1], info)
     labels = [Regime(int(code)).label for code in info[:, 0]]
-    meta = {"method": "exact", "body": meta_body}
+    meta: dict[str, Any] = {"method": "exact", "body": meta_body}
     if moments.ndim == 1:
         meta["moments"] = tuple(moments.tolist())
     meta["regime"] = labels[0] if batch == () else np.array(labels, dtype=object).reshape(batch).tolist()
@@ -552,7 +556,8 @@ def _solve(moments, t, omega0, q0, meta_body):
                       np.broadcast_to(moments, batch + (3,)) if moments.ndim > 1 else moments, meta=meta)
 
 
-def solve_free_batch(bodies, t, omega0, q0=None, allow_unphysical=False):
+def solve_free_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
+                     allow_unphysical: bool = False) -> Trajectory:
     """Exact free motion of many bodies at once: one compiled, parallel call (batch axes first).
 
     The exact counterpart of :func:`kreisel.simulate_batch` for torque-free
