@@ -54,8 +54,11 @@ import operator
 import signal
 import threading
 import time
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
 from .._validation import as_float_array, check_allocation
@@ -66,6 +69,15 @@ from . import _model_tables
 from . import forces as _forces
 from . import torques as _torques
 from .trajectory import Trajectory
+
+if TYPE_CHECKING:
+    from ..inertia.body import RigidBody
+
+_Array = NDArray[np.float64]
+#: What ``torque`` may be: a built-in model, a callable torque(t, q, omega_body), or None
+_TorqueArg = _torques.TorqueModel | Callable[..., ArrayLike] | None
+#: What ``force`` may be: a built-in model, a callable force(t, q, omega_body, position, velocity), or None
+_ForceArg = _forces.ForceModel | Callable[..., ArrayLike] | None
 
 __all__ = ["simulate", "simulate_batch", "simulate_6dof", "METHODS", "MAX_STEPS"]
 
@@ -103,7 +115,7 @@ _STATUS = {
 # ---------------------------------------------------------------------------- input checks
 
 
-def check_principal_moments(moments, name="body", allow_unphysical=False):
+def check_principal_moments(moments: ArrayLike, name: str = "body", allow_unphysical: bool = False) -> _Array:
     """Validate principal moments ``(..., 3)``: positive, finite, triangle inequalities.
 
     ``allow_unphysical=True`` skips the triangle inequalities (only I_i > 0 is
@@ -124,7 +136,8 @@ def check_principal_moments(moments, name="body", allow_unphysical=False):
     return m
 
 
-def resolve_body(body, allow_unphysical=False):
+def resolve_body(body: RigidBody | ArrayLike,
+                 allow_unphysical: bool = False) -> tuple[_Array, _Array, _Array | None, float]:
     """Return (tensor (3, 3), principal moments (3,), axes or None, mass) for one body.
 
     ``axes`` has the principal axes as columns in body coordinates; it is None
@@ -150,7 +163,7 @@ def resolve_body(body, allow_unphysical=False):
     return a, check_principal_moments(moments, allow_unphysical=allow_unphysical), axes, mass
 
 
-def _check_times(t):
+def _check_times(t: ArrayLike) -> _Array:
     t = as_float_array(t, "t")
     if t.ndim != 1 or t.size < 1:
         raise ValueError(f"t must be a one-dimensional array of sample times, got shape {t.shape}")
@@ -159,7 +172,7 @@ def _check_times(t):
     return t
 
 
-def _check_method(method, dt, t):
+def _check_method(method: str | None, dt: float | None, t: _Array) -> tuple[str, float]:
     if method is None:
         method = "dop853"
     if not isinstance(method, str):
@@ -178,7 +191,7 @@ def _check_method(method, dt, t):
     return method, dt
 
 
-def _check_omega_range(w, moments):
+def _check_omega_range(w: _Array, moments: _Array) -> None:
     """Refuse ω0 for which Euler's equations overflow: they multiply two components, scaled by I_max/I_min."""
     size = np.abs(w).max(axis=-1) if w.size else np.zeros(0)
     spread = moments.max(axis=-1) / moments.min(axis=-1)
@@ -190,7 +203,7 @@ def _check_omega_range(w, moments):
                          "double precision above about 1e150 rad/s")
 
 
-def _initial_quaternion(q0, batch_shape=()):
+def _initial_quaternion(q0: ArrayLike | None, batch_shape: tuple[int, ...] = ()) -> _Array:
     if q0 is None:
         q = np.zeros(batch_shape + (4,))
         q[..., 0] = 1.0
@@ -199,7 +212,7 @@ def _initial_quaternion(q0, batch_shape=()):
     return np.broadcast_to(q, batch_shape + (4,)).copy() if batch_shape else q
 
 
-def _torque_rows(torque, axes, t0, q0_body, omega0_body):
+def _torque_rows(torque: _TorqueArg, axes: _Array | None, t0: float, q0_body: _Array, omega0_body: _Array) -> _Array | None:
     """Model table in the integration frame; a callable is registered (release the table after use)."""
     if torque is None:
         return None
@@ -215,18 +228,18 @@ def _torque_rows(torque, axes, t0, q0_body, omega0_body):
     else:
         q_axes = matrix_to_quat(axes)
 
-        def fn(t, q, w):  # principal-frame state -> user's body frame and back
+        def fn(t: float, q: _Array, w: _Array) -> _Array:  # principal-frame state -> user's body frame and back
             return axes.T @ checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w)
 
     return _model_tables.register_callback(fn)
 
 
-def _table(rows):
+def _table(rows: _Array) -> _Array | None:
     """A model table for the kernels; None when empty (the kernels then skip the evaluation)."""
     return np.ascontiguousarray(rows) if rows.shape[0] else None
 
 
-def _checked_callable(fn, name):
+def _checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., _Array]:
     """``fn`` with its output checked at every call: a real, finite array of shape (3,).
 
     The compiled loop reads exactly three numbers from what a callable returns,
@@ -234,7 +247,7 @@ def _checked_callable(fn, name):
     once (instead of the step size collapsing towards it).
     """
 
-    def call(t, *state):
+    def call(t: float, *state: _Array) -> _Array:
         value = fn(t, *state)
         out = np.asarray(value)
         if out.dtype.kind not in "biuf":
@@ -250,7 +263,9 @@ def _checked_callable(fn, name):
     return call
 
 
-def _run(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress=None):
+def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None, frows: _Array | None,
+         rtol: float, atol: _Array, max_steps: int,
+         progress: Callable[[float], object] | None = None) -> tuple[_Array, NDArray[np.int64]]:
     """Integrate bodies ``y0 (count, ny)`` in compiled chunks of ~:data:`_CHUNK_SECONDS`; returns ``(out, status)``.
 
     Between chunks Python runs: a pending Ctrl-C raises ``KeyboardInterrupt``
@@ -263,7 +278,7 @@ def _run(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, pro
 
 
 @contextlib.contextmanager
-def _interrupts_between_chunks():
+def _interrupts_between_chunks() -> Iterator[list[int]]:
     """Hold back Ctrl-C during a compiled chunk; yields a list that records it (raise it between chunks).
 
     A ``KeyboardInterrupt`` raised while a torque callable runs inside the
@@ -271,7 +286,7 @@ def _interrupts_between_chunks():
     ``SystemError``; deferring it by at most one chunk keeps it clean. Only
     the main thread can install handlers; elsewhere nothing changes.
     """
-    seen = []
+    seen: list[int] = []
     if threading.current_thread() is not threading.main_thread() or \
             signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
         yield seen
@@ -283,7 +298,9 @@ def _interrupts_between_chunks():
         signal.signal(signal.SIGINT, previous)
 
 
-def _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress, interrupted):
+def _run_chunks(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
+                frows: _Array | None, rtol: float, atol: _Array, max_steps: int, progress: Callable[[float], object] | None,
+                interrupted: list[int]) -> tuple[_Array, NDArray[np.int64]]:
     count, ny = y0.shape
     out = np.empty((count, t.size, ny))
     state = np.stack([_integrators.new_state(code, y) for y in y0])
@@ -317,7 +334,7 @@ def _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_ste
         budget = int(min(8 * budget, max(1.0, budget * _CHUNK_SECONDS / max(elapsed, 1e-9))))
 
 
-def _check_workload(method, t, dt, count, ny, max_steps):
+def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_steps: int | None) -> int:
     """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget."""
     if max_steps is None:
         max_steps = MAX_STEPS
@@ -344,7 +361,7 @@ def _check_workload(method, t, dt, count, ny, max_steps):
     return max_steps
 
 
-def _duration(seconds):
+def _duration(seconds: float) -> str:
     """A rough duration in the largest fitting unit, for messages."""
     for unit, size in (("years", 3.15e7), ("days", 86400.0), ("hours", 3600.0), ("minutes", 60.0)):
         if seconds >= size:
@@ -352,7 +369,7 @@ def _duration(seconds):
     return f"{seconds:.3g} s"
 
 
-def _raise_status(status):
+def _raise_status(status: ArrayLike) -> None:
     status = np.asarray(status)
     if np.any(status != 0):
         code = int(status[status != 0].flat[0])
@@ -360,7 +377,7 @@ def _raise_status(status):
         raise RuntimeError(f"integration failed{where}: {_STATUS[code]}")
 
 
-def _atol(atol, omega_scale, ny, rtol):
+def _atol(atol: float | None, omega_scale: _Array, ny: int, rtol: float) -> _Array:
     """Absolute tolerance per component: scaled by |ω0| so rtol is meaningful in any units."""
     if atol is not None:
         a = float(atol)
@@ -376,7 +393,7 @@ def _atol(atol, omega_scale, ny, rtol):
     return out
 
 
-def _check_rtol(rtol):
+def _check_rtol(rtol: float) -> float:
     rtol = float(rtol)
     if not (math.isfinite(rtol) and 1e-15 <= rtol < 1.0):
         raise ValueError(f"rtol must be in [1e-15, 1), got {rtol}")
@@ -386,7 +403,9 @@ def _check_rtol(rtol):
 # ---------------------------------------------------------------------------- drivers
 
 
-def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress):
+def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, mass: float, rows: _Array | None,
+               frows: _Array | None, rtol: float, atol: _Array, max_steps: int,
+               progress: Callable[[float], object] | None) -> _Array:
     # a fresh writable C array: numba compiles one specialisation per array layout
     moments = np.array(moments, dtype=np.float64, order="C")
     if method == "scipy":
@@ -397,12 +416,13 @@ def _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_st
     return out[0]
 
 
-def _scipy(t, y0, moments, mass, rows, frows, rtol, atol):
+def _scipy(t: _Array, y0: _Array, moments: _Array, mass: float, rows: _Array | None, frows: _Array | None, rtol: float,
+           atol: _Array) -> _Array:
     from scipy.integrate import solve_ivp
 
     scratch = np.empty(13)
 
-    def fun(tt, y):
+    def fun(tt: float, y: _Array) -> _Array:
         dy = np.empty_like(y)
         _integrators.rhs(tt, y, y.size, moments, mass, rows, frows, dy, 0, scratch)
         return dy
@@ -415,18 +435,21 @@ def _scipy(t, y0, moments, mass, rows, frows, rtol, atol):
     return sol.y.T.copy()
 
 
-def _to_body_frame(omega, q, axes):
+def _to_body_frame(omega: _Array, q: _Array, axes: _Array | None) -> tuple[_Array, _Array]:
     if axes is None:
         return omega, q
     return omega @ axes.T, quat_multiply(q, quat_conjugate(matrix_to_quat(axes)))
 
 
-def _normalized(q):
+def _normalized(q: _Array) -> _Array:
     return q / np.linalg.norm(q, axis=-1, keepdims=True)
 
 
-def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, max_steps, progress,
-            translation=None, force=None):
+def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, torque: _TorqueArg,
+            method: str | None, dt: float | None, rtol: float, atol: float | None, allow_unphysical: bool,
+            max_steps: int | None, progress: Callable[[float], object] | None,
+            translation: tuple[_Array, _Array] | None = None,
+            force: _ForceArg = None) -> tuple[_Array, float, _Array, _Array, _Array, _Array, dict[str, Any]]:
     """Shared validation and integration of :func:`simulate` and :func:`simulate_6dof`."""
     tensor, moments, axes, mass = resolve_body(body, allow_unphysical)
     t = _check_times(t)
@@ -464,8 +487,10 @@ def _single(body, t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysica
     return tensor, mass, t, omega, q, y, meta
 
 
-def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
-             allow_unphysical=False, max_steps=None, progress=None):
+def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
+             torque: _TorqueArg = None, method: str | None = None, dt: float | None = None, rtol: float = DEFAULT_RTOL,
+             atol: float | None = None, allow_unphysical: bool = False, max_steps: int | None = None,
+             progress: Callable[[float], object] | None = None) -> Trajectory:
     """Integrate Euler's dynamic equations with quaternion attitude (Theory §4.4–5).
 
     Parameters
@@ -542,7 +567,8 @@ def simulate(body, t, omega0, q0=None, torque=None, method=None, dt=None, rtol=D
     return Trajectory(t, q, omega, tensor, meta=meta)
 
 
-def _force_rows(force, axes, t0, q_body, w_body, translation):
+def _force_rows(force: _ForceArg, axes: _Array | None, t0: float, q_body: _Array, w_body: _Array,
+                translation: tuple[_Array, _Array] | None) -> _Array | None:
     if translation is None or force is None:
         return None
     if isinstance(force, _forces.ForceModel):
@@ -558,15 +584,17 @@ def _force_rows(force, axes, t0, q_body, w_body, translation):
     else:
         q_axes = matrix_to_quat(axes)
 
-        def fn(t, q, w, r, v):
+        def fn(t: float, q: _Array, w: _Array, r: _Array, v: _Array) -> _Array:
             return checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
 
     return _model_tables.register_callback(fn, translation=True)
 
 
-def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0=(0.0, 0.0, 0.0),
-                  force=None, torque=None, method=None, dt=None, rtol=DEFAULT_RTOL, atol=None,
-                  allow_unphysical=False, max_steps=None, progress=None):
+def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
+                  position0: ArrayLike = (0.0, 0.0, 0.0), velocity0: ArrayLike = (0.0, 0.0, 0.0),
+                  force: _ForceArg = None, torque: _TorqueArg = None, method: str | None = None, dt: float | None = None,
+                  rtol: float = DEFAULT_RTOL, atol: float | None = None, allow_unphysical: bool = False,
+                  max_steps: int | None = None, progress: Callable[[float], object] | None = None) -> Trajectory:
     """A free rigid body in six degrees of freedom: centre of mass and attitude (Theory §4.4, §4.7).
 
     The centre of mass obeys m r̈ = F (space frame, Theory §4.7 with r_C the
@@ -614,8 +642,11 @@ def simulate_6dof(body, t, omega0, q0=None, position0=(0.0, 0.0, 0.0), velocity0
     return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10].copy(), velocity=y[:, 10:13].copy())
 
 
-def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None, reduce=None,
-                   rtol=DEFAULT_RTOL, atol=None, chunk_size=None, allow_unphysical=False, max_steps=None):
+def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
+                   torque: _TorqueArg = None, method: str | None = None, dt: float | None = None,
+                   reduce: Callable[[Trajectory], ArrayLike] | None = None, rtol: float = DEFAULT_RTOL,
+                   atol: float | None = None, chunk_size: int | None = None, allow_unphysical: bool = False,
+                   max_steps: int | None = None) -> Trajectory | NDArray[Any]:
     """Many rigid bodies in one compiled, parallel call (numba ``prange``).
 
     Parameters
@@ -697,7 +728,7 @@ def simulate_batch(bodies, t, omega0, q0=None, torque=None, method=None, dt=None
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
 
-    def integrate(lo, hi):
+    def integrate(lo: int, hi: int) -> _Array:
         out, status = _run(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
                            max_steps)
         _raise_status(status)
