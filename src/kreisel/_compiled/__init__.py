@@ -66,6 +66,8 @@ from __future__ import annotations
 import hashlib
 import os
 import pathlib
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import numba
 from numba import njit
@@ -101,15 +103,18 @@ def _use_checkout_cache():
 # before any kernel is decorated: numba picks a function's cache directory then
 _use_checkout_cache()
 
+# to type checkers a flavour returns the function it compiles (numba has no annotations for njit)
+_Function = TypeVar("_Function", bound=Callable[..., Any])
+
 #: Cached, GIL-free scalar or array kernel: the default flavour.
-cached = njit(cache=True, nogil=True)
+cached: Callable[[_Function], _Function] = njit(cache=True, nogil=True)
 #: As :data:`cached`, inlined into its callers at the numba IR level (small
 #: models called in the innermost loop of an integrator).
-inlined = njit(cache=True, nogil=True, inline="always")
+inlined: Callable[[_Function], _Function] = njit(cache=True, nogil=True, inline="always")
 #: Routines compiled anew for each argument type (a compiled function, a tuple
 #: of any length): never cached on their own, always inlined into a cached caller.
-generic = njit(nogil=True, inline="always")
+generic: Callable[[_Function], _Function] = njit(nogil=True, inline="always")
 #: Cached multi-core loop (``prange``) over flattened batches.
-parallel = njit(parallel=True, cache=True)
+parallel: Callable[[_Function], _Function] = njit(parallel=True, cache=True)
 
 __all__ = ["cached", "checkout_cache_root", "generic", "inlined", "parallel", "source_state"]

@@ -16,8 +16,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached as _jit
 from .._html import html_table, number
@@ -109,7 +111,8 @@ class FastTop:
     exact_precession_rate: float
 
 
-def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTRON_MASS):
+def larmor_precession_rate(magnetic_field: ArrayLike, charge: ArrayLike = ELEMENTARY_CHARGE,
+                           mass: ArrayLike = ELECTRON_MASS) -> NDArray[np.float64]:
     """Larmor precession rate eB/(2m) of an orbiting charge (Theory §6.8), rad/s.
 
     The magnetic energy V = −μ·B = μB cos θ has the form of the top's mgl cos θ,
@@ -131,29 +134,32 @@ def larmor_precession_rate(magnetic_field, charge=ELEMENTARY_CHARGE, mass=ELECTR
 
 # ---- double-double arithmetic for the constants of a state next to the separatrix
 # (pairs (hi, lo) with |lo| <= ulp(hi)/2; about 2^-104 relative)
+_DD = tuple[float, float]
 
 
-def _two_sum(a, b):
+
+
+def _two_sum(a: float, b: float) -> _DD:
     s = a + b
     bb = s - a
     return s, (a - (s - bb)) + (b - bb)
 
 
-def _dd_add(x, y):
+def _dd_add(x: _DD, y: _DD) -> _DD:
     s, e = _two_sum(x[0], y[0])
     e += x[1] + y[1]
     hi = s + e
     return hi, e - (hi - s)
 
 
-def _dd_mul(x, y):
+def _dd_mul(x: _DD, y: _DD) -> _DD:
     p, e = _two_product(x[0], y[0])
     e += x[0] * y[1] + x[1] * y[0]
     hi = p + e
     return hi, e - (hi - p)
 
 
-def _dd_div(x, d):
+def _dd_div(x: _DD, d: float) -> _DD:
     """x / d for a double d."""
     q = x[0] / d
     p, e = _two_product(q, d)
@@ -162,7 +168,7 @@ def _dd_div(x, d):
     return hi, r - (hi - q)
 
 
-def _dd(x):
+def _dd(x: Fraction) -> _DD:
     return float(x), float(Fraction(x) - Fraction(float(x)))
 
 
@@ -172,7 +178,7 @@ _TAYLOR = [_dd(Fraction((-1) ** (n // 2), math.factorial(n))) for n in range(30)
 _HALF_PI = (1.5707963267948966, 6.123233995736766e-17, -1.4973849048591698e-33)
 
 
-def _dd_sin_cos(x):
+def _dd_sin_cos(x: float) -> tuple[_DD, _DD]:
     """(sin x, cos x) as double-doubles for a double 0 <= x <= π/2 (Taylor series about 0 or π/2)."""
     swap = x > 0.5 * _HALF_PI[0]
     z = (x, 0.0)
@@ -205,7 +211,7 @@ class _Quadrature:
     near 1.
     """
 
-    def __init__(self, top, euler0, rates0):
+    def __init__(self, top: LagrangeTop, euler0: NDArray[np.float64], rates0: NDArray[np.float64]) -> None:
         I1 = top.I1
         phidot, thetadot, psidot = (float(x) for x in rates0)
         # 1 ∓ u0 = 2 sin²(θ0/2), 2 cos²(θ0/2) (relative accuracy at both verticals), u0 = cos θ0
@@ -229,7 +235,10 @@ class _Quadrature:
         c2 = 2.0 * beta - a * a - delta_alpha
         c1 = 2.0 * (delta_alpha - a * delta_b)
         c0 = -delta_b * delta_b
-        F = lambda w: ((-beta * w + c2) * w + c1) * w + c0
+
+        def F(w: float) -> float:
+            return ((-beta * w + c2) * w + c1) * w + c0
+
         # F(1 − u0) = u̇0² >= 0 and F(2) = f(−1) = −(b + a)² <= 0 bracket w1 = 1 − u1
         root = h  # released at a turning point (θ̇0 = 0): 1 − u0 itself is a root
         if thetadot != 0.0 and F(h) > 0.0:
@@ -273,7 +282,7 @@ class _Quadrature:
         sn0 = math.copysign(math.sqrt(d1), -thetadot)  # u̇0 = −sin θ0 θ̇0
         self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, math.sqrt(d2), self.m1, self.kc)
 
-    def _partial_fraction_terms(self):
+    def _partial_fraction_terms(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         """(coefficient, characteristic n, 1 − n) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
         a, w1, w2 = self.a, self.w1, self.w2
         return (
@@ -281,7 +290,7 @@ class _Quadrature:
             ((2.0 * a + self.delta_b) / (2.0 - w1), -(w1 - w2) / (2.0 - w1), (2.0 - w2) / (2.0 - w1)),
         )
 
-    def angles_and_rates(self, t, top):
+    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         t = np.asarray(t, dtype=float)
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
@@ -297,7 +306,7 @@ class _Quadrature:
         psidot = self.a * top.I1 / top.I3 - u * phidot
         return np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1)
 
-    def mean_precession_rate(self):
+    def mean_precession_rate(self) -> float:
         """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
         total = sum(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc)
                     for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0)
@@ -305,7 +314,8 @@ class _Quadrature:
 
 
 @_jit
-def _lagrange_samples(t, lam, n0, r0, m1, kc, quarter, w1, w2, terms, out):
+def _lagrange_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1: float, kc: float, quarter: float,
+                      w1: float, w2: float, terms: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
     pic = np.zeros(2)
     pi0 = np.zeros(2)
@@ -348,7 +358,7 @@ class _PlanarPendulum:
 
     a = b = delta_b = 0.0
 
-    def __init__(self, top, theta0, thetadot0):
+    def __init__(self, top: LagrangeTop, theta0: float, thetadot0: float) -> None:
         g = top.I1 * thetadot0**2 / (4.0 * top.mgl)
         s2, c2 = np.sin(0.5 * theta0) ** 2, np.cos(0.5 * theta0) ** 2
         level = c2 + g  # (E + mgl)/(2 mgl)
@@ -375,7 +385,7 @@ class _PlanarPendulum:
             self.quarter = _elliptic.complete_k(self.m1, self.kc)
             self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, cn0, self.m1, self.kc)
 
-    def angles_and_rates(self, t, top):
+    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         t = np.asarray(t, dtype=float)
         out = np.empty((t.size, 4))
         _pendulum_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, out)
@@ -387,12 +397,13 @@ class _PlanarPendulum:
         zeros = np.zeros_like(t)
         return np.stack([zeros, np.pi - chi, zeros], axis=-1), np.stack([zeros, -chidot, zeros], axis=-1)
 
-    def mean_precession_rate(self):
+    def mean_precession_rate(self) -> float:
         return 0.0
 
 
 @_jit
-def _pendulum_samples(t, lam, n0, r0, m1, kc, quarter, out):
+def _pendulum_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1: float, kc: float, quarter: float,
+                      out: NDArray[np.float64]) -> None:
     """sn, cn, dn and am of v = r0 + λt (split phase n0 K + ...; m1 = 0: tanh, sech, gd)."""
     for i in range(t.size):
         v = r0 + lam * t[i]
@@ -430,13 +441,13 @@ class LagrangeTop:
     (True, False)
     """
 
-    def __init__(self, I1, I3, mgl):
+    def __init__(self, I1: float, I3: float, mgl: float) -> None:
         self.I1, self.I3, self.mgl = _check_moments((I1, I3, mgl), ("I1", "I3", "mgl"))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"LagrangeTop(I1={self.I1:g}, I3={self.I3:g}, mgl={self.mgl:g})"
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         rows = [("I1 = I2, I3", f"{number(self.I1)}, {number(self.I3)} kg m²"),
                 ("mgl", number(self.mgl) + " N m"),
                 ("sleeping top stable for |ω3| >", number(self.sleeping_top_threshold()) + " rad/s")]
@@ -444,7 +455,7 @@ class LagrangeTop:
 
     # ---- state and constants ---------------------------------------------------------
     @staticmethod
-    def _check_state(euler0, rates0):
+    def _check_state(euler0: ArrayLike, rates0: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         euler0 = as_float_array(euler0, "euler0", tail=(3,))
         rates0 = as_float_array(rates0, "rates0", tail=(3,))
         if euler0.ndim != 1 or rates0.ndim != 1:
@@ -455,7 +466,7 @@ class LagrangeTop:
             )
         return euler0, rates0
 
-    def constants(self, euler0, rates0):
+    def constants(self, euler0: ArrayLike, rates0: ArrayLike) -> LagrangeConstants:
         """J3, Jz and E of the state (Theory §6.2).
 
         Examples
@@ -466,7 +477,7 @@ class LagrangeTop:
         euler0, rates0 = self._check_state(euler0, rates0)
         return self._constants(euler0, rates0)
 
-    def _constants(self, euler0, rates0):
+    def _constants(self, euler0: NDArray[np.float64], rates0: NDArray[np.float64]) -> LagrangeConstants:
         theta = euler0[1]
         phidot, thetadot, psidot = rates0
         J3 = self.I3 * (np.cos(theta) * phidot + psidot)
@@ -475,7 +486,7 @@ class LagrangeTop:
         E += self.mgl * np.cos(theta)
         return LagrangeConstants(float(J3), float(Jz), float(E))
 
-    def effective_potential(self, theta, J3, Jz):
+    def effective_potential(self, theta: ArrayLike, J3: float, Jz: float) -> NDArray[np.float64]:
         """V_eff(θ) = (Jz − J3 cos θ)²/(2 I1 sin²θ) + mgl cos θ + J3²/(2 I3) (Theory §6.2).
 
         Examples
@@ -491,7 +502,8 @@ class LagrangeTop:
         c, s = np.cos(theta), np.sin(theta)
         return (Jz - J3 * c) ** 2 / (2 * self.I1 * s * s) + self.mgl * c + J3**2 / (2 * self.I3)
 
-    def _quadrature(self, euler0, rates0):
+    def _quadrature(self, euler0: ArrayLike,
+                    rates0: ArrayLike) -> tuple[_Quadrature | _PlanarPendulum, NDArray[np.float64], NDArray[np.float64]]:
         euler0, rates0 = self._check_state(euler0, rates0)
         constants = self._constants(euler0, rates0)
         if constants.J3 == 0.0 and constants.Jz == 0.0:
@@ -499,7 +511,7 @@ class LagrangeTop:
         return _Quadrature(self, euler0, rates0), euler0, rates0
 
     # ---- nutation and the apex ------------------------------------------------------
-    def turning_points(self, euler0, rates0):
+    def turning_points(self, euler0: ArrayLike, rates0: ArrayLike) -> tuple[float, float]:
         """(θ_min, θ_max), the nutation range: the roots u2, u1 of f(u) in [−1, 1] (Theory §6.4).
 
         Examples
@@ -518,9 +530,10 @@ class LagrangeTop:
         """
         quad, _, _ = self._quadrature(euler0, rates0)
         # θ from 1 − cos θ = w: 2 atan2(√w, √(2 − w)) keeps the relative accuracy of w near θ = 0
-        return tuple(float(2.0 * np.arctan2(np.sqrt(w), np.sqrt(2.0 - w))) for w in (quad.w2, quad.w1))
+        lowest, highest = (float(2.0 * np.arctan2(np.sqrt(w), np.sqrt(2.0 - w))) for w in (quad.w2, quad.w1))
+        return lowest, highest
 
-    def cubic_roots(self, euler0, rates0):
+    def cubic_roots(self, euler0: ArrayLike, rates0: ArrayLike) -> tuple[float, float, float]:
         """The three roots u1 <= u2 <= 1 < u3 of f(u) = u̇² (Theory §6.4).
 
         Examples
@@ -537,7 +550,7 @@ class LagrangeTop:
         quad, _, _ = self._quadrature(euler0, rates0)
         return quad.u1, quad.u2, quad.u3
 
-    def apex_locus_kind(self, euler0, rates0, rtol=1e-9):
+    def apex_locus_kind(self, euler0: ArrayLike, rates0: ArrayLike, rtol: float = 1e-9) -> str:
         """Shape of the path of the symmetry axis on the unit sphere (Theory §6.5).
 
         φ̇ = (b − a u)/(1 − u²) has the sign of b − a u: ``"monotone"`` if it keeps
@@ -562,7 +575,7 @@ class LagrangeTop:
             return "cusp"
         return "loop" if g1 * g2 < 0.0 else "monotone"
 
-    def nutation_period(self, euler0, rates0):
+    def nutation_period(self, euler0: ArrayLike, rates0: ArrayLike) -> float:
         """Period of θ(t), 2K(m)/λ, seconds.
 
         Examples
@@ -577,7 +590,7 @@ class LagrangeTop:
         quad, _, _ = self._quadrature(euler0, rates0)
         return float(2.0 * quad.quarter / quad.lam)
 
-    def mean_precession_rate(self, euler0, rates0):
+    def mean_precession_rate(self, euler0: ArrayLike, rates0: ArrayLike) -> float:
         """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind).
 
         Examples
@@ -597,7 +610,7 @@ class LagrangeTop:
         quad, _, _ = self._quadrature(euler0, rates0)
         return quad.mean_precession_rate()
 
-    def steady_precession_rates(self, theta, omega3):
+    def steady_precession_rates(self, theta: float, omega3: float) -> tuple[float, float]:
         """(slow, fast) rates φ̇ of steady precession at fixed θ with spin ω3.
 
         From the θ equation with θ̈ = θ̇ = 0: I1 cos θ φ̇² − J3 φ̇ + mgl = 0,
@@ -624,7 +637,7 @@ class LagrangeTop:
         fast = big / (2.0 * self.I1 * c) if c != 0.0 else np.copysign(np.inf, J3)
         return float(slow), float(fast)
 
-    def sleeping_top_threshold(self):
+    def sleeping_top_threshold(self) -> float:
         """Smallest spin ω3 = 2√(I1 mgl)/I3 for which the upright top is stable, rad/s.
 
         Examples
@@ -634,7 +647,7 @@ class LagrangeTop:
         """
         return float(2.0 * np.sqrt(self.I1 * self.mgl) / self.I3)
 
-    def sleeping_top_stable(self, omega3):
+    def sleeping_top_stable(self, omega3: float) -> bool:
         """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (Theory §6.6).
 
         Examples
@@ -648,7 +661,7 @@ class LagrangeTop:
         J3 = self.I3 * as_float_array(omega3, "omega3")
         return J3 * J3 > 4.0 * self.I1 * self.mgl
 
-    def fast_top(self, theta0, omega3):
+    def fast_top(self, theta0: float, omega3: float) -> FastTop:
         """Fast top released from rest at θ0 with spin ω3: Theory §6.7 estimates against the exact motion.
 
         Examples
@@ -673,12 +686,12 @@ class LagrangeTop:
         )
 
     # ---- motion -------------------------------------------------------------------
-    def _trajectory(self, t, euler, rates, meta):
+    def _trajectory(self, t: NDArray[np.float64], euler: NDArray[np.float64], rates: NDArray[np.float64], meta: dict[str, Any]) -> Trajectory:
         q = euler_to_quat("ZXZ", euler)
         omega = angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
         return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
 
-    def solve(self, t, euler0, rates0):
+    def solve(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike) -> Trajectory:
         """Exact motion by quadrature (Theory §6.3): u(t) by sn², φ and ψ by Π.
 
         Parameters
@@ -710,7 +723,8 @@ class LagrangeTop:
         meta = {"method": "exact", "body": repr(self), "roots": (quad.u1, quad.u2, quad.u3)}
         return self._trajectory(t, euler, rates, meta)
 
-    def simulate(self, t, euler0, rates0, method=None, **options):
+    def simulate(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike, method: str | None = None,
+                 **options: Any) -> Trajectory:
         """Numerical motion: :func:`kreisel.simulate` with :class:`kreisel.dynamics.GravityTorque`.
 
         The body is (I1, I1, I3) about the pivot, weight ``mgl`` at lever (0, 0, 1)
