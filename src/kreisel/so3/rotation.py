@@ -8,8 +8,11 @@ composes (``b`` first, then ``a``): ``(a * b).as_matrix() == a.as_matrix() @ b.a
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
@@ -24,14 +27,17 @@ from . import rodrigues as _rodrigues
 from . import rotvec as _rotvec
 from . import su2 as _su2
 
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation as ScipyRotation
+
 __all__ = ["Rotation"]
 
 
-def _scalar_first(q, scalar_first, name="quat"):
+def _scalar_first(q: ArrayLike, scalar_first: bool, name: str = "quat") -> NDArray[np.float64]:
     # The width is checked before any reordering: q[..., [3, 0, 1, 2]] of a
     # (..., 5) array would silently become a rotation.
-    q = as_float_array(q, name, (4,), finite=False)
-    return q if scalar_first else q[..., [3, 0, 1, 2]]
+    array = as_float_array(q, name, (4,), finite=False)
+    return array if scalar_first else array[..., [3, 0, 1, 2]]
 
 
 #: Distance of the middle angle from gimbal lock below which
@@ -39,7 +45,7 @@ def _scalar_first(q, scalar_first, name="quat"):
 _GIMBAL_TOLERANCE = 1e-7
 
 
-def _warn_gimbal_lock(mask):
+def _warn_gimbal_lock(mask: NDArray[np.bool_]) -> None:
     if np.any(mask):
         warnings.warn(
             f"gimbal lock in {int(np.sum(mask))} of {np.size(mask)} rotations: the first and third angles are "
@@ -49,7 +55,7 @@ def _warn_gimbal_lock(mask):
         )
 
 
-def canonical_quat(q):
+def canonical_quat(q: ArrayLike) -> NDArray[np.float64]:
     """The sign of ``q`` with ``q0 > 0``, or, for half turns (``q0 = 0``), the first nonzero component > 0.
 
     ``q`` and ``-q`` give the same result, so the canonical quaternion is unique.
@@ -79,17 +85,19 @@ class Rotation:
 
     __slots__ = ("_q",)
 
-    def __init__(self, quat, *, _validated=False):
+    _q: NDArray[np.float64]
+
+    def __init__(self, quat: ArrayLike, *, _validated: bool = False) -> None:
         # Internal constructors pass quaternions that are already unit.
-        self._q = quat if _validated else _quat.quat_normalize(quat)
+        self._q = cast("NDArray[np.float64]", quat) if _validated else _quat.quat_normalize(quat)
 
     @classmethod
-    def _wrap(cls, q):
+    def _wrap(cls, q: ArrayLike) -> Rotation:
         return cls(q, _validated=True)
 
     # -- construction -------------------------------------------------------
     @classmethod
-    def from_quat(cls, quat, scalar_first=True):
+    def from_quat(cls, quat: ArrayLike, scalar_first: bool = True) -> Rotation:
         """From quaternions (normalised); ``scalar_first=False`` for ``[x, y, z, w]`` input.
 
         Examples
@@ -106,7 +114,7 @@ class Rotation:
         return cls(_scalar_first(quat, scalar_first))
 
     @classmethod
-    def from_matrix(cls, matrix):
+    def from_matrix(cls, matrix: ArrayLike) -> Rotation:
         """From rotation matrices (nearly orthogonal ones are projected).
 
         Examples
@@ -122,7 +130,7 @@ class Rotation:
         return cls._wrap(_matrix.matrix_to_quat(matrix))
 
     @classmethod
-    def from_rotvec(cls, rotvec, degrees=False):
+    def from_rotvec(cls, rotvec: ArrayLike, degrees: bool = False) -> Rotation:
         """From rotation vectors ψ = ψ n (exponential map).
 
         Examples
@@ -140,7 +148,7 @@ class Rotation:
         return cls._wrap(_rotvec.rotvec_to_quat(np.deg2rad(psi) if degrees else psi))
 
     @classmethod
-    def from_axis_angle(cls, axis, angle, degrees=False):
+    def from_axis_angle(cls, axis: ArrayLike, angle: ArrayLike, degrees: bool = False) -> Rotation:
         """From an axis (any nonzero length) and an angle.
 
         Examples
@@ -155,7 +163,7 @@ class Rotation:
         return cls.from_rotvec(_rotvec.axis_angle_to_rotvec(axis, angle, degrees=degrees))
 
     @classmethod
-    def from_euler(cls, seq, angles, degrees=False):
+    def from_euler(cls, seq: str, angles: ArrayLike, degrees: bool = False) -> Rotation:
         """From Euler angles in any of the 24 conventions (see :mod:`kreisel.so3.euler`).
 
         Examples
@@ -175,7 +183,7 @@ class Rotation:
         return cls._wrap(_euler.euler_to_quat(seq, angles, degrees=degrees))
 
     @classmethod
-    def from_davenport(cls, axes, order, angles, degrees=False):
+    def from_davenport(cls, axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False) -> Rotation:
         """From Davenport angles about any axes, the middle one orthogonal to the others.
 
         scipy's ``from_davenport`` (see :mod:`kreisel.so3.davenport`):
@@ -192,7 +200,8 @@ class Rotation:
         """
         return cls._wrap(_davenport.davenport_to_quat(axes, order, angles, degrees=degrees))
 
-    def as_davenport(self, axes, order, degrees=False, *, suppress_warnings=True):
+    def as_davenport(self, axes: ArrayLike, order: str, degrees: bool = False, *,
+                     suppress_warnings: bool = True) -> NDArray[np.float64]:
         """Davenport angles about ``axes`` (scipy's ``as_davenport``), exact through gimbal lock.
 
         As :meth:`as_euler`, no warning by default; ``suppress_warnings=False``
@@ -213,7 +222,7 @@ class Rotation:
         return angles
 
     @classmethod
-    def from_su2(cls, u):
+    def from_su2(cls, u: ArrayLike) -> Rotation:
         """From SU(2) matrices ``exp(-i σ·ψ/2)``.
 
         Examples
@@ -228,7 +237,7 @@ class Rotation:
         return cls._wrap(_su2.su2_to_quat(u))
 
     @classmethod
-    def from_cayley_klein(cls, ck):
+    def from_cayley_klein(cls, ck: ArrayLike) -> Rotation:
         """From Cayley–Klein parameters ``(α, β, γ, δ)``.
 
         Examples
@@ -242,7 +251,7 @@ class Rotation:
         return cls._wrap(_su2.cayley_klein_to_quat(ck))
 
     @classmethod
-    def from_euler_parameters(cls, e):
+    def from_euler_parameters(cls, e: ArrayLike) -> Rotation:
         """From the chapter's (Goldstein's) Euler parameters, ``e = q*`` (see :func:`quat_to_euler_parameters`).
 
         Examples
@@ -257,7 +266,7 @@ class Rotation:
         return cls._wrap(_su2.euler_parameters_to_quat(e))
 
     @classmethod
-    def from_gibbs(cls, g):
+    def from_gibbs(cls, g: ArrayLike) -> Rotation:
         """From Gibbs (classical Rodrigues) vectors ``n tan(ψ/2)``.
 
         Examples
@@ -272,7 +281,7 @@ class Rotation:
         return cls._wrap(_rodrigues.gibbs_to_quat(g))
 
     @classmethod
-    def from_mrp(cls, p):
+    def from_mrp(cls, p: ArrayLike) -> Rotation:
         """From modified Rodrigues parameters ``n tan(ψ/4)``.
 
         Examples
@@ -287,7 +296,7 @@ class Rotation:
         return cls._wrap(_rodrigues.mrp_to_quat(p))
 
     @classmethod
-    def from_scipy(cls, rotation):
+    def from_scipy(cls, rotation: ScipyRotation) -> Rotation:
         """From a ``scipy.spatial.transform.Rotation`` (scalar-last internally).
 
         Examples
@@ -300,7 +309,8 @@ class Rotation:
         return cls.from_quat(rotation.as_quat(), scalar_first=False)
 
     @classmethod
-    def align_vectors(cls, a, b, weights=None, return_sensitivity=False):
+    def align_vectors(cls, a: ArrayLike, b: ArrayLike, weights: ArrayLike | None = None,
+                      return_sensitivity: bool = False) -> tuple[Any, ...]:
         """The rotation ``R`` with ``a ≈ R b`` in the weighted least-squares sense (Wahba's problem).
 
         scipy's ``Rotation.align_vectors``: same loss ``½ Σ w |a - R b|²``,
@@ -350,7 +360,7 @@ class Rotation:
         return (rotation, rssd, *out[2:])
 
     @classmethod
-    def create_group(cls, group, axis="Z"):
+    def create_group(cls, group: str, axis: str = "Z") -> Rotation:
         """A finite rotation group: ``"I"`` (60), ``"O"`` (24), ``"T"`` (12), ``"Dn"`` (2n) or ``"Cn"`` (n).
 
         scipy's ``create_group`` (same orientation; see :mod:`kreisel.so3.groups`),
@@ -369,7 +379,8 @@ class Rotation:
         """
         return cls._wrap(_groups.create_group(group, axis))
 
-    def reduce(self, left=None, right=None, return_indices=False):
+    def reduce(self, left: Rotation | None = None, right: Rotation | None = None,
+               return_indices: bool = False) -> Rotation | tuple[Rotation, Any, Any]:
         """The equivalent rotation ``l * self * r`` with the smallest angle (scipy's ``reduce``).
 
         Parameters
@@ -400,7 +411,7 @@ class Rotation:
         return (out, li, ri) if return_indices else out
 
     @classmethod
-    def concatenate(cls, rotations):
+    def concatenate(cls, rotations: Rotation | Iterable[Rotation]) -> Rotation:
         """One batch from a sequence of rotations (single ones count as one element each).
 
         Examples
@@ -419,7 +430,7 @@ class Rotation:
         return cls._wrap(np.concatenate([np.atleast_2d(r._q) for r in parts]))
 
     @classmethod
-    def identity(cls, shape=()):
+    def identity(cls, shape: int | tuple[int, ...] | None = ()) -> Rotation:
         """Identity rotations of batch shape ``shape``.
 
         Examples
@@ -433,7 +444,7 @@ class Rotation:
         return cls._wrap(_quat.quat_identity(shape))
 
     @classmethod
-    def random(cls, shape=(), rng=None):
+    def random(cls, shape: int | tuple[int, ...] | None = (), rng: Any = None) -> Rotation:
         """Rotations uniform on SO(3) (Haar measure): normalised 4-D Gaussians.
 
         The same seed gives the same rotations as scipy's ``Rotation.random``:
@@ -462,7 +473,7 @@ class Rotation:
         return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
 
     # -- representations ----------------------------------------------------
-    def as_quat(self, canonical=False, scalar_first=True):
+    def as_quat(self, canonical: bool = False, scalar_first: bool = True) -> NDArray[np.float64]:
         """Unit quaternions; ``canonical=True`` picks the unique sign (q0 > 0, else first nonzero > 0).
 
         Examples
@@ -483,7 +494,7 @@ class Rotation:
         q = canonical_quat(self._q) if canonical else self._q
         return np.array(q if scalar_first else q[..., [1, 2, 3, 0]])
 
-    def as_matrix(self):
+    def as_matrix(self) -> NDArray[np.float64]:
         """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``.
 
         Examples
@@ -497,7 +508,7 @@ class Rotation:
         """
         return _matrix.quat_to_matrix(self._q)
 
-    def as_rotvec(self, degrees=False):
+    def as_rotvec(self, degrees: bool = False) -> NDArray[np.float64]:
         """Rotation vectors with |ψ| <= π.
 
         Examples
@@ -512,7 +523,7 @@ class Rotation:
         psi = _rotvec.quat_to_rotvec(self._q)
         return np.rad2deg(psi) if degrees else psi
 
-    def as_axis_angle(self, degrees=False):
+    def as_axis_angle(self, degrees: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(axis, angle)`` with angle in [0, π] (axis ``[0, 0, 1]`` for the identity).
 
         Examples
@@ -525,7 +536,7 @@ class Rotation:
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
-    def as_euler(self, seq, degrees=False, *, suppress_warnings=True):
+    def as_euler(self, seq: str, degrees: bool = False, *, suppress_warnings: bool = True) -> NDArray[np.float64]:
         """Euler angles, exact through gimbal lock (any 1-, 2- or 3-axis sequence).
 
         Unlike scipy, no warning is issued by default at gimbal lock: the
@@ -557,7 +568,7 @@ class Rotation:
             _warn_gimbal_lock(_euler.gimbal_lock(seq, angles, degrees=degrees, tolerance=_GIMBAL_TOLERANCE))
         return angles
 
-    def as_su2(self):
+    def as_su2(self) -> NDArray[np.complex128]:
         """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign).
 
         Examples
@@ -574,7 +585,7 @@ class Rotation:
         """
         return _su2.quat_to_su2(self._q)
 
-    def as_cayley_klein(self):
+    def as_cayley_klein(self) -> NDArray[np.complex128]:
         """Cayley–Klein parameters ``(α, β, γ, δ)``.
 
         Examples
@@ -588,7 +599,7 @@ class Rotation:
         """
         return _su2.quat_to_cayley_klein(self._q)
 
-    def as_euler_parameters(self):
+    def as_euler_parameters(self) -> NDArray[np.float64]:
         """Euler parameters of the Theory §A (2), ``e = q*``.
 
         Examples
@@ -602,7 +613,7 @@ class Rotation:
         """
         return _su2.quat_to_euler_parameters(self._q)
 
-    def as_gibbs(self):
+    def as_gibbs(self) -> NDArray[np.float64]:
         """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns).
 
         Examples
@@ -614,7 +625,7 @@ class Rotation:
         """
         return _rodrigues.quat_to_gibbs(self._q)
 
-    def as_mrp(self):
+    def as_mrp(self) -> NDArray[np.float64]:
         """Modified Rodrigues parameters with |p| <= 1.
 
         Examples
@@ -628,7 +639,7 @@ class Rotation:
         """
         return _rodrigues.quat_to_mrp(self._q)
 
-    def to_scipy(self):
+    def to_scipy(self) -> ScipyRotation:
         """The same rotations as a ``scipy.spatial.transform.Rotation``.
 
         Examples
@@ -643,12 +654,12 @@ class Rotation:
         return ScipyRotation.from_quat(self._q[..., [1, 2, 3, 0]])
 
     # -- group operations ---------------------------------------------------
-    def __mul__(self, other):
+    def __mul__(self, other: Rotation) -> Rotation:
         if not isinstance(other, Rotation):
             return NotImplemented
         return Rotation._wrap(_quat.compose_unit(self._q, other._q))
 
-    def inv(self):
+    def inv(self) -> Rotation:
         """Inverse rotations.
 
         Examples
@@ -661,7 +672,7 @@ class Rotation:
         """
         return Rotation._wrap(_quat.quat_conjugate(self._q))
 
-    def apply(self, vectors, inverse=False):
+    def apply(self, vectors: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
         """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting.
 
         Examples
@@ -677,7 +688,7 @@ class Rotation:
         """
         return _quat.quat_apply(self._q, vectors, inverse=inverse)
 
-    def magnitude(self):
+    def magnitude(self) -> NDArray[np.float64]:
         """Rotation angles in [0, π].
 
         Examples
@@ -689,7 +700,7 @@ class Rotation:
         """
         return np.linalg.norm(self.as_rotvec(), axis=-1)
 
-    def mean(self, weights=None, axis=None):
+    def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> Rotation:
         """Chordal L2 mean (see :func:`quat_mean`) over the batch ``axis``, as scipy's ``mean``.
 
         Parameters
@@ -712,7 +723,7 @@ class Rotation:
         """
         return Rotation._wrap(_interp.mean_over(self._q, weights, axis)[0])
 
-    def __pow__(self, p, modulus=None):
+    def __pow__(self, p: ArrayLike, modulus: None = None) -> Rotation:
         """``r ** p``: the rotation about the same axis by ``p`` times the angle, ``exp(p log r)``.
 
         As in scipy: ``log`` takes the angle in [0, π], so ``p`` scales the
@@ -731,7 +742,7 @@ class Rotation:
             raise TypeError("pow() with a modulus is not defined for rotations")
         return Rotation._wrap(_quat.quat_power(self._q, p))
 
-    def slerp(self, other, t):
+    def slerp(self, other: Rotation, t: ArrayLike) -> Rotation:
         """Spherical linear interpolation from ``self`` (t = 0) to ``other`` (t = 1).
 
         Examples
@@ -746,7 +757,7 @@ class Rotation:
         """
         return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
 
-    def approx_equal(self, other, atol=1e-12):
+    def approx_equal(self, other: Rotation, atol: float = 1e-12) -> NDArray[np.bool_]:
         """Whether the rotations agree to ``atol`` in angle (sign of q ignored).
 
         Examples
@@ -762,31 +773,31 @@ class Rotation:
 
     # -- container protocol -------------------------------------------------
     @property
-    def shape(self):
+    def shape(self) -> tuple[int, ...]:
         """Batch shape (``()`` for a single rotation)."""
         return self._q.shape[:-1]
 
     @property
-    def single(self):
+    def single(self) -> bool:
         """True for a single rotation (batch shape ``()``)."""
         return self._q.ndim == 1
 
-    def __len__(self):
+    def __len__(self) -> int:
         if self.single:
             raise TypeError("a single Rotation has no len()")
         return self._q.shape[0]
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[Rotation]:
         if self.single:
             raise TypeError("a single Rotation is not iterable")
         for i in range(len(self)):
             yield self[i]
 
-    def __bool__(self):
+    def __bool__(self) -> bool:
         # As scipy: a Rotation is true even when its batch is empty.
         return True
 
-    def __setitem__(self, index, value):
+    def __setitem__(self, index: Any, value: Rotation) -> None:
         if self.single:
             raise TypeError("a single Rotation does not support item assignment")
         if not isinstance(value, Rotation):
@@ -798,15 +809,15 @@ class Rotation:
         q[index] = value._q
         self._q = q
 
-    def __getitem__(self, index):
+    def __getitem__(self, index: Any) -> Rotation:
         if self.single:
             raise TypeError("a single Rotation is not subscriptable")
         if isinstance(index, tuple):
             index = (*index, slice(None))
         return Rotation._wrap(self._q[index])
 
-    def __repr__(self):
-        def fmt(x):
+    def __repr__(self) -> str:
+        def fmt(x: float) -> str:
             return np.format_float_positional(x, precision=6, trim="-")
 
         if self.single:
@@ -814,7 +825,7 @@ class Rotation:
         body = np.array2string(self._q, precision=6, suppress_small=True, separator=", ", threshold=20)
         return f"Rotation.from_quat({body})  # shape {self.shape}"
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         note = "quaternion scalar-first [q0, q1, q2, q3], active, R maps body to space; ZXZ intrinsic"
         if self.single:
             rows = [
