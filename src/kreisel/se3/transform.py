@@ -8,7 +8,11 @@ unit quaternion (scalar first, ``R = R(q)`` of Theory §2.4) and a translation.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
@@ -23,7 +27,10 @@ from ..so3.interpolation import gather_samples, mean_over
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
 from .._compiled.gufunc import finite_array
-from .screw import screw_parameters, screw_pose
+from .screw import Screw, screw_parameters, screw_pose
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
 
 __all__ = ["RigidTransform", "change_base_point"]
 
@@ -70,27 +77,29 @@ class RigidTransform:
     __slots__ = ("_quat", "_translation")
     __array_ufunc__ = None  # ndarray * RigidTransform raises instead of looping elementwise
 
-    def __init__(self, rotation, translation):
+    _quat: NDArray[np.float64]
+    _translation: NDArray[np.float64]
+
+    def __init__(self, rotation: Rotation | ArrayLike, translation: ArrayLike) -> None:
         quat = as_quaternion(rotation, "rotation")
-        translation = finite_array(translation, "translation")
-        self._set(quat, translation)
+        self._set(quat, finite_array(translation, "translation"))
 
     # -- construction ------------------------------------------------------------------------
 
-    def _set(self, quat, translation):
+    def _set(self, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> None:
         batch = np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1])
         self._quat = np.broadcast_to(quat, batch + (4,))
         self._translation = np.broadcast_to(translation, batch + (3,))
 
     @classmethod
-    def _from_arrays(cls, quat, translation):
+    def _from_arrays(cls, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> RigidTransform:
         # Trusted arrays (unit quaternions, finite translations): no checks.
         obj = cls.__new__(cls)
         obj._set(quat, translation)
         return obj
 
     @classmethod
-    def from_rotation_translation(cls, rotation, translation):
+    def from_rotation_translation(cls, rotation: Rotation | ArrayLike, translation: ArrayLike) -> RigidTransform:
         """Pose with rotation ``R`` about the base point and its translation ``r_C``.
 
         Parameters
@@ -108,7 +117,7 @@ class RigidTransform:
         return cls(rotation, translation)
 
     @classmethod
-    def from_components(cls, translation, rotation):
+    def from_components(cls, translation: ArrayLike, rotation: Rotation | ArrayLike) -> RigidTransform:
         """scipy's argument order, translation first: the same as ``RigidTransform(rotation, translation)``.
 
         Examples
@@ -119,7 +128,7 @@ class RigidTransform:
         return cls(rotation, translation)
 
     @classmethod
-    def concatenate(cls, transforms):
+    def concatenate(cls, transforms: RigidTransform | Iterable[RigidTransform]) -> RigidTransform:
         """One batch from a sequence of transforms (single ones count as one element each).
 
         Examples
@@ -138,7 +147,7 @@ class RigidTransform:
         )
 
     @classmethod
-    def from_rotation(cls, rotation):
+    def from_rotation(cls, rotation: Rotation | ArrayLike) -> RigidTransform:
         """Pure rotation about the origin (zero translation).
 
         Examples
@@ -149,7 +158,7 @@ class RigidTransform:
         return cls._from_arrays(as_quaternion(rotation, "rotation"), np.zeros(3))
 
     @classmethod
-    def from_translation(cls, translation):
+    def from_translation(cls, translation: ArrayLike) -> RigidTransform:
         """Pure translation (identity rotation).
 
         Examples
@@ -160,7 +169,7 @@ class RigidTransform:
         return cls._from_arrays(np.array([1.0, 0.0, 0.0, 0.0]), finite_array(translation, "translation"))
 
     @classmethod
-    def identity(cls, shape=None):
+    def identity(cls, shape: int | tuple[int, ...] | None = None) -> RigidTransform:
         """Identity transforms of batch shape ``shape`` (``None`` or ``()``: a single one).
 
         Examples
@@ -174,7 +183,8 @@ class RigidTransform:
         return cls._from_arrays(quat, np.zeros(shape + (3,)))
 
     @classmethod
-    def random(cls, shape=None, rng=None, translation_scale=1.0):
+    def random(cls, shape: int | tuple[int, ...] | None = None, rng: Any = None,
+               translation_scale: float = 1.0) -> RigidTransform:
         """Random poses: uniform (Haar) rotations and Gaussian translations.
 
         Parameters
@@ -198,7 +208,7 @@ class RigidTransform:
         return cls._from_arrays(rotation.as_quat(), translation)
 
     @classmethod
-    def from_matrix(cls, matrix):
+    def from_matrix(cls, matrix: ArrayLike) -> RigidTransform:
         """Poses from homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]`` of shape ``(..., 4, 4)``.
 
         Raises ``ValueError`` when the bottom row is not (0, 0, 0, 1) or the
@@ -220,7 +230,7 @@ class RigidTransform:
         return cls._from_arrays(packed[..., :4], packed[..., 4:7])
 
     @classmethod
-    def from_dual_quat(cls, dual_quat):
+    def from_dual_quat(cls, dual_quat: ArrayLike) -> RigidTransform:
         """Poses from unit dual quaternions ``σ = q_r + ε q_d`` stored as ``(..., 8)``.
 
         Layout ``[q_r, q_d]`` with both parts scalar first (Hamilton);
@@ -249,7 +259,7 @@ class RigidTransform:
         return cls._from_arrays(real, translation)
 
     @classmethod
-    def from_exp_coords(cls, exp_coords):
+    def from_exp_coords(cls, exp_coords: ArrayLike) -> RigidTransform:
         """Exponential map of twists ``ξ = (ω, v)`` (rotation part first), ``(..., 6)``.
 
         ``T = exp([[hat ω, v], [0, 0]])``: ``R = exp(hat ω)`` and
@@ -267,7 +277,7 @@ class RigidTransform:
         return cls._from_arrays(*lie.exp(xi))
 
     @classmethod
-    def from_screw(cls, axis, point, angle, translation=0.0):
+    def from_screw(cls, axis: ArrayLike, point: ArrayLike, angle: ArrayLike, translation: ArrayLike = 0.0) -> RigidTransform:
         """Screw displacements (Chasles/Mozzi): turn by ``angle`` about the line
         ``point + λ axis`` and slide ``translation`` along ``axis``.
 
@@ -291,7 +301,7 @@ class RigidTransform:
         return cls._from_arrays(*screw_pose(axis, point, angle, translation))
 
     @classmethod
-    def from_scipy(cls, transform):
+    def from_scipy(cls, transform: ScipyRigidTransform) -> RigidTransform:
         """Convert a ``scipy.spatial.transform.RigidTransform`` (scipy >= 1.16).
 
         Examples
@@ -308,26 +318,26 @@ class RigidTransform:
     # -- conversion ----------------------------------------------------------------------------
 
     @property
-    def shape(self):
+    def shape(self) -> tuple[int, ...]:
         """Batch shape (``()`` for a single transform)."""
         return self._quat.shape[:-1]
 
     @property
-    def single(self):
+    def single(self) -> bool:
         """True for a single transform (batch shape ``()``)."""
         return self._quat.ndim == 1
 
     @property
-    def rotation(self):
+    def rotation(self) -> Rotation:
         """The rotation part as a kreisel :class:`~kreisel.so3.Rotation`."""
         return Rotation.from_quat(self._quat)
 
     @property
-    def translation(self):
+    def translation(self) -> NDArray[np.float64]:
         """The translation ``r_C``, ``(..., 3)``."""
         return np.array(self._translation)
 
-    def as_quat(self):
+    def as_quat(self) -> NDArray[np.float64]:
         """Unit quaternions of the rotation part, scalar first, ``(..., 4)``.
 
         Examples
@@ -339,7 +349,7 @@ class RigidTransform:
         """
         return np.array(self._quat)
 
-    def as_components(self):
+    def as_components(self) -> tuple[Rotation, NDArray[np.float64]]:
         """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``.
 
         Examples
@@ -356,7 +366,7 @@ class RigidTransform:
         """
         return self.rotation, self.translation
 
-    def as_matrix(self, *, out=None):
+    def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
 
         ``out`` (keyword only): a float64 array of shape ``(..., 4, 4)`` to
@@ -377,7 +387,7 @@ class RigidTransform:
         """
         return _kernels.as_matrix(self._quat, self._translation, out=out)
 
-    def as_dual_quat(self):
+    def as_dual_quat(self) -> NDArray[np.float64]:
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
 
         Both parts scalar first; ``q_r`` is the stored rotation quaternion
@@ -392,7 +402,7 @@ class RigidTransform:
         pure[..., 1:] = self._translation
         return np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1)
 
-    def as_exp_coords(self):
+    def as_exp_coords(self) -> NDArray[np.float64]:
         """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
 
         Accurate to a few ulp at all angles, including tiny ones and near π.
@@ -404,7 +414,7 @@ class RigidTransform:
         """
         return lie.log(self._quat, self._translation)
 
-    def as_screw(self):
+    def as_screw(self) -> Screw:
         """Chasles/Mozzi screw of each displacement, as a :class:`~kreisel.se3.Screw`.
 
         Axis direction, the axis point closest to the origin, the angle in
@@ -421,7 +431,7 @@ class RigidTransform:
         """
         return screw_parameters(self._quat, self._translation)
 
-    def adjoint(self):
+    def adjoint(self) -> NDArray[np.float64]:
         """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
 
         Examples
@@ -441,7 +451,7 @@ class RigidTransform:
         """
         return lie.adjoint(quat_to_matrix(self._quat), self._translation)
 
-    def to_scipy(self):
+    def to_scipy(self) -> ScipyRigidTransform:
         """Equivalent ``scipy.spatial.transform.RigidTransform``.
 
         Examples
@@ -459,12 +469,12 @@ class RigidTransform:
 
     # -- group operations ------------------------------------------------------------------------
 
-    def __mul__(self, other):
+    def __mul__(self, other: RigidTransform) -> RigidTransform:
         if not isinstance(other, RigidTransform):
             return NotImplemented
         return RigidTransform._from_arrays(*_kernels.compose(self._quat, self._translation, other._quat, other._translation))
 
-    def __pow__(self, p, modulus=None):
+    def __pow__(self, p: ArrayLike, modulus: None = None) -> RigidTransform:
         """``T ** p = exp(p log T)``: the screw motion scaled by ``p`` (scipy's ``RigidTransform.__pow__``).
 
         The logarithm has rotation angle in [0, π]; ``p = -1`` is the
@@ -485,17 +495,17 @@ class RigidTransform:
         """
         if modulus is not None:
             raise TypeError("pow() with a modulus is not defined for rigid transforms")
-        p = finite_array(p, "p", ())
-        if p.ndim == 0 and p in (0.0, 1.0, -1.0):
-            if p == 1.0:
+        exponent = finite_array(p, "p", ())
+        if exponent.ndim == 0 and exponent in (0.0, 1.0, -1.0):
+            if exponent == 1.0:
                 return self
-            if p == -1.0:
+            if exponent == -1.0:
                 return self.inv()
             return RigidTransform.identity(self.shape)
         xi = lie.log(self._quat, self._translation)
-        return RigidTransform._from_arrays(*lie.exp(p[..., None] * xi))
+        return RigidTransform._from_arrays(*lie.exp(exponent[..., None] * xi))
 
-    def mean(self, weights=None, axis=None):
+    def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> RigidTransform:
         """Mean pose: chordal L2 mean of the rotations and weighted mean of the translations.
 
         scipy's ``RigidTransform.mean``: the rotation part is
@@ -529,7 +539,7 @@ class RigidTransform:
             translation = (w * t).sum(axis=-2) / w.sum(axis=-2)
         return RigidTransform._from_arrays(quat, translation)
 
-    def inv(self):
+    def inv(self) -> RigidTransform:
         """Inverse displacements ``(Rᵀ, -Rᵀ r_C)``.
 
         Examples
@@ -539,7 +549,7 @@ class RigidTransform:
         """
         return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
 
-    def apply(self, points, inverse=False):
+    def apply(self, points: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
         """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
 
         Parameters
@@ -564,7 +574,7 @@ class RigidTransform:
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
         return kernel(self._quat, self._translation, points)
 
-    def apply_vector(self, vectors, inverse=False):
+    def apply_vector(self, vectors: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
         """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
 
         Examples
@@ -574,7 +584,7 @@ class RigidTransform:
         """
         return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse)
 
-    def change_base_point(self, offset):
+    def change_base_point(self, offset: ArrayLike) -> RigidTransform:
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.
 
         Examples
@@ -595,12 +605,12 @@ class RigidTransform:
 
     # -- container protocol ----------------------------------------------------------------------
 
-    def __len__(self):
+    def __len__(self) -> int:
         if self.single:
             raise TypeError("a single RigidTransform has no len()")
         return self.shape[0]
 
-    def __getitem__(self, key):
+    def __getitem__(self, key: Any) -> RigidTransform:
         if self.single:
             raise TypeError("a single RigidTransform is not subscriptable")
         # Index an array of batch positions so that any numpy index (slices,
@@ -610,11 +620,11 @@ class RigidTransform:
             self._quat.reshape(-1, 4)[index], self._translation.reshape(-1, 3)[index]
         )
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[RigidTransform]:
         for i in range(len(self)):
             yield self[i]
 
-    def __setitem__(self, key, value):
+    def __setitem__(self, key: Any, value: RigidTransform) -> None:
         if self.single:
             raise TypeError("a single RigidTransform does not support item assignment")
         if not isinstance(value, RigidTransform):
@@ -626,8 +636,8 @@ class RigidTransform:
         translation.reshape(-1, 3)[index] = value._translation
         self._quat, self._translation = quat, translation
 
-    def __repr__(self):
-        def fmt(a):
+    def __repr__(self) -> str:
+        def fmt(a: NDArray[np.float64]) -> str:
             return np.array2string(a, separator=", ", precision=6, threshold=24, floatmode="maxprec_equal")
 
         if self.single:
@@ -636,7 +646,7 @@ class RigidTransform:
             return f"RigidTransform(quat={q}, translation={t})"
         return f"RigidTransform(shape={self.shape}, quat={fmt(self._quat)}, translation={fmt(self._translation)})"
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         note = "r_P = R r′_P + r_C; quaternion scalar-first, R maps body to space"
         if self.single:
             rows = [
@@ -652,7 +662,7 @@ class RigidTransform:
         return html_table("RigidTransform", rows, note=note)
 
 
-def change_base_point(transform, offset):
+def change_base_point(transform: RigidTransform, offset: ArrayLike) -> RigidTransform:
     """The same displacement described about another body point (Theory §1.3, corollary).
 
     With base point C, ``r_P = R r′_CP + r_C``. Taking instead the body
