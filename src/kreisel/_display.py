@@ -8,12 +8,15 @@ module is imported only when a trajectory is first shown, so ``import kreisel`` 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 __all__ = ["register_player", "player"]
 
-_loader = None
+_loader: Callable[[], Callable[..., Any]] | None = None
 
 
-def register_player(loader):
+def register_player(loader: Callable[[], Callable[..., Any]]) -> None:
     """Make ``loader()`` (returning a function ``show(trajectory, **options)``) the trajectory player.
 
     Examples
@@ -28,7 +31,7 @@ def register_player(loader):
     _loader = loader
 
 
-def player():
+def player() -> Callable[..., Any]:
     """The registered trajectory player (loaded on first use).
 
     Examples

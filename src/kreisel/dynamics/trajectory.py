@@ -102,7 +102,7 @@ class Trajectory:
         rows += [("extra arrays", ", ".join(self._extra))] if self._extra else []
         return html_table("Trajectory", rows, note="quaternions scalar-first, R maps body to space; ω′ in body axes")
 
-    def show(self, **options):
+    def show(self, **options: Any) -> Any:
         """Play the trajectory in 3D in a notebook: :func:`kreisel.show` (needs ``pip install 'kreisel[notebook]'``).
 
         Body, principal axes, ω, J, the inertia (energy) ellipsoid on the invariable plane,

@@ -544,7 +544,7 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     if count == 1:
         _free_top.body_samples(flat[0][0], flat[1][0], flat[2][0], t, omega[0], quat[0])
     else:
-        _free_top.batch_samples(*flat, t, omega, quat)
+        _free_top.batch_samples(flat[0], flat[1], flat[2], t, omega, quat)
     info = np.empty((count, len(_free_top.INFO_FIELDS)))
     _free_top.setup_info(flat[0], flat[1], info)
     labels = [Regime(int(code)).label for code in info[:, 0]]
