@@ -44,6 +44,29 @@ def test_titles_fit_inside_their_figures(sections):
                 assert box.x0 >= -1 and box.x1 <= width + 1, (section.title, ax.get_title())
 
 
+def _overlapping_tick_labels(fig):
+    """Pairs of neighbouring tick labels of one axis of a 2D panel whose drawn boxes overlap."""
+    fig.draw_without_rendering()   # lays out the ticks and formats their labels
+    pairs = []
+    for ax in fig.axes:
+        if ax.name == "3d":
+            continue
+        for axis in (ax.xaxis, ax.yaxis):
+            labels = [label for label in axis.get_ticklabels(which="both") if label.get_visible() and label.get_text()]
+            boxes = sorted(((label.get_window_extent(), label.get_text()) for label in labels),
+                           key=lambda box: (box[0].x0, box[0].y0))
+            for (a, text_a), (b, text_b) in zip(boxes, boxes[1:]):
+                if a.overlaps(b):
+                    pairs.append((ax.get_title(), text_a, text_b))
+    return pairs
+
+
+def test_tick_labels_do_not_overlap(sections):
+    overlapping = [(section.title, *pair) for section in sections for fig, _ in section.figures
+                   for pair in _overlapping_tick_labels(fig)]
+    assert not overlapping, overlapping
+
+
 def test_report_tables_hold_no_python_reprs(sections):
     page = render_html(sections)
     cells = [html.unescape(cell) for cell in re.findall(r"<td>(.*?)</td>", page)]

@@ -71,7 +71,7 @@ def tennis_racket(quick):
             ax.plot(t, tr.omega[:, k], label=f"ω′{k + 1}")
         ax.set_ylabel("rad/s")
         ax.set_title(f"spun {label}", fontsize=10)
-    axes[0].legend(loc="upper right", ncol=3)
+    axes[0].legend(loc="center right", ncol=3)   # between ω′1 ≈ 1 and the small components
     axes[-1].set_xlabel("t (s)")   # shared by the panels above
     middle = top.solve(t, starts["near axis 2 (middle)"])
     crossings = t[:-1][np.diff(np.sign(middle.omega[:, 1])) != 0]

@@ -6,6 +6,7 @@ import time
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 
 from ..dynamics import simulate
 from .report import Check, Section
@@ -58,6 +59,12 @@ def work_precision(quick):
         costs.append(seconds)
     ax1.loglog(costs, errs, "s--", color="k", label="dop853 (adaptive)")
     ax1.set(xlabel="CPU time (s)", ylabel="max relative energy error", title=f"work–precision, T = {t_end:g} s")
+    # CPU times span one to a few decades, depending on the machine's load: plain numbers at 1, 2, 5 × 10^k
+    # (every decade when the span is wide), no minor-tick labels (in scientific notation they overlapped)
+    low, high = ax1.get_xlim()
+    ax1.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0) if np.log10(high / low) < 2.5 else (1.0,)))
+    ax1.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax1.xaxis.set_minor_formatter(NullFormatter())
     ax1.legend(fontsize=7)
     ax2.set(xlabel="t (s)", ylabel="largest relative energy error so far",
             title="energy error along the run, h = 0.1 s")
