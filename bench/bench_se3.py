@@ -58,7 +58,8 @@ def main():
 
     lines = header(
         "kreisel.se3 vs scipy RigidTransform (10^6 poses)",
-        f"Medians of {REPEATS} interleaved runs, same process, one thread; shared noisy machine.",
+        f"Medians of {REPEATS} interleaved runs, same process; 'as 4x4 matrix' runs on all cores (numba prange), "
+        "the others on one thread; shared noisy machine.",
         "'copy bound' = np.copyto of kreisel's input + output bytes (7 doubles per pose).",
         load_before=load_before,
     )
