@@ -3,8 +3,9 @@
 Each command runs in a fresh interpreter, with the numba cache and the bytecode caches warm (one
 unmeasured run of each command first, ``PYTHONDONTWRITEBYTECODE`` unset so that the sources are
 compiled to ``__pycache__`` once, as ``pip install`` does). The commands run in alternation (a, b, c,
-a, b, c, ...) so that they share the machine's conditions; the table gives the best and the median of
-the runs. The peer is ``python -c "import scipy.spatial.transform"``, and ``import numba`` is listed
+a, b, c, ...) so that they share the machine's conditions; the table gives the best and the median wall
+time of the runs, and the least CPU time (user + system) of the child process, which other jobs on a
+shared machine inflate far less than the wall time. The peer is ``python -c "import scipy.spatial.transform"``, and ``import numba`` is listed
 because ``kreisel convert`` cannot start faster than it: its rotations are numba kernels.
 
 Usage: ``python bench/bench_startup.py [repeats]`` (default 7).
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 import os
 import pathlib
+import resource
 import subprocess
 import sys
 
@@ -34,32 +36,37 @@ GOALS = {"`python -c 'import kreisel'`": 0.4, "`kreisel --help`": 0.3,
          "`kreisel convert --from euler:ZXZ --to quat -30 45 60 --degrees`": 1.0}
 
 
-def command(args):
-    """A function running ``python ARGS`` with kreisel's sources first on the path."""
+def command(args, cpu):
+    """A function running ``python ARGS`` with kreisel's sources first on the path; appends its CPU time to ``cpu``."""
     env = {key: value for key, value in os.environ.items() if key != "PYTHONDONTWRITEBYTECODE"}
     env["PYTHONPATH"] = str(SRC)
 
     def run():
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         subprocess.run([sys.executable, *args], env=env, capture_output=True, check=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
 
     return run
 
 
 def main(repeats=7):
     load_before = load_average()
-    timings = dict(zip(COMMANDS, interleaved(*map(command, COMMANDS.values()), repeats=repeats)))
-    peer = timings[PEER].best
-    rows = [(name, f"{t.best:.3f}", f"{t.median:.3f}", f"{t.best / peer:.2f}", GOALS.get(name, ""))
-            for name, t in timings.items()]
+    cpu = {name: [] for name in COMMANDS}
+    runs = [command(args, cpu[name]) for name, args in COMMANDS.items()]
+    timings = dict(zip(COMMANDS, interleaved(*runs, repeats=repeats)))
+    peer, peer_cpu = timings[PEER].best, min(cpu[PEER])
+    rows = [(name, f"{t.best:.3f}", f"{t.median:.3f}", f"{min(cpu[name]):.3f}", f"{t.best / peer:.2f}",
+             f"{min(cpu[name]) / peer_cpu:.2f}", GOALS.get(name, "")) for name, t in timings.items()]
     lines = header(
         "Start-up time (`bench/bench_startup.py`)",
-        f"Fresh interpreters, numba and bytecode caches warm, {repeats} runs of each command in alternation; "
-        "best and median wall time. The best run is the one least disturbed by other jobs on the shared "
-        "machine; the ratio to the peer's best is the comparable number.",
+        f"Fresh interpreters, numba and bytecode caches warm, {repeats} runs of each command in alternation: "
+        "best and median wall time, least CPU time of the child process. On a loaded machine the CPU time is "
+        "the comparable number (a quiet machine's wall time is close to it); ratios are to the peer's.",
         load_before=load_before,
     )
-    lines += markdown_table(["command", "best (s)", "median (s)", "best / peer's best", "goal (s)"], rows,
-                            align="lrrrr")
+    lines += markdown_table(["command", "best wall (s)", "median wall (s)", "least CPU (s)", "wall / peer",
+                             "CPU / peer", "goal (s)"], rows, align="lrrrrrr")
     write_results("startup", "\n".join(lines))
 
 
