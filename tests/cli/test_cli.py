@@ -208,12 +208,13 @@ def test_simulate_refuses_runaway_scenarios_before_work(tmp_path, extra, message
 
 
 def test_simulate_reports_progress_of_a_long_run(tmp_path, monkeypatch):
+    from kreisel._compiled import chunks
     from kreisel.dynamics import engine
     from kreisel.io import run as io_run
 
     path = tmp_path / "long.toml"
     path.write_text(RUNAWAY + 'n_samples = 3\nmethod = "rk4"\ndt = 1e-2\n', encoding="utf-8")
-    monkeypatch.setattr(engine, "_CHUNK_SECONDS", 0.0)
+    monkeypatch.setattr(chunks, "CHUNK_SECONDS", 0.0)
     monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", 1)
     seen = []
     original = io_run.run_scenario

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import kreisel as kr
+from kreisel._compiled import chunks
 from kreisel.dynamics import ConstantTorque, LinearDamping, engine
 
 FIXED = ["splitting", "splitting4", "dmv", "rkmk4", "midpoint", "rk4"]
@@ -50,11 +51,18 @@ def test_fixed_step_run_just_inside_the_budget_runs():
         kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01, max_steps=99)
 
 
-def test_adaptive_run_stops_at_its_step_budget():
+@pytest.mark.parametrize("run", [
+    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], max_steps=steps),
+    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], method="scipy", max_steps=steps),
+    lambda steps: kr.simulate_batch([[1, 2, 3]] * 3, [0, 1e9], [0.1, 1, 0.1], max_steps=steps),
+    lambda steps: kr.frames.simulate_particle([0, 1e9], [1, 0, 0], [0, -1, 0], [0, 0, 1], max_steps=steps),
+    lambda steps: kr.earth.foucault_pendulum(1.0, 45.0, 1e9, 0.1, max_steps=steps),
+], ids=["simulate", "scipy", "simulate_batch", "simulate_particle", "foucault_pendulum"])
+def test_adaptive_run_stops_at_its_step_budget(run):
     with pytest.raises(RuntimeError, match=r"max_steps = 50 steps at t = .* of 1e\+09"):
-        kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], max_steps=50)
-    with pytest.raises(RuntimeError, match="max_steps = 50"):
-        kr.simulate_batch([[1, 2, 3]] * 3, [0, 1e9], [0.1, 1, 0.1], max_steps=50)
+        run(50)
+    with pytest.raises(TypeError, match="max_steps"):
+        run(1.5)
 
 
 def test_output_too_large_for_memory_is_refused_with_its_size():
@@ -113,9 +121,9 @@ def test_results_do_not_depend_on_where_the_run_pauses(monkeypatch, method):
     t = np.linspace(0.0, 30.0, 7)
     torque = ConstantTorque([0.1, 0.0, 0.2]) + LinearDamping(0.01)
     runs = []
-    for chunk_seconds, first in ((engine._CHUNK_SECONDS, engine._FIRST_CHUNK_STEPS), (0.0, 1)):
+    for chunk_seconds, first in ((chunks.CHUNK_SECONDS, engine._FIRST_CHUNK_STEPS), (0.0, 1)):
         # (0, 1): every call takes one step, then pauses
-        monkeypatch.setattr(engine, "_CHUNK_SECONDS", chunk_seconds)
+        monkeypatch.setattr(chunks, "CHUNK_SECONDS", chunk_seconds)
         monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", first)
         free = kr.simulate([1, 2, 3], t, [0.1, 1, 0.1], method=method, dt=dt)
         forced = kr.simulate([1, 2, 3], t, [0.1, 1, 0.1], method=method, dt=dt, torque=torque)
@@ -128,7 +136,7 @@ def test_results_do_not_depend_on_where_the_run_pauses(monkeypatch, method):
 
 
 def test_progress_reports_increasing_times_up_to_the_end(monkeypatch):
-    monkeypatch.setattr(engine, "_CHUNK_SECONDS", 0.0)
+    monkeypatch.setattr(chunks, "CHUNK_SECONDS", 0.0)
     monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", 1)
     for method, dt, end in [("rk4", 1e-2, 10.0), ("dop853", None, 100.0)]:
         seen = []
@@ -156,31 +164,42 @@ def test_angular_velocity_whose_squares_overflow_is_refused_as_out_of_range():
 CHILD = textwrap.dedent("""
     import sys, time, numpy as np, kreisel as kr
     from kreisel.dynamics import ConstantTorque
-    cases = [
+    simulate = [
         dict(omega0=[0.1, 1, 0.1], method="rk4", dt=1e-3, max_steps=10**13),
         dict(omega0=[0.1, 1, 0.1]),
         dict(omega0=[1e5, 1e5, 1e5]),
         dict(omega0=[0.1, 1, 0.1], torque=ConstantTorque([1e12, 0, 1e12])),
         dict(omega0=[0.1, 1, 0.1], torque=lambda t, q, w: np.sin(t) * np.ones(3)),
-        "batch",
+        dict(omega0=[0.1, 1, 0.1], method="scipy"),
+        dict(omega0=[0.1, 1, 0.1], method="scipy", torque=lambda t, q, w: np.sin(t) * np.ones(3)),
     ]
-    for case in cases:
-        run = (lambda t: kr.simulate_batch([[1, 2, 3]] * 4, t, [0.1, 1, 0.1])) if case == "batch" else (
-            lambda t: kr.simulate([1, 2, 3], t, **case))
-        run([0, 1e-3])  # compile (or load) first
+    runs = {
+        "simulate": [lambda t, case=case: kr.simulate([1, 2, 3], t, **case) for case in simulate],
+        "simulate_batch": [lambda t: kr.simulate_batch([[1, 2, 3]] * 4, t, [0.1, 1, 0.1])],
+        "simulate_particle": [
+            lambda t: kr.frames.simulate_particle(t, [1, 0, 0], [0, -1, 0], [0, 0, 1]),
+            lambda t: kr.frames.simulate_particle(t, [1, 0, 0], [0, -1, 0], [0, 0, 1],
+                                                  force=lambda tt, r, v: -r),
+        ],
+        "foucault_pendulum": [lambda t: kr.earth.foucault_pendulum(1.0, 45.0, 1e-2 * t[-1], 0.1)],
+    }[sys.argv[1]]
+    for run in runs:
+        run(np.array([0, 1e-1]))  # compile (or load) first
         print("ready", flush=True)
         try:
-            run([0, 1e9])
+            run(np.array([0, 1e9]))
         except KeyboardInterrupt:
             print(time.perf_counter(), flush=True)
 """)
 
 
-def test_ctrl_c_stops_a_long_simulation_promptly():
-    # a chunk of compiled work lasts ~50 ms: generous for a loaded machine, each run would take hours
-    child = subprocess.Popen([sys.executable, "-c", CHILD], stdout=subprocess.PIPE, text=True)
+@pytest.mark.parametrize("runs, count", [("simulate", 7), ("simulate_batch", 1), ("simulate_particle", 2),
+                                         ("foucault_pendulum", 1)])
+def test_ctrl_c_stops_a_long_run_promptly(runs, count):
+    # a chunk of work lasts ~50 ms: generous for a loaded machine, each run would take hours
+    child = subprocess.Popen([sys.executable, "-c", CHILD, runs], stdout=subprocess.PIPE, text=True)
     try:
-        for _ in range(6):
+        for _ in range(count):
             assert child.stdout.readline().strip() == "ready"
             time.sleep(0.2)
             sent = time.perf_counter()

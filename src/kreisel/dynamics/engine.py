@@ -24,7 +24,7 @@ rkmk4      4     Runge–Kutta–Munthe-Kaas on SO(3) × R³ (classical RK4 tabl
 midpoint   2     implicit midpoint on (ω′, q), iterated to round-off: keeps T and
                  |J| (quadratic invariants) to round-off for the free body.
 rk4        4     classical RK4 on (ω′, q), q renormalised every step (baseline).
-scipy      8     ``scipy.integrate.solve_ivp(method="DOP853")``: independent
+scipy      8     ``scipy.integrate.DOP853`` stepped from Python: independent
                  reference, slow (Python right-hand side).
 ========== ===== ================================================================
 
@@ -36,9 +36,9 @@ Every run is bounded and interruptible: a fixed-step run whose step count
 exceeds ``max_steps`` (default ``MAX_STEPS`` = 10¹⁰) is refused before it starts,
 with its estimated time; an adaptive run stops with ``RuntimeError`` once it
 has taken ``max_steps`` steps; outputs that would not fit in memory are refused
-with their size. The compiled loops return to Python every ~50 ms, so Ctrl-C
-stops any run with a ``KeyboardInterrupt`` and ``progress`` is told how far
-the run got.
+with their size. Every method (``scipy`` too) runs in chunks of ~50 ms
+(:mod:`kreisel._compiled.chunks`), so Ctrl-C stops any run with a
+``KeyboardInterrupt`` and ``progress`` is told how far the run got.
 
 A body given by a non-diagonal tensor is integrated in its principal frame
 (Euler's equations take their principal-axis form there, and ``splitting``
@@ -48,19 +48,16 @@ needs it) and the result is transformed back: ``q = q_principal ⊗ q_axes*``,
 
 from __future__ import annotations
 
-import contextlib
 import math
 import operator
-import signal
-import threading
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
+from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
 from .._validation import as_float_array, check_allocation
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
@@ -94,15 +91,11 @@ METHODS = {
 ADAPTIVE = ("dop853", "scipy")
 DEFAULT_RTOL = 1e-12
 
-#: Default step budget of a run (per body): about an hour of the slowest method.
-MAX_STEPS = 10**10
 
 # rough single-core cost of one step of each compiled method (free body; a torque adds to it), for the
 # time estimate in the message that refuses a run over its step budget
 _SECONDS_PER_STEP = {"dop853": 1.5e-6, "splitting": 3e-7, "splitting4": 1e-6, "dmv": 1e-6, "rkmk4": 6e-7,
                      "midpoint": 5e-7, "rk4": 3.5e-7}
-# a compiled call returns to Python after about this long (checks for Ctrl-C, reports progress)
-_CHUNK_SECONDS = 0.05
 # steps of the first call (shared by the bodies of a batch); later calls adapt to the measured speed
 _FIRST_CHUNK_STEPS = 2**16
 
@@ -263,87 +256,40 @@ def _checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., _Array
     return call
 
 
-def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None, frows: _Array | None,
-         rtol: float, atol: _Array, max_steps: int,
+def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
+         frows: _Array | None, rtol: float, atol: _Array, max_steps: int,
          progress: Callable[[float], object] | None = None) -> tuple[_Array, NDArray[np.int64]]:
-    """Integrate bodies ``y0 (count, ny)`` in compiled chunks of ~:data:`_CHUNK_SECONDS`; returns ``(out, status)``.
+    """Integrate bodies ``y0 (count, ny)`` in compiled chunks (:func:`kreisel._compiled.chunks.run_chunked`).
 
-    Between chunks Python runs: a pending Ctrl-C raises ``KeyboardInterrupt``
-    there, ``progress(t_reached)`` is called (the earliest time over the
-    bodies), and the adaptive step budget ``max_steps`` is enforced. The chunk
-    length adapts to the measured speed; results do not depend on it.
+    Returns ``(out, status)``; ``progress(t_reached)`` is told the earliest
+    time over the bodies.
     """
-    with _interrupts_between_chunks() as interrupted:
-        return _run_chunks(code, t, dt, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress, interrupted)
-
-
-@contextlib.contextmanager
-def _interrupts_between_chunks() -> Iterator[list[int]]:
-    """Hold back Ctrl-C during a compiled chunk; yields a list that records it (raise it between chunks).
-
-    A ``KeyboardInterrupt`` raised while a torque callable runs inside the
-    compiled loop would reach numba's object-mode glue and come out as a
-    ``SystemError``; deferring it by at most one chunk keeps it clean. Only
-    the main thread can install handlers; elsewhere nothing changes.
-    """
-    seen: list[int] = []
-    if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
-        yield seen
-        return
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
-    try:
-        yield seen
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
-def _run_chunks(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
-                frows: _Array | None, rtol: float, atol: _Array, max_steps: int, progress: Callable[[float], object] | None,
-                interrupted: list[int]) -> tuple[_Array, NDArray[np.int64]]:
     count, ny = y0.shape
     out = np.empty((count, t.size, ny))
     state = np.stack([_integrators.new_state(code, y) for y in y0])
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
-    # the first chunk is short only when a Python callable (up to ~1 ms a step) is in the loop
-    callbacks = any(r is not None and np.any(r[:, 0] == _model_tables.CALLBACK) for r in (rows, frows))
-    budget = 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count)
-    taken = 0
-    while True:
-        budget = min(budget, max_steps - taken + 1)
-        start = time.perf_counter()
+
+    def step(budget: int) -> bool:
         if count == 1:
-            status[0] = _integrators.run(code, t, dt, state[0], moments[0], mass[0], rows, frows, rtol, atol[0], tables,
-                               out[0], budget)
+            status[0] = _integrators.run(code, t, dt, state[0], moments[0], mass[0], rows, frows, rtol, atol[0],
+                                         tables, out[0], budget)
         else:
-            _integrators.run_batch(code, t, dt, state, moments, mass, rows, frows, rtol, atol, tables, out, status, budget)
-        elapsed = time.perf_counter() - start
-        if interrupted:
-            raise KeyboardInterrupt
-        paused = status == _dop853.PAUSED
-        if not paused.any():
-            return out, status
-        taken += budget
-        if taken > max_steps:
-            raise RuntimeError(f"integration stopped after max_steps = {max_steps} steps at "
-                               f"t = {_integrators.reached(code, t, dt, state[paused]):.6g} of {t[-1]:.6g} "
-                               "(pass a larger max_steps to go on)")
-        if progress is not None:
-            progress(_integrators.reached(code, t, dt, state[paused]))
-        budget = int(min(8 * budget, max(1.0, budget * _CHUNK_SECONDS / max(elapsed, 1e-9))))
+            _integrators.run_batch(code, t, dt, state, moments, mass, rows, frows, rtol, atol, tables, out, status,
+                                   budget)
+        return not np.any(status == _dop853.PAUSED)
+
+    def reached() -> float:
+        return _integrators.reached(code, t, dt, state[status == _dop853.PAUSED])
+
+    callbacks = any(r is not None and np.any(r[:, 0] == _model_tables.CALLBACK) for r in (rows, frows))
+    run_chunked(step, reached, t[-1], max_steps, 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count), progress)
+    return out, status
 
 
 def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_steps: int | None) -> int:
     """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget."""
-    if max_steps is None:
-        max_steps = MAX_STEPS
-    else:
-        if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)):
-            raise TypeError(f"max_steps must be a positive integer, got {type(max_steps).__name__}")
-        max_steps = int(max_steps)
-        if max_steps < 1:
-            raise ValueError(f"max_steps must be a positive integer, got {max_steps}")
+    max_steps = check_max_steps(max_steps)
     check_allocation(count * t.size * ny * 8.0, f"the output ({count} × {t.size} samples × {ny} states)")
     if method in ADAPTIVE:
         return max_steps
@@ -409,7 +355,7 @@ def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, m
     # a fresh writable C array: numba compiles one specialisation per array layout
     moments = np.array(moments, dtype=np.float64, order="C")
     if method == "scipy":
-        return _scipy(t, y0, moments, mass, rows, frows, rtol, atol)
+        return _scipy(t, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
     out, status = _run(METHODS[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
                        rtol, atol[None, :], max_steps, progress)
     _raise_status(status[0])
@@ -417,8 +363,9 @@ def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, m
 
 
 def _scipy(t: _Array, y0: _Array, moments: _Array, mass: float, rows: _Array | None, frows: _Array | None, rtol: float,
-           atol: _Array) -> _Array:
-    from scipy.integrate import solve_ivp
+           atol: _Array, max_steps: int, progress: Callable[[float], object] | None) -> _Array:
+    """scipy's DOP853 stepped in chunks like the compiled methods, the states at ``t`` from its dense output."""
+    from scipy.integrate import DOP853
 
     scratch = np.empty(13)
 
@@ -427,12 +374,29 @@ def _scipy(t: _Array, y0: _Array, moments: _Array, mass: float, rows: _Array | N
         _integrators.rhs(tt, y, y.size, moments, mass, rows, frows, dy, 0, scratch)
         return dy
 
+    out = np.empty((t.size, y0.size))
+    out[0] = y0
     if t.size == 1:
-        return y0[None, :].copy()
-    sol = solve_ivp(fun, (t[0], t[-1]), y0, method="DOP853", t_eval=t, rtol=rtol, atol=atol)
-    if sol.status != 0:
-        raise RuntimeError(f"integration failed: {sol.message}")
-    return sol.y.T.copy()
+        return out
+    solver = DOP853(fun, t[0], y0, t[-1], rtol=rtol, atol=atol)
+    filled = [1]
+
+    def step(budget: int) -> bool:
+        for _ in range(budget):
+            message = solver.step()
+            if solver.status == "failed":
+                raise RuntimeError(f"integration failed: {message}")
+            reached = int(np.searchsorted(t, solver.t, side="right"))
+            if reached > filled[0]:
+                out[filled[0]:reached] = solver.dense_output()(t[filled[0]:reached]).T
+                filled[0] = reached
+            if solver.status == "finished":
+                return True
+        return False
+
+    # each step calls the Python right-hand side 12 times: start with short chunks
+    run_chunked(step, lambda: float(solver.t), t[-1], max_steps, 16, progress)
+    return out
 
 
 def _to_body_frame(omega: _Array, q: _Array, axes: _Array | None) -> tuple[_Array, _Array]:

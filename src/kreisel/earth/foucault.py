@@ -16,7 +16,8 @@ import math
 import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
-from .._validation import as_float_array
+from .._compiled.chunks import check_max_steps, run_resumable
+from .._validation import as_float_array, check_allocation
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -100,34 +101,61 @@ def pendulum_rhs(t, y, p, out, offset):
     out[offset + 5] = (fz - fu * uz) / length - vv * uz
 
 
+# resumable state of _swing: time, next step, s = u_h·u̇_h, maxima found, started?, u and u̇, f(t, y)
+_T, _H, _S, _COUNT, _STARTED, _Y = 0, 1, 2, 3, 4, 5
+_PAUSED = _dop853.PAUSED
+
+
+def _swing_state(y0):
+    state = np.zeros(_Y + 12)
+    state[_Y:_Y + 6] = y0
+    return state
+
+
 @cached
-def _swing(p, y0, duration, rtol, atol, max_step, capacity, tables):
-    """Integrate to ``duration`` recording each maximum of the horizontal excursion.
+def _swing(p, state, duration, rtol, atol, max_step, tables, record, budget):
+    """Integrate to ``duration`` recording each maximum of the horizontal excursion, at most ``budget`` steps.
 
     A maximum is where s = u_h·u̇_h falls through zero; it is located inside
-    the step by bisection on the integrator's 7th-order dense output.
+    the step by bisection on the integrator's 7th-order dense output, and its
+    (time, azimuth, tilt) is written to the next column of ``record (3, capacity)``.
+    Returns a status of :mod:`kreisel._compiled.dop853`: ``PAUSED`` when the
+    budget ran out or ``record`` is full (``state``, see :func:`_swing_state`,
+    then holds where to continue).
     """
-    times = np.empty(capacity)
-    azimuth = np.empty(capacity)
-    tilt = np.empty(capacity)
-    count = 0
+    capacity = record.shape[1]
     n = 6
     k = np.empty(_dop853.N_STAGES_EXTENDED * n)
-    y = y0.copy()
+    y = state[_Y:_Y + n].copy()
     y_new = np.empty(n)
     tmp = np.empty(n)
     dense = np.empty((7, n))
     z = np.empty(n)
-    t = 0.0
-    pendulum_rhs(t, y, p, k, 0)
-    h = _dop853.initial_step(pendulum_rhs, p, t, y, k, min(duration, max_step), rtol, atol, tmp, z)
-    s_old = y[0] * y[3] + y[1] * y[4]
+    t = state[_T]
+    count = int(state[_COUNT])
+    if state[_STARTED] == 0.0:
+        pendulum_rhs(t, y, p, k, 0)
+        h = _dop853.initial_step(pendulum_rhs, p, t, y, k, min(duration, max_step), rtol, atol, tmp, z)
+        s_old = y[0] * y[3] + y[1] * y[4]
+    else:
+        h = state[_H]
+        s_old = state[_S]
+        for i in range(n):
+            k[i] = state[_Y + n + i]
+    taken = 0
     while t < duration:
+        if taken >= budget or count == capacity:
+            state[_T], state[_H], state[_S], state[_COUNT], state[_STARTED] = t, h, s_old, count, 1.0
+            for i in range(n):
+                state[_Y + i] = y[i]
+                state[_Y + n + i] = k[i]
+            return _PAUSED
+        taken += 1
         status, t_new, h_taken, h = _dop853.advance(
             pendulum_rhs, p, t, y, h, duration, max_step, rtol, atol, tables, k, tmp, y_new
         )
         if status != _dop853.OK:
-            return status, times, azimuth, tilt, count, y
+            return status
         s_new = y_new[0] * y_new[3] + y_new[1] * y_new[4]
         if s_old > 0.0 and s_new <= 0.0:
             _dop853.dense_coefficients(pendulum_rhs, p, t, y, y_new, h_taken, tables, k, tmp, dense)
@@ -140,17 +168,19 @@ def _swing(p, y0, duration, rtol, atol, max_step, capacity, tables):
                 else:
                     hi = mid
             _dop853.interpolate(dense, y, 0.5 * (lo + hi), z)
-            if count < capacity:
-                times[count] = t + 0.5 * (lo + hi) * h_taken
-                azimuth[count] = math.atan2(z[1], z[0])
-                tilt[count] = math.atan2(math.hypot(z[0], z[1]), -z[2])
+            record[0, count] = t + 0.5 * (lo + hi) * h_taken
+            record[1, count] = math.atan2(z[1], z[0])
+            record[2, count] = math.atan2(math.hypot(z[0], z[1]), -z[2])
             count += 1
         s_old = s_new
         t = t_new
         for i in range(n):
             y[i] = y_new[i]
             k[i] = k[_dop853.N_STAGES * n + i]
-    return _dop853.OK, times, azimuth, tilt, count, y
+    state[_T], state[_COUNT] = t, count
+    for i in range(n):
+        state[_Y + i] = y[i]
+    return _dop853.OK
 
 
 class FoucaultSwing:
@@ -221,6 +251,7 @@ def foucault_pendulum(
     omega=OMEGA_EARTH,
     rtol=1e-10,
     atol=1e-12,
+    max_steps=None,
 ):
     """Simulate a Foucault pendulum and measure its swing plane (Theory §8.3).
 
@@ -249,6 +280,10 @@ def foucault_pendulum(
         Earth's rotation rate, rad/s (a larger value shortens experiments).
     rtol, atol : float
         Integrator tolerances.
+    max_steps : int, optional
+        Step budget (default ``10**10``): the run stops with ``RuntimeError``
+        after that many steps. The integrator returns to Python every ~50 ms,
+        so Ctrl-C stops any run with a ``KeyboardInterrupt``.
 
     Returns
     -------
@@ -283,17 +318,29 @@ def foucault_pendulum(
     period = 2.0 * np.pi * np.sqrt(length / g)
     # several steps per swing keep at most one excursion maximum inside a step
     max_step = period / 16.0
-    capacity = int(2.2 * duration / period) + 16
+    max_steps = check_max_steps(max_steps)
     tables = _dop853.tableau()
     atol = np.full(y0.size, float(atol))
-    while True:
-        status, times, az, tilt, count, y_end = _swing(
-            p, y0, duration, float(rtol), atol, max_step, capacity, tables
-        )
-        _dop853.check_status(status)
-        if count <= capacity:
-            break
-        capacity = count + 16
+    rtol = float(rtol)
+    record = [np.empty((3, 64))]
+
+    def advance(state, budget):
+        # two maxima a period, at least 16 steps a period: room for all maxima of the chunk
+        count = int(state[_COUNT])
+        needed = count + budget // 8 + 2
+        if needed > record[0].shape[1]:
+            size = max(needed, 2 * record[0].shape[1])
+            check_allocation(3 * 8.0 * size, f"the record of {size} swing maxima")
+            grown = np.empty((3, size))
+            grown[:, :count] = record[0][:, :count]
+            record[0] = grown
+        return _swing(p, state, duration, rtol, atol, max_step, tables, record[0], budget)
+
+    state = _swing_state(y0)
+    _dop853.check_status(run_resumable(advance, state, duration, max_steps, 2**14, _PAUSED))
+    count = int(state[_COUNT])
+    times, az, tilt = record[0][:, :count]
+    y_end = state[_Y:_Y + 6].copy()
     t = np.concatenate([[0.0], times[:count]])
     raw = np.concatenate([[azimuth], az[:count]])
     # the bob reaches opposite ends of the swing line in turn: unwrap modulo π

@@ -10,6 +10,7 @@ import numpy as np
 from numba import njit
 
 from .._compiled import cached, dop853 as _dop853
+from .._compiled.chunks import check_max_steps, run_resumable
 from .._validation import as_float_array
 from .relative import canonical_momentum, hamiltonian
 
@@ -58,9 +59,9 @@ def builtin_rhs(t, y, p, out, offset):
 
 
 @cached
-def _integrate_builtin(p, t, y0, rtol, atol, max_step, tables, out):
+def _integrate_builtin(p, t, state, rtol, atol, max_step, tables, out, budget):
     # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._compiled.dop853)
-    return _dop853.integrate(builtin_rhs, p, t, y0, rtol, atol, max_step, tables, out, True)
+    return _dop853.integrate_steps(builtin_rhs, p, t, state, rtol, atol, max_step, tables, out, True, budget)
 
 
 def _as_function(value, name, nargs):
@@ -167,6 +168,7 @@ def simulate_particle(
     rtol=1e-10,
     atol=1e-12,
     max_step=np.inf,
+    max_steps=None,
 ):
     """Integrate a particle's motion observed in a moving, rotating frame (Theory §8.1).
 
@@ -204,6 +206,10 @@ def simulate_particle(
         Tolerances of the adaptive Dormand–Prince 8(5,3) integrator.
     max_step : float
         Largest step, s.
+    max_steps : int, optional
+        Step budget (default ``10**10``): the run stops with ``RuntimeError``
+        after that many steps. The integrator returns to Python every ~50 ms,
+        so Ctrl-C stops any run with a ``KeyboardInterrupt``.
 
     Returns
     -------
@@ -244,9 +250,11 @@ def simulate_particle(
         raise TypeError("force must be a callable force(t, r, v) -> (3,) or None")
     if omega_dot is None:
         omega_dot = (0.0, 0.0, 0.0)
+    max_steps = check_max_steps(max_steps)
 
     y0 = np.concatenate([r0, v0])
     tables = _dop853.tableau()
+    rtol, max_step = float(rtol), float(max_step)
     atol = np.full(y0.size, float(atol))
     y = np.empty((t.size, y0.size))
     builtin = not (callable(omega) or callable(omega_dot) or callable(a0) or force is not None)
@@ -257,7 +265,9 @@ def simulate_particle(
         p = np.zeros(_NPAR)
         p[_W:_W + 3], p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], p[_FIELD:_FIELD + 3] = w, wdot, acc0, gravity
         p[_SPRING], p[_T0] = spring, t[0]
-        status = _integrate_builtin(p, t, y0, float(rtol), atol, float(max_step), tables, y)
+        status = run_resumable(
+            lambda state, budget: _integrate_builtin(p, t, state, rtol, atol, max_step, tables, y, budget),
+            _dop853.new_state(y0), t[-1], max_steps, 2**14, _dop853.PAUSED)
         omega_t = w + wdot * (t - t[0])[:, None]
         a0_t = np.broadcast_to(acc0, (t.size, 3)).copy()
     else:
@@ -275,7 +285,10 @@ def simulate_particle(
 
         f_user = njit(force) if force is not None else njit(lambda tt, r, v: np.zeros(3))
         rhs = _callable_rhs(omega, omega_dot, a0, total_force, mass)
-        status = _dop853.integrate(rhs, np.zeros(1), t, y0, float(rtol), atol, float(max_step), tables, y, True)
+        status = run_resumable(
+            lambda state, budget: _dop853.integrate_steps(rhs, np.zeros(1), t, state, rtol, atol, max_step, tables,
+                                                          y, True, budget),
+            _dop853.new_state(y0), t[-1], max_steps, 64, _dop853.PAUSED)
         omega_t = _sample(omega, "omega", t)
         a0_t = _sample(a0, "a0", t)
     _dop853.check_status(status)
