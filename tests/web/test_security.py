@@ -230,6 +230,28 @@ def test_a_runaway_run_is_cut_off_by_its_time_limit(app_client):
     assert not runner.busy and all(_alive(pid) for pid in runner.workers)
 
 
+def test_a_runaway_run_is_cut_off_by_its_step_budget(app_client):
+    # no wall-clock limit bites: the steps the run actually takes stop it
+    client = app_client(limits=Limits(wall_seconds=900.0, queue_seconds=900.0, max_steps=20_000))
+    response = client.post("/api/run", json=RUNAWAY)
+    assert response.status_code == 422
+    assert "budget of 20000 integration steps" in response.json()["detail"]
+    with client.websocket_connect("/api/stream") as ws:
+        ws.send_json(RUNAWAY)
+        messages = [ws.receive_json()]
+        while messages[-1]["type"] == "start" or messages[-1]["type"] == "chunk":
+            messages.append(ws.receive_json())
+        with pytest.raises(WebSocketDisconnect) as closed:
+            ws.receive_json()
+    assert messages[-1]["type"] == "error" and "budget of 20000 integration steps" in messages[-1]["detail"]
+    assert closed.value.code == 1011
+    # an ordinary request stays far inside the same budget
+    ordinary = {"form": {**RUNAWAY["form"], "moments": [1.0, 1.0, 1.0], "mgl": 1.0}}
+    assert client.post("/api/run", json=ordinary).status_code == 200
+    with pytest.raises(ValueError, match="max_steps"):
+        Limits(max_steps=0)
+
+
 def test_a_run_is_stopped_when_its_websocket_client_leaves(app_client):
     client = app_client(limits=RELAXED)
     runner = client.app.state.viewer.runner

@@ -21,8 +21,8 @@ unknown preset, 422 for a malformed request, work over the limits or a run that 
 slots are busy. Every body field has a strict type (``"exact": "yes"`` is refused, not read as true).
 A body may add ``"exact": true`` to use the closed form of the free top instead of an integrator.
 
-Runs happen in worker processes (:mod:`kreisel.web.runner`): each is stopped after the wall-clock limit
-and when its client goes away, and only a few run at once.
+Runs happen in worker processes (:mod:`kreisel.web.runner`): each is stopped after the wall-clock limit,
+when it has taken its budget of integration steps, and when its client goes away; only a few run at once.
 
 The stream sends ``start``, then ``chunk`` messages as soon as each is computed, then ``done`` with the
 first integrals (see :func:`kreisel.web.session.stream`); it allows
@@ -229,7 +229,8 @@ class Viewer:
         listener = asyncio.create_task(listen())
         sent = 0
         try:
-            async for message in self.runner.messages("stream", (text, request.exact, self.chunk_samples), stop):
+            async for message in self.runner.messages("stream", (text, request.exact, self.chunk_samples,
+                                                                 self.limits.max_steps), stop):
                 await websocket.send_json(message)
                 sent += len(message["t"]) if message["type"] == "chunk" else 0
             if cancelled:
@@ -345,7 +346,7 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     async def run(body: RunRequest, request: Request):
         text = _scenario_text(body)
         _checked(session.load, text, session.MAX_SAMPLES, body.exact)
-        return JSONResponse(await viewer.one(request, "run", text, body.exact))
+        return JSONResponse(await viewer.one(request, "run", text, body.exact, viewer.limits.max_steps))
 
     @app.websocket("/api/stream")
     async def stream(websocket: WebSocket):
@@ -371,7 +372,8 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
             raise HTTPException(400, "only rigid-body runs export as a trajectory file")
         folder = tempfile.TemporaryDirectory(prefix="kreisel-export-")
         try:
-            path = pathlib.Path(await viewer.one(request, "export", text, body.exact, format, folder.name))
+            path = pathlib.Path(await viewer.one(request, "export", text, body.exact, format, folder.name,
+                                                     viewer.limits.max_steps))
         except BaseException:
             folder.cleanup()
             raise

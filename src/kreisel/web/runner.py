@@ -3,7 +3,7 @@
 A run's cost is not known before it is made (a stiff heavy top or a huge torque makes the adaptive
 integrator take ever smaller steps, and compiled loops do not return to Python), so no up-front check can
 bound it. Each run therefore happens in a worker process of a small pool: at most ``slots`` runs at once,
-each stopped after ``wall_seconds``. A stop (time limit, client gone, ``cancel``) first asks the worker to
+each stopped after ``wall_seconds`` (and, inside the worker, after ``max_steps`` integration steps). A stop (time limit, client gone, ``cancel``) first asks the worker to
 stop between two chunks and, if it does not answer within ``grace_seconds``, ends its process; a fresh
 worker takes its place. The event loop never runs numerical work.
 
@@ -33,6 +33,9 @@ class Limits:
         Runs computed at once; further requests wait up to ``queue_seconds`` for a free slot.
     wall_seconds : float
         Wall-clock time of one run, from its start to its last message.
+    max_steps : int
+        Integration steps one run may take, all its chunks together (about 10 s of the compiled
+        integrators; see :class:`kreisel.web.session.Solver`).
     queue_seconds : float
         How long a request waits for a free slot before it is refused (503).
     grace_seconds : float
@@ -48,6 +51,7 @@ class Limits:
 
     slots: int = 2
     wall_seconds: float = 120.0
+    max_steps: int = 5_000_000
     queue_seconds: float = 10.0
     grace_seconds: float = 1.0
     max_body: int = 1_000_000
@@ -59,6 +63,8 @@ class Limits:
             value = getattr(self, name)
             if not isinstance(value, (int, float)) or not 0 < value < float("inf"):
                 raise ValueError(f"limits.{name} must be a positive number of seconds, got {value!r}")
+        if not isinstance(self.max_steps, int) or isinstance(self.max_steps, bool) or self.max_steps < 1:
+            raise ValueError(f"limits.max_steps must be an integer >= 1, got {self.max_steps!r}")
         if not isinstance(self.max_body, int) or self.max_body < 1024:
             raise ValueError(f"limits.max_body must be an integer >= 1024 bytes, got {self.max_body!r}")
 

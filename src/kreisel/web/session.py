@@ -7,10 +7,12 @@ the exported scenario obey one schema and one set of error messages.
 from __future__ import annotations
 
 import json
+import math
 import pathlib
 
 import numpy as np
 
+from .._compiled.chunks import StepBudgetExceeded
 from ..dynamics import METHODS as DYNAMICS_METHODS
 from ..dynamics.engine import ADAPTIVE
 from ..dynamics import simulate
@@ -19,6 +21,7 @@ from ..io.run import build_body, initial_attitude, torque_model
 from ..kinematics import euler_rates
 from ..so3 import quat_apply, quat_to_euler
 from ..tops import EulerTop, LagrangeTop, first_integrals
+from .runner import Limits
 
 METHODS = tuple(DYNAMICS_METHODS)
 # One JSON reply holds the whole run; a stream holds one chunk at a time on the server, so its limit is
@@ -27,6 +30,8 @@ MAX_SAMPLES = 20_000
 MAX_STREAM_SAMPLES = 200_000
 CHUNK_SAMPLES = 2_000
 MAX_STEPS = 2_000_000
+#: Integration steps one run may take by default (all its chunks together): the viewer's limit.
+RUN_STEPS = Limits().max_steps
 MAX_TURNS = 100_000
 
 
@@ -209,10 +214,15 @@ class Solver:
     ``exact=False`` integrates with :func:`kreisel.simulate` from the state given at the stretch's first
     time; ``exact=True`` evaluates the closed form of the free top (:meth:`kreisel.tops.EulerTop.solve`,
     Theory §5.3), which needs no state: every sample depends on its time only.
+
+    The integration steps actually taken are bounded by ``max_steps`` for the whole run: a stretch may take
+    its share of it (in proportion to its duration), and a run that needs more, however fast each step,
+    stops with :class:`RunRefused`.
     """
 
-    def __init__(self, scenario, exact=False):
+    def __init__(self, scenario, exact=False, max_steps=RUN_STEPS):
         data = scenario.data
+        self.max_steps = max_steps
         self.title = scenario.title
         self.q0 = initial_attitude(data["initial"].get("attitude"))
         self.omega0 = data["initial"]["omega"]
@@ -243,7 +253,16 @@ class Solver:
             traj = self.top.solve(t - self.t[0], self.omega0, self.q0)
             traj.meta["method"] = "exact"
             return traj
-        return simulate(self.body, t, omega_start, q0=q_start, torque=self.torque, method=self.method, dt=self.dt)
+        span = self.t[-1] - self.t[0]
+        # each output interval of a fixed-step method rounds its step count up: one more step per sample
+        budget = math.ceil(self.max_steps * ((t[-1] - t[0]) / span if span > 0 else 1.0)) + t.size
+        try:
+            return simulate(self.body, t, omega_start, q0=q_start, torque=self.torque, method=self.method,
+                            dt=self.dt, max_steps=budget)
+        except StepBudgetExceeded as exc:
+            raise RunRefused(f"the run needs more than the viewer's budget of {self.max_steps:g} integration steps "
+                             f"(it was stopped at t = {exc.t_reached:.4g} s): the motion is too fast or stiff for "
+                             "the viewer; shorten t_end, or run it with `kreisel simulate`") from None
 
 
 class IntegralChanges:
@@ -419,17 +438,18 @@ def foucault_result(scenario):
                      "period_hours": float(2 * np.pi / abs(rate) / 3600.0) if rate else None}}
 
 
-def run(text, exact=False):
+def run(text, exact=False, max_steps=RUN_STEPS):
     """Run scenario TOML ``text``: the JSON answer of ``/api/run`` (raises ScenarioError, RunRefused).
 
-    ``exact=True`` uses the closed form of the free top instead of an integrator.
+    ``exact=True`` uses the closed form of the free top instead of an integrator; ``max_steps`` bounds
+    the integration steps (see :class:`Solver`).
     """
     scenario = load(text, exact=exact)
     if scenario.kind == "foucault":
         answer = foucault_result(scenario)
         answer["form"] = None
     else:
-        answer = rigid_body_result(scenario, Solver(scenario, exact).run())
+        answer = rigid_body_result(scenario, Solver(scenario, exact, max_steps).run())
         answer["form"] = form_fields(scenario)
     answer["toml"] = text
     return answer
@@ -504,23 +524,25 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     }
 
 
-def export(text, exact, format, folder):
+def export(text, exact, format, folder, max_steps=RUN_STEPS):
     """Run scenario TOML ``text`` and write its trajectory as ``format`` ("nc" or "csv") into ``folder``.
 
-    Returns the path written (named after the scenario's title).
+    Returns the path written (named after the scenario's title); ``max_steps`` as in :class:`Solver`.
     """
     from ..io import save_result
 
     scenario = load(text, MAX_STREAM_SAMPLES, exact)
     if scenario.kind != "rigid_body":
         raise RunRefused("only rigid-body runs export as a trajectory file")
-    traj = Solver(scenario, exact).run()
+    traj = Solver(scenario, exact, max_steps).run()
     name = "".join(c if c.isalnum() else "_" for c in scenario.title.lower()).strip("_") or "trajectory"
     return str(save_result(traj, pathlib.Path(folder) / f"{name}.{format}"))
 
 
-def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES):
+def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES, max_steps=RUN_STEPS):
     """Validate ``text`` now, then return a generator of the run's messages, one chunk of work per message.
+
+    ``max_steps`` bounds the integration steps of the whole run (see :class:`Solver`).
 
     Messages: ``{"type": "start", ...}`` (what :func:`run` answers but the samples and the integrals, plus
     ``n_samples``, ``n_chunks`` and ``t_range``, the first and last time), then
@@ -543,7 +565,7 @@ def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES):
     if not isinstance(chunk_samples, int) or chunk_samples < 2:
         raise ValueError(f"chunk_samples must be an integer >= 2, got {chunk_samples!r}")
     scenario = load(text, MAX_STREAM_SAMPLES, exact)
-    solver = None if scenario.kind == "foucault" else Solver(scenario, exact)
+    solver = None if scenario.kind == "foucault" else Solver(scenario, exact, max_steps)
     return _messages(scenario, solver, text, chunk_samples)
 
 
