@@ -104,3 +104,16 @@ def test_separatrix_limit_and_parameter_checks():
         jacobi_elliptic(0.3, m1=-1e-3)
     with pytest.raises(ValueError, match="diverges"):
         complete_elliptic_pi(0.5, m1=0.0)
+
+
+def test_complete_pi_where_m_and_n_both_approach_one():
+    # Π(n | m) with 1 − n and m1 both tiny (a Lagrange top passing next to the vertical): the
+    # m1 -> 0 limit holds only for m1 << 1 − n, the Carlson form takes over above 1e-11 (1 − n)
+    from kreisel.tops._elliptic import complete_pi
+
+    mp.mp.dps = 80
+    for m1 in (1e-31, 1e-40):
+        for one_minus_n in (1e-40, 1e-35, 1e-30, 1e-25, 1e-20, 1e-15, 1e-10, 1e-5, 0.5, 3.0):
+            exact = mp.ellippi(1 - mp.mpf(one_minus_n), 1 - mp.mpf(m1))
+            value = complete_pi(1.0 - one_minus_n, one_minus_n, m1, np.sqrt(m1))
+            assert value == pytest.approx(float(exact), rel=1e-11), (m1, one_minus_n)

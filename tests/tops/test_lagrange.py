@@ -307,3 +307,29 @@ def test_bundled_apex_sweep_grid_has_finite_turning_points():
         for psidot in np.linspace(2.0, 12.0, 11):
             theta_min, theta_max = TOP.turning_points([0.0, np.radians(60.0), 0.0], [phidot, 0.0, psidot])
             assert 0.0 <= theta_min <= theta_max <= np.pi
+
+
+@pytest.mark.filterwarnings("ignore:Descending:DeprecationWarning")
+def test_passing_next_to_both_verticals():
+    # hardly spinning, nudged 1e-12 from the top: it falls through to within 5e-9 rad of the bottom
+    # and returns within 9e-17 rad of the top (m1 = 3.75e-33, Π at n -> 1 and m -> 1 together)
+    euler0, rates0 = [0.1, 1e-12, 0.2], [-1e-8, 1e-12, 1e-12]
+    period = TOP.nutation_period(euler0, rates0)
+    t = np.linspace(0.0, 1.2 * period, 9)
+    theta_ref, m1_ref = _theta_reference(euler0, rates0, t, dps=100)
+    assert 3e-33 < m1_ref < 4e-33
+    tr = TOP.solve(t, euler0, rates0)
+    assert np.all(np.isfinite(tr.zxz_angles)) and np.all(np.isfinite(tr.zxz_rates))
+    np.testing.assert_allclose(tr.zxz_angles[:, 1], theta_ref, rtol=0.0, atol=1e-11)
+    constants = TOP.constants(euler0, rates0)
+    energy = 0.5 * TOP.I1 * (tr.zxz_rates[:, 1] ** 2 + (tr.zxz_rates[:, 0] * np.sin(tr.zxz_angles[:, 1])) ** 2)
+    energy += constants.J3**2 / (2 * TOP.I3) + TOP.mgl * np.cos(tr.zxz_angles[:, 1])
+    np.testing.assert_allclose(energy, constants.E, rtol=1e-12)
+
+
+def test_refuses_what_doubles_cannot_follow():
+    with pytest.raises(ValueError, match="theta >= 1e-75"):
+        TOP.solve([0.0, 1.0], [0.0, 1e-80, 0.0], [0.0, 0.0, 1.0])
+    # passing within ~1e-150 rad of the vertical without reaching it: φ turns by π in ~1e-150 s
+    with pytest.raises(ValueError, match="passes within 1e-75 rad of the vertical"):
+        TOP.solve([0.0, 1.0], [0.0, 1e-74, 0.0], [0.3, 0.1, 1.0])

@@ -227,6 +227,8 @@ class _Quadrature:
         # δα = θ̇² + φ̇² sin²θ − β(1 − u0) = θ̇² + (1 − u0)(φ̇²(1 + u0) − β) = α − β
         phig = _dd_mul((phidot, 0.0), g2)
         delta_b2 = _dd_mul(h2, _dd_add(phig, (-a2[0], -a2[1])))
+        # likewise b + a = (1 + u0)(φ̇(1 − u0) + a), small for a top that passes near the lower vertical
+        sigma_b = _dd_mul(g2, _dd_add(_dd_mul((phidot, 0.0), h2), a2))[0]
         inner = _dd_add(_dd_mul(phig, (phidot, 0.0)), (-beta2[0], -beta2[1]))
         delta_alpha2 = _dd_add(_two_product(thetadot, thetadot), _dd_mul(h2, inner))
         h, g, beta, delta_alpha = h2[0], g2[0], beta2[0], delta_alpha2[0]
@@ -247,7 +249,7 @@ class _Quadrature:
             else:
                 from scipy.optimize import brentq  # 0.13 s to import: only when a root must be searched for
 
-                root = brentq(F, h, 2.0, xtol=1e-300, rtol=1e-15, maxiter=200)
+                root = brentq(F, h, 2.0, xtol=1e-300, rtol=1e-15, maxiter=2000)
         # the other two roots: product q = c0/(β root) <= 0, sum from whichever Vieta relation
         # cancels less (c2/β − root when root is the small one, (−c1/β − q)/root when it is w1)
         q = c0 / (beta * root) if root > 0.0 else 0.0
@@ -262,8 +264,17 @@ class _Quadrature:
         # clamped to the physical ranges: exactly, f(±1) <= 0 puts u1, u2 in [−1, 1] and u3 >= 1
         w1, w2 = min(max(root, others[0]), 2.0), max(min(root, others[0]), 0.0)
         w3 = min(others[1], 0.0)
-        self.w1, self.w2, self.w3 = w1, w2, w3
-        self.u1, self.u2, self.u3 = 1.0 - w1, 1.0 - w2, 1.0 - w3
+        # 1 + u1 = 2 − w1 would lose its digits next to the lower vertical; F(2) = −(b + a)²
+        # = −β(2 − w1)(2 − w2)(2 − w3) gives it as a quotient, as accurate as 2 − w2 >= 2 − w1
+        v1 = sigma_b * (sigma_b / (beta * (2.0 - w2) * (2.0 - w3))) if w2 < 2.0 else 0.0
+        # passing a vertical at θ ~ √w, φ turns by π within a time ~ √w/θ̇ (Π's 1 − n = w/w1)
+        if (delta_b != 0.0 and w2 < 1e-150) or (sigma_b != 0.0 and v1 < 1e-150):
+            raise ValueError(
+                "the top passes within 1e-75 rad of the vertical without reaching it: its ZXZ angle phi "
+                "turns by pi there faster than doubles can follow"
+            )
+        self.w1, self.w2, self.w3, self.v1, self.sigma_b = w1, w2, w3, v1, sigma_b
+        self.u1, self.u2, self.u3 = (1.0 - w1 if w1 < 1.0 else v1 - 1.0), 1.0 - w2, 1.0 - w3
         self.lam = 0.5 * math.sqrt(beta * (w1 - w3))
         self.m1 = (w2 - w3) / (w1 - w3)
         self.kc = math.sqrt(self.m1)
@@ -271,7 +282,9 @@ class _Quadrature:
         # phase at t = 0: sn² v0 ∝ u0 − u1 = w1 − h, cn² v0 ∝ u2 − u0 = h − w2, sign from u̇0. The
         # smaller of the two differences (next to a turning point, where the phase moves by
         # √difference/k′) comes from u̇0² = F(h) = β (w1 − h)(h − w2)(h − w3) instead
-        d1, d2 = max(w1 - h, 0.0), max(h - w2, 0.0)
+        # (next to the lower vertical u0 − u1 = (1 + u0) − (1 + u1) keeps its digits)
+        d1 = max(g - v1 if w1 > 1.0 and w2 < 2.0 else w1 - h, 0.0)
+        d2 = max(h - w2, 0.0)
         udot0_squared = h * g * thetadot * thetadot
         if d2 <= d1:
             d2 = udot0_squared / (beta * d1 * (h - w3)) if d1 > 0.0 else 0.0
@@ -283,18 +296,21 @@ class _Quadrature:
         self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, math.sqrt(d2), self.m1, self.kc)
 
     def _partial_fraction_terms(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
-        """(coefficient, characteristic n, 1 − n) of the 1/(1 − u) and 1/(1 + u) terms of φ̇."""
-        a, w1, w2 = self.a, self.w1, self.w2
-        return (
-            (self.delta_b / w1, (w1 - w2) / w1, w2 / w1),
-            ((2.0 * a + self.delta_b) / (2.0 - w1), -(w1 - w2) / (2.0 - w1), (2.0 - w2) / (2.0 - w1)),
-        )
+        """(coefficient, characteristic n, 1 − n) of the 1/(1 − u) and 1/(1 + u) terms of φ̇.
+
+        A vanishing coefficient (b = ±a: the top reaches that vertical, where its
+        denominator 1 ∓ u1 may vanish too) drops the term: (0, 0, 1).
+        """
+        w1, w2, v1 = self.w1, self.w2, self.v1
+        upper = (self.delta_b / w1, (w1 - w2) / w1, w2 / w1) if self.delta_b != 0.0 else (0.0, 0.0, 1.0)
+        lower = (self.sigma_b / v1, -(w1 - w2) / v1, (2.0 - w2) / v1) if self.sigma_b != 0.0 else (0.0, 0.0, 1.0)
+        return upper, lower
 
     def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         t = np.asarray(t, dtype=float)
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
-        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, terms, out)
+        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, self.v1, terms, out)
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
         udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
@@ -315,7 +331,7 @@ class _Quadrature:
 
 @_jit
 def _lagrange_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1: float, kc: float, quarter: float,
-                      w1: float, w2: float, terms: NDArray[np.float64], out: NDArray[np.float64]) -> None:
+                      w1: float, w2: float, v1: float, terms: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
     pic = np.zeros(2)
     pi0 = np.zeros(2)
@@ -333,7 +349,7 @@ def _lagrange_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1
         # 1 − u = w2 + (w1 − w2) cn² keeps its relative accuracy near the vertical
         out[i, 0] = (1.0 - w1) + (w1 - w2) * sn * sn
         out[i, 1] = w2 + (w1 - w2) * cn * cn
-        out[i, 2] = (2.0 - w1) + (w1 - w2) * sn * sn
+        out[i, 2] = v1 + (w1 - w2) * sn * sn
         out[i, 3], out[i, 4], out[i, 5] = sn, cn, dn
         for k in range(2):
             value = 0.0
@@ -356,7 +372,7 @@ class _PlanarPendulum:
     constant.
     """
 
-    a = b = delta_b = 0.0
+    a = b = delta_b = sigma_b = 0.0
 
     def __init__(self, top: LagrangeTop, theta0: float, thetadot0: float) -> None:
         g = top.I1 * thetadot0**2 / (4.0 * top.mgl)
@@ -378,6 +394,7 @@ class _PlanarPendulum:
             sn0, cn0 = np.cos(0.5 * theta0), -thetadot0 * np.sqrt(top.I1 / (4.0 * top.mgl))
             self.w1, self.w2, self.w3 = 2.0, 2.0 * max(s2 - g, 0.0), 0.0  # u2 = cos θ0 + 2g
         self.u1, self.u2, self.u3 = 1.0 - self.w1, 1.0 - self.w2, 1.0 - self.w3
+        self.v1 = 0.0
         if self.m1 == 0.0:
             self.quarter = np.inf
             self.n0, self.r0 = 0, np.arcsinh(sn0 / cn0)
@@ -505,6 +522,10 @@ class LagrangeTop:
     def _quadrature(self, euler0: ArrayLike,
                     rates0: ArrayLike) -> tuple[_Quadrature | _PlanarPendulum, NDArray[np.float64], NDArray[np.float64]]:
         euler0, rates0 = self._check_state(euler0, rates0)
+        if euler0[1] < 1e-75:
+            raise ValueError(
+                f"euler0 must have theta >= 1e-75 for the exact solution (1 - cos theta and the roots of f(u) next to 1 underflow), got theta={euler0[1]}"
+            )
         constants = self._constants(euler0, rates0)
         if constants.J3 == 0.0 and constants.Jz == 0.0:
             return _PlanarPendulum(self, euler0[1], rates0[1]), euler0, rates0
