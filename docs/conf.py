@@ -52,7 +52,9 @@ math_eqref_format = "({number})"
 
 templates_path = ["_templates"]
 exclude_patterns = ["_build", "_generated", "node_modules", "**/sg_execution_times.rst", "sg_execution_times.rst", "api/generated/*.rst.txt", "auto_examples/*.ipynb", "auto_examples/*.py",
-                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json"]
+                    "auto_examples/*.zip", "auto_examples/*.md5", "auto_examples/*.codeobj.json",
+                    "tour_notebooks/*.ipynb", "tour_notebooks/*.py", "tour_notebooks/*.zip", "tour_notebooks/*.md5",
+                    "tour_notebooks/*.codeobj.json"]
 html_theme = "pydata_sphinx_theme"
 html_title = f"kreisel {release}"
 html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
@@ -91,9 +93,9 @@ html_static_path = ["_static", "_generated/static"]
 mathjax_path = "mathjax/tex-chtml.js"
 
 sphinx_gallery_conf = {
-    "examples_dirs": str(ROOT / "examples"),
-    "gallery_dirs": "auto_examples",
-    "filename_pattern": r"/plot_",
+    "examples_dirs": [str(ROOT / "examples"), str(HERE / "_generated" / "tour")],
+    "gallery_dirs": ["auto_examples", "tour_notebooks"],
+    "filename_pattern": r"/(plot_|tour_)",
     "ignore_pattern": r"(__init__|_quick)\.py",
     "within_subsection_order": "FileNameSortKey",
     "image_scrapers": ("matplotlib", "_gallery.figure_scraper"),
@@ -279,9 +281,25 @@ def _generate_references():
     _write_if_changed(HERE / "_generated" / "file_reference.rst", file_reference(ROOT))
 
 
+def _generate_tour_notebooks():
+    """The tour's notebooks (kreisel.tour.notebooks) as a second sphinx-gallery: jupytext writes each as a script."""
+    import jupytext
+
+    from kreisel.tour.notebooks import NOTEBOOKS, notebook
+
+    quick = os.environ.get("KREISEL_QUICK", "") not in ("", "0")
+    target = HERE / "_generated" / "tour"
+    _write_if_changed(target / "README.txt", "The tour as notebooks\n=====================\n\n"
+                      "The sections of ``kreisel tour``, one notebook per part of the course, run here; "
+                      "``kreisel tour --notebooks DIR`` writes them out as Jupyter notebooks.\n")
+    for name in NOTEBOOKS:
+        _write_if_changed(target / f"tour_{name}.py", jupytext.writes(notebook(name, quick), fmt="py:sphinx"))
+
+
 _generate_api()
 _generate_bench()
 _generate_references()
+_generate_tour_notebooks()
 
 
 # --------------------------------------------------------------------------------------------

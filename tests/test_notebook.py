@@ -76,3 +76,21 @@ def test_dynamics_does_not_load_the_widget_until_shown():
             "before = 'kreisel.notebook' in sys.modules; tr.show(); print(before, 'kreisel.notebook' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=300)
     assert out.stdout.split() == ["False", "True"]
+
+
+def test_heavy_top_sends_gravity_and_its_analysis():
+    top = kr.LagrangeTop(1.0, 0.5, 1.0)
+    tr = top.solve(np.linspace(0.0, 2.0, 101), [0.0, 0.6, 0.0], [0.0, 0.0, 8.0])
+    data = widget_data(tr, gravity=(top.mgl, [0, 0, 1]))
+    assert data["gravity"] == {"weight": 1.0, "lever": [0.0, 0.0, 1.0]}
+    # total energy T + m g (R l)_z is conserved along the exact solution
+    energy = np.asarray(data["energy"])
+    np.testing.assert_allclose(energy, energy[0], rtol=1e-9)
+    assert data["analysis"]["lagrange"] is not None
+
+
+@pytest.mark.parametrize("bad, match", [(1.0, "pair"), ((0.0, [0, 0, 1]), "weight"), ((1.0, [0, 0]), "lever"),
+                                        ((1.0, [0, 0, 0]), "lever"), ((np.nan, [0, 0, 1]), "weight")])
+def test_refuses_bad_gravity(trajectory, bad, match):
+    with pytest.raises(ValueError, match=match):
+        widget_data(trajectory, gravity=bad)

@@ -2,8 +2,10 @@
 
 The widget is an `anywidget <https://anywidget.dev>`_ whose front end is the web
 viewer's own scene (``web/src/widget.js``, bundled into ``kreisel/web/static``):
-the body with its principal axes, ω and J, the energy ellipsoid on the
-invariable plane, polhode and herpolhode (Theory §5.5), with a time slider.
+the body with its principal axes, ω and J, the inertia ellipsoid (as the energy
+ellipsoid ω·Iω = 2T) rolling on the invariable plane, polhode and herpolhode
+(Theory §5.5), or for a heavy top the pivot, gravity and the path of the apex;
+a legend, a time slider and a space/body camera.
 Install it with ``pip install "kreisel[notebook]"``.
 """
 
@@ -23,7 +25,23 @@ __all__ = ["show", "widget_data"]
 MAX_SAMPLES = 2000
 
 
-def widget_data(trajectory, max_samples=MAX_SAMPLES):
+def _gravity(gravity):
+    """``(weight, lever)`` checked: weight > 0 in N, lever a non-zero (3,) vector in body axes, m."""
+    if gravity is None:
+        return None
+    try:
+        weight, lever = gravity
+        weight, lever = float(weight), np.asarray(lever, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"gravity must be a pair (weight, lever), got {gravity!r}") from None
+    if not (np.isfinite(weight) and weight > 0):
+        raise ValueError(f"gravity: weight must be a positive number of newtons, got {weight!r}")
+    if lever.shape != (3,) or not np.all(np.isfinite(lever)) or not np.any(lever):
+        raise ValueError(f"gravity: lever must be a finite non-zero 3-vector in body axes, got {lever.tolist()!r}")
+    return weight, lever
+
+
+def widget_data(trajectory, max_samples=MAX_SAMPLES, gravity=None):
     """The JSON-ready arrays the widget draws: the viewer's samples and analysis of ``trajectory``.
 
     Parameters
@@ -32,6 +50,10 @@ def widget_data(trajectory, max_samples=MAX_SAMPLES):
         A single body (no batch axes).
     max_samples : int
         At most this many samples are kept, evenly spaced in index.
+    gravity : (float, (3,) array_like), optional
+        ``(weight, lever)`` of a heavy top about its pivot: weight m g in N and the lever from the
+        pivot to the centre of mass in body axes, m (gravity along space −z). A
+        :class:`~kreisel.tops.LagrangeTop` has ``(top.mgl, [0, 0, 1])``.
 
     Returns
     -------
@@ -54,11 +76,13 @@ def widget_data(trajectory, max_samples=MAX_SAMPLES):
                          "show one element, e.g. a Trajectory built from traj.q[0], traj.omega[0]")
     if isinstance(max_samples, bool) or not isinstance(max_samples, (int, np.integer)) or max_samples < 2:
         raise ValueError(f"max_samples must be an integer >= 2, got {max_samples!r}")
+    gravity = _gravity(gravity)
     n = trajectory.t.size
     keep = np.unique(np.linspace(0, n - 1, min(n, int(max_samples))).round().astype(int))
     thinned = Trajectory(trajectory.t[keep], trajectory.q[keep], trajectory.omega[keep], trajectory.inertia)
-    arrays = samples(thinned, None)
-    return {"kind": "rigid_body", "gravity": None, "n_samples": int(keep.size), "analysis": analysis(thinned, None),
+    arrays = samples(thinned, gravity)
+    heavy = None if gravity is None else {"weight": gravity[0], "lever": gravity[1].tolist()}
+    return {"kind": "rigid_body", "gravity": heavy, "n_samples": int(keep.size), "analysis": analysis(thinned, gravity),
             **{key: np.asarray(value).tolist() for key, value in arrays.items()}}
 
 
@@ -76,7 +100,7 @@ def _widget_class():
     return TrajectoryWidget
 
 
-def show(trajectory, max_samples=MAX_SAMPLES):
+def show(trajectory, max_samples=MAX_SAMPLES, gravity=None):
     """Play ``trajectory`` in 3D in a notebook: body, principal axes, ω, J, Poinsot construction, time slider.
 
     Parameters
@@ -86,6 +110,9 @@ def show(trajectory, max_samples=MAX_SAMPLES):
         :meth:`kreisel.EulerTop.solve`.
     max_samples : int
         Longer trajectories are thinned evenly to this many samples.
+    gravity : (float, (3,) array_like), optional
+        ``(weight, lever)`` of a heavy top (see :func:`widget_data`): the scene shows the pivot,
+        gravity and the path of the apex instead of the free body's Poinsot construction.
 
     Returns
     -------
@@ -99,6 +126,10 @@ def show(trajectory, max_samples=MAX_SAMPLES):
     >>> widget = kr.show(tr)
     >>> len(widget.data["t"]), widget.index
     (501, 0)
+    >>> top = kr.LagrangeTop(1.0, 0.5, 1.0)
+    >>> heavy = kr.show(top.solve(np.linspace(0.0, 5.0, 201), [0.0, 0.5, 0.0], [0.0, 0.0, 10.0]), gravity=(top.mgl, [0, 0, 1]))
+    >>> heavy.data["gravity"]
+    {'weight': 1.0, 'lever': [0.0, 0.0, 1.0]}
     """
-    data = widget_data(trajectory, max_samples)
+    data = widget_data(trajectory, max_samples, gravity)
     return _widget_class()(data=data)

@@ -1,7 +1,7 @@
 // The viewer's page logic: form <-> API, playback clock, plots and readouts.
 import { drawPlot } from "./plots.js";
 // the scene comes from the widget's module, which carries three.js (web/build.mjs keeps it a separate file)
-import { legendItems, Viewer, webglAvailable } from "./widget.js";
+import { legendRows, Viewer, webglAvailable } from "./widget.js";
 
 const $ = (id) => document.getElementById(id);
 // window.kreisel is read by the end-to-end tests: the data, the playback position, what is plotted and
@@ -103,13 +103,7 @@ function readout(d) {
 }
 
 function legend(d) {
-  $("legend").replaceChildren(...legendItems(d).map(([color, text]) => {
-    const row = document.createElement("div");
-    const swatch = document.createElement("i");
-    swatch.style.background = color;
-    row.append(swatch, text);
-    return row;
-  }));
+  $("legend").replaceChildren(...legendRows(d));
 }
 
 // Start playing `d`, which may hold only the first chunk of a streamed run.

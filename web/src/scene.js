@@ -65,7 +65,19 @@ export function legendItems(data) {
   }
   return [...arrows, [css(COLORS.plane), "invariable plane (⊥ J, fixed in space)"],
     [css(COLORS.herpolhode), "herpolhode: ω's path on the plane"], [css(COLORS.polhode), "polhode: ω's path in the body"],
-    [css(COLORS.ellipsoid), "energy ellipsoid, rolling on the plane"], ...axes];
+    [css(COLORS.ellipsoid), "inertia ellipsoid (as ω·Iω = 2T), rolling on the plane"], ...axes];
+}
+
+/** The legend as rows of a swatch (an <i>, a short bar of the colour) and the description. */
+export function legendRows(data) {
+  return legendItems(data).map(([color, text]) => {
+    const row = document.createElement("div");
+    const swatch = document.createElement("i");
+    swatch.style.cssText = `background:${color};display:inline-block;width:14px;height:4px;margin:0 6px 3px 0;` +
+      "vertical-align:middle";
+    row.append(swatch, text);
+    return row;
+  });
 }
 
 export class Viewer {

@@ -1,11 +1,12 @@
-// The notebook widget (anywidget) of kreisel.show: the viewer's scene with a time slider.
+// The notebook widget (anywidget) of kreisel.show: the viewer's scene with its legend, a time slider and a
+// space/body camera.
 // The Python side (kreisel.notebook) sends one JSON object, model.get("data"), shaped like the viewer's
 // run results: t, q, omega, omega_space, J and the analysis (principal axes and moments, T, J).
 // The built module is self-contained (three.js inside), as anywidget loads it from one string; it also
 // exports the scene, which the viewer's page (main.js) imports from it instead of bundling three.js twice.
-import { Viewer, webglAvailable } from "./scene.js";
+import { legendRows, Viewer, webglAvailable } from "./scene.js";
 
-export { legendItems, Viewer, webglAvailable } from "./scene.js";
+export { legendRows, Viewer, webglAvailable } from "./scene.js";
 
 function render({ model, el }) {
   const box = document.createElement("div");
@@ -19,8 +20,12 @@ function render({ model, el }) {
   slider.type = "range";
   slider.style.flex = "1";
   const label = document.createElement("span");
-  bar.append(play, slider, label);
-  box.append(canvas, bar);
+  const camera = document.createElement("button");
+  camera.title = "camera fixed in space, or riding with the body";
+  const legend = document.createElement("div");
+  legend.style.cssText = "display:flex;flex-wrap:wrap;gap:2px 14px";
+  bar.append(play, slider, label, camera);
+  box.append(canvas, bar, legend);
   el.append(box);
   if (!webglAvailable()) {
     box.textContent = "kreisel.show needs WebGL, which this browser does not offer.";
@@ -39,6 +44,7 @@ function render({ model, el }) {
   const load = () => {
     data = model.get("data");
     viewer.load(data);
+    legend.replaceChildren(...legendRows(data));
     slider.min = 0;
     slider.max = data.t.length - 1;
     slider.value = Math.min(model.get("index"), data.t.length - 1);
@@ -56,10 +62,16 @@ function render({ model, el }) {
     if (on) frame = requestAnimationFrame(tick);
     else cancelAnimationFrame(frame);
   };
+  const setFrame = (frame) => {
+    viewer.frame = frame;
+    camera.textContent = `camera: ${frame}`;
+  };
+  camera.onclick = () => { setFrame(viewer.frame === "space" ? "body" : "space"); draw(); };
   play.onclick = () => setPlaying(!playing);
   slider.oninput = () => { setPlaying(false); draw(); };
   model.on("change:data", load);
   setPlaying(false);
+  setFrame("space");
   load();
   return () => { setPlaying(false); viewer.clear(); viewer.renderer.dispose(); };
 }

@@ -289,8 +289,22 @@ def examples(
 def tour(
     out_dir: pathlib.Path = typer.Option(pathlib.Path("tour"), "--out", help="Directory for index.html and figures."),
     quick: bool = typer.Option(False, "--quick", help="Smaller, faster demonstrations."),
+    notebooks: Optional[pathlib.Path] = typer.Option(
+        None, "--notebooks", metavar="DIR",
+        help="Instead of running the tour, write its sections as Jupyter notebooks DIR/01_rotations.ipynb, ... "
+             "(needs kreisel[notebook]); with --quick their problems are small."),
 ):
-    """Run every demonstration of the chapter and write DIR/index.html."""
+    """Run every demonstration of the chapter and write DIR/index.html, or write the tour as notebooks."""
+    if notebooks is not None:
+        from ..tour.notebooks import write_notebooks
+
+        try:
+            written = write_notebooks(notebooks, quick=quick)
+        except (ImportError, OSError, ValueError) as exc:
+            usage_error(f"--notebooks: {exc}")
+        for path in written:
+            say(f"wrote {path}")
+        raise typer.Exit(0)
     from ..tour import run_tour
 
     ok = run_tour(out_dir, quick=quick, console=_console())

@@ -63,6 +63,11 @@ class Section:
     def ok(self):
         return not self.error and all(c.ok for c in self.checks)
 
+    def _repr_html_(self):
+        # in a notebook (the tour's notebooks end each section cell with its Section)
+        mark = "all checks pass" if self.ok else "FAIL"
+        return _section_html(self, "section") + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>"
+
 
 def _png(fig):
     buf = io.BytesIO()
@@ -109,21 +114,26 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
         parts.append(f"<tr><td><a href='#s{i}'>{html.escape(s.title)}</a></td><td>{html.escape(s.seed)}</td>"
                      f"<td>{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}</td><td>{s.seconds:.1f} s</td></tr>")
     parts.append("</table>")
-    for i, s in enumerate(sections):
-        parts.append(f"<section id='s{i}'><h2>{html.escape(s.title)} <small>(Theory {html.escape(s.seed)})</small></h2>")
-        parts.append(f"<p>{s.text}</p>")
-        if s.error:
-            parts.append(f"<p class='fail'>error: {html.escape(s.error)}</p>")
-        if s.checks:
-            parts.append("<table><tr><th>quantity</th><th>kreisel</th><th>expected</th><th></th></tr>")
-            for c in s.checks:
-                mark = "<span class='pass'>✓</span>" if c.ok else "<span class='fail'>✗</span>"
-                parts.append(f"<tr><td>{html.escape(c.label)}</td><td>{html.escape(plain(c.value))}</td>"
-                             f"<td>{html.escape(c.expected)}</td><td>{mark}</td></tr>")
-            parts.append("</table>")
-        for fig, caption in s.figures:
-            parts.append(f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{_png(fig)}'>"
-                         f"<figcaption>{html.escape(caption)}</figcaption></figure>")
-        parts.append("</section>")
+    parts += [_section_html(s, f"s{i}") for i, s in enumerate(sections)]
     parts.append("</body></html>")
+    return "\n".join(parts)
+
+
+def _section_html(s, anchor):
+    """One section: title, what the theory says, the checks, the figures (PNG data)."""
+    parts = [f"<section id='{anchor}'><h2>{html.escape(s.title)} <small>(Theory {html.escape(s.seed)})</small></h2>",
+             f"<p>{s.text}</p>"]
+    if s.error:
+        parts.append(f"<p class='fail'>error: {html.escape(s.error)}</p>")
+    if s.checks:
+        parts.append("<table><tr><th>quantity</th><th>kreisel</th><th>expected</th><th></th></tr>")
+        for c in s.checks:
+            mark = "<span class='pass'>✓</span>" if c.ok else "<span class='fail'>✗</span>"
+            parts.append(f"<tr><td>{html.escape(c.label)}</td><td>{html.escape(plain(c.value))}</td>"
+                         f"<td>{html.escape(c.expected)}</td><td>{mark}</td></tr>")
+        parts.append("</table>")
+    for fig, caption in s.figures:
+        parts.append(f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{_png(fig)}'>"
+                     f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+    parts.append("</section>")
     return "\n".join(parts)

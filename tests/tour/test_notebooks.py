@@ -1,0 +1,102 @@
+"""The tour as notebooks: made from the section functions, written by ``kreisel tour --notebooks``, executed.
+
+The notebooks a user writes with the command are opened with nbformat and run with nbclient
+in an IPython kernel (quick problems); every section shows its checks passing.
+"""
+
+import ast
+import inspect
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+import kreisel
+from kreisel.tour import SECTIONS
+from kreisel.tour.notebooks import NOTEBOOKS, notebook, notebook_text
+
+nbformat = pytest.importorskip("nbformat")
+nbclient = pytest.importorskip("nbclient")
+jupytext = pytest.importorskip("jupytext")
+
+
+def test_every_section_is_in_one_notebook_in_tour_order():
+    flat = [f for functions in NOTEBOOKS.values() for f in functions]
+    assert len(flat) == len(SECTIONS) and set(flat) == set(SECTIONS)
+    for functions in NOTEBOOKS.values():
+        assert len({f.__module__ for f in functions}) == 1
+        assert [SECTIONS.index(f) for f in functions] == sorted(SECTIONS.index(f) for f in functions)
+
+
+@pytest.mark.parametrize("name", list(NOTEBOOKS))
+def test_text_is_the_section_code_with_its_result_as_last_expression(name):
+    nb = jupytext.reads(notebook_text(name, quick=True), fmt="py:percent")
+    code = [c.source for c in nb.cells if c.cell_type == "code"]
+    titles = [c.source.splitlines()[0] for c in nb.cells if c.cell_type == "markdown"][1:]
+    assert "quick = True" in code[0] and len(code) == len(NOTEBOOKS[name]) + 1
+    for function, title, source in zip(NOTEBOOKS[name], titles, code[1:]):
+        assert title == inspect.getdoc(function).splitlines()[0].rstrip(".")
+        tree = ast.parse(source)
+        last = tree.body[-1]
+        assert isinstance(last, ast.Expr) and ast.unparse(last.value.func) == "Section"
+        assert not any(isinstance(n, ast.Return) for stmt in tree.body for n in ast.walk(stmt)
+                       if not isinstance(stmt, (ast.FunctionDef, ast.Lambda)))
+        # the cell holds the function's statements, not a call of the tour module
+        body = ast.parse(inspect.getsource(function).lstrip()).body[0].body
+        assert len(tree.body) == len(body) - 1   # all but the docstring
+
+
+def test_a_section_that_returns_early_is_refused(monkeypatch):
+    import kreisel.tour.notebooks as notebooks
+
+    def early(quick):
+        """An early exit"""
+        if quick:
+            return None
+        return 1
+
+    monkeypatch.setitem(notebooks.NOTEBOOKS, "99_bad", [early])
+    with pytest.raises(ValueError, match="early must end in `return Section"):
+        notebook("99_bad")
+
+
+def test_unknown_name_is_refused():
+    with pytest.raises(ValueError, match="name must be one of 01_rotations"):
+        notebook_text("rotations")
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    """``kreisel tour --notebooks DIR --quick`` run as a user runs it."""
+    out = tmp_path_factory.mktemp("class")
+    result = subprocess.run([sys.executable, "-m", "kreisel", "tour", "--notebooks", str(out), "--quick"],
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split("\n")[0] == f"wrote {out / '01_rotations.ipynb'}"
+    return out
+
+
+def test_command_writes_one_valid_notebook_per_part(written):
+    assert sorted(p.name for p in written.iterdir()) == [f"{name}.ipynb" for name in NOTEBOOKS]
+    for path in written.iterdir():
+        nb = nbformat.read(path, as_version=4)
+        nbformat.validate(nb)
+        assert nb.metadata.kernelspec.name == "python3"
+
+
+def test_notebooks_execute_and_every_section_passes(written):
+    # the kernel imports the kreisel under test (a source tree on PYTHONPATH or an install)
+    env = {**os.environ, "MPLBACKEND": "Agg",
+           "PYTHONPATH": os.pathsep.join([str(pathlib.Path(kreisel.__file__).parents[1]), os.environ.get("PYTHONPATH", "")])}
+    for name, functions in NOTEBOOKS.items():
+        nb = nbformat.read(written / f"{name}.ipynb", as_version=4)
+        nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                                resources={"metadata": {"path": str(written)}}).execute(env=env)
+        shown = [o.data["text/html"] for c in nb.cells if c.cell_type == "code" for o in c.outputs
+                 if "text/html" in o.get("data", {})]
+        assert len(shown) == len(functions), name
+        for function, html in zip(functions, shown):
+            assert "<b>all checks pass</b>" in html and "class='fail'" not in html, (name, function.__name__)
+        assert sum(html.count("data:image/png;base64,") for html in shown) >= len(functions), name
