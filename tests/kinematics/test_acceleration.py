@@ -2,6 +2,7 @@
 
 import itertools
 
+import mpmath as mp
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation as ScipyRotation
@@ -86,6 +87,55 @@ def test_from_rotvec_small_angles_accurate():
         w = lambda s: kr.angular_velocity_from_rotvec_rate(s * a + s * s * b, a + 2 * s * b)  # noqa: E731
         fd = (8 * (w(t + h) - w(t - h)) - (w(t + 2 * h) - w(t - 2 * h))) / (12 * h)
         np.testing.assert_allclose(got, fd, atol=1e-10)
+
+
+def _mp_epsilon(psi, psidot, psiddot, sign):
+    """dω/dt of ω = ψ̇ + sign A ψ×ψ̇ + B ψ×(ψ×ψ̇) (Theory §3.4) along ψ + tψ̇ + t²ψ̈/2, by mpmath.diff at 1400 digits."""
+
+    def cross(a, b):
+        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+    with mp.workdps(1400):
+        p0, p1, p2 = ([mp.mpf(float(c)) for c in x] for x in (psi, psidot, psiddot))
+
+        def omega(t, k):
+            x = [a + t * b + t * t * c / 2 for a, b, c in zip(p0, p1, p2)]
+            rate = [b + t * c for b, c in zip(p1, p2)]
+            angle = mp.sqrt(sum(c * c for c in x))
+            once = cross(x, rate)
+            twice = cross(x, once)
+            return rate[k] + sign * (1 - mp.cos(angle)) / angle**2 * once[k] + (angle - mp.sin(angle)) / angle**3 * twice[k]
+
+        return np.array([float(mp.diff(lambda t: omega(t, k), 0)) for k in range(3)])
+
+
+@pytest.mark.parametrize("exponent", [-996, -530, 530, 996])
+@pytest.mark.parametrize("frame", ["space", "body"])
+def test_from_rotvec_at_extreme_magnitudes_against_mpmath(exponent, frame):
+    """|ψ| ~ 1e±300 and 1e±160: the norm and ψ×(ψ×ψ̇) neither overflow nor underflow.
+
+    With ψ̈ = 0 the result is the coefficient terms alone (~|ψ| or ~1/|ψ|). The
+    direction (2, −1, 2) has a norm exact in binary, so that sin |ψ| is well posed.
+    """
+    psi = 2.0**exponent * np.array([2.0, -1.0, 2.0])
+    psidot = np.array([0.3, 0.7, -0.4])
+    for psiddot in (np.zeros(3), np.array([-0.2, 0.5, 0.1])):
+        want = _mp_epsilon(psi, psidot, psiddot, 1.0 if frame == "space" else -1.0)
+        got = angular_acceleration_from_rotvec(psi, psidot, psiddot, frame=frame)
+        assert np.all(np.isfinite(got))
+        assert np.linalg.norm(got - want) <= 1e-13 * np.linalg.norm(want)
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e200])
+@pytest.mark.parametrize("frame", ["space", "body"])
+def test_from_quaternion_of_any_size(scale, frame):
+    """ε of a scaled quaternion path is that of the unit one: |q|² would over- or underflow here."""
+    q = np.array([0.5, 0.5, -0.5, 0.5])
+    qdot = np.array([0.1, -0.3, 0.2, 0.4])
+    qddot = np.array([-0.2, 0.1, 0.3, -0.1])
+    want = angular_acceleration_from_quat(q, qdot, qddot, frame=frame)
+    got = angular_acceleration_from_quat(scale * q, scale * qdot, scale * qddot, frame=frame)
+    np.testing.assert_allclose(got, want, rtol=1e-14, atol=1e-15)
 
 
 @pytest.mark.parametrize("seq", SEQUENCES)

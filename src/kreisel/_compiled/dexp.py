@@ -16,7 +16,7 @@ import math
 
 from numba import prange
 
-from . import cached, generic, parallel, series
+from . import cached, generic, kernels, parallel, series
 from .gufunc import gufunc
 
 
@@ -51,44 +51,66 @@ def cross(ax, ay, az, bx, by, bz):
 
 
 @cached
-def dexp_coefficients(angle):
-    """``A = (1 - cos ψ)/ψ²`` and ``B = (ψ - sin ψ)/ψ³`` of Theory §3.4.
+def axis_angle(x, y, z):
+    """Unit axis and angle of the rotation vector ``(x, y, z)``, for any finite size (axis 0 at angle 0).
 
-    A is evaluated as ½ (sin(ψ/2)/(ψ/2))², which has no cancellation; B
-    from its series below ψ = 1.
+    The maps below are written with the unit axis ``u`` and coefficients
+    multiplied by powers of the angle (``A ψ`` instead of ``A``, so that
+    ``A ψ×v = (Aψ) u×v``): neither the norm nor ``ψ×(ψ×v)`` overflows or
+    underflows for huge or tiny rotation vectors, and no coefficient does.
+    """
+    angle = kernels.norm3(x, y, z)
+    if angle == 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    return x / angle, y / angle, z / angle, angle
+
+
+@cached
+def sine_remainder(angle):
+    """``B = (ψ - sin ψ)/ψ³`` of Theory §3.4, from its series below ψ = 1."""
+    if angle < _SINE_REMAINDER_SERIES_BELOW:
+        return horner(_SINE_REMAINDER_SERIES, angle * angle)
+    return (1.0 - math.sin(angle) / angle) / angle / angle
+
+
+@cached
+def dexp_coefficients(angle):
+    """``Aψ = (1 - cos ψ)/ψ`` and ``Bψ² = 1 - sin ψ/ψ``, with A and B of Theory §3.4.
+
+    ``Aψ = sin(ψ/2) · sin(ψ/2)/(ψ/2)`` has no cancellation; ``Bψ²`` is summed
+    from the series of B below ψ = 1.
     """
     if angle == 0.0:
-        return 0.5, 1.0 / 6.0
+        return 0.0, 0.0
     h = 0.5 * angle
-    sinc = math.sin(h) / h
-    a = 0.5 * sinc * sinc
+    s = math.sin(h)
     if angle < _SINE_REMAINDER_SERIES_BELOW:
-        b = horner(_SINE_REMAINDER_SERIES, angle * angle)
+        b = horner(_SINE_REMAINDER_SERIES, angle * angle) * angle * angle
     else:
-        b = (angle - math.sin(angle)) / (angle * angle * angle)
-    return a, b
+        b = 1.0 - math.sin(angle) / angle
+    return s * (s / h), b
 
 
 @cached
 def dexp_coefficient_slopes(angle):
-    """``A'(ψ)/ψ`` and ``B'(ψ)/ψ`` for the time derivative of the dexp matrix."""
+    """``A'ψ``, ``B'ψ²`` and ``Bψ``: the coefficients of the time derivative of the dexp matrix."""
     if angle < _SLOPE_SERIES_BELOW:
         x = angle * angle
-        return horner(_COSINE_REMAINDER_SLOPE_SERIES, x), horner(_SINE_REMAINDER_SLOPE_SERIES, x)
-    sn = math.sin(angle)
-    cs = math.cos(angle)
-    a2 = angle * angle
-    da = (angle * sn - 2.0 * (1.0 - cs)) / (a2 * a2)
-    db = (3.0 * sn - angle * cs - 2.0 * angle) / (a2 * a2 * angle)
-    return da, db
+        return (
+            horner(_COSINE_REMAINDER_SLOPE_SERIES, x) * x,
+            horner(_SINE_REMAINDER_SLOPE_SERIES, x) * x * angle,
+            sine_remainder(angle) * angle,
+        )
+    a, b = dexp_coefficients(angle)
+    return (math.sin(angle) - 2.0 * a) / angle, (3.0 * math.sin(angle) / angle - math.cos(angle) - 2.0) / angle, b / angle
 
 
 @cached
 def se3_coupling_coefficients(angle):
     """The coefficients of the coupling block Q of the SE(3) Jacobians (Barfoot):
-    ``(ψ − sin ψ)/ψ³`` (B of :func:`dexp_coefficients`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
+    ``(ψ − sin ψ)/ψ³`` (:func:`sine_remainder`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
     and ``(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, the last two from their series below ψ = 2."""
-    _, b = dexp_coefficients(angle)
+    b = sine_remainder(angle)
     if angle < _SE3_SERIES_BELOW:
         x = angle * angle
         return b, horner(_COSINE_REMAINDER_SERIES, x), horner(_SE3_COUPLING_SERIES, x)
@@ -105,8 +127,16 @@ def bortz_coefficient(angle):
     summed from its series 1/12 + ψ²/720 + ψ⁴/30240 + ... below ψ = 1."""
     if angle < _BORTZ_SERIES_BELOW:
         return horner(_BORTZ_SERIES, angle * angle)
+    return bortz_times_square(angle) / angle / angle
+
+
+@cached
+def bortz_times_square(angle):
+    """The Bortz coefficient times ψ², ``1 - (ψ/2) cot(ψ/2)``, finite for every finite angle off the poles."""
+    if angle < _BORTZ_SERIES_BELOW:
+        return horner(_BORTZ_SERIES, angle * angle) * angle * angle
     h = 0.5 * angle
-    return (1.0 - h * math.cos(h) / math.sin(h)) / (angle * angle)
+    return 1.0 - h * math.cos(h) / math.sin(h)
 
 
 @cached
@@ -116,41 +146,65 @@ def rotvec_singular(angle, tol):
 
 
 @cached
+def _plus_cross_terms(ux, uy, uz, v0, v1, v2, linear, quadratic):
+    """``v + linear u×v + quadratic u×(u×v)``."""
+    cx, cy, cz = cross(ux, uy, uz, v0, v1, v2)
+    ccx, ccy, ccz = cross(ux, uy, uz, cx, cy, cz)
+    return v0 + linear * cx + quadratic * ccx, v1 + linear * cy + quadratic * ccy, v2 + linear * cz + quadratic * ccz
+
+
+@cached
 def jacobian_times(x, y, z, v0, v1, v2, sign):
     """``J v = v + sign A ψ×v + B ψ×(ψ×v)``: sign +1 is J_l (ψ̇ -> ω), −1 is J_r (ψ̇ -> ω′)."""
-    a, b = dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    cx, cy, cz = cross(x, y, z, v0, v1, v2)
-    ccx, ccy, ccz = cross(x, y, z, cx, cy, cz)
-    sa = sign * a
-    return v0 + sa * cx + b * ccx, v1 + sa * cy + b * ccy, v2 + sa * cz + b * ccz
+    ux, uy, uz, angle = axis_angle(x, y, z)
+    a, b = dexp_coefficients(angle)
+    return _plus_cross_terms(ux, uy, uz, v0, v1, v2, sign * a, b)
 
 
 @cached
 def jacobian_inverse_times(x, y, z, w0, w1, w2, sign, tol):
     """``J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w)``, NaN at the poles |ψ| = 2πk (:func:`rotvec_singular`)."""
-    angle = math.sqrt(x * x + y * y + z * z)
+    ux, uy, uz, angle = axis_angle(x, y, z)
     if rotvec_singular(angle, tol):
         return math.nan, math.nan, math.nan
-    f = bortz_coefficient(angle)
-    cx, cy, cz = cross(x, y, z, w0, w1, w2)
-    ccx, ccy, ccz = cross(x, y, z, cx, cy, cz)
-    h = -0.5 * sign
-    return w0 + h * cx + f * ccx, w1 + h * cy + f * ccy, w2 + h * cz + f * ccz
+    return _plus_cross_terms(ux, uy, uz, w0, w1, w2, -0.5 * sign * angle, bortz_times_square(angle))
 
 
 @cached
-def write_jacobian(x, y, z, linear, quadratic, out):
-    """``out = 1 + linear hat(ψ) + quadratic hat(ψ)²``, with ``hat(ψ)² = ψψᵀ − |ψ|² 1``."""
-    n2 = x * x + y * y + z * z
-    out[0, 0] = 1.0 + quadratic * (x * x - n2)
-    out[1, 1] = 1.0 + quadratic * (y * y - n2)
-    out[2, 2] = 1.0 + quadratic * (z * z - n2)
-    out[0, 1] = quadratic * x * y - linear * z
-    out[1, 0] = quadratic * x * y + linear * z
-    out[0, 2] = quadratic * x * z + linear * y
-    out[2, 0] = quadratic * x * z - linear * y
-    out[1, 2] = quadratic * y * z - linear * x
-    out[2, 1] = quadratic * y * z + linear * x
+def jacobian_rate_times(x, y, z, v0, v1, v2, a0, a1, a2, sign):
+    """``d/dt (J(ψ) ψ̇) = J ψ̈ + J̇ ψ̇`` for ψ̇ = v, ψ̈ = a: the angular acceleration of Theory §3.9.
+
+    Since hat(ψ̇)ψ̇ = 0, ``J̇ψ̇ = (u·ψ̇)(sign A'ψ u×ψ̇ + B'ψ² u×(u×ψ̇)) + Bψ ψ̇×(u×ψ̇)``.
+    """
+    ux, uy, uz, angle = axis_angle(x, y, z)
+    a, b = dexp_coefficients(angle)
+    da, db, bl = dexp_coefficient_slopes(angle)
+    jx, jy, jz = _plus_cross_terms(ux, uy, uz, a0, a1, a2, sign * a, b)
+    p = ux * v0 + uy * v1 + uz * v2
+    cx, cy, cz = cross(ux, uy, uz, v0, v1, v2)
+    ccx, ccy, ccz = cross(ux, uy, uz, cx, cy, cz)
+    dx, dy, dz = cross(v0, v1, v2, cx, cy, cz)
+    lin = sign * da
+    return (
+        jx + p * (lin * cx + db * ccx) + bl * dx,
+        jy + p * (lin * cy + db * ccy) + bl * dy,
+        jz + p * (lin * cz + db * ccz) + bl * dz,
+    )
+
+
+@cached
+def write_jacobian(ux, uy, uz, linear, quadratic, out):
+    """``out = 1 + linear hat(u) + quadratic hat(u)²``, with ``hat(u)² = uuᵀ − |u|² 1``."""
+    n2 = ux * ux + uy * uy + uz * uz
+    out[0, 0] = 1.0 + quadratic * (ux * ux - n2)
+    out[1, 1] = 1.0 + quadratic * (uy * uy - n2)
+    out[2, 2] = 1.0 + quadratic * (uz * uz - n2)
+    out[0, 1] = quadratic * ux * uy - linear * uz
+    out[1, 0] = quadratic * ux * uy + linear * uz
+    out[0, 2] = quadratic * ux * uz + linear * uy
+    out[2, 0] = quadratic * ux * uz - linear * uy
+    out[1, 2] = quadratic * uy * uz - linear * ux
+    out[2, 1] = quadratic * uy * uz + linear * ux
 
 
 @parallel
@@ -180,23 +234,28 @@ def apply_jacobian_inverse(psi, w, sign, tol, out):
     out[0], out[1], out[2] = jacobian_inverse_times(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
 
 
+@gufunc(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(3),(3),(3),()->(3)")
+def apply_jacobian_rate(psi, v, acc, sign, out):
+    """``d/dt (J(ψ) ψ̇)`` for validated batches of ψ, ψ̇ = ``v`` and ψ̈ = ``acc``."""
+    out[0], out[1], out[2] = jacobian_rate_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], acc[0], acc[1], acc[2], sign)
+
+
 @gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
 def jacobian_matrix(psi, sign, out):
     """The matrices ``J(ψ)`` of validated ``(..., 3)`` rotation vectors."""
-    x, y, z = psi[0], psi[1], psi[2]
-    a, b = dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    write_jacobian(x, y, z, sign * a, b, out)
+    ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
+    a, b = dexp_coefficients(angle)
+    write_jacobian(ux, uy, uz, sign * a, b, out)
 
 
 @gufunc(["void(f8[:], f8, f8, f8[:, :])"], "(3),(),()->(3,3)")
 def jacobian_inverse_matrix(psi, sign, tol, out):
     """The matrices ``J(ψ)⁻¹``, all NaN at the poles as in :data:`apply_jacobian_inverse`."""
-    x, y, z = psi[0], psi[1], psi[2]
-    angle = math.sqrt(x * x + y * y + z * z)
+    ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
     if rotvec_singular(angle, tol):
         out[:, :] = math.nan
         return
-    write_jacobian(x, y, z, -0.5 * sign, bortz_coefficient(angle), out)
+    write_jacobian(ux, uy, uz, -0.5 * sign * angle, bortz_times_square(angle), out)
 
 
 @cached

@@ -61,6 +61,16 @@ def squarable(q0, q1, q2, q3):
 
 
 @cached
+def norm3(x, y, z):
+    """``|(x, y, z)|`` for any finite components (divided by the largest first when squaring would over- or underflow)."""
+    m = size(0.0, x, y, z)
+    if SIZE_LOW < m < SIZE_HIGH or m == 0.0:
+        return math.sqrt(x * x + y * y + z * z)
+    x, y, z = x / m, y / m, z / m
+    return m * math.sqrt(x * x + y * y + z * z)
+
+
+@cached
 def quat_unit(q0, q1, q2, q3):
     """``q / |q|`` for any nonzero finite ``q``."""
     q0, q1, q2, q3 = squarable(q0, q1, q2, q3)

@@ -28,6 +28,7 @@ from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
 from .._validation import check_tolerance, warn_if_any
+from ..so3._norms import norm
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
 from ._checks import frame_sign, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning
@@ -175,5 +176,5 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     """
     psi = vectors(psi, "psi")
     tol = check_tolerance(tol)
-    angle = np.linalg.norm(psi, axis=-1)
+    angle = norm(psi)
     return deliver((angle > np.pi) & (np.abs(np.sin(0.5 * angle)) <= tol), out)

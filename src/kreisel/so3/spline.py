@@ -22,8 +22,6 @@ Evaluation runs in compiled code, on both cores for long time arrays.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import prange
 
@@ -35,31 +33,7 @@ from .rotation import Rotation
 __all__ = ["RotationSpline", "Slerp"]
 
 
-@cached
-def _body_rate(x, y, z, vx, vy, vz):
-    """``J_r(ψ) ψ̇`` and the dexp coefficients."""
-    a, b = dexp.dexp_coefficients(math.sqrt(x * x + y * y + z * z))
-    cx, cy, cz = dexp.cross(x, y, z, vx, vy, vz)
-    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
-    return vx - a * cx + b * ccx, vy - a * cy + b * ccy, vz - a * cz + b * ccz
-
-
-@cached
-def _body_acceleration(x, y, z, vx, vy, vz, ax, ay, az):
-    """``d/dt (J_r(ψ) ψ̇) = J_r ψ̈ + (ψ·ψ̇)(-A'/ψ ψ×ψ̇ + B'/ψ ψ×(ψ×ψ̇)) + B ψ̇×(ψ×ψ̇)``."""
-    angle = math.sqrt(x * x + y * y + z * z)
-    _, b = dexp.dexp_coefficients(angle)
-    da, db = dexp.dexp_coefficient_slopes(angle)
-    jx, jy, jz = _body_rate(x, y, z, ax, ay, az)
-    cx, cy, cz = dexp.cross(x, y, z, vx, vy, vz)
-    ccx, ccy, ccz = dexp.cross(x, y, z, cx, cy, cz)
-    dx, dy, dz = dexp.cross(vx, vy, vz, cx, cy, cz)
-    p = x * vx + y * vy + z * vz
-    return (
-        jx + p * (-da * cx + db * ccx) + b * dx,
-        jy + p * (-da * cy + db * ccy) + b * dy,
-        jz + p * (-da * cz + db * ccz) + b * dz,
-    )
+_BODY = -1.0  # the sign of the right Jacobian J_r, which maps ψ̇ to ω′
 
 
 @cached
@@ -82,10 +56,10 @@ def _evaluate_one(i, t, times, index, coeff, quats, order, space, out):
     vy = (3.0 * c0y * tau + 2.0 * c1y) * tau + c2y
     vz = (3.0 * c0z * tau + 2.0 * c1z) * tau + c2z
     if order == 1:
-        wx, wy, wz = _body_rate(x, y, z, vx, vy, vz)
+        wx, wy, wz = dexp.jacobian_times(x, y, z, vx, vy, vz, _BODY)
     else:
-        wx, wy, wz = _body_acceleration(
-            x, y, z, vx, vy, vz, 6.0 * c0x * tau + 2.0 * c1x, 6.0 * c0y * tau + 2.0 * c1y, 6.0 * c0z * tau + 2.0 * c1z
+        wx, wy, wz = dexp.jacobian_rate_times(
+            x, y, z, vx, vy, vz, 6.0 * c0x * tau + 2.0 * c1x, 6.0 * c0y * tau + 2.0 * c1y, 6.0 * c0z * tau + 2.0 * c1z, _BODY
         )
     if space:
         wx, wy, wz = kernels.rotated(r0, r1, r2, r3, wx, wy, wz)
@@ -102,31 +76,6 @@ def _evaluate_serial(t, times, index, coeff, quats, order, space, out):
 def _evaluate_parallel(t, times, index, coeff, quats, order, space, out):
     for i in prange(t.shape[0]):
         _evaluate_one(i, t, times, index, coeff, quats, order, space, out)
-
-
-@cached
-def _jacobians(rotvecs, J, J_inv):
-    """``J_inv = J_r(ψ)`` (ψ̇ -> ω') and ``J = J_r(ψ)⁻¹`` for each rotation vector."""
-    for n in range(rotvecs.shape[0]):
-        x, y, z = rotvecs[n, 0], rotvecs[n, 1], rotvecs[n, 2]
-        angle = math.sqrt(x * x + y * y + z * z)
-        a, b = dexp.dexp_coefficients(angle)
-        c = dexp.bortz_coefficient(angle)
-        hat = ((0.0, -z, y), (z, 0.0, -x), (-y, x, 0.0))
-        for r in range(3):
-            for col in range(3):
-                h2 = hat[r][0] * hat[0][col] + hat[r][1] * hat[1][col] + hat[r][2] * hat[2][col]
-                one = 1.0 if r == col else 0.0
-                J_inv[n, r, col] = one - a * hat[r][col] + b * h2
-                J[n, r, col] = one + 0.5 * hat[r][col] + c * h2
-
-
-def _nonlinear_term(rotvecs, rotvecs_dot):
-    out = np.empty_like(rotvecs)
-    zero = np.zeros(3)
-    for n in range(len(rotvecs)):
-        out[n] = _body_acceleration(*rotvecs[n], *rotvecs_dot[n], *zero)
-    return out
 
 
 def _block_tridiagonal(lower, upper, diagonal):
@@ -153,9 +102,9 @@ def _knot_rates(dt, rotvecs, max_iter, tol):
     if len(rotvecs) == 1:
         return rates, rates
     first = rates[0].copy()
-    J = np.empty((len(rotvecs), 3, 3))
-    J_inv = np.empty_like(J)
-    _jacobians(rotvecs, J, J_inv)
+    # J_r(ψ) (ψ̇ -> ω') and its inverse; no pole, as |ψ| <= π
+    J_inv = dexp.jacobian_matrix(rotvecs, _BODY)
+    J = dexp.jacobian_inverse_matrix(rotvecs, _BODY, 0.0)
     M = _block_tridiagonal(
         2.0 * J_inv[1:-1] / dt[1:-1, None, None], 2.0 * J[1:-1] / dt[1:-1, None, None], 4.0 * (1.0 / dt[:-1] + 1.0 / dt[1:])
     )
@@ -164,7 +113,7 @@ def _knot_rates(dt, rotvecs, max_iter, tol):
     b0[-1] -= 2.0 / dt[-1] * J[-1] @ rates[-1]
     for _ in range(max_iter):
         rotvecs_dot = np.einsum("nij,nj->ni", J, rates)
-        new = solve_banded((5, 5), M, (b0 - _nonlinear_term(rotvecs[:-1], rotvecs_dot[:-1])).ravel()).reshape(-1, 3)
+        new = solve_banded((5, 5), M, (b0 - dexp.apply_jacobian_rate(rotvecs[:-1], rotvecs_dot[:-1], np.zeros(3), _BODY)).ravel()).reshape(-1, 3)
         done = np.all(np.abs(new - rates[:-1]) < tol * (1.0 + np.abs(new)))
         rates[:-1] = new
         if done:
