@@ -55,7 +55,7 @@ def test_xarray_and_pandas(trajectory):
     np.testing.assert_array_equal(df.index.to_numpy(), trajectory.t)
 
 
-@pytest.mark.parametrize("suffix", [".nc", ".csv"])
+@pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
 def test_save_load_round_trip(trajectory, tmp_path, suffix):
     path = tmp_path / f"traj{suffix}"
     trajectory.save(path)
@@ -71,7 +71,7 @@ def test_six_dof_and_batch_round_trips(tmp_path):
     body = kr.RigidBody([1.0, 2.0, 3.0], mass=2.0)
     tr = kr.simulate_6dof(body, np.linspace(0, 1, 5), [0.1, 1.0, 0.1], velocity0=[1, 0, 0],
                           force=ConstantForce([0, 0, -19.62]))
-    for suffix in (".nc", ".csv"):
+    for suffix in (".nc", ".csv", ".parquet"):
         tr.save(tmp_path / f"six{suffix}")
         back = kr.Trajectory.load(tmp_path / f"six{suffix}")
         np.testing.assert_array_equal(back.position, tr.position)
@@ -84,8 +84,26 @@ def test_six_dof_and_batch_round_trips(tmp_path):
     assert batch.to_pandas().index.names == ["body", "t"]
     with pytest.raises(ValueError, match="CSV holds one body"):
         batch.save(tmp_path / "batch.csv")
-    with pytest.raises(ValueError, match=".nc or .csv"):
+    with pytest.raises(ValueError, match="Parquet holds one body"):
+        batch.save(tmp_path / "batch.parquet")
+    with pytest.raises(ValueError, match="must end in one of .nc, .csv, .parquet"):
         batch.save(tmp_path / "batch.h5")
+
+
+def test_files_written_before_the_formats_had_one_owner_still_load(tmp_path, trajectory):
+    """Parquet headers used to name no extra arrays; NetCDF from Trajectory.save had no CF labels."""
+    import json
+
+    frame = trajectory.to_pandas()
+    frame.attrs["kreisel"] = json.dumps({"inertia": trajectory.inertia.tolist(), "meta": trajectory.meta})
+    frame.to_parquet(tmp_path / "old.parquet")
+    trajectory.to_xarray().to_netcdf(tmp_path / "old.nc", engine="scipy")
+    for name in ("old.parquet", "old.nc"):
+        back = kr.Trajectory.load(tmp_path / name)
+        np.testing.assert_array_equal(back.q, trajectory.q)
+        np.testing.assert_array_equal(back.inertia, trajectory.inertia)
+    trajectory.save(tmp_path / "new.nc")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.nc", "old.nc", "old.parquet"]  # written atomically
 
 
 def test_extra_arrays_may_not_hide_trajectory_attributes():

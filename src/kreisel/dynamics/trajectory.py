@@ -14,6 +14,7 @@ from .._html import html_table, number
 from .._optional import require
 from .._validation import as_float_array, check_frame
 from ..so3 import quat_apply
+from . import _trajectory_files
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -324,10 +325,11 @@ class Trajectory:
         return pd.DataFrame(flat, index=index)
 
     def save(self, path: str | os.PathLike[str]) -> None:
-        """Write to NetCDF (``.nc``, via xarray's scipy engine) or CSV (``.csv``, one body).
+        """Write to NetCDF (``.nc``, via xarray's scipy engine), CSV (``.csv``) or Parquet (``.parquet``).
 
-        CSV keeps the inertia tensor and ``meta`` in a leading ``#`` comment
-        line so :meth:`load` restores them.
+        CSV and Parquet hold one body; they keep the inertia tensor, ``meta``
+        and the names of the extra arrays in a header so :meth:`load` restores
+        them. The file is written atomically (complete or untouched).
 
         Examples
         --------
@@ -342,19 +344,7 @@ class Trajectory:
         >>> bool(np.array_equal(back.q, tr.q) and np.array_equal(back.inertia, tr.inertia)), back.meta
         (True, {'method': 'closed form'})
         """
-        path = os.fspath(path)
-        if path.endswith(".nc"):
-            self.to_xarray().to_netcdf(path, engine="scipy")
-        elif path.endswith(".csv"):
-            if self.batch_shape:
-                raise ValueError("CSV holds one body; save a batched trajectory as .nc")
-            header = json.dumps({"inertia": self.inertia.tolist(), "meta": self.meta,
-                                 "extra": list(self._extra)}, default=str)
-            with open(path, "w", encoding="utf-8", newline="") as fh:
-                fh.write("# kreisel-trajectory " + header + "\n")
-                self.to_pandas().to_csv(fh, float_format="%.17g")
-        else:
-            raise ValueError(f"path must end in .nc or .csv, got {path!r}")
+        _trajectory_files.save(self, path)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Trajectory:
@@ -375,24 +365,4 @@ class Trajectory:
         >>> back.batch_shape, back.energy.tolist()   # ½ I3 ω3²
         ((2,), [[1.5, 1.5], [6.0, 6.0]])
         """
-        path = os.fspath(path)
-        if path.endswith(".nc"):
-            xr = require("xarray", extra="io", feature="Trajectory.load")
-            with xr.open_dataset(path, engine="scipy") as ds:
-                return cls.from_xarray(ds.load())
-        if path.endswith(".csv"):
-            pd = require("pandas", extra="io", feature="Trajectory.load")
-            with open(path, encoding="utf-8") as fh:
-                first = fh.readline()
-                if not first.startswith("# kreisel-trajectory "):
-                    raise ValueError(f"{path} is not a kreisel trajectory CSV")
-                header = json.loads(first[len("# kreisel-trajectory "):])
-                df = pd.read_csv(fh, index_col=0)
-            extra = {}
-            for name in header["extra"]:
-                cols = [f"{name}_{c}" for c in _VECTOR]
-                extra[name] = df[cols].to_numpy() if cols[0] in df else df[name].to_numpy()
-            return cls(df.index.to_numpy(), df[[f"q{k}" for k in range(4)]].to_numpy(),
-                       df[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
-                       meta=header["meta"], **extra)
-        raise ValueError(f"path must end in .nc or .csv, got {path!r}")
+        return _trajectory_files.load(cls, path)

@@ -7,11 +7,13 @@ import pathlib
 
 from .._fileio import atomic_output
 from .._optional import require
+from ..dynamics import _trajectory_files
 from ..dynamics.trajectory import Trajectory
 
 __all__ = ["ResultError", "save_result", "load_trajectory", "SUFFIXES"]
 
-SUFFIXES = (".nc", ".csv", ".parquet")
+#: The formats of :meth:`Trajectory.save`, which writes and reads every trajectory file.
+SUFFIXES = _trajectory_files.SUFFIXES
 
 
 class ResultError(ValueError):
@@ -45,17 +47,11 @@ def save_result(result, path):
     if path.suffix not in SUFFIXES:
         raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}, got {path.name!r}")
     _require_backends(path.suffix, "writing results")
+    if isinstance(result, Trajectory):
+        result.save(path)
+        return path
     with atomic_output(path) as tmp:
-        if isinstance(result, Trajectory):
-            if path.suffix == ".parquet":
-                frame = result.to_pandas()
-                frame.attrs["kreisel"] = _trajectory_header(result)
-                frame.to_parquet(tmp)
-            elif path.suffix == ".nc":
-                with_units(result.to_xarray()).to_netcdf(tmp, engine="scipy")
-            else:
-                result.save(tmp)
-        elif path.suffix == ".nc":
+        if path.suffix == ".nc":
             with_units(result).to_netcdf(tmp, engine="scipy")
         elif path.suffix == ".csv":
             result.to_dataframe().to_csv(tmp, float_format="%.17g")
@@ -66,17 +62,10 @@ def save_result(result, path):
     return path
 
 
-# CF-convention labels of every variable kreisel writes (xarray, Panoply and ncview show them)
+# CF-convention labels of every variable kreisel writes (xarray, Panoply and ncview show them):
+# the trajectory's own and those of the Foucault and strapdown datasets
 _CF = {
-    "time": ("s", "time"),
-    "q": ("1", "attitude quaternion, body to space, scalar first"),
-    "omega": ("rad/s", "angular velocity, body components"),
-    "omega_space": ("rad/s", "angular velocity, space components"),
-    "angular_momentum": ("kg m2/s", "angular momentum, space components"),
-    "energy": ("J", "rotational kinetic energy"),
-    "inertia": ("kg m2", "inertia tensor, body axes"),
-    "position": ("m", "centre-of-mass position, space components"),
-    "velocity": ("m/s", "centre-of-mass velocity, space components"),
+    **_trajectory_files.LABELS,
     "swing_azimuth": ("rad", "swing-plane azimuth, counter-clockwise from east"),
     "tilt": ("rad", "string angle from the vertical"),
     "q_true": ("1", "true attitude quaternion, scalar first"),
@@ -96,16 +85,7 @@ def with_units(dataset):
     >>> ds["omega"].attrs
     {'units': 'rad/s', 'long_name': 'angular velocity, body components'}
     """
-    dataset = dataset.copy()
-    for name in list(dataset.variables):
-        if name in _CF:
-            units, long_name = _CF[name]
-            dataset[name].attrs.update(units=units, long_name=long_name)
-    return dataset
-
-
-def _trajectory_header(traj):
-    return json.dumps({"inertia": traj.inertia.tolist(), "meta": traj.meta}, default=str)
+    return _trajectory_files.labelled(dataset, _CF)
 
 
 def load_trajectory(path):
@@ -132,12 +112,6 @@ def load_trajectory(path):
         raise ResultError(f"{path}: unknown trajectory format (expected {', '.join(SUFFIXES)})")
     _require_backends(path.suffix, "reading results")
     try:
-        if path.suffix == ".parquet":
-            frame = require("pandas", extra="io", feature="reading results").read_parquet(path)
-            header = json.loads(frame.attrs["kreisel"])
-            return Trajectory(frame.index.to_numpy(), frame[[f"q{k}" for k in range(4)]].to_numpy(),
-                              frame[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
-                              meta=header["meta"])
         return Trajectory.load(path)
     except (OSError, KeyError, ValueError, TypeError) as exc:
         kind = _dataset_kind(path)

@@ -1,0 +1,104 @@
+"""The trajectory file formats, in one place: NetCDF (``.nc``), CSV (``.csv``) and Parquet (``.parquet``).
+
+:meth:`Trajectory.save` and :meth:`Trajectory.load` are the one writer and
+reader; :mod:`kreisel.io` (``save_result``, ``load_trajectory``) calls them.
+NetCDF (xarray's scipy engine) holds batches, with CF ``units`` and
+``long_name`` on the variables. CSV and Parquet hold one body as the table of
+:meth:`Trajectory.to_pandas` (numbers with 17 significant digits in CSV), with
+the inertia tensor, ``meta`` and the names of the extra arrays in a JSON
+header: a leading ``# kreisel-trajectory`` comment line in CSV, the frame's
+``kreisel`` attribute in Parquet (files written before the header named the
+extra arrays still load). Files are written atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+
+from .._fileio import atomic_output
+
+SUFFIXES = (".nc", ".csv", ".parquet")
+
+#: CF labels (units, long_name) of the variables of :meth:`Trajectory.to_xarray`.
+LABELS = {
+    "time": ("s", "time"),
+    "q": ("1", "attitude quaternion, body to space, scalar first"),
+    "omega": ("rad/s", "angular velocity, body components"),
+    "omega_space": ("rad/s", "angular velocity, space components"),
+    "angular_momentum": ("kg m2/s", "angular momentum, space components"),
+    "energy": ("J", "rotational kinetic energy"),
+    "inertia": ("kg m2", "inertia tensor, body axes"),
+    "position": ("m", "centre-of-mass position, space components"),
+    "velocity": ("m/s", "centre-of-mass velocity, space components"),
+}
+
+_CSV_MARK = "# kreisel-trajectory "
+_TABLES = {".csv": "CSV", ".parquet": "Parquet"}
+_AXES = ("x", "y", "z")
+
+
+def labelled(dataset, labels):
+    """A copy of ``dataset`` with CF ``units`` and ``long_name`` on the variables named in ``labels``."""
+    dataset = dataset.copy()
+    for name in list(dataset.variables):
+        if name in labels:
+            units, long_name = labels[name]
+            dataset[name].attrs.update(units=units, long_name=long_name)
+    return dataset
+
+
+def _suffix(path):
+    path = pathlib.Path(path)
+    if path.suffix not in SUFFIXES:
+        raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}, got {str(path)!r}")
+    return path, path.suffix
+
+
+def save(trajectory, path):
+    """Write ``trajectory`` to ``path`` in the format its suffix names."""
+    path, suffix = _suffix(path)
+    if suffix in _TABLES and trajectory.batch_shape:
+        raise ValueError(f"{_TABLES[suffix]} holds one body; save a batched trajectory as .nc")
+    header = json.dumps({"inertia": trajectory.inertia.tolist(), "meta": trajectory.meta,
+                         "extra": list(trajectory._extra)}, default=str)
+    with atomic_output(path) as tmp:
+        if suffix == ".nc":
+            labelled(trajectory.to_xarray(), LABELS).to_netcdf(tmp, engine="scipy")
+        elif suffix == ".csv":
+            with open(tmp, "w", encoding="utf-8", newline="") as fh:
+                fh.write(_CSV_MARK + header + "\n")
+                trajectory.to_pandas().to_csv(fh, float_format="%.17g")
+        else:
+            frame = trajectory.to_pandas()
+            frame.attrs["kreisel"] = header
+            frame.to_parquet(tmp)
+
+
+def load(cls, path):
+    """The trajectory (an instance of ``cls``) in the file ``path``."""
+    path, suffix = _suffix(path)
+    if suffix == ".nc":
+        import xarray as xr
+
+        with xr.open_dataset(path, engine="scipy") as ds:
+            return cls.from_xarray(ds.load())
+    import pandas as pd
+
+    if suffix == ".parquet":
+        frame = pd.read_parquet(path)
+        header = json.loads(frame.attrs["kreisel"])
+    else:
+        with open(path, encoding="utf-8") as fh:
+            first = fh.readline()
+            if not first.startswith(_CSV_MARK):
+                raise ValueError(f"{path} is not a kreisel trajectory CSV")
+            header = json.loads(first[len(_CSV_MARK):])
+            frame = pd.read_csv(fh, index_col=0)
+    extra = {}
+    for name in header.get("extra", ()):
+        columns = [f"{name}_{c}" for c in _AXES]
+        extra[name] = frame[columns].to_numpy() if columns[0] in frame else frame[name].to_numpy()
+    return cls(frame.index.to_numpy(), frame[[f"q{k}" for k in range(4)]].to_numpy(),
+               frame[[f"omega_{k + 1}" for k in range(3)]].to_numpy(), header["inertia"],
+               meta=header["meta"], **extra)
