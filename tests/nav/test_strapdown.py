@@ -85,8 +85,8 @@ def test_increments_bad_input():
     d[7, 1] = np.nan
     with pytest.raises(ValueError, match=r"dtheta must be finite; first bad sample at index \[7\]"):
         nav.attitude_from_increments([1, 0, 0, 0], d, 1)
-    with pytest.raises(ValueError, match="q0 must be unit"):
-        nav.attitude_from_increments([2, 0, 0, 0], np.zeros((4, 3)))
+    with pytest.raises(ValueError, match="q0 must be nonzero quaternions"):
+        nav.attitude_from_increments([0, 0, 0, 0], np.zeros((4, 3)))
     with pytest.raises(ValueError, match=r"dtheta must have shape \(\.\.\., 3\)"):
         nav.attitude_from_increments([1, 0, 0, 0], np.zeros((4, 2)))
     with pytest.raises(ValueError, match="does not broadcast"):
@@ -173,3 +173,12 @@ def test_rates_bad_input():
         nav.attitude_from_rates([1, 0, 0, 0], t, np.zeros((4, 3)), method="euler")
     with pytest.raises(ValueError, match=r"omega_body must have shape \(\.\.\., 4, 3\)"):
         nav.attitude_from_rates([1, 0, 0, 0], t, np.zeros((5, 3)))
+
+
+def test_q0_is_any_rotation_input_as_for_simulate():
+    """One coercion (kreisel.so3): a Rotation, a matrix or a quaternion of any norm give the same attitude."""
+    q0 = np.array([0.5, 0.5, -0.5, 0.5])
+    d = np.tile([0.01, -0.02, 0.03], (8, 1))
+    want = nav.attitude_from_increments(q0, d, 2)
+    for same in (3.0 * q0, kr.Rotation.from_quat(q0), kr.quat_to_matrix(q0)):
+        np.testing.assert_allclose(nav.attitude_from_increments(same, d, 2), want, rtol=0, atol=1e-15)

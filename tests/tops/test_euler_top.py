@@ -186,8 +186,8 @@ def test_bad_input_is_refused():
     top = kr.EulerTop(1.0, 2.0, 3.0)
     with pytest.raises(ValueError, match="omega0"):
         top.solve([0.0, 1.0], [1.0, 2.0])
-    with pytest.raises(ValueError, match="q0"):
-        top.solve([0.0, 1.0], [1.0, 2.0, 3.0], [1.0, 1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="q0 must be nonzero quaternions"):
+        top.solve([0.0, 1.0], [1.0, 2.0, 3.0], [0.0, 0.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="t must be one-dimensional"):
         top.solve([[0.0, 1.0]], [1.0, 2.0, 3.0])
 
@@ -319,3 +319,15 @@ def test_batch_of_bodies_is_one_call_and_matches_single_solves():
         np.testing.assert_array_equal(tr.q[b], single.q)
     with pytest.raises(ValueError, match="triangle inequality"):
         kr.tops.solve_free_batch([[1.0, 1.0, 5.0]], t, [0.0, 0.0, 1.0])
+
+
+
+_Q0 = np.array([0.5, 0.5, -0.5, 0.5])
+
+
+@pytest.mark.parametrize("same", [3.0 * _Q0, kr.Rotation.from_quat(_Q0), kr.quat_to_matrix(_Q0)],
+                         ids=["scaled quaternion", "Rotation", "matrix"])
+def test_q0_accepts_every_rotation_input_of_simulate(same):
+    top = kr.EulerTop(1.0, 2.0, 3.0)
+    reference = top.solve([0.0, 0.5], [0.3, 1.0, 0.2], _Q0)
+    np.testing.assert_allclose(top.solve([0.0, 0.5], [0.3, 1.0, 0.2], same).q, reference.q, rtol=0, atol=1e-15)

@@ -23,20 +23,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import as_float_array
+from ..so3._coercion import as_quaternion
 from . import _kernels
 from .coning import coning_coefficients
 
 __all__ = ["attitude_from_increments", "attitude_from_rates"]
 
 _RATE_METHODS = ("quaternion", "bortz")
-
-
-def _unit_quaternions(q0):
-    q0 = as_float_array(q0, "q0", tail=(4,))
-    norm = np.linalg.norm(q0, axis=-1)
-    if np.any(np.abs(norm - 1.0) > 1e-6):
-        raise ValueError(f"q0 must be unit quaternions (|q0| = 1 within 1e-6), got norms {norm}")
-    return q0
 
 
 def _batched(q0, data, name):
@@ -70,8 +63,10 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
 
     Parameters
     ----------
-    q0 : (..., 4) array_like
-        Initial attitude, body → reference, unit quaternion(s).
+    q0 : Rotation or array_like
+        Initial attitude, body → reference: a ``Rotation``, rotation matrices
+        ``(..., 3, 3)`` or quaternions ``(..., 4)`` (normalised), as every
+        kreisel rotation argument.
     dtheta : (..., n, 3) array_like
         Angle increments in rad, body components; n divisible by N.
     samples_per_update : int
@@ -92,7 +87,7 @@ def attitude_from_increments(q0, dtheta, samples_per_update=1):
     array([0., 0., 0., 1.])
     """
     k = coning_coefficients(samples_per_update)
-    q0 = _unit_quaternions(q0)
+    q0 = as_quaternion(q0, "q0")
     dtheta = as_float_array(dtheta, "dtheta", tail=(3,), finite=False)
     if dtheta.ndim < 2:
         raise ValueError(f"dtheta must have shape (..., n, 3), got {dtheta.shape}")
@@ -135,8 +130,8 @@ def attitude_from_rates(q0, t, omega_body, method="quaternion"):
 
     Parameters
     ----------
-    q0 : (..., 4) array_like
-        Initial attitude body → reference (unit quaternion).
+    q0 : Rotation or array_like
+        Initial attitude body → reference, as in :func:`attitude_from_increments`.
     t : (n,) array_like
         Strictly increasing sample times in s.
     omega_body : (..., n, 3) array_like
@@ -159,7 +154,7 @@ def attitude_from_rates(q0, t, omega_body, method="quaternion"):
     """
     if method not in _RATE_METHODS:
         raise ValueError(f"method must be one of {_RATE_METHODS}, got {method!r}")
-    q0 = _unit_quaternions(q0)
+    q0 = as_quaternion(q0, "q0")
     t = as_float_array(t, "t")
     if t.ndim != 1 or t.size < 2:
         raise ValueError(f"t must be one-dimensional with at least 2 samples, got shape {t.shape}")

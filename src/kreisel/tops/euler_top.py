@@ -20,6 +20,7 @@ from .._html import html_table, number
 from .._validation import as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
+from ..so3._coercion import as_quaternion
 from . import _free_top
 
 __all__ = ["EulerTop", "SteadyRotation", "Regime", "SolutionAccuracy", "solve_free_batch"]
@@ -494,8 +495,9 @@ class EulerTop:
             Times in seconds (any order; t = 0 is the initial state).
         omega0 : (..., 3) array_like
             Initial body angular velocity ω′(0), rad/s; leading axes are a batch.
-        q0 : (..., 4) array_like, optional
-            Initial attitude (body -> space, scalar first); identity by default.
+        q0 : Rotation or array_like, optional
+            Initial attitude (body -> space): a ``Rotation``, matrices ``(..., 3, 3)`` or
+            scalar-first quaternions ``(..., 4)`` (normalised); identity by default.
 
         Returns
         -------
@@ -523,13 +525,8 @@ def _check_inputs(t: ArrayLike, omega0: ArrayLike,
     if t.ndim != 1:
         raise ValueError(f"t must be one-dimensional, got shape {t.shape}")
     omega0 = as_float_array(omega0, "omega0", tail=(3,))
-    if q0 is None:
-        q0 = np.array([1.0, 0.0, 0.0, 0.0])
-    q0 = as_float_array(q0, "q0", tail=(4,))
-    norms = np.linalg.norm(q0, axis=-1)
-    if np.any(np.abs(norms - 1.0) > 1e-6):
-        raise ValueError("q0 must be unit quaternions (|q0| = 1 within 1e-6)")
-    return t, omega0, q0 / norms[..., None]
+    q0 = np.array([1.0, 0.0, 0.0, 0.0]) if q0 is None else as_quaternion(q0, "q0")
+    return t, omega0, q0
 
 
 def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, meta_body: str) -> Trajectory:
@@ -572,8 +569,8 @@ def solve_free_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Arr
         Output times shared by all bodies, seconds.
     omega0 : (..., 3) array_like
         Initial body angular velocities, broadcast against ``bodies``.
-    q0 : (..., 4) array_like, optional
-        Initial attitudes (default identity), broadcast likewise.
+    q0 : Rotation or array_like, optional
+        Initial attitudes (default identity), as in :meth:`EulerTop.solve`, broadcast likewise.
     allow_unphysical : bool
         Accept moments that violate a triangle inequality.
 
