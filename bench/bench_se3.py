@@ -11,15 +11,7 @@ least memory traffic any implementation with that storage needs. Writes
 from __future__ import annotations
 
 import numpy as np
-from _common import (
-    header,
-    interleaved,
-    load_average,
-    markdown_table,
-    median_time,
-    streaming_copy,
-    write_results,
-)
+from _common import header, interleaved, load_average, markdown_table, median_time, streaming_copy, write_results
 from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
 
 import kreisel as kr

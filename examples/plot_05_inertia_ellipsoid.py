@@ -7,9 +7,6 @@ the principal axes, recover the edges, and the inertia ellipsoid xᵀ I x = 1 ha
 semi-axes 1/√I_k along them.
 """
 
-import matplotlib.pyplot as plt
-import numpy as np
-
 import kreisel as kr
 
 I_box = kr.inertia.box(2.0, [0.3, 0.2, 0.1])
@@ -19,12 +16,4 @@ moments, axes = kr.inertia.principal_axes(I_turned)
 print("principal moments:", moments)
 print("about a corner:\n", kr.inertia.parallel_axis(I_box, 2.0, [0.15, 0.1, 0.05]))
 
-ell = kr.inertia.inertia_ellipsoid(I_turned)
-fig = plt.figure(figsize=(5.5, 5))
-ax = fig.add_subplot(projection="3d")
-ax.plot_surface(ell.x, ell.y, ell.z, color="C0", alpha=0.35, linewidth=0)
-for k in range(3):
-    d = ell.semi_axes[k] * ell.axes[:, k]
-    ax.plot(*np.c_[-d, d], color=f"C{k + 1}", linewidth=2)
-ax.set_box_aspect(np.ptp(np.stack([ell.x.ravel(), ell.y.ravel(), ell.z.ravel()]), axis=1))
-plt.show()
+fig = kr.plot.inertia_ellipsoid(I_turned, title="inertia ellipsoid of a turned box")

@@ -27,6 +27,43 @@ import stat
 import tempfile
 import time
 
+#: CF-convention labels (units, long_name) of every variable kreisel writes to NetCDF (xarray,
+#: Panoply and ncview show them): those of a trajectory and of the Foucault and strapdown datasets.
+CF_LABELS = {
+    "time": ("s", "time"),
+    "q": ("1", "attitude quaternion, body to space, scalar first"),
+    "omega": ("rad/s", "angular velocity, body components"),
+    "omega_space": ("rad/s", "angular velocity, space components"),
+    "angular_momentum": ("kg m2/s", "angular momentum, space components"),
+    "energy": ("J", "rotational kinetic energy"),
+    "inertia": ("kg m2", "inertia tensor, body axes"),
+    "position": ("m", "centre-of-mass position, space components"),
+    "velocity": ("m/s", "centre-of-mass velocity, space components"),
+    "swing_azimuth": ("rad", "swing-plane azimuth, counter-clockwise from east"),
+    "tilt": ("rad", "string angle from the vertical"),
+    "q_true": ("1", "true attitude quaternion, scalar first"),
+    "q_estimate": ("1", "strapdown attitude quaternion, scalar first"),
+    "attitude_error": ("rad", "attitude error rotation vector, body components"),
+}
+
+
+def cf_labelled(dataset):
+    """A copy of the ``xarray.Dataset`` with CF ``units`` and ``long_name`` on the variables of :data:`CF_LABELS`.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> cf_labelled(xr.Dataset({"omega": ("time", [0.0, 1.0])}))["omega"].attrs
+    {'units': 'rad/s', 'long_name': 'angular velocity, body components'}
+    """
+    dataset = dataset.copy()
+    for name in list(dataset.variables):
+        if name in CF_LABELS:
+            units, long_name = CF_LABELS[name]
+            dataset[name].attrs.update(units=units, long_name=long_name)
+    return dataset
+
+
 STALE_AFTER = 24 * 3600.0
 """Age in seconds after which a temporary of a killed write is deleted whatever its process id says."""
 

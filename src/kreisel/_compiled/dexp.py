@@ -16,20 +16,20 @@ import math
 
 from numba import prange
 
-from . import cached, generic, kernels, parallel, series
+from . import cached, generic, kernels, parallel
 from .gufunc import gufunc
-
-
-_BORTZ_SERIES = series.BORTZ_SERIES
-_BORTZ_SERIES_BELOW = series.BORTZ_SERIES_BELOW
-_SINE_REMAINDER_SERIES = series.SINE_REMAINDER_SERIES
-_SINE_REMAINDER_SERIES_BELOW = series.SINE_REMAINDER_SERIES_BELOW
-_COSINE_REMAINDER_SLOPE_SERIES = series.COSINE_REMAINDER_SLOPE_SERIES
-_SINE_REMAINDER_SLOPE_SERIES = series.SINE_REMAINDER_SLOPE_SERIES
-_SLOPE_SERIES_BELOW = series.SLOPE_SERIES_BELOW
-_SE3_SERIES_BELOW = series.SE3_SERIES_BELOW
-_COSINE_REMAINDER_SERIES = series.COSINE_REMAINDER_SERIES
-_SE3_COUPLING_SERIES = series.SE3_COUPLING_SERIES
+from .series import (
+    BORTZ_SERIES,
+    BORTZ_SERIES_BELOW,
+    COSINE_REMAINDER_SERIES,
+    COSINE_REMAINDER_SLOPE_SERIES,
+    SE3_COUPLING_SERIES,
+    SE3_SERIES_BELOW,
+    SINE_REMAINDER_SERIES,
+    SINE_REMAINDER_SERIES_BELOW,
+    SINE_REMAINDER_SLOPE_SERIES,
+    SLOPE_SERIES_BELOW,
+)
 
 
 @generic
@@ -68,8 +68,8 @@ def axis_angle(x, y, z):
 @cached
 def sine_remainder(angle):
     """``B = (ψ - sin ψ)/ψ³`` of Theory §3.4, from its series below ψ = 1."""
-    if angle < _SINE_REMAINDER_SERIES_BELOW:
-        return horner(_SINE_REMAINDER_SERIES, angle * angle)
+    if angle < SINE_REMAINDER_SERIES_BELOW:
+        return horner(SINE_REMAINDER_SERIES, angle * angle)
     return (1.0 - math.sin(angle) / angle) / angle / angle
 
 
@@ -84,8 +84,8 @@ def dexp_coefficients(angle):
         return 0.0, 0.0
     h = 0.5 * angle
     s = math.sin(h)
-    if angle < _SINE_REMAINDER_SERIES_BELOW:
-        b = horner(_SINE_REMAINDER_SERIES, angle * angle) * angle * angle
+    if angle < SINE_REMAINDER_SERIES_BELOW:
+        b = horner(SINE_REMAINDER_SERIES, angle * angle) * angle * angle
     else:
         b = 1.0 - math.sin(angle) / angle
     return s * (s / h), b
@@ -94,11 +94,11 @@ def dexp_coefficients(angle):
 @cached
 def dexp_coefficient_slopes(angle):
     """``A'ψ``, ``B'ψ²`` and ``Bψ``: the coefficients of the time derivative of the dexp matrix."""
-    if angle < _SLOPE_SERIES_BELOW:
+    if angle < SLOPE_SERIES_BELOW:
         x = angle * angle
         return (
-            horner(_COSINE_REMAINDER_SLOPE_SERIES, x) * x,
-            horner(_SINE_REMAINDER_SLOPE_SERIES, x) * x * angle,
+            horner(COSINE_REMAINDER_SLOPE_SERIES, x) * x,
+            horner(SINE_REMAINDER_SLOPE_SERIES, x) * x * angle,
             sine_remainder(angle) * angle,
         )
     a, b = dexp_coefficients(angle)
@@ -111,9 +111,9 @@ def se3_coupling_coefficients(angle):
     ``(ψ − sin ψ)/ψ³`` (:func:`sine_remainder`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
     and ``(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, the last two from their series below ψ = 2."""
     b = sine_remainder(angle)
-    if angle < _SE3_SERIES_BELOW:
+    if angle < SE3_SERIES_BELOW:
         x = angle * angle
-        return b, horner(_COSINE_REMAINDER_SERIES, x), horner(_SE3_COUPLING_SERIES, x)
+        return b, horner(COSINE_REMAINDER_SERIES, x), horner(SE3_COUPLING_SERIES, x)
     sn = math.sin(angle)
     cs = math.cos(angle)
     a2 = angle * angle
@@ -125,16 +125,16 @@ def bortz_coefficient(angle):
     """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of Theory §3.5, written as
     ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
     summed from its series 1/12 + ψ²/720 + ψ⁴/30240 + ... below ψ = 1."""
-    if angle < _BORTZ_SERIES_BELOW:
-        return horner(_BORTZ_SERIES, angle * angle)
+    if angle < BORTZ_SERIES_BELOW:
+        return horner(BORTZ_SERIES, angle * angle)
     return bortz_times_square(angle) / angle / angle
 
 
 @cached
 def bortz_times_square(angle):
     """The Bortz coefficient times ψ², ``1 - (ψ/2) cot(ψ/2)``, finite for every finite angle off the poles."""
-    if angle < _BORTZ_SERIES_BELOW:
-        return horner(_BORTZ_SERIES, angle * angle) * angle * angle
+    if angle < BORTZ_SERIES_BELOW:
+        return horner(BORTZ_SERIES, angle * angle) * angle * angle
     h = 0.5 * angle
     return 1.0 - h * math.cos(h) / math.sin(h)
 

@@ -16,36 +16,14 @@ from __future__ import annotations
 import json
 import pathlib
 
-from .._fileio import atomic_output
+from .._fileio import atomic_output, cf_labelled
+from .._optional import require
 
 SUFFIXES = (".nc", ".csv", ".parquet")
-
-#: CF labels (units, long_name) of the variables of :meth:`Trajectory.to_xarray`.
-LABELS = {
-    "time": ("s", "time"),
-    "q": ("1", "attitude quaternion, body to space, scalar first"),
-    "omega": ("rad/s", "angular velocity, body components"),
-    "omega_space": ("rad/s", "angular velocity, space components"),
-    "angular_momentum": ("kg m2/s", "angular momentum, space components"),
-    "energy": ("J", "rotational kinetic energy"),
-    "inertia": ("kg m2", "inertia tensor, body axes"),
-    "position": ("m", "centre-of-mass position, space components"),
-    "velocity": ("m/s", "centre-of-mass velocity, space components"),
-}
 
 _CSV_MARK = "# kreisel-trajectory "
 _TABLES = {".csv": "CSV", ".parquet": "Parquet"}
 _AXES = ("x", "y", "z")
-
-
-def labelled(dataset, labels):
-    """A copy of ``dataset`` with CF ``units`` and ``long_name`` on the variables named in ``labels``."""
-    dataset = dataset.copy()
-    for name in list(dataset.variables):
-        if name in labels:
-            units, long_name = labels[name]
-            dataset[name].attrs.update(units=units, long_name=long_name)
-    return dataset
 
 
 def _suffix(path):
@@ -64,7 +42,7 @@ def save(trajectory, path):
                          "extra": list(trajectory._extra)}, default=str)
     with atomic_output(path) as tmp:
         if suffix == ".nc":
-            labelled(trajectory.to_xarray(), LABELS).to_netcdf(tmp, engine="scipy")
+            cf_labelled(trajectory.to_xarray()).to_netcdf(tmp, engine="scipy")
         elif suffix == ".csv":
             with open(tmp, "w", encoding="utf-8", newline="") as fh:
                 fh.write(_CSV_MARK + header + "\n")
@@ -79,12 +57,10 @@ def load(cls, path):
     """The trajectory (an instance of ``cls``) in the file ``path``."""
     path, suffix = _suffix(path)
     if suffix == ".nc":
-        import xarray as xr
-
+        xr = require("xarray", extra="io", feature="Trajectory.load")
         with xr.open_dataset(path, engine="scipy") as ds:
             return cls.from_xarray(ds.load())
-    import pandas as pd
-
+    pd = require("pandas", extra="io", feature="Trajectory.load")
     if suffix == ".parquet":
         frame = pd.read_parquet(path)
         header = json.loads(frame.attrs["kreisel"])

@@ -117,7 +117,7 @@ class Trajectory:
         Returns
         -------
         anywidget.AnyWidget
-            Displayed when it is the last expression of a cell.
+            The widget of ``kreisel.show(self, **options)``.
 
         Examples
         --------

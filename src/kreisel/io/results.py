@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import pathlib
 
-from .._fileio import atomic_output
+from .._fileio import atomic_output, cf_labelled
 from .._optional import require
 from ..dynamics import _trajectory_files
 from ..dynamics.trajectory import Trajectory
@@ -52,7 +52,7 @@ def save_result(result, path):
         return path
     with atomic_output(path) as tmp:
         if path.suffix == ".nc":
-            with_units(result).to_netcdf(tmp, engine="scipy")
+            cf_labelled(result).to_netcdf(tmp, engine="scipy")
         elif path.suffix == ".csv":
             result.to_dataframe().to_csv(tmp, float_format="%.17g")
         else:
@@ -60,32 +60,6 @@ def save_result(result, path):
             frame.attrs["kreisel"] = json.dumps(dict(result.attrs), default=str)
             frame.to_parquet(tmp)
     return path
-
-
-# CF-convention labels of every variable kreisel writes (xarray, Panoply and ncview show them):
-# the trajectory's own and those of the Foucault and strapdown datasets
-_CF = {
-    **_trajectory_files.LABELS,
-    "swing_azimuth": ("rad", "swing-plane azimuth, counter-clockwise from east"),
-    "tilt": ("rad", "string angle from the vertical"),
-    "q_true": ("1", "true attitude quaternion, scalar first"),
-    "q_estimate": ("1", "strapdown attitude quaternion, scalar first"),
-    "attitude_error": ("rad", "attitude error rotation vector, body components"),
-}
-
-
-def with_units(dataset):
-    """``dataset`` with CF ``units`` and ``long_name`` attributes on the variables kreisel knows.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from kreisel.dynamics import Trajectory
-    >>> ds = with_units(Trajectory([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3]).to_xarray())
-    >>> ds["omega"].attrs
-    {'units': 'rad/s', 'long_name': 'angular velocity, body components'}
-    """
-    return _trajectory_files.labelled(dataset, _CF)
 
 
 def load_trajectory(path):

@@ -15,11 +15,12 @@ from .._optional import require
 require("matplotlib", extra="plot", feature="plotting (kreisel.plot)")
 
 from .fit import gyro_fit
+from .inertia import inertia_ellipsoid
 from .trajectory import (DATASET_KINDS, KINDS, apex, coning, energy, euler, foucault, herpolhode, omega,
                          polhode, regular_sequence)
 
 __all__ = ["KINDS", "DATASET_KINDS", "apex", "coning", "energy", "euler", "foucault", "gyro_fit", "herpolhode",
-           "omega", "polhode", "regular_sequence", "save"]
+           "inertia_ellipsoid", "omega", "polhode", "regular_sequence", "save"]
 
 _FORMATS = {".png", ".svg", ".pdf"}
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from .. import inertia, so3
+from .. import inertia, plot, so3
 from ..tops import EulerTop
 from ..tops.symmetric import SymmetricTop
 from .report import Check, Section
@@ -28,18 +28,7 @@ def inertia_ellipsoid(quick):
     about_corner = inertia.parallel_axis(I_box, mass, corner)
     corner_closed_form = mass * (np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) / 3
                                  - (np.outer(size, size) - np.diag(size * size)) / 4)
-    ellipsoid = inertia.inertia_ellipsoid(turned)
-
-    fig = Figure(figsize=(5.5, 5), layout="constrained")
-    ax = fig.add_subplot(projection="3d")
-    ax.plot_surface(ellipsoid.x, ellipsoid.y, ellipsoid.z, color="C0", alpha=0.35, linewidth=0)
-    for k in range(3):
-        d = ellipsoid.semi_axes[k] * ellipsoid.axes[:, k]
-        ax.plot(*np.c_[-d, d], color=f"C{k + 1}", linewidth=2)
-    ax.set_box_aspect(np.ptp(np.stack([ellipsoid.x.ravel(), ellipsoid.y.ravel(), ellipsoid.z.ravel()]), axis=1))
-    unit = "(1/√(kg m²))"
-    ax.set(xlabel=f"x {unit}", ylabel=f"y {unit}", zlabel=f"z {unit}")
-    ax.set_title("inertia ellipsoid xᵀ I x = 1 of a turned box")
+    fig = plot.inertia_ellipsoid(turned, title="inertia ellipsoid xᵀ I x = 1 of a turned box")
     return Section(
         "Inertia tensor and the inertia ellipsoid", "§4.1–3",
         "The inertia tensor of a box with edges (a, b, c) is diagonal in the edge axes with "
