@@ -6,6 +6,7 @@ raises ``ValueError``/``TypeError`` naming the argument and the expectation.
 
 from __future__ import annotations
 
+import numbers
 import os
 import warnings
 from typing import Any
@@ -16,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 FRAMES = ("space", "body")
 
 #: numpy dtype kinds accepted as real numbers: bool, signed and unsigned integers, floats, and
-#: object arrays of Python numbers (converted by float(); a complex object is refused there)
+#: object arrays of real Python numbers (not of strings, which float() would parse)
 REAL_KINDS = "biufO"
 
 
@@ -44,6 +45,10 @@ def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = None,
         raw = np.asarray(x)
         if raw.dtype.kind not in REAL_KINDS:
             raise TypeError(f"{name} must be real numbers, got an array of dtype {raw.dtype}")
+        if raw.dtype.kind == "O":
+            bad = next((v for v in raw.flat if not isinstance(v, numbers.Real)), None)
+            if bad is not None:
+                raise TypeError(f"{name} must be real numbers, got an element of type {type(bad).__name__}")
         a = raw.astype(np.float64, copy=False)
     except (TypeError, ValueError) as exc:
         if "must be real numbers" in str(exc):
@@ -57,6 +62,14 @@ def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = None,
     if finite and not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite (no NaN or inf)")
     return a
+
+
+def as_float(x: ArrayLike, name: str, finite: bool = True) -> float:
+    """Return ``x``, a single real number, as a float; an array of another shape is refused naming ``name``."""
+    a = as_float_array(x, name, finite=finite)
+    if a.ndim:
+        raise ValueError(f"{name} must be a single number, got an array of shape {a.shape}")
+    return float(a)
 
 
 def check_frame(frame: str) -> bool:

@@ -116,6 +116,8 @@ def check_principal_moments(moments: ArrayLike, name: str = "body", allow_unphys
     Lubich and Wanner's free body with I = (2, 1, 2/3).
     """
     m = as_float_array(moments, name, tail=(3,))
+    if m.size == 0:
+        raise ValueError(f"{name}: an empty batch of bodies (shape {m.shape}); give at least one")
     if np.any(m <= 0.0):
         raise ValueError(f"{name}: principal moments must be positive, got {m[np.any(m <= 0, axis=-1)][0]}")
     if allow_unphysical:

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
-from .._validation import as_float_array, check_allocation
+from .._validation import as_float, check_allocation
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -297,20 +297,20 @@ def foucault_pendulum(
     >>> round(res.precession_rate / -0.01, 2)
     1.0
     """
-    length = float(as_float_array(length, "length"))
+    length = as_float(length, "length")
     if not length > 0:
         raise ValueError(f"length must be positive, got {length}")
-    duration = float(as_float_array(duration, "duration"))
+    duration = as_float(duration, "duration")
     if not duration > 0:
         raise ValueError(f"duration must be positive, got {duration}")
-    amplitude = float(as_float_array(amplitude, "amplitude"))
+    amplitude = as_float(amplitude, "amplitude")
     if not 0 < amplitude < np.pi / 2:
         raise ValueError(f"amplitude must be an angle in (0, pi/2) rad, got {amplitude}")
-    g = float(as_float_array(g, "g"))
+    g = as_float(g, "g")
     if not g > 0:
         raise ValueError(f"g must be positive, got {g}")
-    latitude = float(as_float_array(latitude_deg, "latitude_deg"))
-    azimuth = np.deg2rad(float(as_float_array(azimuth_deg, "azimuth_deg")))
+    latitude = as_float(latitude_deg, "latitude_deg")
+    azimuth = np.deg2rad(as_float(azimuth_deg, "azimuth_deg"))
     p = np.concatenate([angular_velocity_enu(latitude, omega), [g, length]])
     y0 = np.array(
         [np.sin(amplitude) * np.cos(azimuth), np.sin(amplitude) * np.sin(azimuth), -np.cos(amplitude), 0.0, 0.0, 0.0]

@@ -11,7 +11,7 @@ from numba import njit
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -64,6 +64,13 @@ def _integrate_builtin(p, t, state, rtol, atol, max_step, tables, out, budget):
     return _dop853.integrate_steps(builtin_rhs, p, t, state, rtol, atol, max_step, tables, out, True, budget)
 
 
+def _vector(value, name):
+    v = as_float_array(value, name, tail=(3,))
+    if v.shape != (3,):
+        raise ValueError(f"{name} must be a single vector of shape (3,), got {v.shape}")
+    return v
+
+
 def _as_function(value, name, nargs):
     """Compile a user callable (or freeze a constant vector) as an njit function of ``nargs`` arguments."""
     if callable(value):
@@ -71,7 +78,7 @@ def _as_function(value, name, nargs):
             return njit(value)
         except Exception as exc:  # numba refuses some callables already at decoration time
             raise TypeError(f"{name} must be numba-compilable: {exc}") from exc
-    const = as_float_array(value, name, tail=(3,)).reshape(3).copy()
+    const = _vector(value, name).copy()
     if nargs == 1:
         return njit(lambda t: const)
     return njit(lambda t, r, v: const)
@@ -234,11 +241,11 @@ def simulate_particle(
     v0 = as_float_array(v0, "v0", tail=(3,))
     if r0.shape != (3,) or v0.shape != (3,):
         raise ValueError("r0 and v0 must be single vectors of shape (3,)")
-    mass = float(as_float_array(mass, "mass"))
+    mass = as_float(mass, "mass")
     if not mass > 0:
         raise ValueError(f"mass must be positive, got {mass}")
-    gravity = as_float_array(gravity, "gravity", tail=(3,)).reshape(3)
-    spring = float(as_float_array(spring, "spring"))
+    gravity = _vector(gravity, "gravity")
+    spring = as_float(spring, "spring")
     for name, val in (("rtol", rtol), ("atol", atol)):
         if not (np.isfinite(val) and val > 0):
             raise ValueError(f"{name} must be a positive finite number, got {val}")
@@ -259,9 +266,9 @@ def simulate_particle(
     y = np.empty((t.size, y0.size))
     builtin = not (callable(omega) or callable(omega_dot) or callable(a0) or force is not None)
     if builtin:
-        w = as_float_array(omega, "omega", tail=(3,)).reshape(3)
-        wdot = as_float_array(omega_dot, "omega_dot", tail=(3,)).reshape(3)
-        acc0 = as_float_array(a0, "a0", tail=(3,)).reshape(3)
+        w = _vector(omega, "omega")
+        wdot = _vector(omega_dot, "omega_dot")
+        acc0 = _vector(a0, "a0")
         p = np.zeros(_NPAR)
         p[_W:_W + 3], p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], p[_FIELD:_FIELD + 3] = w, wdot, acc0, gravity
         p[_SPRING], p[_T0] = spring, t[0]
@@ -273,8 +280,8 @@ def simulate_particle(
     else:
         field, k = gravity.copy(), spring
         if not callable(omega):
-            w0 = as_float_array(omega, "omega", tail=(3,)).reshape(3).copy()
-            wd = as_float_array(omega_dot, "omega_dot", tail=(3,)).reshape(3).copy()
+            w0 = _vector(omega, "omega").copy()
+            wd = _vector(omega_dot, "omega_dot").copy()
             t_start = float(t[0])
 
             def omega(tt):
@@ -303,4 +310,4 @@ def simulate_particle(
 def _sample(value, name, t):
     if callable(value):
         return np.array([np.asarray(value(ti), dtype=np.float64).reshape(3) for ti in t])
-    return np.broadcast_to(as_float_array(value, name, tail=(3,)).reshape(3), (t.size, 3)).copy()
+    return np.broadcast_to(_vector(value, name), (t.size, 3)).copy()

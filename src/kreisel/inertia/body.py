@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from . import solids
 from .mesh_properties import from_mesh
 from .properties import MassProperties, combine, from_points
@@ -78,7 +78,7 @@ class RigidBody:
     def __init__(self, inertia: ArrayLike, mass: float = 1.0) -> None:
         if not np.isscalar(mass) and np.ndim(mass) != 0:
             raise ValueError(f"mass must be a scalar, got shape {np.shape(mass)}")
-        m = float(as_float_array(mass, "mass"))
+        m = as_float(mass, "mass")
         if m <= 0.0:
             raise ValueError(f"mass must be > 0, got {m!r}")
         a = as_float_array(inertia, "inertia")

@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from .tensors import (
     _positive,
     _outer_term,
@@ -149,7 +149,7 @@ def _as_part(entry, index):
         item = item.mass_properties
     if not isinstance(item, MassProperties):
         raise TypeError(f"parts[{index}] must hold a MassProperties or RigidBody, got {type(item).__name__}")
-    mass = float(as_float_array(item.mass, f"parts[{index}].mass"))
+    mass = as_float(item.mass, f"parts[{index}].mass")
     if mass == 0.0:
         raise ValueError(f"parts[{index}].mass must be nonzero")
     com = as_float_array(item.com, f"parts[{index}].com", tail=(3,)).reshape(3)

@@ -9,8 +9,12 @@ from .._validation import as_float_array, check_frame
 
 
 def vectors(x, name, length=3):
-    """Finite float64 array of shape ``(..., length)`` (one compiled pass, no temporaries)."""
-    return finite_array(x, name, (length,))
+    """Finite float64 array of shape ``(..., length)`` (one compiled pass, no temporaries).
+
+    C-contiguous, so that a strided view gives bit for bit the result of a plain array (numpy's
+    reductions sum in another order over other layouts).
+    """
+    return np.ascontiguousarray(finite_array(x, name, (length,)))
 
 
 def batch_shape(*items):

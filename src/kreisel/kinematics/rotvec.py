@@ -27,7 +27,7 @@ import numpy as np
 from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
-from .._validation import check_tolerance, warn_if_any
+from .._validation import as_float_array, check_tolerance, warn_if_any
 from ..so3._norms import norm
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
 from ._checks import frame_sign, vector_batch, vectors
@@ -74,9 +74,7 @@ def bortz_coefficient(angle, *, out=None):
     >>> round(float(bortz_coefficient(np.pi)), 15) == round(1 / np.pi**2, 15)
     True
     """
-    a = np.abs(np.asarray(angle, dtype=np.float64))
-    if not np.all(np.isfinite(a)):
-        raise ValueError("angle must be finite")
+    a = np.abs(as_float_array(angle, "angle"))
     if out is not None:
         return _bortz(a, out=out)
     value = _bortz(a)

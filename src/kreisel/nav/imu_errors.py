@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 
 __all__ = [
     "DEG_PER_SQRT_HOUR",
@@ -297,6 +297,7 @@ def gauss_markov_allan_deviation(tau, sigma, correlation_time):
     tau = as_float_array(tau, "tau")
     if np.any(tau <= 0):
         raise ValueError("tau must be positive")
+    sigma = as_float(sigma, "sigma")
     x = tau / _nonnegative(correlation_time, "correlation_time")
     small = x < 1.0
     xs = np.where(small, x, 0.0)

@@ -17,7 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .quaternion import quat_multiply
+from .._compiled.gufunc import quaternion_array
+from .quaternion import quat_multiply, quat_normalize
 from .rotvec import rotvec_to_quat
 
 __all__ = ["create_group", "reduce_quat"]
@@ -126,11 +127,14 @@ def reduce_quat(q, left=None, right=None):
     >>> round(float(np.degrees(2 * np.arccos(abs(reduced[0])))), 9), int(right)
     (10.0, 3)
     """
-    q = np.asarray(q, dtype=np.float64)
+    q = quat_normalize(quaternion_array(q, "q"))
     identity = np.array([[1.0, 0.0, 0.0, 0.0]])
-    ls = identity if left is None else np.asarray(left, dtype=np.float64).reshape(-1, 4)
-    rs = identity if right is None else np.asarray(right, dtype=np.float64).reshape(-1, 4)
+    ls = identity if left is None else quat_normalize(quaternion_array(left, "left")).reshape(-1, 4)
+    rs = identity if right is None else quat_normalize(quaternion_array(right, "right")).reshape(-1, 4)
     batch = q.shape[:-1]
+    if q.size == 0:
+        chosen = np.zeros(batch, dtype=np.intp)
+        return q, None if left is None else chosen, None if right is None else chosen.copy()
     flat = q.reshape(-1, 4)
     lp = quat_multiply(ls[:, None, :], flat[None, :, :])  # (L, N, 4)
     # Scalar part of (l p) r for every pair: (lp)₀ r₀ - (lp)_v · r_v.

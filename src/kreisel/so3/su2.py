@@ -33,8 +33,8 @@ __all__ = [
 SU2_TOLERANCE = 1e-6
 
 
-def _unit(q):
-    return unit(quaternion_array(q, "q"), "q")
+def _unit(q, name="q"):
+    return unit(quaternion_array(q, name), name)
 
 
 def _complex_array(x, name, tail):
@@ -194,7 +194,7 @@ def euler_parameters_to_quat(e, *, out=None):
     >>> euler_parameters_to_quat([0.0, 0.0, 0.0, -1.0])
     array([ 0., -0., -0.,  1.])
     """
-    return deliver(_unit(e) * np.array([1.0, -1.0, -1.0, -1.0]), out)
+    return deliver(_unit(e, "e") * np.array([1.0, -1.0, -1.0, -1.0]), out)
 
 
 def euler_parameters_to_matrix(e, *, out=None):
@@ -219,7 +219,7 @@ def euler_parameters_to_matrix(e, *, out=None):
            [ 0.564642,  0.825336,  0.      ],
            [ 0.      ,  0.      ,  1.      ]])
     """
-    e0, e1, e2, e3 = np.moveaxis(_unit(e), -1, 0)
+    e0, e1, e2, e3 = np.moveaxis(_unit(e, "e"), -1, 0)
     matrix = np.stack(
         [
             np.stack([e0**2 + e1**2 - e2**2 - e3**2, 2 * (e1 * e2 + e0 * e3), 2 * (e1 * e3 - e0 * e2)], axis=-1),

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
@@ -373,7 +373,7 @@ class EulerTop:
         ('about_largest_axis', True)
         """
         info = self._info(omega0)
-        duration = abs(float(as_float_array(duration, "duration")))
+        duration = abs(as_float(duration, "duration"))
         omega0 = np.asarray(omega0, dtype=float)
         scale = float(np.max(np.abs(omega0))) or 1.0
         J = float(self.angular_momentum(omega0))
@@ -423,7 +423,7 @@ class EulerTop:
         >>> round(EulerTop(1.0, 2.0, 3.0).steady_rotations(1.0)[1].growth_rate, 12)
         0.57735026919
         """
-        spin = float(as_float_array(spin, "spin"))
+        spin = as_float(spin, "spin")
         result = []
         for k in range(3):
             i, j = [a for a in range(3) if a != k]
@@ -532,7 +532,11 @@ def _check_inputs(t: ArrayLike, omega0: ArrayLike,
 def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, meta_body: str) -> Trajectory:
     """Broadcast (bodies, ω0, q0), run the compiled samples, wrap a Trajectory."""
     t, omega0, q0 = _check_inputs(t, omega0, q0)
-    batch = np.broadcast_shapes(moments.shape[:-1], omega0.shape[:-1], q0.shape[:-1])
+    try:
+        batch = np.broadcast_shapes(moments.shape[:-1], omega0.shape[:-1], q0.shape[:-1])
+    except ValueError:
+        raise ValueError(f"the batch shapes of bodies {moments.shape}, omega0 {omega0.shape} and q0 {q0.shape} "
+                         "do not broadcast") from None
     count = int(np.prod(batch, dtype=np.int64))
     flat = [np.ascontiguousarray(np.broadcast_to(a, batch + a.shape[-1:])).reshape(count, -1)
             for a in (moments, omega0, q0)]

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._html import html_table, number
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from ..so3 import rotvec_to_matrix
 from .euler_top import EulerTop
 
@@ -299,8 +299,8 @@ def _check(t, omega, window):
             start, stop = window
         except (TypeError, ValueError):
             raise ValueError(f"window must be (t_start, t_stop), got {window!r}") from None
-        start = -np.inf if start is None else float(as_float_array(start, "window start"))
-        stop = np.inf if stop is None else float(as_float_array(stop, "window stop", finite=False))
+        start = -np.inf if start is None else as_float(start, "window start")
+        stop = np.inf if stop is None else as_float(stop, "window stop", finite=False)
         if not start < stop:
             raise ValueError(f"window must have t_start < t_stop, got {window!r}")
         keep = (t >= start) & (t <= stop)

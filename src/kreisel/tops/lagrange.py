@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached as _jit
 from .._html import html_table, number
-from .._validation import as_float_array
+from .._validation import as_float, as_float_array
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
@@ -512,8 +512,8 @@ class LagrangeTop:
         1.0
         """
         theta = as_float_array(theta, "theta")
-        J3 = float(as_float_array(J3, "J3"))
-        Jz = float(as_float_array(Jz, "Jz"))
+        J3 = as_float(J3, "J3")
+        Jz = as_float(Jz, "Jz")
         if np.any((theta <= 0.0) | (theta >= np.pi)):
             raise ValueError("theta must lie in (0, pi): V_eff is infinite on the vertical")
         c, s = np.cos(theta), np.sin(theta)
@@ -645,8 +645,8 @@ class LagrangeTop:
         >>> round(slow, 6), round(fast, 6)
         (0.100893, 11.294046)
         """
-        theta = float(as_float_array(theta, "theta"))
-        J3 = self.I3 * float(as_float_array(omega3, "omega3"))
+        theta = as_float(theta, "theta")
+        J3 = self.I3 * as_float(omega3, "omega3")
         c = np.cos(theta)
         discriminant = J3 * J3 - 4.0 * self.I1 * self.mgl * c
         if discriminant < 0.0:
@@ -691,8 +691,8 @@ class LagrangeTop:
         >>> round(float(ft.approx_precession_rate), 6), round(ft.exact_precession_rate, 6)
         (0.01, 0.010001)
         """
-        theta0 = float(as_float_array(theta0, "theta0"))
-        omega3 = float(as_float_array(omega3, "omega3"))
+        theta0 = as_float(theta0, "theta0")
+        omega3 = as_float(omega3, "omega3")
         euler0 = np.array([0.0, theta0, 0.0])
         rates0 = np.array([0.0, 0.0, omega3])
         quad, _, _ = self._quadrature(euler0, rates0)

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_float_array, check_frame
+from .._validation import as_float, as_float_array, check_frame
 from ..dynamics.trajectory import Trajectory
 from ..so3 import euler_to_quat
 from .euler_top import _check_moments
@@ -97,10 +97,10 @@ class SymmetricTop:
 
     @staticmethod
     def _check_state(J, theta0):
-        J = float(as_float_array(J, "J"))
+        J = as_float(J, "J")
         if J < 0.0:
             raise ValueError(f"J must be the magnitude |J| >= 0, got {J}")
-        theta0 = float(as_float_array(theta0, "theta0"))
+        theta0 = as_float(theta0, "theta0")
         if not 0.0 <= theta0 <= np.pi:
             raise ValueError(f"theta0 must lie in [0, pi], got {theta0}")
         return J, theta0
@@ -115,7 +115,7 @@ class SymmetricTop:
         >>> float(SymmetricTop(2.0, 3.0).precession_rate(J=5.0))
         2.5
         """
-        return float(as_float_array(J, "J")) / self.I1
+        return as_float(J, "J") / self.I1
 
     def body_precession_rate(self, J, theta0):
         """Ω = (I3 − I1) J cos θ0/(I1 I3): rate of ω about the symmetry axis in the body (= −ψ̇).
@@ -151,8 +151,8 @@ class SymmetricTop:
         """
         t = as_float_array(t, "t")
         J, theta0 = self._check_state(J, theta0)
-        phi = J * t / self.I1 + float(as_float_array(phi0, "phi0"))
-        psi = -self.body_precession_rate(J, theta0) * t + float(as_float_array(psi0, "psi0"))
+        phi = J * t / self.I1 + as_float(phi0, "phi0")
+        psi = -self.body_precession_rate(J, theta0) * t + as_float(psi0, "psi0")
         return np.stack([phi, np.full_like(t, theta0), psi], axis=-1)
 
     def angular_velocity(self, t, J, theta0, phi0=0.0, psi0=0.0, frame="body"):
