@@ -50,14 +50,18 @@ _LOG_M1 = 1e-30
 
 
 @_jit
-def _rc1(e):
-    """R_C(1, 1 + e) for e > −1: atan(√e)/√e, atanh(√−e)/√−e (DLMF 19.2.18–19)."""
-    if e > 0.0:
-        s = math.sqrt(e)
+def _rc1(t):
+    """R_C(1, t) for t > 0: atan(√(t − 1))/√(t − 1), atanh(√(1 − t))/√(1 − t) (DLMF 19.2.18–19).
+
+    ``t`` is taken as it is (not 1 + e): for t → 0 the atanh's 1 − √(1 − t) = t/(1 + √(1 − t))
+    keeps the digits that forming 1 + e would lose.
+    """
+    if t > 1.0:
+        s = math.sqrt(t - 1.0)
         return math.atan(s) / s
-    if e < 0.0:
-        s = math.sqrt(-e)
-        return math.atanh(s) / s
+    if t < 1.0:
+        s = math.sqrt(1.0 - t)
+        return 0.5 * math.log1p(2.0 * s * (1.0 + s) / t) / s
     return 1.0
 
 
@@ -117,19 +121,20 @@ def carlson_rd(x, y, z):
 def carlson_rj(x, y, z, p):
     """R_J(x, y, z, p), x, y, z >= 0 (at most one zero), p > 0."""
     a0 = (x + y + z + 2.0 * p) / 5.0
-    delta = (p - x) * (p - y) * (p - z)
     q = _RJ_FACTOR * max(abs(a0 - x), abs(a0 - y), abs(a0 - z), abs(a0 - p))
-    a, f, f3, total = a0, 1.0, 1.0, 0.0
+    a, f, total = a0, 1.0, 0.0
     xn, yn, zn, pn = x, y, z, p
     while f * q >= abs(a):
         sx, sy, sz, sp = math.sqrt(xn), math.sqrt(yn), math.sqrt(zn), math.sqrt(pn)
         lam = sx * sy + sy * sz + sz * sx
         d = (sp + sx) * (sp + sy) * (sp + sz)
-        total += f * _rc1(f3 * delta / (d * d)) / d
+        # Carlson's R_C(1, 1 + e_n), e_n = (p_n − x_n)(p_n − y_n)(p_n − z_n)/d_n², whose argument
+        # factors as 2√p_n (p_n + λ_n)/d_n: all terms positive, so no cancellation when e_n → −1
+        # (widely spread arguments, e.g. Π(ν | m) with both 1 − ν and 1 − m small)
+        total += f * _rc1(2.0 * sp * (pn + lam) / d) / d
         xn, yn, zn = 0.25 * (xn + lam), 0.25 * (yn + lam), 0.25 * (zn + lam)
         pn, a = 0.25 * (pn + lam), 0.25 * (a + lam)
         f *= 0.25
-        f3 *= 1.0 / 64.0
     X = (a0 - x) * f / a
     Y = (a0 - y) * f / a
     Z = (a0 - z) * f / a
@@ -161,10 +166,9 @@ def complete_k(m1, kc):
 def complete_pi(nu, one_minus_nu, m1, kc):
     """Π(ν | m), ν < 1, with 1 − ν given separately (accurate when ν is near 1)."""
     k = complete_k(m1, kc)
-    # the limit is off by ~m1/(1 − ν) relative: where both vanish (ν → 1 as m → 1, a Lagrange
-    # top passing next to the vertical) R_J keeps the integrand's 1/((1 − ν) + ν cos²φ) peak;
-    # the two agree to ~5e-12 at the switch (checked against mpmath down to m1 = 1e-40)
-    if m1 < _LOG_M1 and (m1 == 0.0 or m1 <= 1e-11 * one_minus_nu):
+    # R_J is exact to a few ulp however far apart m1 and 1 − ν are (down to 1e-300, checked
+    # against mpmath), so the m1 -> 0 limit serves only m1 = 0 itself (k′ underflowed)
+    if m1 == 0.0:
         # Π(ν | m) − K/(1 − ν) → −ν/(1 − ν) ∫₀^1 ds/(1 − ν s²) as m1 → 0; for ν > 0 the integral
         # atanh(√ν)/√ν = (2 ln(1 + √ν) − ln(1 − ν))/(2√ν) keeps the digits of 1 − ν
         if nu > 0.0:
