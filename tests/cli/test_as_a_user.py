@@ -111,6 +111,9 @@ def test_convert_takes_negative_numbers_as_typed():
                                atol=1e-9)
     usage_error(kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degree"),
                 "no such option: --degree")
+    # a misspelt option is named, not reported as the option it was meant to be
+    usage_error(kreisel("convert", "--frm", "euler:ZXZ", "--to", "quat", "1", "2", "3"), "no such option: --frm")
+    usage_error(kreisel("convert", "--from", "euler:ZXZ", "1", "2", "3"), "missing option --to")
 
 
 def test_convert_input_files(tmp_path):

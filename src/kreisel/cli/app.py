@@ -123,9 +123,12 @@ def convert(
     values: Optional[List[str]] = typer.Argument(
         None, metavar="NUMBERS", help="Numbers of one rotation; none: rows from --input or standard input.",
         show_default=False),
-    source: List[str] = typer.Option(..., "--from", metavar="REPR", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
+    # --from and --to are checked in the body: NUMBERS take unknown options (negative numbers), so
+    # a misspelt option must be named before a missing one is reported
+    source: List[str] = typer.Option([], "--from", metavar="REPR", show_default=False,
+                                     help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
     target: List[str] = typer.Option(
-        ..., "--to", metavar="REPR", help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
+        [], "--to", metavar="REPR", show_default=False, help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
     degrees: bool = typer.Option(False, "--degrees", help="Angles in degrees (euler, axis_angle, rotvec)."),
     scalar_last: bool = typer.Option(False, "--scalar-last", help="Quaternions in and out as x y z w."),
     input_file: Optional[pathlib.Path] = typer.Option(
@@ -134,7 +137,10 @@ def convert(
     from .convert import ConversionError, format_rows, parse_representation, read_rows, width
     from .convert import convert as run
 
+    numbers = [_number(value) for value in values or ()]
     for option, given in (("--from", source), ("--to", target)):
+        if not given:
+            usage_error(f"missing option {option} REPR")
         if len(given) > 1:
             usage_error(f"{option} given {len(given)} times ({', '.join(given)}); give it once")
     if values and input_file is not None:
@@ -143,7 +149,7 @@ def convert(
         name, _ = parse_representation(source[0], "--from")
         parse_representation(target[0], "--to")
         if values:
-            lines, rows = None, [[_number(value) for value in values]]
+            lines, rows = None, [numbers]
         else:
             lines, rows = read_rows(_read_input(input_file), width(name))
         if not rows:
