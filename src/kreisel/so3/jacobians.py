@@ -12,7 +12,7 @@ With ``R = exp(ψ·X)`` (:func:`~kreisel.so3.rotvec_to_matrix`),
 
 ``f = (1 − (ψ/2) cot(ψ/2))/ψ²`` the Bortz coefficient, with poles at
 |ψ| = 2π, 4π, … where the entries are NaN and a
-:class:`RotationVectorSingularityWarning` is issued. Every coefficient is
+:class:`~kreisel.kinematics.RotationVectorSingularityWarning` is issued. Every coefficient is
 summed from its series at small ψ, so the matrices are accurate to a few ulp.
 The group, its exp/log and its Jacobians live together here, as in Sophus
 and manif; the SE(3) Jacobians of :mod:`kreisel.se3` are built on these.
@@ -104,7 +104,7 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
 
     ``ψ̇ = J_l⁻¹(ψ) ω`` (space components); ``f`` is the Bortz coefficient
     (:func:`kreisel.kinematics.bortz_coefficient`). Singular (NaN, with
-    :class:`RotationVectorSingularityWarning`) at |ψ| = 2πk.
+    :class:`~kreisel.kinematics.RotationVectorSingularityWarning`) at |ψ| = 2πk.
 
     Parameters
     ----------
