@@ -29,7 +29,6 @@ from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
 from .._compiled.dop853 import new_state as _dop853_state
 from .._compiled.kernels import _rotated as rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
-from .._compiled.series import cosine_remainder_coefficients, horner_order, sine_remainder_coefficients
 from ._model_tables import CALLBACK
 from .forces import evaluate_force
 from .torques import DAMPING, evaluate_torque
@@ -43,12 +42,6 @@ _CBRT2 = 2.0 ** (1.0 / 3.0)
 YOSHIDA_OUTER = 1.0 / (2.0 - _CBRT2)
 YOSHIDA_INNER = -_CBRT2 / (2.0 - _CBRT2)
 _EPS = 2.220446049250313e-16
-# sin and cos below this angle from their Maclaurin series: 5 terms of each remainder leave a first omitted
-# term below 1e-17 relative there, so the sums are as accurate as the library's (within an ulp) and cost a
-# fraction of its two calls (the fixed-step splittings take two per sub-flow, twelve sub-flows a step)
-_SINCOS_SERIES_BELOW = 0.25
-_SINE_SERIES = horner_order(sine_remainder_coefficients(5))
-_COSINE_SERIES = horner_order(cosine_remainder_coefficients(5))
 _MAX_ITER = 100
 
 
@@ -94,22 +87,6 @@ def _model_rhs(t, y, model, dy, offset):
 
 
 @cached
-def _sin_cos(x):
-    """(sin x, cos x): summed series below :data:`_SINCOS_SERIES_BELOW`, the library's two calls above."""
-    if abs(x) >= _SINCOS_SERIES_BELOW:
-        return math.sin(x), math.cos(x)
-    x2 = x * x
-    x4 = x2 * x2
-    x8 = x4 * x4
-    # Estrin's scheme: the sums are on the critical path of a run of flows, and this halves their latency
-    a, b = _SINE_SERIES, _COSINE_SERIES
-    s = (a[4] + a[3] * x2) + (a[2] + a[1] * x2) * x4 + a[0] * x8
-    c = (b[4] + b[3] * x2) + (b[2] + b[1] * x2) * x4 + b[0] * x8
-    # sin x = x − x³ Σ(−1)ⁿx²ⁿ/(2n+3)!,  cos x = 1 − x²/2 + x⁴ Σ(−1)ⁿx²ⁿ/(2n+4)!
-    return x - x * x2 * s, (1.0 - 0.5 * x2) + x2 * x2 * c
-
-
-@cached
 def _axis_rotation(half, mi, mj, q0, qk, qi, qj):
     """One exact sub-flow about body axis k, on the components that change.
 
@@ -117,7 +94,8 @@ def _axis_rotation(half, mi, mj, q0, qk, qi, qj):
     −2·``half``; q ← q ⊗ (cos half, sin half e_k), a body-axis rotation
     applied on the right. Returns the new (mi, mj, q0, qk, qi, qj).
     """
-    s2, c2 = _sin_cos(half)
+    s2 = math.sin(half)
+    c2 = math.cos(half)
     # double angle from the half-angle pair: the momentum turns by twice the quaternion's half angle
     c = (c2 - s2) * (c2 + s2)
     s = 2.0 * s2 * c2
