@@ -17,8 +17,11 @@ checks below are split into chunks the same way.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from numba import guvectorize, prange
 
 from .._validation import as_float_array
@@ -97,7 +100,7 @@ class LazyGufunc:
         self._carriers = tuple(np.empty(s) for s in ins)
         self._gufunc = None
 
-    def __call__(self, *args, out=None):
+    def __call__(self, *args: ArrayLike, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """The gufunc of ``args`` (the caller's inputs; size carriers are added here).
 
         ``out`` (keyword only): a writable float64 array of exactly the
@@ -175,7 +178,8 @@ def _writable(a):
     return a if a.flags.writeable else a.copy()
 
 
-def gufunc(signatures, layout, parallel=None, shared=()):
+def gufunc(signatures: list[str], layout: str, parallel: Callable[..., Any] | None = None,
+           shared: tuple[int, ...] = ()) -> Callable[[Callable[..., None]], LazyGufunc]:
     """Decorator form of :class:`LazyGufunc`."""
     return lambda function: LazyGufunc(function, signatures, layout, parallel, shared)
 

@@ -6,7 +6,10 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import gufunc, quaternion_array
 from .._compiled.outputs import deliver
@@ -16,7 +19,7 @@ from ._checks import frame_sign, rotation_batch, same_batch, vectors
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
 
 
-def _skew_part_vee(A):
+def _skew_part_vee(A: NDArray[Any]) -> NDArray[np.float64]:
     # vee of the antisymmetric part: the least-squares angular velocity when
     # Ṙ Rᵀ is not exactly antisymmetric (noisy or finite-difference data)
     return 0.5 * np.stack(
@@ -24,7 +27,8 @@ def _skew_part_vee(A):
     )
 
 
-def angular_velocity(R, Rdot, frame="space", *, out=None):
+def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
+                     out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from the rotation matrix and its time derivative (Theory §3.1).
 
     ``hat(ω) = Ṙ Rᵀ`` in space components, ``hat(ω′) = Rᵀ Ṙ`` in body
@@ -64,7 +68,7 @@ def angular_velocity(R, Rdot, frame="space", *, out=None):
 # sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
 # products differ only in the sign of the cross-product term.
 @gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(3),()->(4)")
-def _quat_rate(q, w, sign, out):
+def _quat_rate(q: NDArray[np.float64], w: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     q0, vx, vy, vz = q[0], q[1], q[2], q[3]
     wx, wy, wz = w[0], w[1], w[2]
     cx = wy * vz - wz * vy
@@ -79,7 +83,7 @@ def _quat_rate(q, w, sign, out):
 # ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
 # for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
 @gufunc(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(4),(4),(),(3)->(3)")
-def _quat_angular_velocity(q, qd, sign, carrier3, out):
+def _quat_angular_velocity(q: NDArray[np.float64], qd: NDArray[np.float64], sign: float, carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     q0, vx, vy, vz = q[0], q[1], q[2], q[3]
     p0, px, py, pz = qd[0], qd[1], qd[2], qd[3]
     s = 2.0 / (q0 * q0 + vx * vx + vy * vy + vz * vz)
@@ -91,7 +95,7 @@ def _quat_angular_velocity(q, qd, sign, carrier3, out):
     out[2] = s * (q0 * pz - p0 * vz - sign * cz)
 
 
-def quat_rate(q, omega, frame="space", *, out=None):
+def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion rate from the angular velocity (Theory §3.3).
 
     ``q̇ = ½ ω q`` with space components, ``q̇ = ½ q ω′`` with body
@@ -124,7 +128,8 @@ def quat_rate(q, omega, frame="space", *, out=None):
     return _quat_rate(q, omega, sign, out=out)
 
 
-def angular_velocity_from_quat_rate(q, qdot, frame="space", *, out=None):
+def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = "space", *,
+                                    out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from a quaternion and its rate (Theory §3.3).
 
     ``ω = 2 q̇ q*`` (space) and ``ω′ = 2 q* q̇`` (body), taking the vector

@@ -13,6 +13,7 @@ conversions keep the sign: both are double covers of SO(3).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array
 from .._compiled.outputs import deliver
@@ -33,11 +34,11 @@ __all__ = [
 SU2_TOLERANCE = 1e-6
 
 
-def _unit(q, name="q"):
+def _unit(q: ArrayLike, name: str = "q") -> NDArray[np.float64]:
     return unit(quaternion_array(q, name), name)
 
 
-def _complex_array(x, name, tail):
+def _complex_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> NDArray[np.complex128]:
     try:
         a = np.asarray(x, dtype=np.complex128)
     except (TypeError, ValueError) as exc:
@@ -48,7 +49,7 @@ def _complex_array(x, name, tail):
     return a
 
 
-def _quat_from_ab(a, b, name):
+def _quat_from_ab(a: NDArray[np.complex128], b: NDArray[np.complex128], name: str) -> NDArray[np.float64]:
     q = np.stack([a.real, -b.imag, -b.real, -a.imag], axis=-1)
     norm = np.linalg.norm(q, axis=-1, keepdims=True)
     if q.size and np.max(np.abs(norm - 1.0)) > SU2_TOLERANCE:
@@ -56,7 +57,7 @@ def _quat_from_ab(a, b, name):
     return q / norm
 
 
-def quat_to_su2(q, *, out=None):
+def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (Theory §A (1), (4)).
 
     Parameters
@@ -84,7 +85,7 @@ def quat_to_su2(q, *, out=None):
     return deliver(np.stack([np.stack([a, b], axis=-1), np.stack([-b.conj(), a.conj()], axis=-1)], axis=-2), out)
 
 
-def su2_to_quat(u, *, out=None):
+def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of each SU(2) matrix (inverse of :func:`quat_to_su2`, sign kept).
 
     ``u`` must be ``[[a, b], [-b*, a*]]`` with ``|a|² + |b|² = 1`` up to 1e-6;
@@ -110,7 +111,7 @@ def su2_to_quat(u, *, out=None):
     return deliver(_quat_from_ab(a, b, "u"), out)
 
 
-def quat_to_cayley_klein(q, *, out=None):
+def quat_to_cayley_klein(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """Cayley–Klein parameters ``(α, β, γ, δ)`` = the entries of ``u`` (Theory §A (3)).
 
     ``u = [[α, β], [γ, δ]]`` with ``δ = α*``, ``γ = -β*``, ``αδ - βγ = 1``.
@@ -134,7 +135,7 @@ def quat_to_cayley_klein(q, *, out=None):
     return deliver(u.reshape(u.shape[:-2] + (4,)), out)
 
 
-def cayley_klein_to_quat(ck, *, out=None):
+def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion from Cayley–Klein parameters ``(α, β, γ, δ)`` (inverse of :func:`quat_to_cayley_klein`).
 
     Parameters
@@ -152,7 +153,7 @@ def cayley_klein_to_quat(ck, *, out=None):
     return deliver(su2_to_quat(ck.reshape(ck.shape[:-1] + (2, 2))), out)
 
 
-def quat_to_euler_parameters(q, *, out=None):
+def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler parameters ``(e0, e1, e2, e3)`` as defined in the Theory §A (2).
 
     ``e0 = cos(ψ/2)``, ``e_j = -n_j sin(ψ/2)``, i.e. ``e = q*/|q|``. The
@@ -180,7 +181,7 @@ def quat_to_euler_parameters(q, *, out=None):
     return deliver(e, out)
 
 
-def euler_parameters_to_quat(e, *, out=None):
+def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`quat_to_euler_parameters`: ``q = e*``.
 
     Parameters
@@ -197,7 +198,7 @@ def euler_parameters_to_quat(e, *, out=None):
     return deliver(_unit(e, "e") * np.array([1.0, -1.0, -1.0, -1.0]), out)
 
 
-def euler_parameters_to_matrix(e, *, out=None):
+def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
     ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
