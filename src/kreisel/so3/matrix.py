@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from numba import prange
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels, parallel
 from .._compiled.outputs import deliver
@@ -17,7 +18,7 @@ __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
 @parallel
-def _quat_to_matrix_parallel(q, out):
+def _quat_to_matrix_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         (
             out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
@@ -27,7 +28,7 @@ def _quat_to_matrix_parallel(q, out):
 
 
 @parallel
-def _matrix_to_quat_parallel(R, out):
+def _matrix_to_quat_parallel(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(R.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.matrix_entries_quat(
             R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
@@ -35,16 +36,16 @@ def _matrix_to_quat_parallel(R, out):
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)
-def _quat_to_matrix(q, carrier3, out):
+def _quat_to_matrix(q: NDArray[np.float64], carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     kernels.write_matrix(q[0], q[1], q[2], q[3], out)
 
 
 @gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)", parallel=_matrix_to_quat_parallel)
-def _matrix_to_quat(R, carrier4, out):
+def _matrix_to_quat(R: NDArray[np.float64], carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = kernels.matrix_quat(R)
 
 
-def quat_to_matrix(q, *, out=None):
+def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
     ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
@@ -74,7 +75,7 @@ def quat_to_matrix(q, *, out=None):
     return _quat_to_matrix(quaternion_array(q, "q"), out=out)
 
 
-def matrix_to_quat(R, *, out=None):
+def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
 
     Shepperd's method (largest of q0², q1², q2², q3² taken from the diagonal):
@@ -101,7 +102,7 @@ def matrix_to_quat(R, *, out=None):
     return _matrix_to_quat(matrix_array(R, "R"), out=out)
 
 
-def orthonormalize(R, *, out=None):
+def orthonormalize(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Nearest rotation matrix (in the Frobenius norm) to each 3×3 matrix.
 
     Uses the SVD ``R = U S Vᵀ`` and returns ``U diag(1, 1, ±1) Vᵀ`` with the
