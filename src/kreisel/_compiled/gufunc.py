@@ -251,7 +251,7 @@ def _large(flat, width):
     return flat.size >= PARALLEL_THRESHOLD * width
 
 
-def finite_array(x, name, tail=(3,)):
+def finite_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = (3,)) -> NDArray[np.float64]:
     """Float64 array with trailing shape ``tail`` and only finite entries (the one such check of kreisel)."""
     a = as_float_array(x, name, tail, finite=False)
     flat = _read_only_flat(a)
@@ -261,7 +261,7 @@ def finite_array(x, name, tail=(3,)):
     return a
 
 
-def quaternion_array(q, name="q", nonzero=True):
+def quaternion_array(q: ArrayLike, name: str = "q", nonzero: bool = True) -> NDArray[np.float64]:
     """Validate quaternions ``(..., 4)``: finite, and nonzero unless told otherwise.
 
     The norm is not required to be 1; conversions that need a rotation
@@ -279,7 +279,7 @@ def quaternion_array(q, name="q", nonzero=True):
     return a
 
 
-def vector_array(v, name, length=3):
+def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:
     """Validate finite vectors ``(..., length)``."""
     return finite_array(v, name, (length,))
 
@@ -325,7 +325,7 @@ def _orthogonality_defect_parallel(flat, chunk):
 _ROUNDING_DEFECT = 1e-13
 
 
-def nearest_rotation(M):
+def nearest_rotation(M: ArrayLike) -> NDArray[np.float64]:
     """Nearest rotation matrix (Frobenius norm) to each ``(..., 3, 3)`` matrix.
 
     ``U diag(1, 1, det(U Vᵀ)) Vᵀ`` from the SVD ``M = U S Vᵀ`` — the special
@@ -337,7 +337,7 @@ def nearest_rotation(M):
     return U @ Vt
 
 
-def matrix_array(R, name="R", tolerance=ORTHOGONALITY_TOLERANCE):
+def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY_TOLERANCE) -> NDArray[np.float64]:
     """Validate rotation matrices ``(..., 3, 3)``; project nearly orthogonal ones.
 
     Matrices with det <= 0, non-finite entries or an orthogonality defect

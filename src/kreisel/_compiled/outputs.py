@@ -29,8 +29,12 @@ from __future__ import annotations
 
 import math
 import threading
+from typing import Any, TypeVar
 
 import numpy as np
+from numpy.typing import NDArray
+
+_Result = TypeVar("_Result", bound=NDArray[Any])
 
 #: Results of at least this many bytes come from the pool (glibc's largest mmap threshold).
 RECYCLED_BYTES = 32 * 2**20
@@ -113,7 +117,7 @@ def check_out(out, shape, dtype=np.float64, name="out"):
     return out
 
 
-def deliver(result, out, name="out"):
+def deliver(result: _Result, out: _Result | None, name: str = "out") -> _Result:
     """``result``, or ``result`` copied into a checked ``out`` of its shape and dtype, which is returned.
 
     For array functions not built on a gufunc: they compute into a new array

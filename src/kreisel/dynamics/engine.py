@@ -431,9 +431,8 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
     q_body = _initial_quaternion(q0)
     if q_body.ndim != 1:
         raise ValueError(f"q0 must have shape (4,), got {q_body.shape}")
-    q_axes = None if axes is None else matrix_to_quat(axes)
     w_pr = w_body if axes is None else axes.T @ w_body
-    q_pr = q_body if axes is None else quat_multiply(q_body, q_axes)
+    q_pr = q_body if axes is None else quat_multiply(q_body, matrix_to_quat(axes))
     parts = [w_pr, q_pr]
     if translation is not None:
         parts.extend(translation)

@@ -9,9 +9,11 @@ give the same rotation (double cover).
 from __future__ import annotations
 
 import math
+from typing import TypeGuard, cast
 
 import numpy as np
 from numba import prange
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
@@ -32,7 +34,7 @@ __all__ = [
 
 
 @cached
-def _applied(q0, q1, q2, q3, x, y, z):
+def _applied(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: float) -> tuple[float, float, float]:
     # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any nonzero norm.
     q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
@@ -49,7 +51,7 @@ def _applied(q0, q1, q2, q3, x, y, z):
 
 
 @cached
-def _inverted(q0, q1, q2, q3):
+def _inverted(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     m = kernels.size(q0, q1, q2, q3)
     if kernels.SIZE_LOW < m < kernels.SIZE_HIGH:
         n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
@@ -61,7 +63,7 @@ def _inverted(q0, q1, q2, q3):
 
 
 @parallel
-def _multiply_parallel(p, q, out):
+def _multiply_parallel(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(p.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_product(
             p[i, 0], p[i, 1], p[i, 2], p[i, 3], q[i, 0], q[i, 1], q[i, 2], q[i, 3]
@@ -69,13 +71,14 @@ def _multiply_parallel(p, q, out):
 
 
 @cached
-def _unit_product(p0, p1, p2, p3, q0, q1, q2, q3):
+def _unit_product(p0: float, p1: float, p2: float, p3: float, q0: float, q1: float, q2: float,
+                  q3: float) -> tuple[float, float, float, float]:
     r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
     return kernels.quat_unit(r0, r1, r2, r3)
 
 
 @parallel
-def _compose_parallel(p, q, out):
+def _compose_parallel(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(p.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _unit_product(
             p[i, 0], p[i, 1], p[i, 2], p[i, 3], q[i, 0], q[i, 1], q[i, 2], q[i, 3]
@@ -83,7 +86,7 @@ def _compose_parallel(p, q, out):
 
 
 @cached
-def _powered(q0, q1, q2, q3, p):
+def _powered(q0: float, q1: float, q2: float, q3: float, p: float) -> tuple[float, float, float, float]:
     # exp(p log q) with the log's angle in [0, π]; p = 0, ±1 exactly.
     if p == 1.0:
         return kernels.quat_unit(q0, q1, q2, q3)
@@ -96,25 +99,25 @@ def _powered(q0, q1, q2, q3, p):
 
 
 @parallel
-def _power_parallel(q, p, out):
+def _power_parallel(q: NDArray[np.float64], p: float, out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _powered(q[i, 0], q[i, 1], q[i, 2], q[i, 3], p)
 
 
 @parallel
-def _normalize_parallel(q, out):
+def _normalize_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel
-def _inverse_parallel(q, out):
+def _inverse_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel
-def _apply_parallel(q, v, sign, out):
+def _apply_parallel(q: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     # sign = -1 rotates by the conjugate: R(q)ᵀ v.
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _applied(
@@ -123,37 +126,37 @@ def _apply_parallel(q, v, sign, out):
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)
-def _multiply(p, q, out):
+def _multiply(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_compose_parallel)
-def _compose(p, q, out):
+def _compose(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = _unit_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_normalize_parallel)
-def _normalize(q, out):
+def _normalize(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = kernels.quat_unit(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8, f8[:])"], "(4),()->(4)", parallel=_power_parallel, shared=(1,))
-def _power(q, p, out):
+def _power(q: NDArray[np.float64], p: float, out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = _powered(q[0], q[1], q[2], q[3], p)
 
 
 @gufunc(["void(f8[:], f8[:])"], "(4)->(4)", parallel=_inverse_parallel)
-def _inverse(q, out):
+def _inverse(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = _inverted(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(3),()->(3)", parallel=_apply_parallel, shared=(2,))
-def _apply(q, v, sign, out):
+def _apply(q: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = _applied(q[0], sign * q[1], sign * q[2], sign * q[3], v[0], v[1], v[2])
 
 
 @cached
-def _multiply_one(p, q, out):
+def _multiply_one(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> bool:
     # Writes p q into out only if it is finite (out may be p or q), and says whether it was.
     r0, r1, r2, r3 = kernels.quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     finite = max(max(abs(r0), abs(r1)), max(abs(r2), abs(r3))) <= 1.7976931348623157e308
@@ -163,13 +166,13 @@ def _multiply_one(p, q, out):
 
 
 @cached
-def _compose_one(p, q):
+def _compose_one(p: NDArray[np.float64], q: NDArray[np.float64]) -> NDArray[np.float64]:
     out = np.empty(4)
     out[0], out[1], out[2], out[3] = _unit_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     return out
 
 
-def compose_unit(p, q):
+def compose_unit(p: NDArray[np.float64], q: NDArray[np.float64]) -> NDArray[np.float64]:
     """Unit product ``(p q) / |p q|`` of validated unit quaternions (no input checks).
 
     The renormalisation keeps long chains of compositions on the unit sphere:
@@ -180,13 +183,13 @@ def compose_unit(p, q):
     return _compose(p, q)
 
 
-def _is_single(x):
+def _is_single(x: object) -> TypeGuard[NDArray[np.float64]]:
     # Writable arrays only: a read-only one would compile (and cache) a second
     # signature of _multiply_one.
     return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64 and x.flags.writeable
 
 
-def quat_multiply(p, q, *, out=None):
+def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Hamilton product ``p q`` (Theory §2.4), broadcasting over leading axes.
 
     ``R(p q) = R(p) R(q)``: the product first applies ``q``, then ``p``.
@@ -222,7 +225,7 @@ def quat_multiply(p, q, *, out=None):
     return _multiply(p, q, out=out)
 
 
-def quat_conjugate(q, *, out=None):
+def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Conjugate ``q* = q0 - q·i`` (Theory §2.4); the inverse rotation for unit ``q``.
 
     Parameters
@@ -246,7 +249,7 @@ def quat_conjugate(q, *, out=None):
     return out
 
 
-def quat_norm(q, *, out=None):
+def quat_norm(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Norm ``|q| = sqrt(q* q)``, shape ``(...)``.
 
     Parameters
@@ -263,7 +266,7 @@ def quat_norm(q, *, out=None):
     return deliver(norm(quaternion_array(q, "q", nonzero=False)), out)
 
 
-def quat_inverse(q, *, out=None):
+def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse ``q⁻¹ = q* / |q|²`` (Theory §2.4) of nonzero quaternions.
 
     Parameters
@@ -285,7 +288,7 @@ def quat_inverse(q, *, out=None):
     return inverse
 
 
-def quat_normalize(q, *, out=None):
+def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Scale nonzero quaternions to unit norm (the renormalisation of Theory §2.4 (2) ②).
 
     Raises ``ValueError`` for zero or non-finite input rather than returning NaN.
@@ -305,7 +308,7 @@ def quat_normalize(q, *, out=None):
     return _normalize(q, out=out)
 
 
-def quat_apply(q, v, inverse=False, *, out=None):
+def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotate vectors: ``R(q) v`` (or ``R(q)ᵀ v`` with ``inverse=True``).
 
     With ``R`` mapping body to space components this turns body components
@@ -338,7 +341,7 @@ def quat_apply(q, v, inverse=False, *, out=None):
     return _apply(q, v, -1.0 if inverse else 1.0, out=out)
 
 
-def quat_power(q, p, *, out=None):
+def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Powers ``q^p = exp(p log q)`` of rotations: the same axis, ``p`` times the angle.
 
     The logarithm takes the rotation angle in [0, π] (the double cover's
@@ -370,15 +373,16 @@ def quat_power(q, p, *, out=None):
     >>> np.allclose(quat_power(q, 1 / 3), [np.cos(np.pi / 12), 0.0, 0.0, np.sin(np.pi / 12)])
     True
     """
-    if _is_single(q) and type(p) in (int, float) and math.isfinite(p) and q.any() and np.isfinite(q).all():
+    # type(), not isinstance: numpy scalars and bools take the general path
+    if _is_single(q) and type(p) in (int, float) and math.isfinite(cast(float, p)) and q.any() and np.isfinite(q).all():
         # One rotation: the compiled kernel without the gufunc dispatch.
-        return deliver(np.array(_powered(q[0], q[1], q[2], q[3], float(p))), out)
+        return deliver(np.array(_powered(q[0], q[1], q[2], q[3], float(cast(float, p)))), out)
     q = quaternion_array(q, "q")
-    p = finite_array(p, "p", ())
-    return _power(q, float(p) if p.ndim == 0 else p, out=out)
+    exponent = finite_array(p, "p", ())
+    return _power(q, float(exponent) if exponent.ndim == 0 else exponent, out=out)
 
 
-def quat_identity(shape=(), *, out=None):
+def quat_identity(shape: int | tuple[int, ...] | None = (), *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Identity quaternions ``[1, 0, 0, 0]`` of batch shape ``shape``.
 
     Parameters
