@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Iterator
 
 import numpy as np
 from numba import prange
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver
@@ -35,31 +37,32 @@ __all__ = [
 
 
 @cached
-def _rotvec_matrix(x, y, z):
+def _rotvec_matrix(x: float, y: float, z: float) -> tuple[float, ...]:
     q0, q1, q2, q3 = kernels.rotvec_quat(x, y, z)
     return kernels.quat_matrix(q0, q1, q2, q3)
 
 
 @cached
-def _matrix_rotvec(r00, r01, r02, r10, r11, r12, r20, r21, r22):
+def _matrix_rotvec(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
+                   r22: float) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return kernels.quat_rotvec(q0, q1, q2, q3)
 
 
 @parallel
-def _rotvec_to_quat_parallel(psi, out):
+def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
 
 
 @parallel
-def _quat_to_rotvec_parallel(q, out):
+def _quat_to_rotvec_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = kernels.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel
-def _rotvec_to_matrix_parallel(psi, out):
+def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
         (
             out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
@@ -69,7 +72,7 @@ def _rotvec_to_matrix_parallel(psi, out):
 
 
 @parallel
-def _matrix_to_rotvec_parallel(R, out):
+def _matrix_to_rotvec_parallel(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(R.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _matrix_rotvec(
             R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
@@ -77,36 +80,36 @@ def _matrix_to_rotvec_parallel(R, out):
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
-def _rotvec_to_quat(psi, carrier4, out):
+def _rotvec_to_quat(psi: NDArray[np.float64], carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = kernels.rotvec_quat(psi[0], psi[1], psi[2])
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_rotvec_parallel)
-def _quat_to_rotvec(q, carrier3, out):
+def _quat_to_rotvec(q: NDArray[np.float64], carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = kernels.quat_rotvec(q[0], q[1], q[2], q[3])
 
 
 @gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)", parallel=_rotvec_to_matrix_parallel)
-def _rotvec_to_matrix(psi, out):
+def _rotvec_to_matrix(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     q0, q1, q2, q3 = kernels.rotvec_quat(psi[0], psi[1], psi[2])
     kernels.write_matrix(q0, q1, q2, q3, out)
 
 
 @gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)", parallel=_matrix_to_rotvec_parallel)
-def _matrix_to_rotvec(R, out):
+def _matrix_to_rotvec(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     q0, q1, q2, q3 = kernels.matrix_quat(R)
     out[0], out[1], out[2] = kernels.quat_rotvec(q0, q1, q2, q3)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
-def _compose_rotvec(a, b, out):
+def _compose_rotvec(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     p0, p1, p2, p3 = kernels.rotvec_quat(a[0], a[1], a[2])
     q0, q1, q2, q3 = kernels.rotvec_quat(b[0], b[1], b[2])
     r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
     out[0], out[1], out[2] = kernels.quat_rotvec(r0, r1, r2, r3)
 
 
-def generators():
+def generators() -> NDArray[np.float64]:
     """The generators ``X_1, X_2, X_3`` of Theory §2.2 (2), shape (3, 3, 3).
 
     ``(X_j)_kl = -ε_jkl``; ``[X_j, X_k] = ε_jkl X_l`` and ``R(ψ) = exp(ψ_j X_j)``.
@@ -121,7 +124,7 @@ def generators():
     return hat(np.eye(3))
 
 
-def hat(v, *, out=None):
+def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
     Parameters
@@ -151,7 +154,7 @@ def hat(v, *, out=None):
     return deliver(A, out)
 
 
-def vee(A, *, out=None):
+def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`hat`: the vector of the skew part of ``A``.
 
     Uses ``(A - Aᵀ)/2``, so a matrix that is skew up to rounding maps to the
@@ -173,7 +176,7 @@ def vee(A, *, out=None):
     return deliver(v, out)
 
 
-def rotvec_to_matrix(psi, *, out=None):
+def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
     Evaluated through the half-angle quaternion so that every entry is
@@ -202,7 +205,7 @@ def rotvec_to_matrix(psi, *, out=None):
     return _rotvec_to_matrix(vector_array(psi, "psi"), out=out)
 
 
-def matrix_to_rotvec(R, *, out=None):
+def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm ``ψ = log R`` with |ψ| <= π.
 
     Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
@@ -223,7 +226,7 @@ def matrix_to_rotvec(R, *, out=None):
     return _matrix_to_rotvec(matrix_array(R, "R"), out=out)
 
 
-def rotvec_to_quat(psi, *, out=None):
+def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (Theory §A (4)).
 
     No sign flip: ψ = 2π n gives ``q = -1`` — the double cover SU(2) → SO(3).
@@ -243,7 +246,7 @@ def rotvec_to_quat(psi, *, out=None):
     return _rotvec_to_quat(vector_array(psi, "psi"), out=out)
 
 
-def quat_to_rotvec(q, *, out=None):
+def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
 
     ``q`` and ``-q`` give the same ψ; ψ = 2 atan2(|v|, |q0|) is accurate at
@@ -263,7 +266,7 @@ def quat_to_rotvec(q, *, out=None):
     return _quat_to_rotvec(quaternion_array(q, "q"), out=out)
 
 
-def rotvec_to_axis_angle(psi):
+def rotvec_to_axis_angle(psi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Split ψ = ψ n into the unit axis ``n`` and the angle ``ψ >= 0``.
 
     For ψ = 0 the axis is arbitrary and reported as ``[0, 0, 1]``.
@@ -287,7 +290,7 @@ def rotvec_to_axis_angle(psi):
     return axis, angle
 
 
-def axis_angle_to_rotvec(axis, angle, degrees=False, *, out=None):
+def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation vector ψ n from an axis (any nonzero length) and an angle.
 
     Parameters
@@ -308,7 +311,7 @@ def axis_angle_to_rotvec(axis, angle, degrees=False, *, out=None):
     return deliver(unit(axis, "axis") * angle[..., None], out)
 
 
-def compose_rotvec(a, b, *, out=None):
+def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
@@ -331,7 +334,7 @@ def compose_rotvec(a, b, *, out=None):
     return _compose_rotvec(a, b, out=out)
 
 
-def _bernoulli_even(n_max):
+def _bernoulli_even(n_max: int) -> list[float]:
     # B_2, B_4, ... by the recurrence Σ_{j<m} C(m+1, j) B_j = -(m+1) B_m; exact enough in floats.
     B = [1.0]
     for m in range(1, n_max + 1):
@@ -339,7 +342,7 @@ def _bernoulli_even(n_max):
     return B
 
 
-def bch(a, b, order=3, *, out=None):
+def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (Theory §2.2 (4)).
 
     ``a + b + [a, b]/2 + [a - b, [a, b]]/12 + …`` truncated after the terms of
@@ -385,13 +388,13 @@ def bch(a, b, order=3, *, out=None):
     return deliver(np.sum(Z[1:], axis=0), out)
 
 
-def _compositions(n, parts):
+def _compositions(n: int, parts: int) -> Iterator[tuple[int, ...]]:
     """Ordered tuples of ``parts`` positive integers summing to ``n``."""
     for cuts in itertools.combinations(range(1, n), parts - 1):
         yield tuple(j - i for i, j in zip((0, *cuts), (*cuts, n)))
 
 
-def adjoint_action(Q, psi, *, out=None):
+def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
     Implements the identity of Theory §2.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
