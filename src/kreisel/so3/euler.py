@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 from numba import prange
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver
@@ -61,7 +62,7 @@ class GimbalLockWarning(KinematicSingularityWarning):
     """
 
 
-def parse_sequence(seq):
+def parse_sequence(seq: str) -> tuple[tuple[int, ...], bool]:
     """Parse an Euler axis sequence.
 
     Parameters
@@ -97,7 +98,7 @@ def parse_sequence(seq):
     return tuple(_AXES[c] for c in lower), seq.isupper()
 
 
-def _short_sequence(seq):
+def _short_sequence(seq: str) -> tuple[tuple[int, ...], bool] | None:
     """``(axes, intrinsic)`` for a one- or two-axis sequence, None for a three-letter one."""
     if not isinstance(seq, str) or len(seq) not in (1, 2):
         return None
@@ -108,7 +109,7 @@ def _short_sequence(seq):
     return tuple(_AXES[c] for c in seq.lower()), seq.isupper()
 
 
-def _padded(seq):
+def _padded(seq: str) -> str:
     """Three-letter sequence equal to ``seq`` when the appended angles are 0."""
     axes = [_AXES[c] for c in seq.lower()]
     while len(axes) < 3:
@@ -117,14 +118,13 @@ def _padded(seq):
     return full.upper() if seq.isupper() else full
 
 
-def _short_angles(angles, count, degrees):
+def _short_angles(angles: ArrayLike, count: int, degrees: bool) -> NDArray[np.float64]:
     """Angles ``(..., count)`` of a short sequence, zero-padded to ``(..., 3)``.
 
     For one axis a scalar is one rotation, as in scipy.
     """
-    if count == 1 and np.ndim(angles) == 0:
-        angles = [angles]
-    a = finite_array(angles, "angles", (count,))
+    single = count == 1 and np.ndim(angles) == 0
+    a = finite_array(np.reshape(angles, (1,)) if single else angles, "angles", (count,))
     out = np.zeros((*a.shape[:-1], 3))
     out[..., :count] = np.deg2rad(a) if degrees else a
     return out
@@ -136,7 +136,7 @@ def _short_angles(angles, count, degrees):
 SHORT_SEQUENCE_TOLERANCE = 1e-10
 
 
-def _short_sequence_angles(seq, axes, intrinsic, q):
+def _short_sequence_angles(seq: str, axes: tuple[int, ...], intrinsic: bool, q: NDArray[np.float64]) -> NDArray[np.float64]:
     """Angles of a one- or two-axis sequence; refuses rotations it cannot represent."""
     if not intrinsic:
         # Extrinsic "ab" is intrinsic "BA" with the angles reversed.
@@ -167,7 +167,7 @@ def _short_sequence_angles(seq, axes, intrinsic, q):
     return np.where(angles > np.pi, angles - 2.0 * np.pi, np.where(angles < -np.pi, angles + 2.0 * np.pi, angles))
 
 
-def _intrinsic_axes(seq):
+def _intrinsic_axes(seq: str) -> tuple[NDArray[np.int64], int]:
     """Axes of the equivalent intrinsic sequence and whether angles are reversed."""
     axes, intrinsic = parse_sequence(seq)
     if intrinsic:
@@ -182,14 +182,15 @@ def _intrinsic_axes(seq):
 
 
 @cached
-def _elementary(angle, axis):
+def _elementary(angle: float, axis: int) -> tuple[float, float, float, float]:
     h = 0.5 * angle
     s = math.sin(h)
     return math.cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0
 
 
 @cached
-def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
+def _euler_quat(alpha: float, beta: float, gamma: float, axis0: int, axis1: int, axis2: int,
+                reverse: int) -> tuple[float, float, float, float]:
     # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
     if reverse:
         alpha, gamma = gamma, alpha
@@ -201,19 +202,21 @@ def _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse):
 
 
 @cached
-def _euler_matrix(alpha, beta, gamma, axis0, axis1, axis2, reverse):
+def _euler_matrix(alpha: float, beta: float, gamma: float, axis0: int, axis1: int, axis2: int,
+                  reverse: int) -> tuple[float, ...]:
     q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
     return kernels.quat_matrix(q0, q1, q2, q3)
 
 
 @cached
-def _matrix_euler(r00, r01, r02, r10, r11, r12, r20, r21, r22, axis0, axis1, axis2, reverse):
+def _matrix_euler(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
+                  r22: float, axis0: int, axis1: int, axis2: int, reverse: int) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
 
 
 @parallel
-def _euler_to_quat_parallel(angles, axes, reverse, out):
+def _euler_to_quat_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(angles.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _euler_quat(
@@ -222,7 +225,7 @@ def _euler_to_quat_parallel(angles, axes, reverse, out):
 
 
 @parallel
-def _euler_to_matrix_parallel(angles, axes, reverse, out):
+def _euler_to_matrix_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(angles.shape[0]):
         (
@@ -233,14 +236,14 @@ def _euler_to_matrix_parallel(angles, axes, reverse, out):
 
 
 @parallel
-def _quat_to_euler_parallel(q, axes, reverse, out):
+def _quat_to_euler_parallel(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q[i, 0], q[i, 1], q[i, 2], q[i, 3], a0, a1, a2, reverse)
 
 
 @parallel
-def _matrix_to_euler_parallel(R, axes, reverse, out):
+def _matrix_to_euler_parallel(R: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(R.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _matrix_euler(
@@ -250,29 +253,30 @@ def _matrix_to_euler_parallel(R, axes, reverse, out):
 
 
 @gufunc(["void(f8[:], i8[:], i8, f8[:], f8[:])"], "(3),(3),(),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1, 2))
-def _euler_to_quat(angles, axes, reverse, carrier4, out):
+def _euler_to_quat(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
 
 
 @gufunc(["void(f8[:], i8[:], i8, f8[:, :])"], "(3),(3),()->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1, 2))
-def _euler_to_matrix(angles, axes, reverse, out):
+def _euler_to_matrix(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     q0, q1, q2, q3 = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
     kernels.write_matrix(q0, q1, q2, q3, out)
 
 
 @gufunc(["void(f8[:], i8[:], i8, f8[:])"], "(4),(3),()->(3)", parallel=_quat_to_euler_parallel, shared=(1, 2))
-def _quat_to_euler(q, axes, reverse, out):
+def _quat_to_euler(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = _euler_angles(q[0], q[1], q[2], q[3], axes[0], axes[1], axes[2], reverse)
 
 
 @gufunc(["void(f8[:, :], i8[:], i8, f8[:])"], "(3,3),(3),()->(3)", parallel=_matrix_to_euler_parallel, shared=(1, 2))
-def _matrix_to_euler(R, axes, reverse, out):
+def _matrix_to_euler(R: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     q0, q1, q2, q3 = kernels.matrix_quat(R)
     out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
 
 
 @cached
-def _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse):
+def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1: int, axis2: int,
+                  reverse: int) -> tuple[float, float, float]:
     # Bernardes & Viollet's method is written for extrinsic sequences; the
     # intrinsic "ABC" is the extrinsic "cba", hence the reversed axes.
     i, j, l = axis2, axis1, axis0
@@ -315,7 +319,7 @@ def _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse):
 
 
 @cached
-def _pair_norm(a, b):
+def _pair_norm(a: float, b: float) -> float:
     # The pairs come from a unit quaternion (entries <= 2), so a² + b² cannot
     # overflow; only below ~1e-150 can it underflow, and there math.hypot
     # (twice as slow in a loop that is mostly transcendental calls) takes over.
@@ -326,7 +330,7 @@ def _pair_norm(a, b):
 
 
 @cached
-def _wrap(x):
+def _wrap(x: float) -> float:
     if x > math.pi:
         return x - 2.0 * math.pi
     if x < -math.pi:
@@ -334,7 +338,7 @@ def _wrap(x):
     return x
 
 
-def _angles_array(seq, angles, degrees):
+def _angles_array(seq: str, angles: ArrayLike, degrees: bool) -> tuple[str, NDArray[np.float64]]:
     """The sequence and angles ``(..., 3)`` in radians; short sequences are padded."""
     short = _short_sequence(seq)
     if short is not None:
@@ -343,7 +347,7 @@ def _angles_array(seq, angles, degrees):
     return seq, (np.deg2rad(a) if degrees else a)
 
 
-def euler_to_quat(seq, angles, degrees=False, *, out=None):
+def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of Euler angles in any of the 24 conventions (Theory §2.3).
 
     Parameters
@@ -376,7 +380,7 @@ def euler_to_quat(seq, angles, degrees=False, *, out=None):
     return _euler_to_quat(angles, axes, reverse, out=out)
 
 
-def euler_to_matrix(seq, angles, degrees=False, *, out=None):
+def euler_to_matrix(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix of Euler angles, e.g. the chapter's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
 
     Parameters
@@ -398,11 +402,11 @@ def euler_to_matrix(seq, angles, degrees=False, *, out=None):
     return _euler_to_matrix(angles, axes, reverse, out=out)
 
 
-def _finish(angles, degrees):
+def _finish(angles: NDArray[np.float64], degrees: bool) -> NDArray[np.float64]:
     return np.rad2deg(angles, out=angles) if degrees else angles
 
 
-def quat_to_euler(seq, q, degrees=False, *, out=None):
+def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of nonzero quaternions (direct half-angle method).
 
     Ranges: first and third angle in [-π, π]; middle angle in [0, π] for
@@ -437,7 +441,7 @@ def quat_to_euler(seq, q, degrees=False, *, out=None):
     return _finish(_quat_to_euler(q, axes, reverse, out=out), degrees)
 
 
-def matrix_to_euler(seq, R, degrees=False, *, out=None):
+def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of rotation matrices, exact through gimbal lock.
 
     Goes through Shepperd's quaternion and the half-angle method, so no
@@ -465,7 +469,8 @@ def matrix_to_euler(seq, R, degrees=False, *, out=None):
     return _finish(_matrix_to_euler(R, axes, reverse, out=out), degrees)
 
 
-def gimbal_lock(seq, angles, degrees=False, tolerance=1e-7, *, out=None):
+def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: float = 1e-7, *,
+                out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Which Euler-angle triples are within ``tolerance`` of gimbal lock.
 
     Gimbal lock (Theory §2.3 (3)) is a middle angle of 0 or π for proper Euler
