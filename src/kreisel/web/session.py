@@ -21,7 +21,7 @@ from ..io.run import build_body, initial_attitude, torque_model
 from ..kinematics import euler_rates
 from ..so3 import quat_apply, quat_to_euler
 from ..tops import EulerTop, LagrangeTop, first_integrals
-from .runner import Limits
+from .limits import Limits
 
 METHODS = tuple(DYNAMICS_METHODS)
 # One JSON reply holds the whole run; a stream holds one chunk at a time on the server, so its limit is
