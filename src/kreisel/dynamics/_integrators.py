@@ -464,6 +464,19 @@ def substeps(span, dt):
 
 
 @cached
+def _unit_attitude(out, k):
+    """out[k, 3:7] ← q/|q|, the attitude of an output sample as a unit quaternion.
+
+    The squares are summed in numpy's order (``np.linalg.norm`` over the last
+    axis), so the samples carry the same bits as normalising the whole output
+    afterwards would give, without a second pass over it.
+    """
+    q0, q1, q2, q3 = out[k, 3], out[k, 4], out[k, 5], out[k, 6]
+    n = math.sqrt(((q0 * q0 + q1 * q1) + q2 * q2) + q3 * q3)
+    out[k, 3], out[k, 4], out[k, 5], out[k, 6] = q0 / n, q1 / n, q2 / n, q3 / n
+
+
+@cached
 def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget):
     """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps.
 
@@ -481,6 +494,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
     if k < 0:
         for i in range(ny):
             out[0, i] = y[i]
+        _unit_attitude(out, 0)
         k = 0
     taken = 0
     while k < t_out.size - 1:
@@ -514,6 +528,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
             if not math.isfinite(y[i]):
                 return NOT_FINITE
             out[k + 1, i] = y[i]
+        _unit_attitude(out, k + 1)
         k += 1
         s0 = 0
     return OK
@@ -523,12 +538,20 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
 def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
     # its own function, not inlined into run: LLVM optimises the stage loop better alone
     model = (inertia, mass, rows, frows, np.empty(13))
-    return integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget)
+    first = int(state[2])
+    status = integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget)
+    written = t_out.size if status == OK else (int(state[2]) if status == PAUSED else first)
+    for k in range(first, written):
+        _unit_attitude(out, k)
+    return status
 
 
 @cached
 def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
-    """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method."""
+    """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
+
+    ``out[k]`` receives the state at ``t_out[k]`` with its attitude as a unit quaternion.
+    """
     if method == DOP853:
         return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
     return fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget)

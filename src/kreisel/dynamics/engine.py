@@ -357,7 +357,9 @@ def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, m
     # a fresh writable C array: numba compiles one specialisation per array layout
     moments = np.array(moments, dtype=np.float64, order="C")
     if method == "scipy":
-        return _scipy(t, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
+        y = _scipy(t, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
+        y[:, 3:7] = _normalized(y[:, 3:7])  # as the compiled drivers write their samples
+        return y
     out, status = _run(METHODS[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
                        rtol, atol[None, :], max_steps, progress)
     _raise_status(status[0])
@@ -446,7 +448,7 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
     finally:
         _model_tables.release_callback(rows)
         _model_tables.release_callback(frows)
-    omega, q = _to_body_frame(y[:, 0:3], _normalized(y[:, 3:7]), axes)
+    omega, q = _to_body_frame(y[:, 0:3], y[:, 3:7], axes)
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
     return tensor, mass, t, omega, q, y, meta
@@ -604,7 +606,7 @@ def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, 
                                                  force=force)
     meta["mass"] = mass
     meta["force"] = repr(force) if force is not None else "none"
-    return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10].copy(), velocity=y[:, 10:13].copy())
+    return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10], velocity=y[:, 10:13])
 
 
 def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
@@ -701,14 +703,15 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
 
     if reduce is None:
         y = integrate(0, count)
+        # views of the drivers' output (unit attitudes already): dense output costs no pass after the run
         omega = y[..., 0:3].reshape(batch + (t.size, 3))
-        q = _normalized(y[..., 3:7]).reshape(batch + (t.size, 4))
+        q = y[..., 3:7].reshape(batch + (t.size, 4))
         return Trajectory(t, q, omega, moments.reshape(batch + (3,))[..., None] * np.eye(3), meta=meta)
     pieces = []
     for lo in range(0, count, chunk):
         hi = min(count, lo + chunk)
         y = integrate(lo, hi)
-        tr = Trajectory(t, _normalized(y[..., 3:7]), y[..., 0:3], moments[lo:hi, :, None] * np.eye(3), meta=meta)
+        tr = Trajectory(t, y[..., 3:7], y[..., 0:3], moments[lo:hi, :, None] * np.eye(3), meta=meta)
         piece = np.asarray(reduce(tr))
         if piece.ndim < 1 or piece.shape[0] != hi - lo:
             raise ValueError(f"reduce must return an array whose first axis is the {hi - lo} bodies "
