@@ -38,8 +38,7 @@ def angular_acceleration(R, Rdot, Rddot, frame="space", *, out=None):
     R, Rdot, Rddot : array_like, shape (..., 3, 3)
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -75,8 +74,7 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
     q, qdot, qddot : array_like, shape (..., 4)
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -113,8 +111,7 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out
     psi, psidot, psiddot : array_like, shape (..., 3)
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -146,8 +143,7 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
     frame : {"space", "body"}
     degrees : bool
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -171,8 +171,7 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False, *, out=None):
     degrees : bool
         Angles in degrees (M is dimensionless either way).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -207,8 +206,7 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
     tol : float
         Singularity threshold on |det M| = |sin β| (proper Euler) or |cos β| (Tait–Bryan).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -241,8 +239,7 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
         Components of the returned angular velocity (always rad/s).
     degrees : bool
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -281,8 +278,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
         Angles in degrees; rates are then returned in deg/s.
     tol : float
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -318,8 +314,7 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL, *, out=No
     tol : float
         As in :func:`euler_rates`.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -36,8 +36,7 @@ def point_velocity(omega, r, reference_velocity=0.0, *, out=None):
     reference_velocity : array_like, shape (..., 3)
         Velocity v_C of the reference point (default at rest).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -66,8 +65,7 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0, *, out=Non
     reference_acceleration : array_like, shape (..., 3)
         Acceleration a_C of the reference point (default 0).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -97,8 +95,7 @@ def relative_derivative(omega, vector, relative_rate, *, out=None):
     relative_rate : array_like, shape (..., 3)
         dA′/dt, the rate seen from the body.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

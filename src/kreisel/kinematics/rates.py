@@ -43,8 +43,7 @@ def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
     frame : {"space", "body"}
         Components of the returned angular velocity.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -110,8 +109,7 @@ def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDAr
         Angular velocity in the components given by ``frame``.
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -141,8 +139,7 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
     q, qdot : array_like, shape (..., 4)
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -60,8 +60,7 @@ def bortz_coefficient(angle, *, out=None):
     angle : array_like
         Rotation angle(s) ψ = |ψ| in radians (the function is even).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -94,8 +93,7 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
         Rotation vector ψ (any length, not only |ψ| ≤ π) and its time derivative.
     frame : {"space", "body"}
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -130,8 +128,7 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL, *, out=None):
         are singular: their rates are NaN and a
         :class:`RotationVectorSingularityWarning` is issued.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -160,8 +157,7 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     tol : float
         As in :func:`rotvec_rate`.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

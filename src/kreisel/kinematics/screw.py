@@ -128,8 +128,7 @@ def instantaneous_centre(omega, velocity, point=0.0, *, out=None):
     point : array_like, shape (..., 2)
         Position of C (default origin).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

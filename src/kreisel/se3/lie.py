@@ -69,8 +69,7 @@ def se3_hat(xi, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -94,8 +93,7 @@ def se3_vee(matrix, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -162,8 +160,7 @@ def se3_left_jacobian(xi, *, out=None):
     xi : array_like, shape (..., 6)
         Twists ``(ω, v)``.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -182,8 +179,7 @@ def se3_right_jacobian(xi, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -204,8 +200,7 @@ def se3_left_jacobian_inverse(xi, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -226,8 +221,7 @@ def se3_right_jacobian_inverse(xi, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

@@ -182,8 +182,7 @@ def davenport_to_quat(axes, order, angles, degrees=False, *, out=None):
     angles : array_like, shape (..., k)
         Radians unless ``degrees=True`` (a scalar for one axis).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -228,8 +227,7 @@ def quat_to_davenport(axes, order, q, degrees=False, *, out=None):
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -269,8 +267,7 @@ def davenport_gimbal_lock(axes, order, angles, degrees=False, tolerance=1e-7, *,
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

@@ -357,8 +357,7 @@ def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: ND
     angles : array_like, shape (..., 3)
         Angles in the order of ``seq``; radians unless ``degrees=True``.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -386,8 +385,7 @@ def euler_to_matrix(seq: str, angles: ArrayLike, degrees: bool = False, *, out: 
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -421,8 +419,7 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -451,8 +448,7 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -486,8 +482,7 @@ def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: f
         Distance of the middle angle from the singular value, in radians
         (in degrees when ``degrees=True``).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -39,8 +39,7 @@ def quat_slerp(p, q, t, *, out=None):
     t : array_like, shape (...)
         Broadcast with the leading axes of ``p`` and ``q``.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -70,8 +69,7 @@ def quat_mean(q, weights=None, axis=-2, *, out=None):
     axis : int
         Axis of ``q`` holding the samples (not the last one).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -58,8 +58,7 @@ def left_jacobian(psi, *, out=None):
     ----------
     psi : array_like, shape (..., 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -84,8 +83,7 @@ def right_jacobian(psi, *, out=None):
     ----------
     psi : array_like, shape (..., 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -112,8 +110,7 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     tol : float
         Samples with |ψ| > π and |sin(|ψ|/2)| <= tol are singular.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -139,8 +136,7 @@ def right_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     tol : float
         As in :func:`left_jacobian_inverse`.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -56,8 +56,7 @@ def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     q : array_like, shape (..., 4)
         Scalar-first quaternions.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -87,8 +86,7 @@ def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     ----------
     R : array_like, shape (..., 3, 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -114,8 +112,7 @@ def orthonormalize(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     R : array_like, shape (..., 3, 3)
         Finite matrices of full rank.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

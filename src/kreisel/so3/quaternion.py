@@ -199,8 +199,7 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
     p, q : array_like, shape (..., 4)
         Scalar-first quaternions (any finite values; not necessarily unit).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -231,8 +230,7 @@ def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -255,8 +253,7 @@ def quat_norm(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArra
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -272,8 +269,7 @@ def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -296,8 +292,7 @@ def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -322,8 +317,7 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
         Broadcast against ``q`` over the leading axes.
     inverse : bool
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -356,8 +350,7 @@ def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = 
     p : float or array_like, shape (...)
         Exponents, broadcast against the batch.
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -388,8 +381,7 @@ def quat_identity(shape: int | tuple[int, ...] | None = (), *, out: NDArray[np.f
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

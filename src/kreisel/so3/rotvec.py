@@ -131,8 +131,7 @@ def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     ----------
     v : array_like, shape (..., 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -163,8 +162,7 @@ def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -187,8 +185,7 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     ----------
     psi : array_like, shape (..., 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -215,8 +212,7 @@ def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -234,8 +230,7 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -255,8 +250,7 @@ def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -296,8 +290,7 @@ def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = Fals
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -320,8 +313,7 @@ def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | Non
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -358,8 +350,7 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     a, b : array_like, shape (..., 3)
     order : int >= 1
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -407,8 +398,7 @@ def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | N
         Rotation matrices.
     psi : array_like, shape (..., 3)
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

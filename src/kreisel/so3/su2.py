@@ -65,8 +65,7 @@ def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> N
     q : array_like, shape (..., 4)
         Nonzero quaternions (normalised here).
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -94,8 +93,7 @@ def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -119,8 +117,7 @@ def quat_to_cayley_klein(q: ArrayLike, *, out: NDArray[np.complex128] | None = N
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -141,8 +138,7 @@ def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = Non
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -169,8 +165,7 @@ def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = 
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -187,8 +182,7 @@ def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = 
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -208,8 +202,7 @@ def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None 
     Parameters
     ----------
     out : ndarray, optional
-        Array of the result's shape and dtype to write it into (keyword only); it is returned.
-        It may share memory with an input. See :ref:`out-arrays`.
+        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
