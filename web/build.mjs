@@ -43,6 +43,9 @@ for (const [entry, file, plugins] of [["widget", "widget.js", []], ["main", "vie
     minify: true,
     format: "esm",
     target: "es2020",
+    // template literals lowered to plain strings: three.js's multi-line GLSL chunks would otherwise stay line by
+    // line in the committed bundle, where they read as thousands of repeated source lines
+    supported: { "template-literal": false },
     outfile: out + file,
     plugins,
     logLevel: "warning",
