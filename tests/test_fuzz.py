@@ -361,10 +361,6 @@ MISLEADING = re.compile(r"must be finite|non-?finite|must be non-?zero|is zero|m
 # numpy's RuntimeWarning or as a misleading "must be finite", at magnitudes whose answer is representable).
 # Not strict: the fixes land one by one.
 OPEN = {
-    "inertia.from_points": "positions ~1e154: invalid value in multiply",
-    "inertia.hollow_sphere": "radius ~1e78: overflow in power",
-    "inertia.solid_ellipsoid": "semi_axes ~1e154: overflow in square",
-    "inertia.thin_ring": "radius ~1e154: overflow in square",
     "kinematics.angular_velocity_from_quat_rate": "q ~1e-154: overflow",
     "kinematics.angular_acceleration_from_quat": "q ~1e-154: overflow",
     "kinematics.bortz_coefficient": "angle ~1e155: overflow",

@@ -94,3 +94,22 @@ def test_from_points_refusals():
         I.from_points([0.0, 0.0], np.zeros((2, 3)))
     with pytest.raises(ValueError, match=r"\(N, 3\)"):
         I.from_points([1.0, 1.0], np.zeros((3, 3)))
+
+
+def test_from_points_at_extreme_magnitudes_is_exact_or_refused_as_out_of_range():
+    # positions ~1e160 square to inf on their own; with masses ~1e-250 the tensor (~1e70) is representable
+    mpmath = pytest.importorskip("mpmath")
+    m = np.array([1.0, 3.0, 2.0]) * 1e-250
+    r = np.array([[0.0, 1.0, 2.0], [4.0, 0.0, -1.0], [1.0, 1.0, 1.0]]) * 1e160
+    p = I.from_points(m, r)
+    M = [mpmath.mpf(x) for x in m]
+    com = [sum(M[n] * mpmath.mpf(r[n, i]) for n in range(3)) / sum(M) for i in range(3)]
+    d = [[mpmath.mpf(r[n, i]) - com[i] for i in range(3)] for n in range(3)]
+    exact = [[sum(M[n] * ((i == j) * sum(x * x for x in d[n]) - d[n][i] * d[n][j]) for n in range(3))
+              for j in range(3)] for i in range(3)]
+    np.testing.assert_allclose(p.com, [float(c) for c in com], rtol=1e-15)
+    np.testing.assert_allclose(p.inertia, np.array(exact, dtype=float), rtol=1e-14, atol=1e-14 * float(exact[0][0]))
+    with pytest.raises(ValueError, match="out of range"):
+        I.from_points(m * 1e250, r)
+    with pytest.raises(ValueError, match="out of range"):
+        I.from_points([1.0, 1.0], [[-1e308, 0.0, 0.0], [1e308, 0.0, 0.0]])

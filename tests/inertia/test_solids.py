@@ -191,3 +191,26 @@ def test_refusals(call, message):
 def test_refuses_non_numeric():
     with pytest.raises(TypeError, match="radius"):
         I.solid_sphere(1.0, "big")
+
+
+def _scaled(args, mass_scale, length_scale):
+    """Textbook arguments with the mass and every length multiplied (the keyword ``about`` kept)."""
+    mass, *rest = args
+    return (mass * mass_scale, *(r if isinstance(r, str) else np.multiply(r, length_scale) for r in rest))
+
+
+@pytest.mark.parametrize("name, args, expected", TEXTBOOK, ids=[t[0] for t in TEXTBOOK])
+def test_extreme_sizes_give_the_exact_moments_or_an_out_of_range_refusal(name, args, expected):
+    # I = μ s² I(m, lengths) for mass × μ and lengths × s: each rounded exact value (mpmath) where it is
+    # representable, else a refusal saying so; squaring s ~ 1e160 alone would overflow on the way
+    mpmath = pytest.importorskip("mpmath")
+    for mass_scale, length_scale in [(1e-250, 1e160), (1e250, 1e-160), (1.0, 1e-170), (1.0, 1e155),
+                                     (1e300, 1e-5), (1e-300, 1e5)]:
+        exact = [mpmath.mpf(e) * mpmath.mpf(mass_scale) * mpmath.mpf(length_scale) ** 2 for e in expected]
+        call = lambda: getattr(I, name)(*_scaled(args, mass_scale, length_scale))  # noqa: E731
+        if max(exact) > np.finfo(float).max:
+            with pytest.raises(ValueError, match="out of range"):
+                call()
+            continue
+        np.testing.assert_allclose(diag(call()), [float(e) for e in exact], rtol=4e-16, atol=1e-321,
+                                   err_msg=f"{name} with mass × {mass_scale:g}, lengths × {length_scale:g}")

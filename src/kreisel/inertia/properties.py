@@ -13,7 +13,7 @@ from .tensors import (
     as_rotation_matrix,
     as_symmetric_tensor,
     check_moments,
-    points,
+    point_inertia,
 )
 
 __all__ = ["MassProperties", "from_points", "combine"]
@@ -123,11 +123,21 @@ def from_points(masses, positions):
     r = as_float_array(positions, "positions", tail=(3,))
     if m.ndim != 1 or r.shape != (m.size, 3):
         raise ValueError(f"masses must be (N,) and positions (N, 3), got {m.shape} and {r.shape}")
-    total = float(np.sum(m))
+    with np.errstate(over="ignore"):
+        total = float(np.sum(m))
     if total <= 0.0:
         raise ValueError("masses must have a positive sum")
-    com = m @ r / total
-    return MassProperties(total, com, points(m, r - com))
+    if total == np.inf:
+        raise ValueError("masses are out of range: their sum overflows double precision (exceeds 1.8e308 kg)")
+    # weights scaled by a power of two near the total (exact): m @ r cannot overflow on the way to the mean
+    j = np.frexp(total)[1]
+    # (contiguous: a strided view takes another BLAS path and rounds differently)
+    com = np.ldexp(m, -j) @ np.ascontiguousarray(r) / np.ldexp(total, -j)
+    with np.errstate(over="ignore"):
+        offsets = r - com
+    if not np.isfinite(offsets).all():
+        raise ValueError("positions are out of range: their distances from the centre of mass overflow double precision")
+    return MassProperties(total, com, point_inertia(m, offsets))
 
 
 def _as_part(entry, index):

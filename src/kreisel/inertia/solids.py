@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import as_float_array
-from .tensors import _positive
+from .tensors import _binary_exponent, _out_of_range, _positive
 
 __all__ = [
     "box",
@@ -53,11 +53,29 @@ def _axisymmetric(transverse, axial):
     return _diagonal(transverse, transverse, axial)
 
 
-def _from_extents(mass, squares):
-    """m diag(b + c, a + c, a + b) for per-axis mean squares (a, b, c) = (<x²>, <y²>, <z²>)."""
-    m = _positive(mass, "mass")[..., None]
-    a, b, c = np.moveaxis(m * squares, -1, 0)
-    return _diagonal(b + c, a + c, a + b)
+def _moment(mass, terms, names):
+    """m Σ_k w_k l_k² for the (weight, length) pairs ``terms``, for any finite magnitudes.
+
+    The mass and the lengths are divided by powers of two (exact) that bring the mass and the
+    largest length near 1 and the product is scaled back at the end: the plain formula's value
+    wherever that does not overflow or underflow; a moment too large for double precision is
+    refused naming ``names`` (e.g. ``"mass and radius are"``).
+    """
+    weights = [w for w, _ in terms]
+    lengths = np.stack(np.broadcast_arrays(*[length for _, length in terms]))
+    j = np.frexp(mass)[1]
+    k = _binary_exponent(lengths, axis=0)
+    scaled = np.ldexp(lengths, -k)
+    total = sum(w * x * x for w, x in zip(weights, scaled))
+    with np.errstate(over="ignore"):
+        return _out_of_range(np.ldexp(np.ldexp(mass, -j) * total, j + 2 * k), names)
+
+
+def _from_extents(mass, lengths, weight, names):
+    """m w diag(b² + c², a² + c², a² + b²) for per-axis lengths (a, b, c) = ``lengths``."""
+    m = _positive(mass, "mass")
+    a, b, c = np.moveaxis(lengths, -1, 0)
+    return _diagonal(*(_moment(m, [(weight, x), (weight, y)], names) for x, y in ((b, c), (a, c), (a, b))))
 
 
 def box(mass, size):
@@ -83,7 +101,7 @@ def box(mass, size):
     """
     edges = as_float_array(size, "size", tail=(3,))
     _positive(edges, "size", allow_zero=True)
-    return _from_extents(mass, edges**2 / 12.0)
+    return _from_extents(mass, edges, 1.0 / 12.0, "mass and size are")
 
 
 def solid_ellipsoid(mass, semi_axes):
@@ -106,7 +124,7 @@ def solid_ellipsoid(mass, semi_axes):
     """
     semi = as_float_array(semi_axes, "semi_axes", tail=(3,))
     _positive(semi, "semi_axes")
-    return _from_extents(mass, semi**2 / 5.0)
+    return _from_extents(mass, semi, 0.2, "mass and semi_axes are")
 
 
 def solid_sphere(mass, radius):
@@ -120,7 +138,7 @@ def solid_sphere(mass, radius):
     """
     m = _positive(mass, "mass")
     r = _positive(radius, "radius")
-    moment = 0.4 * m * r**2
+    moment = _moment(m, [(0.4, r)], "mass and radius are")
     return _diagonal(moment, moment, moment)
 
 
@@ -150,8 +168,9 @@ def hollow_sphere(mass, radius, inner_radius=None):
     """
     m = _positive(mass, "mass")
     R, r = _radii(radius, "radius", inner_radius, "inner_radius")
-    numerator = R**4 + R**3 * r + R**2 * r**2 + R * r**3 + r**4
-    moment = 0.4 * m * numerator / (R**2 + R * r + r**2)
+    x = r / R  # in [0, 1]: the ratio of polynomials in R and r is R² times one in x, free of overflow
+    ratio = (1.0 + x * (1.0 + x * (1.0 + x * (1.0 + x)))) / (1.0 + x * (1.0 + x))
+    moment = _moment(m, [(0.4 * ratio, R)], "mass and radius are")
     return _diagonal(moment, moment, moment)
 
 
@@ -196,8 +215,9 @@ def hollow_cylinder(mass, radius, height, inner_radius=None):
     m = _positive(mass, "mass")
     R, r = _radii(radius, "radius", inner_radius, "inner_radius")
     h = _positive(height, "height")
-    radial = R**2 + r**2
-    return _axisymmetric(m * (3.0 * radial + h**2) / 12.0, 0.5 * m * radial)
+    names = "mass, radius and height are"
+    return _axisymmetric(_moment(m, [(0.25, R), (0.25, r), (1.0 / 12.0, h)], names),
+                         _moment(m, [(0.5, R), (0.5, r)], names))
 
 
 _CONE_REFERENCE = {"center_of_mass": 0.0, "apex": 0.75, "base": -0.25}
@@ -238,9 +258,10 @@ def solid_cone(mass, radius, height, about="center_of_mass"):
     r = _positive(radius, "radius")
     h = _positive(height, "height")
     # distance from the reference point to the centre of mass along z, in units of h
-    offset = _CONE_REFERENCE[about] * h
-    transverse = m * (3.0 / 20.0 * r**2 + 3.0 / 80.0 * h**2) + m * offset**2
-    return _axisymmetric(transverse, 0.3 * m * r**2)
+    offset = _CONE_REFERENCE[about]
+    names = "mass, radius and height are"
+    return _axisymmetric(_moment(m, [(3.0 / 20.0, r), (3.0 / 80.0 + offset**2, h)], names),
+                         _moment(m, [(0.3, r)], names))
 
 
 def thin_rod(mass, length):
@@ -257,7 +278,7 @@ def thin_rod(mass, length):
     """
     m = _positive(mass, "mass")
     L = _positive(length, "length")
-    transverse = m * L**2 / 12.0
+    transverse = _moment(m, [(1.0 / 12.0, L)], "mass and length are")
     return _axisymmetric(transverse, np.zeros_like(transverse))
 
 
@@ -274,7 +295,7 @@ def thin_disk(mass, radius):
     """
     m = _positive(mass, "mass")
     r = _positive(radius, "radius")
-    return _axisymmetric(0.25 * m * r**2, 0.5 * m * r**2)
+    return _axisymmetric(_moment(m, [(0.25, r)], "mass and radius are"), _moment(m, [(0.5, r)], "mass and radius are"))
 
 
 def thin_ring(mass, radius):
@@ -290,7 +311,7 @@ def thin_ring(mass, radius):
     """
     m = _positive(mass, "mass")
     r = _positive(radius, "radius")
-    return _axisymmetric(0.5 * m * r**2, m * r**2)
+    return _axisymmetric(_moment(m, [(0.5, r)], "mass and radius are"), _moment(m, [(1.0, r)], "mass and radius are"))
 
 
 def torus(mass, major_radius, minor_radius):
@@ -309,4 +330,5 @@ def torus(mass, major_radius, minor_radius):
     R, a = _radii(
         major_radius, "major_radius", minor_radius, "minor_radius", allow_zero=False, reason=" (a self-intersecting torus)"
     )
-    return _axisymmetric(m * (0.5 * R**2 + 0.625 * a**2), m * (R**2 + 0.75 * a**2))
+    names = "mass, major_radius and minor_radius are"
+    return _axisymmetric(_moment(m, [(0.5, R), (0.625, a)], names), _moment(m, [(1.0, R), (0.75, a)], names))

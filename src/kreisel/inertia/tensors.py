@@ -108,13 +108,38 @@ def _positive(x, name, allow_zero=False):
 
 def _outer_term(mass, r):
     """M (r² 1 − r rᵀ), the inertia of a point mass M at r about the origin; refused when it overflows."""
-    r = np.asarray(r)
-    with np.errstate(over="ignore", invalid="ignore"):
-        rr = r[..., :, None] * r[..., None, :]
-        out = np.asarray(mass)[..., None, None] * (np.einsum("...i,...i->...", r, r)[..., None, None] * np.eye(3) - rr)
-    if not np.isfinite(out).all():
-        raise ValueError("r_c is out of range: M (r_C² 1 − r_C r_Cᵀ) overflows double precision")
-    return out
+    return point_inertia(np.asarray(mass)[..., None], np.asarray(r)[..., None, :], "r_c is")
+
+
+def _binary_exponent(x, axis):
+    """e with max |x| over ``axis`` in [2^(e-1), 2^e) (0 where all are zero): dividing by 2^e is exact."""
+    return np.frexp(np.max(np.abs(x), axis=axis))[1]
+
+
+def _out_of_range(value, names):
+    """``value`` scaled back by :func:`numpy.ldexp`: refused naming ``names`` where it overflows."""
+    if not np.isfinite(value).all():
+        raise ValueError(f"{names} out of range: the moment of inertia would overflow double precision "
+                         "(exceed 1.8e308 kg m²)")
+    return value
+
+
+def point_inertia(masses, positions, names="masses and positions are"):
+    """Σ m (r² 1 − r rᵀ) over axis -2 of ``positions`` (``(..., N, 3)``), for any finite magnitudes.
+
+    Masses and positions are divided by powers of two (exact) that bring the total mass and the
+    largest position near 1 before any product is taken, and the tensor is scaled back at the end:
+    the result is the plain sum wherever that does not overflow or underflow, and a result too
+    large for double precision is refused naming ``names``.
+    """
+    m, r = np.broadcast_arrays(np.asarray(masses)[..., None], positions)
+    with np.errstate(over="ignore"):
+        j = np.frexp(np.sum(m[..., 0], axis=-1))[1]
+        k = _binary_exponent(r, axis=(-2, -1))
+        m_scaled = np.ldexp(m[..., 0], -j[..., None])
+        r_scaled = np.ldexp(r, -k[..., None, None])
+        second_moment = np.einsum("...n,...ni,...nj->...ij", m_scaled, r_scaled, r_scaled)
+        return _out_of_range(np.ldexp(second_moment_to_inertia(second_moment), (j + 2 * k)[..., None, None]), names)
 
 
 def second_moment_to_inertia(second_moment):
@@ -158,8 +183,7 @@ def points(masses, positions):
         raise ValueError(
             f"masses {m.shape} and positions {r.shape} do not broadcast as (..., N) and (..., N, 3)"
         ) from None
-    second_moment = np.einsum("...n,...ni,...nj->...ij", m, r, r)
-    return second_moment_to_inertia(second_moment)
+    return point_inertia(m, r)
 
 
 def parallel_axis(I_cm, mass, r_c):
