@@ -78,6 +78,14 @@ def _from_extents(mass, lengths, weight, names):
     return _diagonal(*(_moment(m, [(weight, x), (weight, y)], names) for x, y in ((b, c), (a, c), (a, b))))
 
 
+def _round(mass, radius, transverse, axial):
+    """m r² diag(transverse, transverse, axial): a body of revolution whose moments scale with r² alone."""
+    m = _positive(mass, "mass")
+    r = _positive(radius, "radius")
+    names = "mass and radius are"
+    return _axisymmetric(_moment(m, [(transverse, r)], names), _moment(m, [(axial, r)], names))
+
+
 def box(mass, size):
     """Solid rectangular box centred on the origin, edges along the axes.
 
@@ -136,10 +144,7 @@ def solid_sphere(mass, radius):
     >>> kr.inertia.solid_sphere(5.0, 1.0).diagonal()
     array([2., 2., 2.])
     """
-    m = _positive(mass, "mass")
-    r = _positive(radius, "radius")
-    moment = _moment(m, [(0.4, r)], "mass and radius are")
-    return _diagonal(moment, moment, moment)
+    return _round(mass, radius, 0.4, 0.4)
 
 
 def hollow_sphere(mass, radius, inner_radius=None):
@@ -154,7 +159,7 @@ def hollow_sphere(mass, radius, inner_radius=None):
     mass : (...) array_like
         Mass, kg.
     radius : (...) array_like
-        Outer radius R, m.
+        Outer radius R of the shell, m.
     inner_radius : (...) array_like, optional
         Inner radius r, 0 <= r <= R; ``None`` means a thin shell (r = R).
 
@@ -200,7 +205,7 @@ def hollow_cylinder(mass, radius, height, inner_radius=None):
     mass : (...) array_like
         Mass, kg.
     radius : (...) array_like
-        Outer radius R, m.
+        Outer radius R of the tube, m.
     height : (...) array_like
         Length along z, m.
     inner_radius : (...) array_like, optional
@@ -293,9 +298,7 @@ def thin_disk(mass, radius):
     >>> kr.inertia.thin_disk(4.0, 1.0).diagonal()
     array([1., 1., 2.])
     """
-    m = _positive(mass, "mass")
-    r = _positive(radius, "radius")
-    return _axisymmetric(_moment(m, [(0.25, r)], "mass and radius are"), _moment(m, [(0.5, r)], "mass and radius are"))
+    return _round(mass, radius, 0.25, 0.5)
 
 
 def thin_ring(mass, radius):
@@ -309,9 +312,7 @@ def thin_ring(mass, radius):
     >>> kr.inertia.thin_ring(2.0, 1.0).diagonal()
     array([1., 1., 2.])
     """
-    m = _positive(mass, "mass")
-    r = _positive(radius, "radius")
-    return _axisymmetric(_moment(m, [(0.5, r)], "mass and radius are"), _moment(m, [(1.0, r)], "mass and radius are"))
+    return _round(mass, radius, 0.5, 1.0)
 
 
 def torus(mass, major_radius, minor_radius):
