@@ -36,13 +36,18 @@ def angular_acceleration(R, Rdot, Rddot, frame="space", *, out=None):
     Parameters
     ----------
     R, Rdot, Rddot : array_like, shape (..., 3, 3)
+        Rotation matrices (body → space) and their first and second time
+        derivatives; batch shapes broadcast.
     frame : {"space", "body"}
+        Components of the result: ε from R̈ Rᵀ, or ε′ from Rᵀ R̈.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        The vector of the antisymmetric part, so inexact data (finite
+        differences) give the nearest angular acceleration.
 
     Examples
     --------
@@ -72,13 +77,17 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
     Parameters
     ----------
     q, qdot, qddot : array_like, shape (..., 4)
+        Scalar-first quaternions (need not be unit) and their first and second
+        time derivatives.
     frame : {"space", "body"}
+        Components of the result: ε from q̈ q⁻¹, or ε′ from q⁻¹ q̈.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        The angular acceleration of the rotation of q/|q|.
 
     Examples
     --------
@@ -109,13 +118,16 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out
     Parameters
     ----------
     psi, psidot, psiddot : array_like, shape (..., 3)
+        Rotation vector (any length) and its first and second time derivatives.
     frame : {"space", "body"}
+        Components of the result: ε through J_l(ψ), or ε′ through J_r(ψ).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        ε (space) or ε′ (body), the time derivative of the dexp map.
 
     Examples
     --------
@@ -141,6 +153,8 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
         Angles and their first and second time derivatives (radians, or
         degrees with ``degrees=True``).
     frame : {"space", "body"}
+        Components of the result (the rate-matrix columns cᵢ are taken in
+        that frame).
     degrees : bool
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).

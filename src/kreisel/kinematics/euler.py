@@ -244,6 +244,7 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     Returns
     -------
     ndarray, shape (..., 3)
+        ω (space) or ω′ (body), rad/s.
 
     Examples
     --------
@@ -274,6 +275,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     omega : array_like, shape (..., 3)
         Angular velocity (rad/s) in the components given by ``frame``.
     frame : {"space", "body"}
+        Components in which ``omega`` is given.
     degrees : bool
         Angles in degrees; rates are then returned in deg/s.
     tol : float
@@ -283,6 +285,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     Returns
     -------
     ndarray, shape (..., 3)
+        The rates of the three angles; the first and third are NaN at gimbal lock.
 
     Examples
     --------
@@ -319,6 +322,8 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL, *, out=No
     Returns
     -------
     ndarray of bool, shape (...)
+        True at gimbal lock: |sin β| <= ``tol`` (proper Euler) or |cos β| <= ``tol``
+        (Tait–Bryan), β the middle angle.
 
     Examples
     --------

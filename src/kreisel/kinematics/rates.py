@@ -48,6 +48,7 @@ def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
     Returns
     -------
     ndarray, shape (..., 3)
+        ω (space) or ω′ (body).
 
     Examples
     --------
@@ -108,6 +109,7 @@ def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDAr
     omega : array_like, shape (..., 3)
         Angular velocity in the components given by ``frame``.
     frame : {"space", "body"}
+        ``"space"``: ω is ω and q̇ = ½ ω q; ``"body"``: ω is ω′ and q̇ = ½ q ω′.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -137,13 +139,16 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
     Parameters
     ----------
     q, qdot : array_like, shape (..., 4)
+        Scalar-first quaternions (need not be unit) and their time derivatives.
     frame : {"space", "body"}
+        Components of the result: ω from q̇ q⁻¹, or ω′ from q⁻¹ q̇.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        The angular velocity of the rotation of q/|q|.
 
     Examples
     --------

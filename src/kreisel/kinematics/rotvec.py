@@ -92,12 +92,14 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
     psi, psidot : array_like, shape (..., 3)
         Rotation vector ψ (any length, not only |ψ| ≤ π) and its time derivative.
     frame : {"space", "body"}
+        Components of the result: ω = J_l(ψ) ψ̇, or ω′ = J_r(ψ) ψ̇.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        ω (space) or ω′ (body).
 
     Examples
     --------
@@ -133,6 +135,7 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3)
+        ψ̇; NaN at the poles |ψ| = 2πk.
 
     Examples
     --------
@@ -154,6 +157,7 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+        Rotation vectors.
     tol : float
         As in :func:`rotvec_rate`.
     out : ndarray, optional
@@ -162,6 +166,7 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     Returns
     -------
     ndarray of bool, shape (...)
+        True where |ψ| is within ``tol`` of a pole 2πk (k >= 1).
 
     Examples
     --------
