@@ -10,7 +10,9 @@ a sample input here (or a reason to be left out) fails the enumeration test.
 from __future__ import annotations
 
 import inspect
+import sys
 import tracemalloc
+import weakref
 
 import numpy as np
 import pytest
@@ -18,6 +20,7 @@ import pytest
 import kreisel.kinematics as kinematics
 import kreisel.se3 as se3
 import kreisel.so3 as so3
+from kreisel import release_memory as kr_release
 from kreisel._compiled import gufunc, outputs
 
 #: Public functions that return no single array (tuples, objects, constants, parsed names).
@@ -35,6 +38,7 @@ NOT_ARRAY_FUNCTIONS = {
     "centrodes": "returns Centrodes",
     "change_base_point": "returns a RigidTransform",
     "sclerp": "returns a RigidTransform",
+    "release_memory": "frees kreisel's idle memory, returns a byte count",
 }
 
 N = 5
@@ -241,3 +245,29 @@ def test_large_results_are_recycled(monkeypatch):
         held.pop(0)
     del second
     assert [id(s) for s in outputs._idle] == [id(s) for s in (slabs[3], slabs[4], slab)]
+
+
+def _resident_bytes():
+    with open("/proc/self/statm") as statm:
+        return int(statm.read().split()[1]) * 4096
+
+
+def test_release_memory_gives_idle_slabs_back(monkeypatch):
+    monkeypatch.setattr(outputs, "_idle", [])
+    q = QUATS[np.arange(600_000) % N]  # a 43 MB result: recycled by default
+    held = so3.quat_to_matrix(q)
+    slab = weakref.ref(held.base._slab)
+    del held
+    assert slab() is not None and outputs._idle == [slab()]
+    resident = _resident_bytes() if sys.platform == "linux" else None
+    assert kr_release() == 600_000 * 9 * 8
+    assert slab() is None and outputs._idle == []
+    if resident is not None:  # the pages went back to the operating system, not to malloc's heap
+        assert resident - _resident_bytes() > 0.9 * 600_000 * 9 * 8
+    assert kr_release() == 0
+    # a result still alive is not touched, and its slab is kept again when it dies
+    alive = so3.quat_to_matrix(q)
+    assert kr_release() == 0
+    assert alive.tobytes() == so3.quat_to_matrix(q[:10]).tobytes() * 60_000
+    del alive
+    assert len(outputs._idle) == 1

@@ -34,6 +34,7 @@ from .rotation import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
 from .spline import *  # noqa: F401,F403
 from .su2 import *  # noqa: F401,F403
+from .._compiled.outputs import release_memory
 
 # built with += so that type checkers read it (they do not read a list with * unpacking)
 __all__: list[str] = []
@@ -50,3 +51,4 @@ __all__ += davenport.__all__
 __all__ += groups.__all__
 __all__ += rotation.__all__
 __all__ += spline.__all__
+__all__ += ["release_memory"]  # the memory kept for large results of so3, kinematics and se3
