@@ -118,6 +118,93 @@ def test_every_array_function_takes_out():
     assert not set(NOT_ARRAY_FUNCTIONS) - {n for m in (so3, kinematics, se3) for n in m.__all__}
 
 
+#: Public methods of the exported classes that return no single array.
+NOT_ARRAY_METHODS = {
+    "Rotation.reduce": "returns a Rotation (and indices)",
+    "Rotation.as_axis_angle": "returns (axis, angle)",
+    "Rotation.to_scipy": "returns a scipy Rotation",
+    "Rotation.inv": "returns a Rotation",
+    "Rotation.mean": "returns a Rotation",
+    "Rotation.slerp": "returns a Rotation",
+    "RigidTransform.as_components": "returns (Rotation, translation)",
+    "RigidTransform.as_screw": "returns a Screw",
+    "RigidTransform.to_scipy": "returns a scipy RigidTransform",
+    "RigidTransform.mean": "returns a RigidTransform",
+    "RigidTransform.inv": "returns a RigidTransform",
+    "RigidTransform.change_base_point": "returns a RigidTransform",
+}
+
+ROTATIONS = so3.Rotation.from_quat(QUATS)
+POSES = se3.RigidTransform.from_rotation_translation(QUATS, VECTORS[::-1].copy())
+#: The object and positional arguments of each array method (the defaults of the others).
+METHOD_CALLS = {
+    "Rotation.as_quat": (ROTATIONS, (False, False)),
+    "Rotation.as_euler": (ROTATIONS, ("ZXZ", True)),
+    "Rotation.as_davenport": (ROTATIONS, (DAVENPORT_AXES, "e")),
+    "Rotation.apply": (ROTATIONS, (VECTORS, True)),
+    "Rotation.approx_equal": (ROTATIONS, (so3.Rotation.from_quat(QUATS[::-1].copy()), 1.0)),
+    "RigidTransform.apply": (POSES, (VECTORS, True)),
+    "RigidTransform.apply_vector": (POSES, (VECTORS,)),
+}
+
+
+def _array_methods():
+    found = {}
+    for module in (so3, kinematics, se3):
+        for class_name in module.__all__:
+            cls = getattr(module, class_name)
+            if inspect.isclass(cls):
+                for name, member in vars(cls).items():
+                    qualified = f"{class_name}.{name}"
+                    if not name.startswith("_") and inspect.isfunction(member) and qualified not in NOT_ARRAY_METHODS:
+                        found[qualified] = member
+    return found
+
+
+METHODS = _array_methods()
+
+
+def _method_call(qualified):
+    """``call(**keywords)`` of the method on its sample object and arguments."""
+    default = POSES if qualified.startswith("RigidTransform.") else ROTATIONS
+    obj, args = METHOD_CALLS.get(qualified, (default, ()))
+    return lambda **keywords: METHODS[qualified](obj, *args, **keywords)
+
+
+def test_every_array_method_takes_out():
+    assert {"Rotation.as_matrix", "Rotation.apply", "RigidTransform.as_matrix", "RigidTransform.apply"} <= set(METHODS)
+    for name, method in METHODS.items():
+        parameter = inspect.signature(method).parameters.get("out")
+        assert parameter is not None and parameter.kind is parameter.KEYWORD_ONLY, name
+        assert parameter.default is None, name
+        assert "out : ndarray, optional" in method.__doc__, name
+    assert set(NOT_ARRAY_METHODS) <= {f"{cls.__name__}.{name}" for cls in (so3.Rotation, se3.RigidTransform)
+                                      for name in vars(cls)}
+
+
+@pytest.mark.parametrize("name", sorted(METHODS))
+def test_methods_out_gives_the_same_bits_and_wrong_out_is_refused(name):
+    call = _method_call(name)
+    expected = np.asarray(call())
+    out = _garbage_like(expected)
+    assert call(out=out) is out
+    assert out.dtype == expected.dtype and out.tobytes() == expected.tobytes()
+    other_dtype = np.float32 if expected.dtype != np.float32 else np.float64
+    for error, wrong in [(ValueError, np.empty(expected.shape + (2,), expected.dtype)),
+                         (TypeError, np.empty(expected.shape, other_dtype)), (TypeError, expected.tolist())]:
+        with pytest.raises(error, match="out"):
+            call(out=wrong)
+
+
+def test_method_out_may_be_the_vectors():
+    for qualified in ("Rotation.apply", "RigidTransform.apply", "RigidTransform.apply_vector"):
+        obj, (vectors, *rest) = METHOD_CALLS[qualified]
+        expected = METHODS[qualified](obj, vectors, *rest)
+        buffer = vectors.copy()
+        assert METHODS[qualified](obj, buffer, *rest, out=buffer) is buffer
+        assert buffer.tobytes() == expected.tobytes(), qualified
+
+
 def _garbage_like(result):
     out = np.empty_like(result)
     out[...] = 7 if result.dtype == bool else np.nan

@@ -27,6 +27,7 @@ from ..so3.interpolation import gather_samples, mean_over
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
 from .._compiled.gufunc import finite_array
+from .._compiled.outputs import deliver
 from .screw import Screw, screw_parameters, screw_pose
 
 if TYPE_CHECKING:
@@ -337,8 +338,13 @@ class RigidTransform:
         """The translation ``r_C``, ``(..., 3)``."""
         return np.array(self._translation)
 
-    def as_quat(self) -> NDArray[np.float64]:
+    def as_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit quaternions of the rotation part, scalar first, ``(..., 4)``.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -347,7 +353,7 @@ class RigidTransform:
         >>> T.as_quat().round(6).tolist()
         [0.707107, 0.0, 0.0, 0.707107]
         """
-        return np.array(self._quat)
+        return np.array(self._quat) if out is None else deliver(self._quat, out)
 
     def as_components(self) -> tuple[Rotation, NDArray[np.float64]]:
         """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``.
@@ -369,8 +375,10 @@ class RigidTransform:
     def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
 
-        ``out`` (keyword only): a float64 array of shape ``(..., 4, 4)`` to
-        write them into, returned (see :ref:`out-arrays`).
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -387,11 +395,16 @@ class RigidTransform:
         """
         return _kernels.as_matrix(self._quat, self._translation, out=out)
 
-    def as_dual_quat(self) -> NDArray[np.float64]:
+    def as_dual_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
 
         Both parts scalar first; ``q_r`` is the stored rotation quaternion
         (either sign of the double cover may appear).
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -400,19 +413,24 @@ class RigidTransform:
         """
         pure = np.zeros(self.shape + (4,))
         pure[..., 1:] = self._translation
-        return np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1)
+        return deliver(np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1), out)
 
-    def as_exp_coords(self) -> NDArray[np.float64]:
+    def as_exp_coords(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
 
         Accurate to a few ulp at all angles, including tiny ones and near π.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_exp_coords()
         array([0., 0., 0., 1., 2., 3.])
         """
-        return lie.log(self._quat, self._translation)
+        return deliver(lie.log(self._quat, self._translation), out)
 
     def as_screw(self) -> Screw:
         """Chasles/Mozzi screw of each displacement, as a :class:`~kreisel.se3.Screw`.
@@ -431,8 +449,13 @@ class RigidTransform:
         """
         return screw_parameters(self._quat, self._translation)
 
-    def adjoint(self) -> NDArray[np.float64]:
+    def adjoint(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -449,7 +472,7 @@ class RigidTransform:
         >>> bool(np.allclose((T1 * T2).adjoint(), T1.adjoint() @ T2.adjoint()))
         True
         """
-        return lie.adjoint(quat_to_matrix(self._quat), self._translation)
+        return deliver(lie.adjoint(quat_to_matrix(self._quat), self._translation), out)
 
     def to_scipy(self) -> ScipyRigidTransform:
         """Equivalent ``scipy.spatial.transform.RigidTransform``.
@@ -549,7 +572,7 @@ class RigidTransform:
         """
         return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
 
-    def apply(self, points: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
+    def apply(self, points: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
 
         Parameters
@@ -558,6 +581,8 @@ class RigidTransform:
             Broadcast against the batch shape.
         inverse : bool
             Apply the inverse displacement.
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Returns
         -------
@@ -572,17 +597,24 @@ class RigidTransform:
         """
         points = finite_array(points, "points")
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
-        return kernel(self._quat, self._translation, points)
+        return kernel(self._quat, self._translation, points, out=out)
 
-    def apply_vector(self, vectors: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
+    def apply_vector(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
+
+        Parameters
+        ----------
+        vectors : array_like, shape (..., 3)
+        inverse : bool
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
         >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
         array([1., 0., 0.])
         """
-        return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse)
+        return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse, out=out)
 
     def change_base_point(self, offset: ArrayLike) -> RigidTransform:
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.

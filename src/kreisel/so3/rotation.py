@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.outputs import deliver
 from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from . import alignment as _alignment
@@ -201,12 +202,21 @@ class Rotation:
         return cls._wrap(_davenport.davenport_to_quat(axes, order, angles, degrees=degrees))
 
     def as_davenport(self, axes: ArrayLike, order: str, degrees: bool = False, *,
-                     suppress_warnings: bool = True) -> NDArray[np.float64]:
+                     suppress_warnings: bool = True, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Davenport angles about ``axes`` (scipy's ``as_davenport``), exact through gimbal lock.
 
         As :meth:`as_euler`, no warning by default; ``suppress_warnings=False``
         warns (:class:`~kreisel.kinematics.GimbalLockWarning`) for rotations
         within 1e-7 rad of gimbal lock. One and two axes are accepted too.
+
+        Parameters
+        ----------
+        axes : array_like, shape (n, 3)
+        order : {"e", "extrinsic", "i", "intrinsic"}
+        degrees : bool
+        suppress_warnings : bool
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -216,7 +226,7 @@ class Rotation:
         >>> r.as_davenport(axes, "e").round(12).tolist()
         [0.1, 0.2, 0.3]
         """
-        angles = _davenport.quat_to_davenport(axes, order, self._q, degrees=degrees)
+        angles = _davenport.quat_to_davenport(axes, order, self._q, degrees=degrees, out=out)
         if not suppress_warnings and np.shape(axes) == (3, 3):
             _warn_gimbal_lock(_davenport.davenport_gimbal_lock(axes, order, angles, degrees, _GIMBAL_TOLERANCE))
         return angles
@@ -473,8 +483,16 @@ class Rotation:
         return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
 
     # -- representations ----------------------------------------------------
-    def as_quat(self, canonical: bool = False, scalar_first: bool = True) -> NDArray[np.float64]:
+    def as_quat(self, canonical: bool = False, scalar_first: bool = True, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit quaternions; ``canonical=True`` picks the unique sign (q0 > 0, else first nonzero > 0).
+
+        Parameters
+        ----------
+        canonical : bool
+        scalar_first : bool
+            ``False`` gives scipy's default order ``(x, y, z, w)``.
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -492,10 +510,16 @@ class Rotation:
         [0.0, 0.8, 0.0, -0.6]
         """
         q = canonical_quat(self._q) if canonical else self._q
-        return np.array(q if scalar_first else q[..., [1, 2, 3, 0]])
+        q = q if scalar_first else q[..., [1, 2, 3, 0]]
+        return np.array(q) if out is None else deliver(q, out)
 
-    def as_matrix(self) -> NDArray[np.float64]:
+    def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -506,10 +530,16 @@ class Rotation:
         >>> bool(np.allclose(m @ m.T, np.eye(3), atol=1e-15)), round(float(np.linalg.det(m)), 12)
         (True, 1.0)
         """
-        return _matrix.quat_to_matrix(self._q)
+        return _matrix.quat_to_matrix(self._q, out=out)
 
-    def as_rotvec(self, degrees: bool = False) -> NDArray[np.float64]:
+    def as_rotvec(self, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation vectors with |ψ| <= π.
+
+        Parameters
+        ----------
+        degrees : bool
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -520,8 +550,8 @@ class Rotation:
         >>> (np.round(r.as_rotvec(degrees=True), 9) + 0.0).tolist()
         [0.0, 0.0, -90.0]
         """
-        psi = _rotvec.quat_to_rotvec(self._q)
-        return np.rad2deg(psi) if degrees else psi
+        psi = _rotvec.quat_to_rotvec(self._q, out=out)
+        return np.rad2deg(psi, out=psi) if degrees else psi
 
     def as_axis_angle(self, degrees: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(axis, angle)`` with angle in [0, π] (axis ``[0, 0, 1]`` for the identity).
@@ -536,7 +566,8 @@ class Rotation:
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
-    def as_euler(self, seq: str, degrees: bool = False, *, suppress_warnings: bool = True) -> NDArray[np.float64]:
+    def as_euler(self, seq: str, degrees: bool = False, *, suppress_warnings: bool = True,
+                 out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Euler angles, exact through gimbal lock (any 1-, 2- or 3-axis sequence).
 
         Unlike scipy, no warning is issued by default at gimbal lock: the
@@ -546,6 +577,15 @@ class Rotation:
         ``suppress_warnings=False`` (scipy's default) to get a
         :class:`~kreisel.kinematics.GimbalLockWarning` for rotations within
         1e-7 rad of gimbal lock, where the outer angles are not unique.
+
+        Parameters
+        ----------
+        seq : str
+            Uppercase intrinsic, lowercase extrinsic axes, e.g. ``"ZXZ"``.
+        degrees : bool
+        suppress_warnings : bool
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -563,13 +603,18 @@ class Rotation:
         >>> caught[0].category.__name__
         'GimbalLockWarning'
         """
-        angles = _euler.quat_to_euler(seq, self._q, degrees=degrees)
+        angles = _euler.quat_to_euler(seq, self._q, degrees=degrees, out=out)
         if not suppress_warnings and len(seq) == 3:
             _warn_gimbal_lock(_euler.gimbal_lock(seq, angles, degrees=degrees, tolerance=_GIMBAL_TOLERANCE))
         return angles
 
-    def as_su2(self) -> NDArray[np.complex128]:
+    def as_su2(self, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
         """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign).
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -583,10 +628,15 @@ class Rotation:
         >>> bool(np.allclose((a * b).as_su2(), a.as_su2() @ b.as_su2()))
         True
         """
-        return _su2.quat_to_su2(self._q)
+        return _su2.quat_to_su2(self._q, out=out)
 
-    def as_cayley_klein(self) -> NDArray[np.complex128]:
+    def as_cayley_klein(self, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
         """Cayley–Klein parameters ``(α, β, γ, δ)``.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -597,10 +647,15 @@ class Rotation:
         >>> bool(np.isclose(alpha * delta - beta * gamma, 1.0))
         True
         """
-        return _su2.quat_to_cayley_klein(self._q)
+        return _su2.quat_to_cayley_klein(self._q, out=out)
 
-    def as_euler_parameters(self) -> NDArray[np.float64]:
+    def as_euler_parameters(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Euler parameters of the Theory §A (2), ``e = q*``.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -611,10 +666,15 @@ class Rotation:
         >>> r.as_euler_parameters().round(6).tolist()
         [0.707107, -0.0, -0.0, -0.707107]
         """
-        return _su2.quat_to_euler_parameters(self._q)
+        return _su2.quat_to_euler_parameters(self._q, out=out)
 
-    def as_gibbs(self) -> NDArray[np.float64]:
+    def as_gibbs(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns).
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -623,10 +683,15 @@ class Rotation:
         >>> g.round(12).tolist()
         [0.0, 0.0, 1.0]
         """
-        return _rodrigues.quat_to_gibbs(self._q)
+        return _rodrigues.quat_to_gibbs(self._q, out=out)
 
-    def as_mrp(self) -> NDArray[np.float64]:
+    def as_mrp(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Modified Rodrigues parameters with |p| <= 1.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -637,7 +702,7 @@ class Rotation:
         >>> round(float(p[2]), 12) == round(float(np.tan(np.pi / 8)), 12)
         True
         """
-        return _rodrigues.quat_to_mrp(self._q)
+        return _rodrigues.quat_to_mrp(self._q, out=out)
 
     def to_scipy(self) -> ScipyRotation:
         """The same rotations as a ``scipy.spatial.transform.Rotation``.
@@ -672,8 +737,15 @@ class Rotation:
         """
         return Rotation._wrap(_quat.quat_conjugate(self._q))
 
-    def apply(self, vectors: ArrayLike, inverse: bool = False) -> NDArray[np.float64]:
+    def apply(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting.
+
+        Parameters
+        ----------
+        vectors : array_like, shape (..., 3)
+        inverse : bool
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -686,10 +758,15 @@ class Rotation:
         >>> bool(np.isclose(np.linalg.norm(w), np.linalg.norm(v))), bool(np.allclose(r.apply(w, inverse=True), v))
         (True, True)
         """
-        return _quat.quat_apply(self._q, vectors, inverse=inverse)
+        return _quat.quat_apply(self._q, vectors, inverse=inverse, out=out)
 
-    def magnitude(self) -> NDArray[np.float64]:
+    def magnitude(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation angles in [0, π].
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -698,7 +775,7 @@ class Rotation:
         >>> r.magnitude().round(6).tolist()
         [0.5, 1.283185]
         """
-        return np.linalg.norm(self.as_rotvec(), axis=-1)
+        return deliver(np.linalg.norm(self.as_rotvec(), axis=-1), out)
 
     def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> Rotation:
         """Chordal L2 mean (see :func:`quat_mean`) over the batch ``axis``, as scipy's ``mean``.
@@ -757,8 +834,18 @@ class Rotation:
         """
         return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
 
-    def approx_equal(self, other: Rotation, atol: float = 1e-12) -> NDArray[np.bool_]:
+    def approx_equal(self, other: Rotation, atol: float = 1e-12, *,
+                     out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         """Whether the rotations agree to ``atol`` in angle (sign of q ignored).
+
+        Parameters
+        ----------
+        other : Rotation
+            Broadcast against ``self``.
+        atol : float
+            Largest angle between equal rotations, radians.
+        out : ndarray, optional
+            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -769,7 +856,7 @@ class Rotation:
         >>> bool(Rotation.from_quat(q).approx_equal(Rotation.from_quat(-q)))
         True
         """
-        return (self.inv() * other).magnitude() <= atol
+        return deliver((self.inv() * other).magnitude() <= atol, out)
 
     # -- container protocol -------------------------------------------------
     @property
