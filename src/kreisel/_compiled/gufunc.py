@@ -267,16 +267,25 @@ def quaternion_array(q: ArrayLike, name: str = "q", nonzero: bool = True) -> NDA
     The norm is not required to be 1; conversions that need a rotation
     scale by ``1/|q|`` themselves.
     """
+    return sized_quaternion_array(q, name, nonzero)[0]
+
+
+def sized_quaternion_array(q: ArrayLike, name: str = "q", nonzero: bool = True) -> tuple[NDArray[np.float64], float]:
+    """:func:`quaternion_array` and the smallest size (largest ``|component|``) in the batch, ``inf`` if empty.
+
+    The size comes from the same pass as the checks: callers whose results
+    can only overflow for tiny quaternions skip a pass over their result.
+    """
     a = as_float_array(q, name, (4,), finite=False)
     if a.size == 0:
-        return a
+        return a, math.inf
     flat = _read_only_flat(a)
     smallest = _smallest_quat_size_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_size(flat, 0, flat.size)
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
     if nonzero and not smallest > 0.0:
         raise ValueError(f"{name} must be nonzero quaternions (a zero quaternion is not a rotation)")
-    return a
+    return a, float(smallest)
 
 
 def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:

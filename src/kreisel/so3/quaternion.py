@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
-from .._compiled.gufunc import finite_array, gufunc, quaternion_array, vector_array
+from .._compiled.gufunc import finite_array, gufunc, quaternion_array, sized_quaternion_array, vector_array
 from .._validation import batch_shape
 from ._norms import norm
 
@@ -48,6 +48,10 @@ def _applied(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: 
         (s * y + 2.0 * (d * q2 + q0 * c1)) / n2,
         (s * z + 2.0 * (d * q3 + q0 * c2)) / n2,
     )
+
+
+#: Quaternions of at least this size (largest |component|) have a finite inverse (1/size < DBL_MAX).
+_INVERTIBLE_SIZE = 1e-300
 
 
 @cached
@@ -276,10 +280,11 @@ def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     >>> quat_inverse([0.0, 0.0, 2.0, 0.0])
     array([ 0. , -0. , -0.5, -0. ])
     """
-    q = quaternion_array(q, "q")
+    q, smallest = sized_quaternion_array(q, "q")
     with np.errstate(over="ignore"):
         inverse = _inverse(q, out=out)
-    if not np.isfinite(inverse).all():
+    # |q⁻¹| = 1/|q| <= 1/size: only a batch holding a size near 1/DBL_MAX needs the pass over its result
+    if smallest < _INVERTIBLE_SIZE and not np.isfinite(inverse).all():
         raise ValueError("q is out of range: the inverse of a quaternion this small (|q| < ~1e-308) overflows")
     return inverse
 
