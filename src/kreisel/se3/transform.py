@@ -605,7 +605,9 @@ class RigidTransform:
         Parameters
         ----------
         vectors : array_like, shape (..., 3)
+            Free vectors (directions, velocities, forces): turned, never shifted.
         inverse : bool
+            Turn by ``Rᵀ`` instead.
         out : ndarray, optional
             Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 

@@ -743,6 +743,7 @@ class Rotation:
         Parameters
         ----------
         vectors : array_like, shape (..., 3)
+            Body components (space components with ``inverse=True``).
         inverse : bool
         out : ndarray, optional
             Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
