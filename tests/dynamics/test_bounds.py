@@ -202,9 +202,7 @@ CHILD = textwrap.dedent("""
 
 @pytest.mark.parametrize("runs, count", [
     ("simulate", 7), ("simulate_batch", 1), ("simulate_particle", 1), ("foucault_pendulum", 1),
-    # known regression (2026-12-02): with a Python force callable the run stops 5.4 s after Ctrl-C
-    pytest.param("simulate_particle_callable_force", 1, marks=pytest.mark.xfail(
-        reason="simulate_particle with a Python force answers Ctrl-C only after ~5 s", strict=False)),
+    ("simulate_particle_callable_force", 1),
 ])
 def test_ctrl_c_stops_a_long_run_promptly(runs, count):
     # a chunk of work lasts ~50 ms: generous for a loaded machine, each run would take hours

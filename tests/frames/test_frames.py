@@ -126,3 +126,24 @@ def test_simulate_particle_validates():
         F.simulate_particle([0.0, 1.0], [1, 0, 0], [0, 0, 0], lambda t: np.zeros(3))
     with pytest.raises(ValueError, match="mass"):
         F.lagrangian([1, 0, 0], [0, 0, 0], [0, 0, 1], mass=0.0)
+
+
+def test_callable_force_is_any_python_callable_checked_at_every_call():
+    # called from the one cached compiled loop (nothing compiled per call): plain Python is fine
+    t = np.linspace(0.0, 2.0, 5)
+    calls = []
+
+    def spring(tt, r, v):
+        calls.append(tt)
+        return -r
+
+    python = F.simulate_particle(t, [1.0, 0.2, 0.0], [0.0, -1.0, 0.3], [0.1, 0.2, 1.0], force=spring)
+    built = F.simulate_particle(t, [1.0, 0.2, 0.0], [0.0, -1.0, 0.3], [0.1, 0.2, 1.0], spring=1.0)
+    assert len(calls) > 50
+    np.testing.assert_allclose(python.r, built.r, atol=1e-9)
+    with pytest.raises(ValueError, match=r"force callable must return shape \(3,\), got \(4,\) at t = 0\.5"):
+        F.simulate_particle(t, [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0],
+                            force=lambda tt, r, v: np.zeros(3) if tt < 0.5 else np.zeros(4))
+    with pytest.raises(ValueError, match=r"omega callable returned a non-finite value .* at t = 0\.5"):
+        F.simulate_particle(t, [1.0, 0, 0], [0, 0, 0], lambda tt: np.array([0, 0, 1.0 if tt < 0.5 else np.nan]),
+                            omega_dot=lambda tt: np.zeros(3), force=lambda tt, r, v: -r)

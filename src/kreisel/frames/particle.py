@@ -6,12 +6,15 @@ adaptive DOP853 of :mod:`kreisel._compiled.dop853`.
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
-from numba import njit
+from numba import njit, objmode
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._validation import as_float, as_float_array
+from ..dynamics.engine import _checked_callable
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -71,39 +74,55 @@ def _vector(value, name):
     return v
 
 
-def _as_function(value, name, nargs):
-    """Compile a user callable (or freeze a constant vector) as an njit function of ``nargs`` arguments."""
-    if callable(value):
-        try:
-            return njit(value)
-        except Exception as exc:  # numba refuses some callables already at decoration time
-            raise TypeError(f"{name} must be numba-compilable: {exc}") from exc
-    const = _vector(value, name).copy()
-    if nargs == 1:
-        return njit(lambda t: const)
-    return njit(lambda t, r, v: const)
+# the Python callables of the runs in progress, by key: object mode takes numbers, not Python objects
+_MODELS = {}
+_KEYS = itertools.count(1)
 
 
-def _callable_rhs(omega, omega_dot, a0, force, mass):
-    w_fn = _as_function(omega, "omega", 1)
-    wdot_fn = _as_function(omega_dot, "omega_dot", 1)
-    a0_fn = _as_function(a0, "a0", 1)
-    force_fn = _as_function(force, "force", 3)
-    inv_mass = 1.0 / mass
+def _evaluate(key, t, y):
+    return _MODELS[int(key)](t, y)
 
-    @njit
-    def rhs(t, y, p, out, offset):
-        r = y[:3]
-        v = y[3:]
-        f = np.asarray(force_fn(t, r, v), dtype=np.float64) * inv_mass
-        w = np.asarray(w_fn(t), dtype=np.float64)
-        wdot = np.asarray(wdot_fn(t), dtype=np.float64)
-        acc = np.asarray(a0_fn(t), dtype=np.float64)
-        for i in range(3):
-            out[offset + i] = v[i]
-        relative_acceleration(r, v, w, wdot, acc, f, out, offset + 3)
 
-    return rhs
+# object mode holds the GIL, so not the nogil flavour
+@njit(cache=True)
+def callback_rhs(t, y, p, out, offset):
+    """Particle whose force, ω, ω̇ and a0 come from the Python model registered under the key ``p[0]``.
+
+    The model returns (f/m, ω, ω̇, a0), twelve numbers. One compiled loop serves
+    every callable (cached on disk): nothing is compiled per call, and a Ctrl-C
+    is held back for one chunk at most.
+    """
+    with objmode(v="float64[:]"):
+        v = _evaluate(p[0], t, y)
+    for i in range(3):
+        out[offset + i] = y[3 + i]
+    relative_acceleration(y[:3], y[3:], v[3:6], v[6:9], v[9:12], v[0:3], out, offset + 3)
+
+
+@cached
+def _integrate_callbacks(p, t, state, rtol, atol, max_step, tables, out, budget):
+    return _dop853.integrate_steps(callback_rhs, p, t, state, rtol, atol, max_step, tables, out, True, budget)
+
+
+def _model(omega, omega_dot, a0, force, mass, field, spring):
+    """The Python model of :func:`callback_rhs`, each callable's output checked at every call."""
+    def of_time(value, name):
+        if callable(value):
+            return _checked_callable(value, name)
+        const = _vector(value, name).copy()
+        return lambda t: const
+
+    w, wdot, acc = of_time(omega, "omega"), of_time(omega_dot, "omega_dot"), of_time(a0, "a0")
+    user = _checked_callable(force, "force") if force is not None else None
+
+    def evaluate(t, y):
+        r, v = y[:3].copy(), y[3:].copy()
+        specific = field - spring * r
+        if user is not None:
+            specific = specific + user(t, r, v) / mass
+        return np.concatenate([specific, w(t), wdot(t), acc(t)])
+
+    return evaluate
 
 
 class ParticleTrajectory:
@@ -204,9 +223,10 @@ def simulate_particle(
         Isotropic spring constant per mass k/m about the origin, 1/s²;
         potential ½ m k |r|².
     force : callable, optional
-        Extra force ``force(t, r, v) -> (3,)`` in newtons. Callables are
-        compiled with ``numba.njit`` (use numpy/math only); the compiled
-        integrator is then built for this call (about a second).
+        Extra force ``force(t, r, v) -> (3,)`` in newtons, any Python
+        callable. Callables (here and for ``omega``, ``omega_dot``, ``a0``)
+        are called from the compiled integrator at each stage, a few µs a
+        call, and their output is checked every time (real, finite, (3,)).
     mass : float
         kg.
     rtol, atol : float
@@ -278,7 +298,6 @@ def simulate_particle(
         omega_t = w + wdot * (t - t[0])[:, None]
         a0_t = np.broadcast_to(acc0, (t.size, 3)).copy()
     else:
-        field, k = gravity.copy(), spring
         if not callable(omega):
             w0 = _vector(omega, "omega").copy()
             wd = _vector(omega_dot, "omega_dot").copy()
@@ -287,15 +306,15 @@ def simulate_particle(
             def omega(tt):
                 return w0 + wd * (tt - t_start)
 
-        def total_force(tt, r, v):
-            return f_user(tt, r, v) + mass * (field - k * r)
-
-        f_user = njit(force) if force is not None else njit(lambda tt, r, v: np.zeros(3))
-        rhs = _callable_rhs(omega, omega_dot, a0, total_force, mass)
-        status = run_resumable(
-            lambda state, budget: _dop853.integrate_steps(rhs, np.zeros(1), t, state, rtol, atol, max_step, tables,
-                                                          y, True, budget),
-            _dop853.new_state(y0), t[-1], max_steps, 64, _dop853.PAUSED)
+        key = next(_KEYS)
+        _MODELS[key] = _model(omega, omega_dot, a0, force, mass, gravity.copy(), spring)
+        try:
+            status = run_resumable(
+                lambda state, budget: _integrate_callbacks(np.array([float(key)]), t, state, rtol, atol, max_step,
+                                                           tables, y, budget),
+                _dop853.new_state(y0), t[-1], max_steps, 64, _dop853.PAUSED)
+        finally:
+            del _MODELS[key]
         omega_t = _sample(omega, "omega", t)
         a0_t = _sample(a0, "a0", t)
     _dop853.check_status(status)
