@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from . import cached
+from . import cached, inlined
 
 
 # ---------------------------------------------------------------------------
@@ -225,6 +225,20 @@ def write_matrix(q0, q1, q2, q3, out):
         out[0, 0], out[0, 1], out[0, 2],
         out[1, 0], out[1, 1], out[1, 2],
         out[2, 0], out[2, 1], out[2, 2],
+    ) = quat_matrix(q0, q1, q2, q3)  # fmt: skip
+
+
+@inlined
+def write_matrix_at(out, i, q0, q1, q2, q3):
+    """Write ``R(q)`` into the top-left 3×3 block of ``out[i]``, entry by entry (the ``prange`` loops' form).
+
+    Inlined: a ``prange`` index is ``int64`` or ``uint64`` depending on the loop, which would give a
+    compiled kernel two signatures.
+    """
+    (
+        out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
+        out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
+        out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
     ) = quat_matrix(q0, q1, q2, q3)  # fmt: skip
 
 

@@ -85,11 +85,7 @@ def apply_inverse(q, t, p, out):
 @parallel
 def _as_matrix_parallel(q, t, out):
     for i in prange(q.shape[0]):
-        (
-            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
-            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
-            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
-        ) = kernels.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
+        kernels.write_matrix_at(out, i, q[i, 0], q[i, 1], q[i, 2], q[i, 3])
         out[i, 0, 3], out[i, 1, 3], out[i, 2, 3] = t[i, 0], t[i, 1], t[i, 2]
         out[i, 3, 0], out[i, 3, 1], out[i, 3, 2], out[i, 3, 3] = 0.0, 0.0, 0.0, 1.0
 

@@ -202,13 +202,6 @@ def _euler_quat(alpha: float, beta: float, gamma: float, axis0: int, axis1: int,
 
 
 @cached
-def _euler_matrix(alpha: float, beta: float, gamma: float, axis0: int, axis1: int, axis2: int,
-                  reverse: int) -> tuple[float, ...]:
-    q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
-    return kernels.quat_matrix(q0, q1, q2, q3)
-
-
-@cached
 def _matrix_euler(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
                   r22: float, axis0: int, axis1: int, axis2: int, reverse: int) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
@@ -228,11 +221,8 @@ def _euler_to_quat_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64]
 def _euler_to_matrix_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(angles.shape[0]):
-        (
-            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
-            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
-            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
-        ) = _euler_matrix(angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse)  # fmt: skip
+        q0, q1, q2, q3 = _euler_quat(angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse)
+        kernels.write_matrix_at(out, i, q0, q1, q2, q3)
 
 
 @parallel

@@ -20,11 +20,7 @@ __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 @parallel
 def _quat_to_matrix_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
-        (
-            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
-            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
-            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
-        ) = kernels.quat_matrix(q[i, 0], q[i, 1], q[i, 2], q[i, 3])  # fmt: skip
+        kernels.write_matrix_at(out, i, q[i, 0], q[i, 1], q[i, 2], q[i, 3])
 
 
 @parallel

@@ -37,12 +37,6 @@ __all__ = [
 
 
 @cached
-def _rotvec_matrix(x: float, y: float, z: float) -> tuple[float, ...]:
-    q0, q1, q2, q3 = kernels.rotvec_quat(x, y, z)
-    return kernels.quat_matrix(q0, q1, q2, q3)
-
-
-@cached
 def _matrix_rotvec(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
                    r22: float) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
@@ -64,11 +58,8 @@ def _quat_to_rotvec_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -
 @parallel
 def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
-        (
-            out[i, 0, 0], out[i, 0, 1], out[i, 0, 2],
-            out[i, 1, 0], out[i, 1, 1], out[i, 1, 2],
-            out[i, 2, 0], out[i, 2, 1], out[i, 2, 2],
-        ) = _rotvec_matrix(psi[i, 0], psi[i, 1], psi[i, 2])  # fmt: skip
+        q0, q1, q2, q3 = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
+        kernels.write_matrix_at(out, i, q0, q1, q2, q3)
 
 
 @parallel
