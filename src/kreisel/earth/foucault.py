@@ -281,13 +281,13 @@ def foucault_pendulum(
     rtol, atol : float
         Integrator tolerances.
     max_steps : int, optional
-        Step budget (default ``10**10``): the run stops with ``RuntimeError``
-        after that many steps. The integrator returns to Python every ~50 ms,
-        so Ctrl-C stops any run with a ``KeyboardInterrupt``.
+        Step budget, as in :func:`kreisel.frames.simulate_particle` (Ctrl-C stops any
+        run with a ``KeyboardInterrupt``).
 
     Returns
     -------
     FoucaultSwing
+        The sampled swing of the bob.
 
     Examples
     --------

@@ -156,6 +156,7 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
         Components of the result (the rate-matrix columns cᵢ are taken in
         that frame).
     degrees : bool
+        Angles and their derivatives in degrees (ε is in rad/s² either way).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 

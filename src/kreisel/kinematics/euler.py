@@ -176,6 +176,8 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        M, whose columns are the rotation axes of the three angles in ``frame``
+        components.
 
     Examples
     --------
@@ -211,6 +213,7 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        M⁻¹; NaN at gimbal lock.
 
     Examples
     --------
@@ -238,6 +241,7 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     frame : {"space", "body"}
         Components of the returned angular velocity (always rad/s).
     degrees : bool
+        Angles in degrees and rates in deg/s.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -279,6 +283,7 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     degrees : bool
         Angles in degrees; rates are then returned in deg/s.
     tol : float
+        Gimbal-lock threshold on |sin β| (proper Euler) or |cos β| (Tait–Bryan).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -315,7 +320,7 @@ def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL, *, out=No
     angles : array_like, shape (..., 3)
     degrees : bool
     tol : float
-        As in :func:`euler_rates`.
+        Threshold on |sin β| or |cos β|, as in :func:`euler_rates`.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 

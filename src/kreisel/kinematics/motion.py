@@ -41,6 +41,7 @@ def point_velocity(omega, r, reference_velocity=0.0, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3)
+        v_P in the components the inputs share.
 
     Examples
     --------
@@ -70,6 +71,7 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0, *, out=Non
     Returns
     -------
     ndarray, shape (..., 3)
+        a_P = a_C + ε × r + ω × (ω × r), in the inputs' components.
 
     Examples
     --------
@@ -100,6 +102,7 @@ def relative_derivative(omega, vector, relative_rate, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3)
+        The rate of change seen from space, in the components of the inputs.
 
     Examples
     --------

@@ -48,7 +48,7 @@ def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
     Returns
     -------
     ndarray, shape (..., 3)
-        ω (space) or ω′ (body).
+        ω or ω′: the vector of the antisymmetric part of Ṙ Rᵀ or Rᵀ Ṙ.
 
     Examples
     --------
@@ -148,7 +148,7 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
     Returns
     -------
     ndarray, shape (..., 3)
-        The angular velocity of the rotation of q/|q|.
+        ω or ω′ of the rotation that q/|q| represents.
 
     Examples
     --------

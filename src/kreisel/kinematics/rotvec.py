@@ -65,6 +65,7 @@ def bortz_coefficient(angle, *, out=None):
     Returns
     -------
     ndarray or float
+        f(ψ); a float for scalar input.
 
     Examples
     --------
@@ -99,7 +100,7 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
     Returns
     -------
     ndarray, shape (..., 3)
-        ω (space) or ω′ (body).
+        ω = J_l ψ̇, or ω′ = J_r ψ̇.
 
     Examples
     --------
@@ -159,7 +160,7 @@ def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
     psi : array_like, shape (..., 3)
         Rotation vectors.
     tol : float
-        As in :func:`rotvec_rate`.
+        Threshold on |sin(|ψ|/2)|, as in :func:`rotvec_rate`.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 

@@ -38,6 +38,7 @@ def sclerp(start, end, fraction):
     Returns
     -------
     RigidTransform
+        The interpolated poses, with the broadcast batch shape.
 
     Examples
     --------

@@ -587,6 +587,7 @@ class RigidTransform:
         Returns
         -------
         ndarray, shape (..., 3)
+            Moved points, with the broadcast batch shape.
 
         Examples
         --------

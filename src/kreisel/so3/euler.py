@@ -408,8 +408,19 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
 
     Parameters
     ----------
+    seq : str
+        Axis sequence (uppercase intrinsic, lowercase extrinsic; one to three axes).
+    q : array_like, shape (..., 4)
+        Scalar-first quaternions, need not be unit.
+    degrees : bool
+        Return degrees instead of radians.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., len(seq))
+        One angle per axis of ``seq``, in the ranges above.
 
     Examples
     --------
@@ -437,8 +448,19 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
 
     Parameters
     ----------
+    seq : str
+        Axis sequence, as in :func:`quat_to_euler`.
+    R : array_like, shape (..., 3, 3)
+        Rotation matrices.
+    degrees : bool
+        Return degrees.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., len(seq))
+        Angles in the ranges of :func:`quat_to_euler`.
 
     Examples
     --------
@@ -477,6 +499,7 @@ def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: f
     Returns
     -------
     ndarray of bool, shape (...)
+        True where the middle angle is within ``tolerance`` of its singular value.
 
     Examples
     --------

@@ -57,12 +57,14 @@ def left_jacobian(psi, *, out=None):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+        Rotation vectors ψ of any length.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        J_l(ψ).
 
     Examples
     --------
@@ -82,12 +84,14 @@ def right_jacobian(psi, *, out=None):
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+        Rotation vectors; ``J_r(ψ) = J_l(−ψ)``.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        J_r(ψ) = J_l(ψ)ᵀ.
 
     Examples
     --------
@@ -115,6 +119,7 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        J_l⁻¹(ψ); NaN at |ψ| = 2πk.
 
     Examples
     --------
@@ -141,6 +146,7 @@ def right_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        The Bortz matrix J_r⁻¹(ψ), NaN at the poles.
 
     Examples
     --------

@@ -57,6 +57,7 @@ def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        R(q/|q|), orthogonal to rounding.
 
     Examples
     --------
@@ -81,12 +82,14 @@ def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Parameters
     ----------
     R : array_like, shape (..., 3, 3)
+        Rotation matrices (nearly orthogonal ones are projected first).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 4)
+        Unit quaternions, scalar first, q0 >= 0.
 
     Examples
     --------
@@ -113,6 +116,7 @@ def orthonormalize(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        The rotation matrix nearest to each input.
 
     Examples
     --------

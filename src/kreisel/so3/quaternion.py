@@ -208,6 +208,7 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
     Returns
     -------
     ndarray, shape (..., 4)
+        p q, not normalised (|p q| = |p| |q|).
 
     Examples
     --------
@@ -321,12 +322,14 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
     v : array_like, shape (..., 3)
         Broadcast against ``q`` over the leading axes.
     inverse : bool
+        Rotate by ``R(q)ᵀ`` instead (space → body components).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3)
+        The rotated vectors, with the broadcast batch shape.
 
     Examples
     --------

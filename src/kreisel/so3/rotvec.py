@@ -121,12 +121,14 @@ def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     Parameters
     ----------
     v : array_like, shape (..., 3)
+        Vectors.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        Antisymmetric matrices.
 
     Examples
     --------
@@ -152,6 +154,8 @@ def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
 
     Parameters
     ----------
+    A : array_like, shape (..., 3, 3)
+        Skew (or nearly skew) matrices.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -175,12 +179,14 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     Parameters
     ----------
     psi : array_like, shape (..., 3)
+        Rotation vectors, any length.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
     ndarray, shape (..., 3, 3)
+        R(ψ), orthogonal to rounding.
 
     Examples
     --------
@@ -240,6 +246,8 @@ def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
 
     Parameters
     ----------
+    q : array_like, shape (..., 4)
+        Scalar-first quaternions, need not be unit.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -340,6 +348,7 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     ----------
     a, b : array_like, shape (..., 3)
     order : int >= 1
+        Highest total degree in a and b kept in the series.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -388,6 +397,7 @@ def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | N
     Q : array_like, shape (..., 3, 3)
         Rotation matrices.
     psi : array_like, shape (..., 3)
+        Rotation vectors (or any vectors: the action is linear).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
