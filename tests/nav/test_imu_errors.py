@@ -114,3 +114,31 @@ def test_error_model_bad_input():
         nav.allan_deviation(np.zeros(10), 1.0, taus=[5.0])
     with pytest.raises(ValueError, match="rate must be finite"):
         nav.allan_deviation([0.0, np.nan, 1.0, 2.0], 1.0)
+
+
+def test_allan_deviation_at_extreme_magnitudes_scales_exactly():
+    # the rate is scaled by powers of two inside: a rate scaled by 2^±900 gives exactly that scaled deviation
+    y = np.random.default_rng(3).normal(size=(64, 3))
+    taus, adev = nav.allan_deviation(y, 0.01)
+    for k in (900, -900, -1000):
+        scaled_taus, scaled = nav.allan_deviation(np.ldexp(y, k), 0.01)
+        np.testing.assert_array_equal(scaled, np.ldexp(adev, k))
+        np.testing.assert_array_equal(scaled_taus, taus)
+    # Δt cancels from the deviation: only the averaging times carry it
+    tiny_taus, tiny = nav.allan_deviation(y, 1e-300)
+    np.testing.assert_allclose(tiny, adev, rtol=1e-14)
+    np.testing.assert_allclose(tiny_taus, taus * 1e-298, rtol=1e-14)
+    with pytest.raises(ValueError, match="sample_time is out of range"):
+        nav.allan_deviation(y, 1e307)
+
+
+@pytest.mark.parametrize("tau, correlation_time", [(1e-200, 1e100), (1e-300, 1e-5), (3e250, 1e-60), (2.0, 3.0),
+                                                   (0.3, 1e-320)])
+def test_gauss_markov_allan_deviation_at_extreme_ratios_against_mpmath(tau, correlation_time):
+    # τ/T from 1e-300 to 1e310: the closed form, with 1000 digits for its x³ cancellation at small x
+    mpmath = pytest.importorskip("mpmath")
+    with mpmath.workdps(1000):
+        x = mpmath.mpf(tau) / mpmath.mpf(correlation_time)
+        bracket = 2 * x - 3 + 4 * mpmath.exp(-x) - mpmath.exp(-2 * x)
+        exact = float(2.5 * mpmath.sqrt(bracket) / x)
+    np.testing.assert_allclose(nav.gauss_markov_allan_deviation(tau, 2.5, correlation_time), exact, rtol=1e-14)

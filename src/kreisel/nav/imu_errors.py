@@ -266,16 +266,28 @@ def allan_deviation(rate, sample_time, taus=None, axis=None):
     if taus is None:
         m = np.unique(np.round(np.logspace(0, np.log10(m_max), int(10 * np.log10(m_max)) + 1)).astype(int))
     else:
-        m = np.round(as_float_array(taus, "taus").ravel() / dt).astype(int)
-        if np.any((m < 1) | (m > m_max)):
+        with np.errstate(over="ignore", under="ignore"):
+            ratio = np.round(as_float_array(taus, "taus").ravel() / dt)
+        if not np.all((ratio >= 1) & (ratio <= m_max)):
             raise ValueError(f"taus must lie between {dt!r} and {m_max * dt!r} s for {n} samples, got {taus!r}")
-    # the mean does not change the Allan variance; removing it keeps θ small and its differences exact
-    theta = np.concatenate([np.zeros((1,) + y.shape[1:]), np.cumsum(y - y.mean(axis=0), axis=0) * dt])
-    avar = np.empty((m.size,) + y.shape[1:])
+        m = ratio.astype(int)
+    with np.errstate(over="ignore"):
+        used = m * dt
+    if not np.isfinite(used).all():
+        raise ValueError(f"sample_time is out of range: the averaging times up to {m.max()} × sample_time "
+                         "overflow double precision")
+    # σ(τ = mΔt) = |θ_{k+2m} − 2θ_{k+m} + θ_k|_rms / (√2 m Δt) with θ in units of Δt: Δt cancels, and the
+    # rate is divided by a power of two (exact) that brings its largest sample near 1 before it is summed
+    # and squared, its scale restored at the end (no overflow or underflow at any magnitude); the mean does
+    # not change the Allan variance, and removing it keeps θ small and its differences exact
+    k = np.frexp(np.max(np.abs(y), axis=0))[1]
+    y = np.ldexp(y, -k)
+    theta = np.concatenate([np.zeros((1,) + y.shape[1:]), np.cumsum(y - y.mean(axis=0), axis=0)])
+    adev = np.empty((m.size,) + y.shape[1:])
     for j, mj in enumerate(m):
         d = theta[2 * mj:] - 2.0 * theta[mj:n + 1 - mj] + theta[:n + 1 - 2 * mj]
-        avar[j] = np.mean(d * d, axis=0) / (2.0 * (mj * dt) ** 2)
-    return m * dt, np.moveaxis(np.sqrt(avar), 0, axis)
+        adev[j] = np.sqrt(np.mean(d * d, axis=0) / 2.0) / mj
+    return used, np.moveaxis(np.ldexp(adev, k), 0, axis)
 
 
 def gauss_markov_allan_deviation(tau, sigma, correlation_time):
@@ -298,17 +310,22 @@ def gauss_markov_allan_deviation(tau, sigma, correlation_time):
     if np.any(tau <= 0):
         raise ValueError("tau must be positive")
     sigma = as_float(sigma, "sigma")
-    x = tau / _nonnegative(correlation_time, "correlation_time")
+    correlation_time = _nonnegative(correlation_time, "correlation_time")
+    # √x = √τ/√T cannot overflow or underflow where x = τ/T would; σ_A/σ <= 0.62 is formed from it first
+    with np.errstate(divide="ignore", over="ignore", under="ignore"):
+        root = np.sqrt(tau) / np.sqrt(correlation_time)
+        x = root * root
     small = x < 1.0
     xs = np.where(small, x, 0.0)
-    # bracket / x², term by term; 25 terms leave < 1e-17 relative at x = 1
+    # below x = 1: σ_A/σ = √x √(bracket/x³), the series of bracket/x³ = 2/3 − x/2 + … summed term by term;
+    # 25 terms leave < 1e-17 relative at x = 1
     series = np.zeros_like(xs)
-    term = np.ones_like(xs)
-    for k in range(1, 26):
-        term = term * xs / k
-        if k >= 3:
-            series += (-1) ** k * (4.0 - 2.0**k) * term
-    series *= np.where(small, 1.0 / np.where(small, x, 1.0) ** 2, 0.0)
+    term = np.full_like(xs, 1.0 / 6.0)  # x^(k−3)/k! for k = 3
+    for k in range(3, 26):
+        series += (-1) ** k * (4.0 - 2.0**k) * term
+        term = term * xs / (k + 1)
+    # above: σ_A/σ = √(2/x) √(1 − (3 − 4e^{−x} + e^{−2x})/(2x)), which tends to √(2/x) as x → ∞
     xl = np.where(small, 1.0, x)
-    closed = (2 * xl - 3 + 4 * np.exp(-xl) - np.exp(-2 * xl)) / xl**2
-    return sigma * np.sqrt(np.where(small, series, closed))
+    with np.errstate(divide="ignore"):
+        large = np.sqrt(2.0) / np.where(small, 1.0, root) * np.sqrt(1.0 - (3.0 - 4.0 * np.exp(-xl) + np.exp(-2.0 * xl)) / (2.0 * xl))
+    return sigma * np.where(small, root * np.sqrt(series), large)
