@@ -68,8 +68,15 @@ def se3_hat(xi, *, out=None):
 
     Parameters
     ----------
+    xi : array_like, shape (..., 6)
+        Twists ``(ω, v)``, angular part first.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+        ξ^, with a zero bottom row.
 
     Examples
     --------
@@ -92,8 +99,16 @@ def se3_vee(matrix, *, out=None):
 
     Parameters
     ----------
+    matrix : array_like, shape (..., 4, 4)
+        Twist matrices; the skew part of the upper-left block and the last
+        column are read.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., 6)
+        ξ = (ω, v).
 
     Examples
     --------
@@ -162,6 +177,11 @@ def se3_left_jacobian(xi, *, out=None):
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+        ``[[J_l(ω), 0], [Q(ω, v), J_l(ω)]]``.
+
     Examples
     --------
     >>> import numpy as np
@@ -178,18 +198,23 @@ def se3_right_jacobian(xi, *, out=None):
 
     Parameters
     ----------
+    xi : array_like, shape (..., 6)
+        Twists; ``J_r(ξ) = J_l(−ξ)``.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+        J_r(ξ), the left Jacobian at −ξ.
+
     Examples
     --------
-    >>> import numpy as np
     >>> xi = np.array([0.1, 0.2, 0.3, 1.0, 2.0, 3.0])
     >>> np.allclose(se3_right_jacobian(xi), se3_left_jacobian(-xi))
     True
     """
-    xi = finite_array(xi, "xi", (6,))
-    return deliver(se3_left_jacobian(-xi), out)
+    return deliver(se3_left_jacobian(-finite_array(xi, "xi", (6,))), out)
 
 
 def se3_left_jacobian_inverse(xi, *, out=None):
@@ -199,8 +224,15 @@ def se3_left_jacobian_inverse(xi, *, out=None):
 
     Parameters
     ----------
+    xi : array_like, shape (..., 6)
+        Twists ``(ω, v)`` with ``|ω| < 2π``.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+        J_l⁻¹(ξ), built blockwise.
 
     Examples
     --------
@@ -220,15 +252,20 @@ def se3_right_jacobian_inverse(xi, *, out=None):
 
     Parameters
     ----------
+    xi : array_like, shape (..., 6)
+        Twists, as in :func:`se3_left_jacobian_inverse`.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+        The inverse of J_r(ξ) = J_l(−ξ).
+
     Examples
     --------
-    >>> import numpy as np
     >>> xi = np.array([3.0, 0.2, 0.3, 1.0, 2.0, 3.0])
     >>> np.allclose(se3_right_jacobian_inverse(xi) @ se3_right_jacobian(xi), np.eye(6))
     True
     """
-    xi = finite_array(xi, "xi", (6,))
-    return deliver(se3_left_jacobian_inverse(-xi), out)
+    return deliver(se3_left_jacobian_inverse(-finite_array(xi, "xi", (6,))), out)
