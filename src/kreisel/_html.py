@@ -7,11 +7,13 @@ their text the same way.
 from __future__ import annotations
 
 import html
+from collections.abc import Iterable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
-def number(x, digits=6):
+def number(x: ArrayLike, digits: int = 6) -> str:
     """A float or an array of floats as short text, e.g. ``"[1, 2.5, 3]"``.
 
     Examples
@@ -27,7 +29,7 @@ def number(x, digits=6):
     return "[" + ", ".join(number(v, digits) for v in a) + "]"
 
 
-def _text(value):
+def _text(value: object) -> str:
     """Numbers and tuples of numbers through :func:`number`, everything else through ``str``."""
     if isinstance(value, (str, bool, np.bool_)) or (isinstance(value, tuple) and all(isinstance(v, int) for v in value)):
         return str(value)
@@ -37,7 +39,7 @@ def _text(value):
         return str(value)
 
 
-def html_table(title, rows, note=None):
+def html_table(title: str, rows: Iterable[tuple[str, object]], note: str | None = None) -> str:
     """An HTML summary: a bold title, a two-column table of ``(label, value)`` rows, a note.
 
     Every label, value and the note are escaped, so user text (meta data,

@@ -72,7 +72,7 @@ def as_float(x: ArrayLike, name: str, finite: bool = True) -> float:
     return float(a)
 
 
-def check_frame(frame: str) -> bool:
+def check_frame(frame: object) -> bool:
     """Return True for ``frame="body"``, False for ``"space"``; refuse anything else."""
     if frame not in FRAMES:
         raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")

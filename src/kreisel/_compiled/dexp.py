@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import prange
+from numpy.typing import NDArray
 
 from . import cached, generic, kernels, parallel
 from .gufunc import gufunc
@@ -31,9 +33,13 @@ from .series import (
     SLOPE_SERIES_BELOW,
 )
 
+#: An Euler sequence for :func:`euler_columns`: ``(a, b, c, extrinsic, body)``, (a, b, c) the axes 0, 1, 2 of the
+#: equivalent intrinsic sequence, the flags 0 or 1.
+EulerCode = tuple[int, int, int, int, int]
+
 
 @generic
-def horner(coefficients, x):
+def horner(coefficients: tuple[float, ...], x: float) -> float:
     """Polynomial with ``coefficients`` highest order first, at ``x``.
 
     Compiled for each length of ``coefficients``, so inlined into its cached
@@ -46,12 +52,12 @@ def horner(coefficients, x):
 
 
 @cached
-def cross(ax, ay, az, bx, by, bz):
+def cross(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> tuple[float, float, float]:
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
 
 
 @cached
-def axis_angle(x, y, z):
+def axis_angle(x: float, y: float, z: float) -> tuple[float, float, float, float]:
     """Unit axis and angle of the rotation vector ``(x, y, z)``, for any finite size (axis 0 at angle 0).
 
     The maps below are written with the unit axis ``u`` and coefficients
@@ -66,7 +72,7 @@ def axis_angle(x, y, z):
 
 
 @cached
-def sine_remainder(angle):
+def sine_remainder(angle: float) -> float:
     """``B = (ψ - sin ψ)/ψ³`` of Theory §3.4, from its series below ψ = 1."""
     if angle < SINE_REMAINDER_SERIES_BELOW:
         return horner(SINE_REMAINDER_SERIES, angle * angle)
@@ -74,7 +80,7 @@ def sine_remainder(angle):
 
 
 @cached
-def dexp_coefficients(angle):
+def dexp_coefficients(angle: float) -> tuple[float, float]:
     """``Aψ = (1 - cos ψ)/ψ`` and ``Bψ² = 1 - sin ψ/ψ``, with A and B of Theory §3.4.
 
     ``Aψ = sin(ψ/2) · sin(ψ/2)/(ψ/2)`` has no cancellation; ``Bψ²`` is summed
@@ -92,7 +98,7 @@ def dexp_coefficients(angle):
 
 
 @cached
-def dexp_coefficient_slopes(angle):
+def dexp_coefficient_slopes(angle: float) -> tuple[float, float, float]:
     """``A'ψ``, ``B'ψ²`` and ``Bψ``: the coefficients of the time derivative of the dexp matrix."""
     if angle < SLOPE_SERIES_BELOW:
         x = angle * angle
@@ -106,7 +112,7 @@ def dexp_coefficient_slopes(angle):
 
 
 @cached
-def se3_coupling_coefficients(angle):
+def se3_coupling_coefficients(angle: float) -> tuple[float, float, float]:
     """The coefficients of the coupling block Q of the SE(3) Jacobians (Barfoot):
     ``(ψ − sin ψ)/ψ³`` (:func:`sine_remainder`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
     and ``(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, the last two from their series below ψ = 2."""
@@ -121,7 +127,7 @@ def se3_coupling_coefficients(angle):
 
 
 @cached
-def bortz_coefficient(angle):
+def bortz_coefficient(angle: float) -> float:
     """``(2 sin ψ - ψ(1 + cos ψ)) / (2ψ² sin ψ)`` of Theory §3.5, written as
     ``(1 - (ψ/2) cot(ψ/2))/ψ²`` (finite at ψ = π, poles at ψ = 2πk) and
     summed from its series 1/12 + ψ²/720 + ψ⁴/30240 + ... below ψ = 1."""
@@ -131,7 +137,7 @@ def bortz_coefficient(angle):
 
 
 @cached
-def bortz_times_square(angle):
+def bortz_times_square(angle: float) -> float:
     """The Bortz coefficient times ψ², ``1 - (ψ/2) cot(ψ/2)``, finite for every finite angle off the poles."""
     if angle < BORTZ_SERIES_BELOW:
         return horner(BORTZ_SERIES, angle * angle) * angle * angle
@@ -140,13 +146,14 @@ def bortz_times_square(angle):
 
 
 @cached
-def rotvec_singular(angle, tol):
+def rotvec_singular(angle: float, tol: float) -> bool:
     """True where dexp⁻¹ has a pole: |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``."""
     return angle > math.pi and abs(math.sin(0.5 * angle)) <= tol
 
 
 @cached
-def _plus_cross_terms(ux, uy, uz, v0, v1, v2, linear, quadratic):
+def _plus_cross_terms(ux: float, uy: float, uz: float, v0: float, v1: float, v2: float, linear: float,
+                      quadratic: float) -> tuple[float, float, float]:
     """``v + linear u×v + quadratic u×(u×v)``."""
     cx, cy, cz = cross(ux, uy, uz, v0, v1, v2)
     ccx, ccy, ccz = cross(ux, uy, uz, cx, cy, cz)
@@ -154,7 +161,7 @@ def _plus_cross_terms(ux, uy, uz, v0, v1, v2, linear, quadratic):
 
 
 @cached
-def jacobian_times(x, y, z, v0, v1, v2, sign):
+def jacobian_times(x: float, y: float, z: float, v0: float, v1: float, v2: float, sign: float) -> tuple[float, float, float]:
     """``J v = v + sign A ψ×v + B ψ×(ψ×v)``: sign +1 is J_l (ψ̇ -> ω), −1 is J_r (ψ̇ -> ω′)."""
     ux, uy, uz, angle = axis_angle(x, y, z)
     a, b = dexp_coefficients(angle)
@@ -162,7 +169,8 @@ def jacobian_times(x, y, z, v0, v1, v2, sign):
 
 
 @cached
-def jacobian_inverse_times(x, y, z, w0, w1, w2, sign, tol):
+def jacobian_inverse_times(x: float, y: float, z: float, w0: float, w1: float, w2: float, sign: float,
+                           tol: float) -> tuple[float, float, float]:
     """``J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w)``, NaN at the poles |ψ| = 2πk (:func:`rotvec_singular`)."""
     ux, uy, uz, angle = axis_angle(x, y, z)
     if rotvec_singular(angle, tol):
@@ -171,7 +179,8 @@ def jacobian_inverse_times(x, y, z, w0, w1, w2, sign, tol):
 
 
 @cached
-def jacobian_rate_times(x, y, z, v0, v1, v2, a0, a1, a2, sign):
+def jacobian_rate_times(x: float, y: float, z: float, v0: float, v1: float, v2: float, a0: float, a1: float, a2: float,
+                        sign: float) -> tuple[float, float, float]:
     """``d/dt (J(ψ) ψ̇) = J ψ̈ + J̇ ψ̇`` for ψ̇ = v, ψ̈ = a: the angular acceleration of Theory §3.9.
 
     Since hat(ψ̇)ψ̇ = 0, ``J̇ψ̇ = (u·ψ̇)(sign A'ψ u×ψ̇ + B'ψ² u×(u×ψ̇)) + Bψ ψ̇×(u×ψ̇)``.
@@ -193,7 +202,7 @@ def jacobian_rate_times(x, y, z, v0, v1, v2, a0, a1, a2, sign):
 
 
 @cached
-def write_jacobian(ux, uy, uz, linear, quadratic, out):
+def write_jacobian(ux: float, uy: float, uz: float, linear: float, quadratic: float, out: NDArray[np.float64]) -> None:
     """``out = 1 + linear hat(u) + quadratic hat(u)²``, with ``hat(u)² = uuᵀ − |u|² 1``."""
     n2 = ux * ux + uy * uy + uz * uz
     out[0, 0] = 1.0 + quadratic * (ux * ux - n2)
@@ -208,13 +217,13 @@ def write_jacobian(ux, uy, uz, linear, quadratic, out):
 
 
 @parallel
-def _apply_jacobian_parallel(psi, v, sign, out):
+def _apply_jacobian_parallel(psi: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = jacobian_times(psi[i, 0], psi[i, 1], psi[i, 2], v[i, 0], v[i, 1], v[i, 2], sign)
 
 
 @parallel
-def _apply_jacobian_inverse_parallel(psi, w, sign, tol, out):
+def _apply_jacobian_inverse_parallel(psi: NDArray[np.float64], w: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = jacobian_inverse_times(
             psi[i, 0], psi[i, 1], psi[i, 2], w[i, 0], w[i, 1], w[i, 2], sign, tol
@@ -222,26 +231,26 @@ def _apply_jacobian_inverse_parallel(psi, w, sign, tol, out):
 
 
 @gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(3),(3),()->(3)", parallel=_apply_jacobian_parallel, shared=(2,))
-def apply_jacobian(psi, v, sign, out):
+def apply_jacobian(psi: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     """``J(ψ) v`` for validated ``(..., 3)`` batches; ``sign`` +1.0 (left) or −1.0 (right)."""
     out[0], out[1], out[2] = jacobian_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], sign)
 
 
 @gufunc(["void(f8[:], f8[:], f8, f8, f8[:])"], "(3),(3),(),()->(3)", parallel=_apply_jacobian_inverse_parallel,
         shared=(2, 3))
-def apply_jacobian_inverse(psi, w, sign, tol, out):
+def apply_jacobian_inverse(psi: NDArray[np.float64], w: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
     """``J(ψ)⁻¹ w``, NaN where |sin(|ψ|/2)| <= ``tol`` and |ψ| > π."""
     out[0], out[1], out[2] = jacobian_inverse_times(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(3),(3),(3),()->(3)")
-def apply_jacobian_rate(psi, v, acc, sign, out):
+def apply_jacobian_rate(psi: NDArray[np.float64], v: NDArray[np.float64], acc: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     """``d/dt (J(ψ) ψ̇)`` for validated batches of ψ, ψ̇ = ``v`` and ψ̈ = ``acc``."""
     out[0], out[1], out[2] = jacobian_rate_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], acc[0], acc[1], acc[2], sign)
 
 
 @gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
-def jacobian_matrix(psi, sign, out):
+def jacobian_matrix(psi: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
     """The matrices ``J(ψ)`` of validated ``(..., 3)`` rotation vectors."""
     ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
     a, b = dexp_coefficients(angle)
@@ -249,7 +258,7 @@ def jacobian_matrix(psi, sign, out):
 
 
 @gufunc(["void(f8[:], f8, f8, f8[:, :])"], "(3),(),()->(3,3)")
-def jacobian_inverse_matrix(psi, sign, tol, out):
+def jacobian_inverse_matrix(psi: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
     """The matrices ``J(ψ)⁻¹``, all NaN at the poles as in :data:`apply_jacobian_inverse`."""
     ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
     if rotvec_singular(angle, tol):
@@ -259,7 +268,7 @@ def jacobian_inverse_matrix(psi, sign, tol, out):
 
 
 @cached
-def axis_rotate(k, c, s, x, y, z):
+def axis_rotate(k: int, c: float, s: float, x: float, y: float, z: float) -> tuple[float, float, float]:
     """Active rotation of (x, y, z) about coordinate axis ``k`` by the angle with cosine c, sine s."""
     if k == 0:
         return x, c * y - s * z, s * y + c * z
@@ -269,7 +278,7 @@ def axis_rotate(k, c, s, x, y, z):
 
 
 @cached
-def unit(k):
+def unit(k: int) -> tuple[float, float, float]:
     if k == 0:
         return 1.0, 0.0, 0.0
     if k == 1:
@@ -278,7 +287,7 @@ def unit(k):
 
 
 @cached
-def euler_columns(x0, x1, x2, code):
+def euler_columns(x0: float, x1: float, x2: float, code: EulerCode) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float]:
     """Columns of the Euler-rate matrix M (ω = M · rates) and det M.
 
     ``(x0, x1, x2)`` are the angles in the user's order and

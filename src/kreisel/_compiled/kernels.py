@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import cached, inlined
 
@@ -28,7 +29,8 @@ from . import cached, inlined
 
 
 @cached
-def quat_product(p0, p1, p2, p3, q0, q1, q2, q3):
+def quat_product(p0: float, p1: float, p2: float, p3: float, q0: float, q1: float, q2: float,
+                 q3: float) -> tuple[float, float, float, float]:
     """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
     return (
         p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
@@ -46,13 +48,13 @@ SIZE_HIGH = 1e140
 
 
 @cached
-def size(q0, q1, q2, q3):
+def size(q0: float, q1: float, q2: float, q3: float) -> float:
     """The largest ``|component|`` of ``q``."""
     return max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
 
 
 @cached
-def squarable(q0, q1, q2, q3):
+def squarable(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     """``q``, or ``q`` divided by its largest ``|component|`` when squaring it would overflow or underflow."""
     m = size(q0, q1, q2, q3)
     if SIZE_LOW < m < SIZE_HIGH:
@@ -61,7 +63,7 @@ def squarable(q0, q1, q2, q3):
 
 
 @cached
-def norm3(x, y, z):
+def norm3(x: float, y: float, z: float) -> float:
     """``|(x, y, z)|`` for any finite components (divided by the largest first when squaring would over- or underflow)."""
     m = size(0.0, x, y, z)
     if SIZE_LOW < m < SIZE_HIGH or m == 0.0:
@@ -71,7 +73,7 @@ def norm3(x, y, z):
 
 
 @cached
-def quat_unit(q0, q1, q2, q3):
+def quat_unit(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     """``q / |q|`` for any nonzero finite ``q``."""
     q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
@@ -79,7 +81,7 @@ def quat_unit(q0, q1, q2, q3):
 
 
 @cached
-def rotated(q0, q1, q2, q3, x, y, z):
+def rotated(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: float) -> tuple[float, float, float]:
     """``R(q) v`` for a unit quaternion, without forming the matrix."""
     # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
     t0 = 2.0 * (q2 * z - q3 * y)
@@ -93,7 +95,7 @@ _rotated = rotated
 
 
 @cached
-def quat_matrix(q0, q1, q2, q3):
+def quat_matrix(q0: float, q1: float, q2: float, q3: float) -> tuple[float, ...]:
     """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit (nonzero, finite) quaternion."""
     q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
     s = 1.0 / (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
@@ -111,7 +113,8 @@ def quat_matrix(q0, q1, q2, q3):
 
 
 @cached
-def matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22):
+def matrix_entries_quat(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
+                        r22: float) -> tuple[float, float, float, float]:
     """Unit quaternion with q0 >= 0 of a rotation matrix given row by row (Shepperd/Markley).
 
     The component with the largest square is taken from the diagonal and the
@@ -148,7 +151,7 @@ def matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22):
 
 
 @cached
-def rotvec_quat(x, y, z):
+def rotvec_quat(x: float, y: float, z: float) -> tuple[float, float, float, float]:
     """Exponential ``(cos(ψ/2), n sin(ψ/2))``, ψ = |(x, y, z)|, with no sign flip.
 
     sin(ψ/2)/ψ is taken from its Taylor series below ψ = 1e-4 so that the
@@ -171,7 +174,7 @@ def rotvec_quat(x, y, z):
 
 
 @cached
-def quat_rotvec(q0, q1, q2, q3):
+def quat_rotvec(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float]:
     """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
 
     ψ = 2 atan2(|v|, |q0|) (after choosing the hemisphere q0 >= 0) is well
@@ -195,31 +198,31 @@ def quat_rotvec(q0, q1, q2, q3):
 
 
 @cached
-def qmul(p, q, out):
+def qmul(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Hamilton product ``out = p q`` (``out`` may be ``p`` or ``q``)."""
     out[0], out[1], out[2], out[3] = quat_product(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
 
 
 @cached
-def qnormalize(q):
+def qnormalize(q: NDArray[np.float64]) -> None:
     """Scale ``q`` in place to unit norm."""
     q[0], q[1], q[2], q[3] = quat_unit(q[0], q[1], q[2], q[3])
 
 
 @cached
-def qrotate(q, v, out):
+def qrotate(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """``out = R(q) v`` for a unit quaternion, without forming the matrix (``out`` may be ``v``)."""
     out[0], out[1], out[2] = rotated(q[0], q[1], q[2], q[3], v[0], v[1], v[2])
 
 
 @cached
-def qrotate_inverse(q, v, out):
+def qrotate_inverse(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """``out = R(q)^T v`` for a unit quaternion, the rotation by its conjugate (``out`` may be ``v``)."""
     out[0], out[1], out[2] = rotated(q[0], -q[1], -q[2], -q[3], v[0], v[1], v[2])
 
 
 @cached
-def write_matrix(q0, q1, q2, q3, out):
+def write_matrix(q0: float, q1: float, q2: float, q3: float, out: NDArray[np.float64]) -> None:
     """Write ``R(q)`` (Theory §2.4) of a possibly non-unit quaternion into ``out``."""
     (
         out[0, 0], out[0, 1], out[0, 2],
@@ -243,24 +246,24 @@ def write_matrix_at(out, i, q0, q1, q2, q3):
 
 
 @cached
-def quat_to_matrix(q, out):
+def quat_to_matrix(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """``out = R(q)`` exactly as printed in Theory §2.4 (q need not be unit: it is scaled)."""
     write_matrix(q[0], q[1], q[2], q[3], out)
 
 
 @cached
-def matrix_quat(R):
+def matrix_quat(R: NDArray[np.float64]) -> tuple[float, float, float, float]:
     """:func:`matrix_entries_quat` of a 3×3 array."""
     return matrix_entries_quat(R[0, 0], R[0, 1], R[0, 2], R[1, 0], R[1, 1], R[1, 2], R[2, 0], R[2, 1], R[2, 2])
 
 
 @cached
-def rotvec_to_quat(psi, out):
+def rotvec_to_quat(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """``out`` = :func:`rotvec_quat` of ``psi``."""
     out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
 
 
 @cached
-def quat_to_rotvec(q, out):
+def quat_to_rotvec(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """``out`` = :func:`quat_rotvec` of ``q``."""
     out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])

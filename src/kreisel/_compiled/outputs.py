@@ -37,12 +37,14 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from typing import Any, TypeVar
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import DTypeLike, NDArray
 
 _Result = TypeVar("_Result", bound=NDArray[Any])
+_Out = TypeVar("_Out")
 
 #: Results of at least this many bytes come from the pool (glibc's largest mmap threshold).
 RECYCLED_BYTES = 32 * 2**20
@@ -51,10 +53,10 @@ IDLE_BYTES = 256 * 2**20
 
 _lock = threading.RLock()  # re-entrant: a result may die (and release its slab) inside the pool's own code
 #: Unused slabs (1-D float64 arrays), most recently released last.
-_idle: list[np.ndarray] = []
+_idle: list[NDArray[np.float64]] = []
 
 
-def _release(slab):
+def _release(slab: NDArray[np.float64]) -> None:
     with _lock:
         _idle.append(slab)
         kept = 0
@@ -65,7 +67,7 @@ def _release(slab):
                 break
 
 
-def _take(size):
+def _take(size: int) -> NDArray[np.float64] | None:
     """An unused slab of ``size`` to ``size * 5/4`` doubles (the closest fit), or None."""
     with _lock:
         fits = [slab for slab in _idle if size <= slab.size <= size + size // 4]
@@ -117,15 +119,15 @@ class _Lease:
 
     __slots__ = ("_slab", "__array_interface__")
 
-    def __init__(self, slab, shape):
+    def __init__(self, slab: NDArray[np.float64], shape: tuple[int, ...]) -> None:
         self._slab = slab
         self.__array_interface__ = {"shape": shape, "typestr": "<f8", "data": (slab.ctypes.data, False), "version": 3}
 
-    def __del__(self, release=_release):  # bound now: module globals may be gone at interpreter exit
+    def __del__(self, release: Callable[[NDArray[np.float64]], None] = _release) -> None:  # bound now: module globals may be gone at interpreter exit
         release(self._slab)
 
 
-def empty(shape):
+def empty(shape: tuple[int, ...]) -> NDArray[np.float64]:
     """A new float64 array of ``shape``; recycled pages when it has at least :data:`RECYCLED_BYTES`."""
     size = math.prod(shape)
     if 8 * size < RECYCLED_BYTES:
@@ -136,7 +138,7 @@ def empty(shape):
     return np.asarray(_Lease(slab, tuple(shape)))
 
 
-def check_out(out, shape, dtype=np.float64, name="out"):
+def check_out(out: _Out, shape: tuple[int, ...], dtype: DTypeLike = np.float64, name: str = "out") -> _Out:
     """Refuse an ``out=`` that is not a writable ndarray of exactly ``shape`` and ``dtype``; return it.
 
     Raises

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import finite_array, matrix_array
 from .._validation import as_float_array, check_frame
 
 
-def vectors(x, name, length=3):
+def vectors(x: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:
     """Finite float64 array of shape ``(..., length)`` (one compiled pass, no temporaries).
 
     C-contiguous, so that a strided view gives bit for bit the result of a plain array (numpy's
@@ -17,7 +18,7 @@ def vectors(x, name, length=3):
     return np.ascontiguousarray(finite_array(x, name, (length,)))
 
 
-def batch_shape(*items):
+def batch_shape(*items: tuple[str, NDArray[np.float64], int]) -> tuple[int, ...]:
     """Common batch shape of ``(name, array, core_ndim)`` items, or ValueError naming them."""
     shapes = [a.shape[: a.ndim - core] for _, a, core in items]
     try:
@@ -28,18 +29,18 @@ def batch_shape(*items):
         raise ValueError(f"{names} have batch shapes that do not broadcast: {described}") from None
 
 
-def same_batch(core_ndim, **arrays):
+def same_batch(core_ndim: int, **arrays: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """The validated ``arrays``, in order, once their batch shapes (all but ``core_ndim`` trailing axes) broadcast."""
     batch_shape(*((name, a, core_ndim) for name, a in arrays.items()))
     return tuple(arrays.values())
 
 
-def vector_batch(length=3, **named):
+def vector_batch(length: int = 3, **named: ArrayLike) -> tuple[NDArray[np.float64], ...]:
     """Finite ``(..., length)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
     return same_batch(1, **{name: vectors(x, name, length) for name, x in named.items()})
 
 
-def rotation_batch(R, **derivatives):
+def rotation_batch(R: ArrayLike, **derivatives: ArrayLike) -> tuple[NDArray[np.float64], ...]:
     """``R`` as rotation matrices and its ``derivatives`` as float ``(..., 3, 3)`` arrays, with broadcastable batch shapes.
 
     ``R`` is checked like every rotation matrix of kreisel (orthogonal to
@@ -50,6 +51,6 @@ def rotation_batch(R, **derivatives):
                                                     for name, x in derivatives.items()})
 
 
-def frame_sign(frame):
+def frame_sign(frame: str) -> float:
     """+1 for space components, −1 for body components: the sign that tells the two rate maps apart."""
     return -1.0 if check_frame(frame) else 1.0

@@ -683,6 +683,7 @@ class RigidTransform:
 
     def _repr_html_(self) -> str:
         note = "r_P = R r′_P + r_C; quaternion scalar-first, R maps body to space"
+        rows: list[tuple[str, object]]
         if self.single:
             rows = [
                 ("quaternion", number(self._quat)),

@@ -16,21 +16,30 @@ same inputs with the same tolerance:
 
 from __future__ import annotations
 
+from typing import TypeAlias, Union
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from .._validation import as_float_array
 from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from .matrix import matrix_to_quat, quat_to_matrix
 from .quaternion import quat_normalize
 from .rotation import Rotation
 
-__all__ = ["ORTHOGONALITY_TOLERANCE", "as_quaternion", "as_rotation_matrix"]
+__all__ = ["ORTHOGONALITY_TOLERANCE", "RotationLike", "as_quaternion", "as_rotation_matrix"]
+
+#: What a rotation argument accepts: a :class:`~kreisel.Rotation`, matrices ``(..., 3, 3)`` or quaternions ``(..., 4)``
+#: (a scipy rotation too; scipy's own annotations are not read).
+RotationLike: TypeAlias = Union[Rotation, ArrayLike]
 
 
-def _is_scipy_rotation(obj):
+def _is_scipy_rotation(obj: object) -> bool:
     # Checked by module name so that scipy is imported only when it is used.
     return type(obj).__name__ == "Rotation" and type(obj).__module__.startswith("scipy.spatial.transform")
 
 
-def _array(rotation, name):
+def _array(rotation: RotationLike, name: str) -> NDArray[np.float64]:
     if isinstance(rotation, Rotation):
         return rotation.as_quat()
     if _is_scipy_rotation(rotation):
@@ -45,7 +54,7 @@ def _array(rotation, name):
     )
 
 
-def as_quaternion(rotation, name="rotation"):
+def as_quaternion(rotation: RotationLike, name: str = "rotation") -> NDArray[np.float64]:
     """Unit quaternions ``(..., 4)`` of any rotation input (see the module note for what is accepted).
 
     Examples
@@ -60,7 +69,7 @@ def as_quaternion(rotation, name="rotation"):
     return matrix_to_quat(a) if a.shape[-2:] == (3, 3) else quat_normalize(a)
 
 
-def as_rotation_matrix(rotation, name="rotation"):
+def as_rotation_matrix(rotation: RotationLike, name: str = "rotation") -> NDArray[np.float64]:
     """Rotation matrices ``(..., 3, 3)`` of any rotation input (see the module note for what is accepted).
 
     Examples

@@ -10,9 +10,10 @@ path (:mod:`kreisel._compiled.kernels`).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 
-def norm(x, keepdims=False):
+def norm(x: ArrayLike, keepdims: bool = False) -> NDArray[np.float64]:
     """Euclidean norm over the last axis of finite ``x``, accurate for any magnitude."""
     x = np.asarray(x, dtype=np.float64)
     largest = np.max(np.abs(x), axis=-1, keepdims=True)
@@ -21,7 +22,7 @@ def norm(x, keepdims=False):
     return out if keepdims else out[..., 0]
 
 
-def unit(x, name):
+def unit(x: ArrayLike, name: str) -> NDArray[np.float64]:
     """``x / |x|`` over the last axis, for any nonzero finite magnitude; refuses zero vectors naming ``name``."""
     x = np.asarray(x, dtype=np.float64)
     largest = np.max(np.abs(x), axis=-1, keepdims=True)

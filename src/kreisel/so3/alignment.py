@@ -49,6 +49,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, kernels, parallel
@@ -62,7 +63,7 @@ _WIDTH = 14
 
 
 @cached
-def _jacobi_top_eigenvector(K):
+def _jacobi_top_eigenvector(K: NDArray[np.float64]) -> tuple[float, float, float, float]:
     """Unit eigenvector of the largest eigenvalue of the symmetric 4×4 ``K`` (overwritten).
 
     Cyclic Jacobi: each plane rotation zeroes one off-diagonal pair; the
@@ -115,7 +116,7 @@ def _jacobi_top_eigenvector(K):
 
 
 @cached
-def _shortest_arc(ax, ay, az, bx, by, bz):
+def _shortest_arc(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> tuple[float, float, float, float]:
     """Smallest rotation taking the unit vector b to the unit vector a (scipy's choice when antiparallel)."""
     # (1 + a·b, b × a) is 2 cos(θ/2) (cos(θ/2), n sin(θ/2)), the half-way quaternion.
     cx, cy, cz = by * az - bz * ay, bz * ax - bx * az, bx * ay - by * ax
@@ -148,7 +149,7 @@ def _shortest_arc(ax, ay, az, bx, by, bz):
 
 
 @cached
-def _solve(a, b, w, i, primary, out):
+def _solve(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], i: int, primary: int, out: NDArray[np.float64]) -> None:
     """Problem ``i`` of the batch into ``out[i]``; ``primary`` is the index of the infinite weight or -1."""
     n = a.shape[1]
     if primary < 0:
@@ -207,7 +208,8 @@ def _solve(a, b, w, i, primary, out):
 
 
 @cached
-def _sensitivity(a, b, w, i, q0, q1, q2, q3, out):
+def _sensitivity(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float,
+                 out: NDArray[np.float64]) -> None:
     # M = Rᵀ B is symmetric with eigenvalues s₁, s₂, s₃' (the corrected singular
     # values); κ and ζ are its elementary symmetric functions.
     n = a.shape[1]
@@ -239,18 +241,19 @@ def _sensitivity(a, b, w, i, q0, q1, q2, q3, out):
 
 
 @cached
-def _solve_serial(a, b, w, primary, out):
+def _solve_serial(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64], out: NDArray[np.float64]) -> None:
     for i in range(a.shape[0]):
         _solve(a, b, w, i, primary[i], out)
 
 
 @parallel
-def _solve_parallel(a, b, w, primary, out):
+def _solve_parallel(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64], out: NDArray[np.float64]) -> None:
     for i in prange(a.shape[0]):
         _solve(a, b, w, i, primary[i], out)
 
 
-def _problems(a, b, weights):
+def _problems(a: ArrayLike, b: ArrayLike,
+              weights: ArrayLike | None) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], tuple[int, ...]]:
     """Validated, broadcast ``(m, n, 3)``, ``(m, n, 3)``, ``(m, n)`` arrays and the batch shape."""
     a = as_float_array(a, "a", (3,))
     b = as_float_array(b, "b", (3,))
@@ -272,11 +275,15 @@ def _problems(a, b, weights):
             raise ValueError(f"weights must have shape (..., n) = {a.shape[:-1]} (one per vector), got {w.shape}") from None
     batch, n = a.shape[:-2], a.shape[-2]
     m = int(np.prod(batch))
-    flat = lambda x, tail: np.ascontiguousarray(x).reshape(m, n, *tail)  # noqa: E731
+
+    def flat(x: NDArray[np.float64], tail: tuple[int, ...]) -> NDArray[np.float64]:
+        return np.ascontiguousarray(x).reshape(m, n, *tail)
+
     return flat(a, (3,)), flat(b, (3,)), flat(w, ()), batch
 
 
-def align_vectors(a, b, weights=None, return_sensitivity=False):
+def align_vectors(a: ArrayLike, b: ArrayLike, weights: ArrayLike | None = None,
+                  return_sensitivity: bool = False) -> tuple[NDArray[np.float64], ...]:
     """Rotations ``R`` with ``a ≈ R b`` (Wahba's problem), for one or many sets of vectors.
 
     Solves scipy's ``Rotation.align_vectors`` problem (same loss, same special

@@ -23,8 +23,10 @@ inherit the exactness of :func:`quat_to_euler` through gimbal lock
 from __future__ import annotations
 
 import math
+from typing import TypeAlias, cast
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, parallel
@@ -41,8 +43,11 @@ __all__ = ["davenport_to_quat", "quat_to_davenport", "davenport_gimbal_lock"]
 #: Largest |cos| between consecutive axes that counts as orthogonal (scipy's).
 ORTHOGONAL_AXES_TOLERANCE = 1e-7
 
+#: What :func:`_setup` returns: ``(count, reverse, seq, lam, before, after, inverse_after, other)``.
+_Setup: TypeAlias = tuple[int, bool, str, float, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool]
 
-def _setup(axes, order):
+
+def _setup(axes: ArrayLike, order: str) -> _Setup:
     """Checked axes and the fixed factors of both conversions, computed once per axes and order.
 
     Returns ``(count, reverse, seq, lam, before, after, inverse_after, other)`` with
@@ -64,11 +69,12 @@ def _setup(axes, order):
     return found
 
 
-_SETUPS = {}
+_SETUPS: dict[tuple[bytes, tuple[int, ...], str], _Setup] = {}
 
 
 @cached
-def _angles_of(q0, q1, q2, q3, f, g, lam, other, reverse):
+def _angles_of(q0: float, q1: float, q2: float, q3: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int,
+               reverse: int) -> tuple[float, float, float]:
     """Three Davenport angles of q: XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch."""
     a0, a1, a2, a3 = k.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
     e0, e1, e2, e3 = k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
@@ -85,7 +91,7 @@ def _angles_of(q0, q1, q2, q3, f, g, lam, other, reverse):
 
 
 @cached
-def _quat_of(x, y, z, f, g, lam, reverse):
+def _quat_of(x: float, y: float, z: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int) -> tuple[float, float, float, float]:
     """Quaternion f ⊗ q_XYX(α, β - λ, γ) ⊗ g of three Davenport angles."""
     if reverse:
         x, z = z, x
@@ -95,44 +101,44 @@ def _quat_of(x, y, z, f, g, lam, reverse):
 
 
 @parallel
-def _to_angles_parallel(q, f, g, lam, other, reverse, out):
+def _to_angles_parallel(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int, out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _angles_of(q[i, 0], q[i, 1], q[i, 2], q[i, 3], f, g, lam, other, reverse)
 
 
 @parallel
-def _to_quat_parallel(angles, f, g, lam, reverse, out):
+def _to_quat_parallel(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int, out: NDArray[np.float64]) -> None:
     for i in prange(angles.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _quat_of(angles[i, 0], angles[i, 1], angles[i, 2], f, g, lam, reverse)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:], f8, i8, i8, f8[:], f8[:])"], "(4),(4),(4),(),(),(),(3)->(3)",
         parallel=_to_angles_parallel, shared=(1, 2, 3, 4, 5))  # fmt: skip
-def _to_angles(q, f, g, lam, other, reverse, carrier3, out):
+def _to_angles(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int, carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
 
 
 @gufunc(["void(f8[:], f8[:], f8[:], f8, i8, f8[:])"], "(3),(4),(4),(),()->(4)",
         parallel=_to_quat_parallel, shared=(1, 2, 3, 4))  # fmt: skip
-def _to_quat(angles, f, g, lam, reverse, out):
+def _to_quat(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int, out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
 
 
 @cached
-def _one_angles(q, f, g, lam, other, reverse):
+def _one_angles(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int) -> NDArray[np.float64]:
     out = np.empty(3)
     out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
     return out
 
 
 @cached
-def _one_quat(angles, f, g, lam, reverse):
+def _one_quat(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int) -> NDArray[np.float64]:
     out = np.empty(4)
     out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
     return out
 
 
-def _parse(axes, order):
+def _parse(axes: ArrayLike, order: str) -> tuple[NDArray[np.float64], bool]:
     """Unit axes ``(k, 3)`` in intrinsic order (k = 1..3) and whether angles are reversed."""
     if order in ("i", "intrinsic"):
         reverse = False
@@ -155,7 +161,7 @@ def _parse(axes, order):
     return (a[::-1] if reverse else a), reverse
 
 
-def _frame(axes):
+def _frame(axes: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, str]:
     """``(q_F, λ, seq)``: the frame F = [n₁, n₂, n₁ × n₂] as a quaternion, the offset λ and the Euler sequence."""
     n1 = axes[0]
     n2 = axes[1] if len(axes) > 1 else np.cross(n1, np.eye(3)[np.argmin(np.abs(n1))])
@@ -166,11 +172,11 @@ def _frame(axes):
     return qf, lam, "XYX"[: len(axes)]
 
 
-def _conjugate(q):
-    return q * np.array([1.0, -1.0, -1.0, -1.0])
+def _conjugate(q: NDArray[np.float64]) -> NDArray[np.float64]:
+    return cast("NDArray[np.float64]", q * np.array([1.0, -1.0, -1.0, -1.0]))
 
 
-def davenport_to_quat(axes, order, angles, degrees=False, *, out=None):
+def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternions of Davenport angles about ``axes`` (scipy's ``Rotation.from_davenport``).
 
     Parameters
@@ -214,7 +220,7 @@ def davenport_to_quat(axes, order, angles, degrees=False, *, out=None):
     return deliver(quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after), out)
 
 
-def quat_to_davenport(axes, order, q, degrees=False, *, out=None):
+def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Davenport angles about ``axes`` of rotations ``q`` (scipy's ``Rotation.as_davenport``).
 
     The outer angles are in [-π, π]; the middle one is in [λ, λ + π] or in
@@ -258,7 +264,8 @@ def quat_to_davenport(axes, order, q, degrees=False, *, out=None):
     return deliver(np.rad2deg(angles) if degrees else angles, out)
 
 
-def davenport_gimbal_lock(axes, order, angles, degrees=False, tolerance=1e-7, *, out=None):
+def davenport_gimbal_lock(axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False, tolerance: float = 1e-7,
+                          *, out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Which Davenport angle triples have the middle angle within ``tolerance`` of λ or λ + π.
 
     There the first and third axes line up and only the sum or difference of

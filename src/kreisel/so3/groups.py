@@ -16,6 +16,7 @@ equivalent rotations ``l p r``, the one with the smallest angle (largest
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array
 from .quaternion import quat_multiply, quat_normalize
@@ -26,7 +27,7 @@ __all__ = ["create_group", "reduce_quat"]
 _GOLDEN = (1.0 + np.sqrt(5.0)) / 2.0
 
 
-def _closure(generators):
+def _closure(generators: list[NDArray[np.float64]]) -> NDArray[np.float64]:
     """All products of the generators: the finite group they generate, identity first."""
     elements = [np.array([1.0, 0.0, 0.0, 0.0])]
     keys = {_key(elements[0])}
@@ -45,18 +46,18 @@ def _closure(generators):
     return np.array(elements)
 
 
-def _key(q):
+def _key(q: NDArray[np.float64]) -> tuple[float, ...]:
     # q and -q are one rotation: round the canonical sign.
     first = q[np.flatnonzero(np.abs(q) > 1e-9)[0]]
     return tuple(np.round(q * np.sign(first), 9) + 0.0)
 
 
-def _turn(axis, angle):
+def _turn(axis: ArrayLike, angle: float) -> NDArray[np.float64]:
     axis = np.asarray(axis, dtype=np.float64)
     return rotvec_to_quat(angle * axis / np.linalg.norm(axis))
 
 
-def create_group(group, axis="Z"):
+def create_group(group: str, axis: str = "Z") -> NDArray[np.float64]:
     """Quaternions of a rotation group: ``"I"``, ``"O"``, ``"T"``, ``"Dn"`` or ``"Cn"`` (n >= 1).
 
     Parameters
@@ -101,7 +102,8 @@ def create_group(group, axis="Z"):
     raise ValueError(f"group must be 'I', 'O', 'T', 'Dn' or 'Cn' with n >= 1, got {group!r}")
 
 
-def reduce_quat(q, left=None, right=None):
+def reduce_quat(q: ArrayLike, left: ArrayLike | None = None,
+                right: ArrayLike | None = None) -> tuple[NDArray[np.float64], NDArray[np.intp] | None, NDArray[np.intp] | None]:
     """The smallest of the equivalent rotations ``l q r`` over ``l`` in ``left``, ``r`` in ``right``.
 
     Parameters

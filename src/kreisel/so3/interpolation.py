@@ -8,6 +8,7 @@ sign-independent.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels
 from .._compiled.outputs import deliver
@@ -18,7 +19,7 @@ __all__ = ["quat_slerp", "quat_mean"]
 
 
 @gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(4),()->(4)")
-def _slerp(p, q, t, out):
+def _slerp(p: NDArray[np.float64], q: NDArray[np.float64], t: float, out: NDArray[np.float64]) -> None:
     # p exp(t log(p* q)), the shorter arc; quaternions are taken as unit.
     p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
     r0, r1, r2, r3 = kernels.quat_product(p0, -p1, -p2, -p3, q[0], q[1], q[2], q[3])
@@ -27,7 +28,7 @@ def _slerp(p, q, t, out):
     out[0], out[1], out[2], out[3] = kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
 
 
-def quat_slerp(p, q, t, *, out=None):
+def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Spherical linear interpolation from rotation ``p`` (t = 0) to ``q`` (t = 1).
 
     ``p exp(t log(p⁻¹ q))`` along the shorter great arc, at constant angular
@@ -54,7 +55,7 @@ def quat_slerp(p, q, t, *, out=None):
     return _slerp(unit(p, "p"), unit(q, "q"), t, out=out)
 
 
-def quat_mean(q, weights=None, axis=-2, *, out=None):
+def quat_mean(q: ArrayLike, weights: ArrayLike | None = None, axis: int = -2, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Chordal L2 mean of rotations (Markley et al. 2007), sign-independent.
 
     The rotation minimising ``Σ w_i ‖R - R_i‖_F²`` is the eigenvector of
@@ -109,7 +110,7 @@ def quat_mean(q, weights=None, axis=-2, *, out=None):
     return deliver(np.where(mean[..., :1] < 0.0, -mean, mean), out)
 
 
-def sample_axes(batch_shape, axis):
+def sample_axes(batch_shape: tuple[int, ...], axis: int | tuple[int, ...] | None) -> tuple[int, ...]:
     """Normalised, sorted batch axes to average over (scipy's ``axis``: None = all)."""
     nd = len(batch_shape)
     if nd == 0:
@@ -124,7 +125,7 @@ def sample_axes(batch_shape, axis):
     return tuple(sorted({int(a) % nd for a in axes}))
 
 
-def gather_samples(x, batch_nd, axes):
+def gather_samples(x: NDArray[np.float64], batch_nd: int, axes: tuple[int, ...]) -> NDArray[np.float64]:
     """``x`` of shape ``(*batch, *tail)`` as ``(*kept batch, samples, *tail)``, the ``axes`` merged into one."""
     keep = [i for i in range(batch_nd) if i not in axes]
     tail = list(range(batch_nd, x.ndim))
@@ -132,7 +133,7 @@ def gather_samples(x, batch_nd, axes):
     return moved.reshape(*[x.shape[i] for i in keep], -1, *x.shape[batch_nd:])
 
 
-def mean_over(q, weights, axis):
+def mean_over(q: NDArray[np.float64], weights: ArrayLike | None, axis: int | tuple[int, ...] | None) -> tuple[NDArray[np.float64], tuple[int, ...]]:
     """Chordal mean of unit quaternions ``(*batch, 4)`` over the batch ``axis`` (None: all axes).
 
     ``weights`` has the batch shape; returns the quaternions and the normalised axes.

@@ -10,6 +10,7 @@ other parameters describing rigid-body motion).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array, vector_array
 from .._compiled.outputs import deliver
@@ -18,13 +19,13 @@ from ._norms import norm, unit
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
 
 
-def _canonical_unit(q):
+def _canonical_unit(q: ArrayLike) -> NDArray[np.float64]:
     q = quaternion_array(q, "q")
     q = unit(q, "q")
     return np.where(q[..., :1] < 0.0, -q, q)
 
 
-def quat_to_gibbs(q, *, out=None):
+def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
 
     Parameters
@@ -44,7 +45,7 @@ def quat_to_gibbs(q, *, out=None):
     return deliver(q[..., 1:] / q[..., :1], out)
 
 
-def gibbs_to_quat(g, *, out=None):
+def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
 
     Parameters
@@ -61,7 +62,7 @@ def gibbs_to_quat(g, *, out=None):
     return deliver(unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g"), out)
 
 
-def quat_to_mrp(q, *, out=None):
+def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
 
     Parameters
@@ -79,7 +80,7 @@ def quat_to_mrp(q, *, out=None):
     return deliver(q[..., 1:] / (1.0 + q[..., :1]), out)
 
 
-def mrp_to_quat(p, *, out=None):
+def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
 
     Parameters

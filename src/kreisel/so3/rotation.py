@@ -873,7 +873,7 @@ class Rotation:
     def __len__(self) -> int:
         if self.single:
             raise TypeError("a single Rotation has no len()")
-        return self._q.shape[0]
+        return int(self._q.shape[0])
 
     def __iter__(self) -> Iterator[Rotation]:
         if self.single:
@@ -915,6 +915,7 @@ class Rotation:
 
     def _repr_html_(self) -> str:
         note = "quaternion scalar-first [q0, q1, q2, q3], active, R maps body to space; ZXZ intrinsic"
+        rows: list[tuple[str, object]]
         if self.single:
             rows = [
                 ("quaternion", number(self._q)),

@@ -22,8 +22,11 @@ Evaluation runs in compiled code, on both cores for long time arrays.
 
 from __future__ import annotations
 
+from typing import Literal, overload
+
 import numpy as np
 from numba import prange
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
@@ -37,7 +40,8 @@ _BODY = -1.0  # the sign of the right Jacobian J_r, which maps ψ̇ to ω′
 
 
 @cached
-def _evaluate_one(i, t, times, index, coeff, quats, order, space, out):
+def _evaluate_one(i: int, t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
+                  out: NDArray[np.float64]) -> None:
     s = index[i]
     tau = t[i] - times[s]
     c0x, c0y, c0z = coeff[s, 0, 0], coeff[s, 0, 1], coeff[s, 0, 2]
@@ -67,18 +71,20 @@ def _evaluate_one(i, t, times, index, coeff, quats, order, space, out):
 
 
 @cached
-def _evaluate_serial(t, times, index, coeff, quats, order, space, out):
+def _evaluate_serial(t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
+                     out: NDArray[np.float64]) -> None:
     for i in range(t.shape[0]):
         _evaluate_one(i, t, times, index, coeff, quats, order, space, out)
 
 
 @parallel
-def _evaluate_parallel(t, times, index, coeff, quats, order, space, out):
+def _evaluate_parallel(t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
+                       out: NDArray[np.float64]) -> None:
     for i in prange(t.shape[0]):
         _evaluate_one(i, t, times, index, coeff, quats, order, space, out)
 
 
-def _block_tridiagonal(lower, upper, diagonal):
+def _block_tridiagonal(lower: NDArray[np.float64], upper: NDArray[np.float64], diagonal: NDArray[np.float64]) -> NDArray[np.float64]:
     """Banded form (5, 5) of the block matrix with blocks d·1 on the diagonal, ``lower`` below, ``upper`` above."""
     m = len(diagonal)
     banded = np.zeros((11, 3 * m))
@@ -94,7 +100,7 @@ def _block_tridiagonal(lower, upper, diagonal):
     return banded
 
 
-def _knot_rates(dt, rotvecs, max_iter, tol):
+def _knot_rates(dt: NDArray[np.float64], rotvecs: NDArray[np.float64], max_iter: int, tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Body angular rates at the knots and ψ̇ at the segment starts (scipy's fixed-point scheme)."""
     from scipy.linalg import solve_banded
 
@@ -122,7 +128,7 @@ def _knot_rates(dt, rotvecs, max_iter, tol):
     return np.vstack([first, rates[:-1]]), rotvecs_dot
 
 
-def _rotations_quat(rotations):
+def _rotations_quat(rotations: Rotation) -> NDArray[np.float64]:
     if not isinstance(rotations, Rotation):
         raise TypeError(f"rotations must be a kreisel Rotation, got {type(rotations).__name__}")
     if rotations.single or len(rotations.shape) != 1:
@@ -130,7 +136,7 @@ def _rotations_quat(rotations):
     return rotations.as_quat()
 
 
-def _knot_times(times, count):
+def _knot_times(times: ArrayLike, count: int) -> NDArray[np.float64]:
     t = finite_array(times, "times", None)
     if t.ndim != 1 or len(t) != count:
         raise ValueError(f"times must have shape ({count},), one per rotation, got {t.shape}")
@@ -182,7 +188,7 @@ class RotationSpline:
     MAX_ITER = 10
     TOL = 1e-9
 
-    def __init__(self, times, rotations):
+    def __init__(self, times: ArrayLike, rotations: Rotation) -> None:
         q = _rotations_quat(rotations)
         self.times = _knot_times(times, len(q))
         self.rotations = rotations
@@ -197,7 +203,16 @@ class RotationSpline:
         self._coeff = coeff
         self._quats = np.ascontiguousarray(q)
 
-    def __call__(self, times, order=0, frame=None):
+    @overload
+    def __call__(self, times: ArrayLike, order: Literal[0] = 0, frame: str | None = None) -> Rotation: ...
+
+    @overload
+    def __call__(self, times: ArrayLike, order: Literal[1, 2], frame: str | None = None) -> NDArray[np.float64]: ...
+
+    @overload
+    def __call__(self, times: ArrayLike, order: int, frame: str | None = None) -> Rotation | NDArray[np.float64]: ...
+
+    def __call__(self, times: ArrayLike, order: int = 0, frame: str | None = None) -> Rotation | NDArray[np.float64]:
         """Attitudes (``order=0``), angular velocities (1) or angular accelerations (2) at ``times``.
 
         Parameters
@@ -262,14 +277,14 @@ class Slerp:
     [[0.0, 0.0, 0.25], [0.0, 0.0, 0.5]]
     """
 
-    def __init__(self, times, rotations):
+    def __init__(self, times: ArrayLike, rotations: Rotation) -> None:
         q = _rotations_quat(rotations)
         self.times = _knot_times(times, len(q))
         self.rotations = rotations
         self.timedelta = np.diff(self.times)
         self.rotvecs = (rotations[:-1].inv() * rotations[1:]).as_rotvec()
 
-    def __call__(self, times):
+    def __call__(self, times: ArrayLike) -> Rotation:
         """Interpolated rotations at ``times`` (any shape within the knot range).
 
         Examples

@@ -12,6 +12,8 @@ conversions keep the sign: both are double covers of SO(3).
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -54,7 +56,7 @@ def _quat_from_ab(a: NDArray[np.complex128], b: NDArray[np.complex128], name: st
     norm = np.linalg.norm(q, axis=-1, keepdims=True)
     if q.size and np.max(np.abs(norm - 1.0)) > SU2_TOLERANCE:
         raise ValueError(f"{name} must be special unitary: |a|² + |b|² = 1 (within {SU2_TOLERANCE:g})")
-    return q / norm
+    return cast("NDArray[np.float64]", q / norm)
 
 
 def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
