@@ -18,6 +18,7 @@ N = 37  # odd, so the chunked checks see a ragged last piece
 def parallel(monkeypatch):
     monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
     monkeypatch.setattr(_gufunc, "_CHUNK", 36 * 2)
+    monkeypatch.setattr(_gufunc, "CHECKED_CHUNK", 5)
 
 
 @pytest.fixture(scope="module")
@@ -44,6 +45,7 @@ CASES = {
     "quat_multiply": lambda q, p, psi, R, v: kr.quat_multiply(p, q),
     "quat_apply": lambda q, p, psi, R, v: kr.quat_apply(q, v, inverse=True),
     "quat_normalize": lambda q, p, psi, R, v: kr.quat_normalize(q),
+    "quat_inverse": lambda q, p, psi, R, v: kr.quat_inverse(q),
 }
 
 
@@ -75,16 +77,23 @@ def test_parallel_checks_find_bad_entries_anywhere(data, parallel, position):
     bad_q[position, 2] = np.nan
     bad_psi[position, 1] = np.inf
     bad_R[position, 0, 0] = 1.5
-    with pytest.raises(ValueError, match="q must be finite"):
-        kr.quat_to_matrix(bad_q)
-    with pytest.raises(ValueError, match="psi must be finite"):
-        kr.rotvec_to_matrix(bad_psi)
+    for function in (kr.quat_to_matrix, kr.quat_normalize, kr.quat_inverse):  # the last two check as they compute
+        with pytest.raises(ValueError, match="q must be finite"):
+            function(bad_q)
+    for function in (kr.rotvec_to_matrix, kr.rotvec_to_quat):
+        with pytest.raises(ValueError, match="psi must be finite"):
+            function(bad_psi)
     with pytest.raises(ValueError, match="R must be rotation matrices"):
         kr.matrix_to_quat(bad_R)
     zero_q = q.copy()
     zero_q[position] = 0.0
-    with pytest.raises(ValueError, match="nonzero"):
-        kr.quat_to_matrix(zero_q)
+    for function in (kr.quat_to_matrix, kr.quat_normalize, kr.quat_inverse):
+        with pytest.raises(ValueError, match="nonzero"):
+            function(zero_q)
+    tiny_q = q.copy()
+    tiny_q[position] = [1e-309, 0.0, 0.0, 0.0]
+    with pytest.raises(ValueError, match="overflows"):
+        kr.quat_inverse(tiny_q)
     flipped = R.copy()
     flipped[position] *= -1.0
     with pytest.raises(ValueError, match="det > 0"):
@@ -93,3 +102,10 @@ def test_parallel_checks_find_bad_entries_anywhere(data, parallel, position):
     nan_R[position, 2, 1] = np.nan
     with pytest.raises(ValueError, match="R must be finite"):
         kr.matrix_to_rotvec(nan_R)
+
+
+def test_results_checked_as_computed_match_those_checked_first(data, parallel):
+    q, _, psi, _, _ = data
+    for function, x in ((kr.quat_normalize, q), (kr.quat_inverse, q), (kr.rotvec_to_quat, psi)):
+        first_checked = function(x, out=np.empty((N, 4)))  # out=: checked before the loop
+        assert function(x).tobytes() == first_checked.tobytes()

@@ -188,17 +188,33 @@ _BIG = 1.7976931348623157e308
 
 
 @cached
+def checked_quat_size(q0, q1, q2, q3):
+    """The size of ``q``, its largest ``|component|``, or -1 if ``q`` is not finite.
+
+    No squares: they would overflow or underflow far from unit size. NaN
+    compares false, so it is mapped to -1.
+    """
+    a0, a1, a2, a3 = abs(q0), abs(q1), abs(q2), abs(q3)
+    if not (a0 <= _BIG and a1 <= _BIG and a2 <= _BIG and a3 <= _BIG):
+        return -1.0
+    return max(max(a0, a1), max(a2, a3))
+
+
+@cached
+def finite3(x, y, z):
+    """Whether ``x``, ``y`` and ``z`` are all finite."""
+    return abs(x) <= _BIG and abs(y) <= _BIG and abs(z) <= _BIG
+
+
+@cached
 def _smallest_quat_size(flat, start, stop):
     # One pass, no temporaries: the batch checks must stay cheap next to the
-    # memory-bound kernels they guard. The size of a quaternion is its largest
-    # |component| (no squares: they would overflow or underflow far from unit
-    # size). NaN compares false, so it is mapped to -1.
+    # memory-bound kernels they guard.
     smallest = np.inf
     for i in range(start, stop, 4):
-        a0, a1, a2, a3 = abs(flat[i]), abs(flat[i + 1]), abs(flat[i + 2]), abs(flat[i + 3])
-        if not (a0 <= _BIG and a1 <= _BIG and a2 <= _BIG and a3 <= _BIG):
+        size = checked_quat_size(flat[i], flat[i + 1], flat[i + 2], flat[i + 3])
+        if size < 0.0:
             return -1.0
-        size = max(max(a0, a1), max(a2, a3))
         if size < smallest:
             smallest = size
     return smallest
@@ -256,8 +272,7 @@ def finite_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = (3,)) -
     a = as_float_array(x, name, tail, finite=False)
     flat = _read_only_flat(a)
     width = math.prod(tail or ())
-    if not (_all_finite_parallel(flat, _CHUNK) if _large(flat, width) else _all_finite(flat, 0, flat.size)):
-        raise ValueError(f"{name} must be finite (no NaN or inf)")
+    refuse_nonfinite(_all_finite_parallel(flat, _CHUNK) if _large(flat, width) else _all_finite(flat, 0, flat.size), name)
     return a
 
 
@@ -281,11 +296,47 @@ def sized_quaternion_array(q: ArrayLike, name: str = "q", nonzero: bool = True) 
         return a, math.inf
     flat = _read_only_flat(a)
     smallest = _smallest_quat_size_parallel(flat, _CHUNK) if _large(flat, 4) else _smallest_quat_size(flat, 0, flat.size)
+    refuse_quaternions(smallest, name, nonzero)
+    return a, float(smallest)
+
+
+def refuse_quaternions(smallest: float, name: str, nonzero: bool = True) -> None:
+    """ValueError naming ``name`` if the smallest quaternion size of a batch is -1 (not finite) or 0."""
     if smallest < 0.0:
         raise ValueError(f"{name} must be finite quaternions (no NaN or inf)")
     if nonzero and not smallest > 0.0:
         raise ValueError(f"{name} must be nonzero quaternions (a zero quaternion is not a rotation)")
-    return a, float(smallest)
+
+
+def refuse_nonfinite(finite: bool, name: str) -> None:
+    """ValueError naming ``name`` if a batch is not all finite."""
+    if not finite:
+        raise ValueError(f"{name} must be finite (no NaN or inf)")
+
+
+#: Elements per piece of a loop that checks its input as it computes.
+CHECKED_CHUNK = 2**14
+
+
+def checked_in_one_pass(a: NDArray[np.float64], core_out: tuple[int, ...], loop: Callable[..., Any],
+                        *extra: Any) -> tuple[NDArray[np.float64], Any] | None:
+    """``(result, statistic)`` of a loop that checks its input as it computes a large new result; None if small.
+
+    ``loop(flat_a, flat_out, CHECKED_CHUNK, *extra)`` runs on all cores over
+    ``(n, core)`` views, computes every element that passes its check
+    (leaving the others unwritten) and returns the batch's check statistic.
+    The input is read once instead of once to check and once to compute,
+    and one multi-core loop starts instead of two: the check is still done
+    before any work the caller sees, since the caller refuses the batch from
+    the statistic and the new result is then dropped. With ``out=`` (which
+    may be the input) the callers check first instead.
+    """
+    n = math.prod(a.shape[:-1])
+    if n < PARALLEL_THRESHOLD:
+        return None
+    out = empty((*a.shape[:-1], *core_out))
+    flat = _writable(np.ascontiguousarray(a)).reshape(n, a.shape[-1])
+    return out, loop(flat, out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
 
 
 def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:

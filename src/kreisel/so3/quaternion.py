@@ -17,7 +17,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
-from .._compiled.gufunc import finite_array, gufunc, quaternion_array, sized_quaternion_array, vector_array
+from .._compiled.gufunc import (
+    checked_in_one_pass, checked_quat_size, finite_array, gufunc, quaternion_array, refuse_quaternions,
+    sized_quaternion_array, vector_array,
+)
+from .._validation import as_float_array
 from .._validation import batch_shape
 from ._norms import norm
 
@@ -118,6 +122,44 @@ def _normalize_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> Non
 def _inverse_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
+
+
+#: Operations of :func:`_map_checked`.
+_NORMALIZE, _INVERT = 0, 1
+
+
+@parallel
+def _map_checked(q: NDArray[np.float64], out: NDArray[np.float64], chunk: int, operation: int) -> float:
+    # Normalisation or inverse of each q that is finite and nonzero (the
+    # caller refuses the batch otherwise), and the smallest size of the batch
+    # as sized_quaternion_array finds it: one read of q for both.
+    n = q.shape[0]
+    pieces = (n + chunk - 1) // chunk
+    smallest = np.empty(pieces)
+    for c in prange(pieces):
+        least = np.inf
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+            size = checked_quat_size(q0, q1, q2, q3)
+            least = min(least, size)
+            if size > 0.0:
+                if operation == _NORMALIZE:
+                    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(q0, q1, q2, q3)
+                else:
+                    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q0, q1, q2, q3)
+        smallest[c] = least
+    return smallest.min()
+
+
+def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tuple[NDArray[np.float64], float]:
+    """``(normalised or inverse q, smallest size)``; a large new result is checked in the same pass."""
+    a = as_float_array(q, "q", (4,), finite=False)
+    fused = checked_in_one_pass(a, (4,), _map_checked, operation) if out is None else None
+    if fused is not None:
+        refuse_quaternions(fused[1], "q")
+        return fused
+    a, smallest = sized_quaternion_array(a, "q")
+    return (_normalize if operation == _NORMALIZE else _inverse)(a, out=out), smallest
 
 
 @parallel
@@ -281,9 +323,8 @@ def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     >>> quat_inverse([0.0, 0.0, 2.0, 0.0])
     array([ 0. , -0. , -0.5, -0. ])
     """
-    q, smallest = sized_quaternion_array(q, "q")
     with np.errstate(over="ignore"):
-        inverse = _inverse(q, out=out)
+        inverse, smallest = _mapped(q, _INVERT, out)
     # |q⁻¹| = 1/|q| <= 1/size: only a batch holding a size near 1/DBL_MAX needs the pass over its result
     if smallest < _INVERTIBLE_SIZE and not np.isfinite(inverse).all():
         raise ValueError("q is out of range: the inverse of a quaternion this small (|q| < ~1e-308) overflows")
@@ -305,8 +346,7 @@ def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     >>> quat_normalize([2.0, 0.0, 0.0, 0.0])
     array([1., 0., 0., 0.])
     """
-    q = quaternion_array(q, "q")
-    return _normalize(q, out=out)
+    return _mapped(q, _NORMALIZE, out)[0]
 
 
 def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:

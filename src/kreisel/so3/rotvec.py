@@ -17,7 +17,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver
-from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array, vector_array
+from .._compiled.gufunc import (
+    checked_in_one_pass, finite3, finite_array, gufunc, matrix_array, quaternion_array,
+    refuse_nonfinite, vector_array,
+)
+from .._validation import as_float_array
 from ._norms import norm, unit
 
 __all__ = [
@@ -47,6 +51,24 @@ def _matrix_rotvec(r00: float, r01: float, r02: float, r10: float, r11: float, r
 def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(psi.shape[0]):
         out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
+
+
+@parallel
+def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> bool:
+    # exp of each psi and whether all were finite (the caller refuses the
+    # batch otherwise): one read of psi for the check and the result. The
+    # kernel turns NaN or inf into NaN without raising, so it runs unguarded.
+    n = psi.shape[0]
+    pieces = (n + chunk - 1) // chunk
+    finite = np.empty(pieces, dtype=np.bool_)
+    for c in prange(pieces):
+        ok = True
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            x, y, z = psi[i, 0], psi[i, 1], psi[i, 2]
+            ok &= finite3(x, y, z)
+            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(x, y, z)
+        finite[c] = ok
+    return finite.all()
 
 
 @parallel
@@ -235,7 +257,12 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     >>> np.round(rotvec_to_quat([0.0, 0.0, 2 * np.pi]), 12) + 0.0
     array([-1.,  0.,  0.,  0.])
     """
-    return _rotvec_to_quat(vector_array(psi, "psi"), out=out)
+    a = as_float_array(psi, "psi", (3,), finite=False)
+    fused = checked_in_one_pass(a, (4,), _rotvec_to_quat_checked) if out is None else None
+    if fused is not None:
+        refuse_nonfinite(fused[1], "psi")
+        return fused[0]
+    return _rotvec_to_quat(vector_array(a, "psi"), out=out)
 
 
 def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
