@@ -54,7 +54,7 @@ def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64])
 
 
 @parallel
-def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> bool:
+def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> np.bool_:
     # exp of each psi and whether all were finite (the caller refuses the
     # batch otherwise): one read of psi for the check and the result. The
     # kernel turns NaN or inf into NaN without raising, so it runs unguarded.
