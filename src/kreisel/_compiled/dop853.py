@@ -267,12 +267,13 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
     status code: :data:`PAUSED` when the budget ran out before ``t_out[-1]``
     (``state`` then holds where to continue).
 
-    The step (:func:`advance`) and the dense output (:func:`dense_coefficients`)
-    are written out in this one loop, their stage sums over the work arrays
-    allocated here: every array handed to an inlined helper costs reference
-    counting in the stage loop, which made it ~1.5x slower (same steps, same
-    bits). Helpers without ``rhs`` (error norm, interpolant) stay plain calls,
-    which pass arrays without reference counting.
+    The step (:func:`attempt`, as :func:`advance` takes it) and the dense
+    output (:func:`dense_coefficients`) are written out in this one loop, a
+    deliberate copy of their stage sums over the work arrays allocated here:
+    every array handed to an inlined helper costs reference counting in the
+    stage loop, which made it ~1.5x slower (same steps, same bits). Helpers
+    without ``rhs`` (error norm, interpolant) stay plain calls, which pass
+    arrays without reference counting.
     """
     A, B, C, E3, E5, D = tables[0], tables[1], tables[2], tables[3], tables[4], tables[5]
     ny = (state.size - 3) // 2
@@ -322,6 +323,7 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
             clipped = t + h >= target
             t_new = target if clipped else t + h
             h = t_new - t
+            # attempt() written out (the documented stage copy, see the docstring)
             for s in range(1, N_STAGES):
                 for i in range(ny):
                     acc = 0.0
@@ -343,6 +345,7 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
         h_taken = h
         h = next_step(h, err, rejected, clipped, h_natural)
         if t_out[j] <= t_new:
+            # dense_coefficients() written out (the documented stage copy, see the docstring)
             for s in range(N_STAGES + 1, N_STAGES_EXTENDED):
                 for i in range(ny):
                     acc = 0.0
