@@ -31,6 +31,25 @@ def row(kind, *vectors):
     return r[None, :]
 
 
+def in_principal_axes(rows, axes, vector_kinds, matrix_kinds=()):
+    """``rows`` with their body parameters in principal axes, ``a_principal = axesᵀ a_body``.
+
+    Rows of ``vector_kinds`` hold a body vector in ``row[1:4]``, rows of
+    ``matrix_kinds`` a body matrix in ``row[1:10]``; ``axes=None`` (the body
+    axes are principal) returns ``rows`` itself.
+    """
+    if axes is None:
+        return rows
+    out = rows.copy()
+    for r in out:
+        kind = int(r[0])
+        if kind in vector_kinds:
+            r[1:4] = axes.T @ r[1:4]
+        elif kind in matrix_kinds:
+            r[1:10] = (axes.T @ r[1:10].reshape(3, 3) @ axes).ravel()
+    return out
+
+
 class RowModel:
     """Base of a model family; subclasses set ``_sum`` to the family's sum class."""
 

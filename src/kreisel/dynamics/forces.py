@@ -15,7 +15,7 @@ import numpy as np
 from .._compiled import cached, inlined
 from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ._model_tables import RowModel, RowSum, row, sum_rows
+from ._model_tables import RowModel, RowSum, in_principal_axes, row, sum_rows
 
 __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 
@@ -138,14 +138,8 @@ ForceModel._sum = ForceSum
 
 
 def to_principal(rows, axes):
-    """Express body vectors of force rows in principal axes."""
-    if axes is None:
-        return rows
-    out = rows.copy()
-    for r in out:
-        if int(r[0]) == F_BODY:
-            r[1:4] = axes.T @ r[1:4]
-    return out
+    """Force rows in principal axes: the body forces turn, the space ones and drag do not."""
+    return in_principal_axes(rows, axes, (F_BODY,))
 
 
 @inlined

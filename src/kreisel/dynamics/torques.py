@@ -21,7 +21,7 @@ import numpy as np
 from .._compiled import cached, inlined
 from .._compiled.kernels import _rotated as rotated
 from .._validation import as_float_array
-from ._model_tables import RowModel, RowSum, row, sum_rows
+from ._model_tables import RowModel, RowSum, in_principal_axes, row, sum_rows
 
 __all__ = [
     "TorqueModel",
@@ -241,27 +241,18 @@ TorqueModel._sum = TorqueSum
 
 
 def to_principal(rows, axes):
-    """Express body-frame table rows in principal axes ``a_principal = axesᵀ a_body``."""
-    if axes is None:
-        return rows
-    out = rows.copy()
-    for r in out:
-        kind = int(r[0])
-        if kind in (BODY, CROSS):
-            r[1:4] = axes.T @ r[1:4]
-        elif kind == DAMPING:
-            r[1:10] = (axes.T @ r[1:10].reshape(3, 3) @ axes).ravel()
-    return out
+    """Torque rows in principal axes: body torques, the body arm of a cross torque and the damping matrix turn."""
+    return in_principal_axes(rows, axes, (BODY, CROSS), (DAMPING,))
 
 
 @inlined
 def _torque_term(rows, i, q0, q1, q2, q3, y):
     """Body torque of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, ...)``."""
     kind = int(rows[i, 0])
-    if kind == BODY:
-        return rows[i, 1], rows[i, 2], rows[i, 3]
     if kind == SPACE:
         return rotated(q0, -q1, -q2, -q3, rows[i, 1], rows[i, 2], rows[i, 3])
+    if kind == BODY:
+        return rows[i, 1], rows[i, 2], rows[i, 3]
     if kind == CROSS:
         a0, a1, a2 = rows[i, 1], rows[i, 2], rows[i, 3]
         v0, v1, v2 = rotated(q0, -q1, -q2, -q3, rows[i, 4], rows[i, 5], rows[i, 6])
