@@ -147,3 +147,19 @@ def test_callable_force_is_any_python_callable_checked_at_every_call():
     with pytest.raises(ValueError, match=r"omega callable returned a non-finite value .* at t = 0\.5"):
         F.simulate_particle(t, [1.0, 0, 0], [0, 0, 0], lambda tt: np.array([0, 0, 1.0 if tt < 0.5 else np.nan]),
                             omega_dot=lambda tt: np.zeros(3), force=lambda tt, r, v: -r)
+
+
+def test_lagrangian_at_extreme_magnitudes_is_exact_or_refused_as_out_of_range():
+    mpmath = pytest.importorskip("mpmath")
+    r, v, w = np.array([1e160, 2e160, -1e160]), np.array([3e150, -1e150, 2e150]), np.array([1e-10, 0.0, 2e-10])
+    u = [mpmath.mpf(x) for x in v + np.cross(w, r)]  # ω×r is exact here (one nonzero product per entry)
+    exact = float(sum(x * x for x in u) / 4)  # mass 0.5
+    np.testing.assert_allclose(F.lagrangian(r, v, w, mass=0.5), exact, rtol=1e-14)
+    # ṙ = −ω×r: the particle is at rest in the inertial frame, whatever the size of either term
+    r, w = np.array([1e200, 0.0, 0.0]), np.array([0.0, 0.0, 1e100])
+    assert F.lagrangian(r, -np.cross(w, r), w) == 0.0
+    for call in (lambda: F.lagrangian([0, 0, 0], [1e200, 0, 0], [0, 0, 1]),
+                 lambda: F.lagrangian_terms(r, [0, 0, 0], w),
+                 lambda: F.hamiltonian([0, 0, 0], [1e200, 0, 0], [0, 0, 1])):
+        with pytest.raises(ValueError, match="out of range"):
+            call()

@@ -182,3 +182,19 @@ def test_q0_is_any_rotation_input_as_for_simulate():
     want = nav.attitude_from_increments(q0, d, 2)
     for same in (3.0 * q0, kr.Rotation.from_quat(q0), kr.quat_to_matrix(q0)):
         np.testing.assert_allclose(nav.attitude_from_increments(same, d, 2), want, rtol=0, atol=1e-15)
+
+
+def test_attitude_from_rates_refuses_turns_beyond_half_a_turn_per_sample():
+    # more than π between samples is aliased; rates ~1e80 used to give NaN attitudes without an error
+    t = np.linspace(0.0, 1.0, 5)
+    for scale in (20.0, 1e80, 1e300):
+        with pytest.raises(ValueError, match=r"omega_body turns the body by .* between samples 0 and 1 of t, more than π"):
+            kr.nav.attitude_from_rates([1, 0, 0, 0], t, np.tile([0.0, 0.0, scale], (5, 1)))
+    with pytest.raises(ValueError, match="more than π"):
+        kr.nav.attitude_from_rates([1, 0, 0, 0], t * 1e100, np.tile([0.0, 0.0, 1.0], (5, 1)))
+    # just under half a turn per sample still integrates: the exact turn about a fixed axis
+    q = kr.nav.attitude_from_rates([1, 0, 0, 0], t, np.tile([0.0, 0.0, 12.0], (5, 1)), method="bortz")
+    np.testing.assert_allclose(q[-1], [np.cos(6.0), 0, 0, np.sin(6.0)], atol=1e-12)
+    # tiny rates over tiny or huge spans are fine
+    q = kr.nav.attitude_from_rates([1, 0, 0, 0], t * 1e200, np.tile([0.0, 0.0, 1e-200], (5, 1)), method="bortz")
+    np.testing.assert_allclose(q[-1], [np.cos(0.5), 0, 0, np.sin(0.5)], atol=1e-15)

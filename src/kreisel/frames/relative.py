@@ -27,6 +27,7 @@ from collections import namedtuple
 import numpy as np
 
 from .._validation import as_float_array
+from ..so3._norms import norm
 
 __all__ = [
     "InertialForces",
@@ -105,6 +106,18 @@ def _scalar(x, name, positive=False):
 
 def _dot(a, b):
     return np.sum(a * b, axis=-1)
+
+
+def _energy_terms(compute, which, names):
+    """``compute()``'s energy terms, refused naming ``names`` where a term or their sum overflows."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        terms = compute()
+        total = sum(terms)
+    if not (np.isfinite(total).all() and all(np.isfinite(x).all() for x in terms)):
+        raise ValueError(f"{names} are out of range: the terms of the {which} overflow double precision "
+                         "(exceed 1.8e308 J)")
+    shape = np.broadcast_shapes(*(np.shape(x) for x in terms))
+    return [np.broadcast_to(x, shape).copy() for x in terms]
 
 
 def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), mass=1.0):
@@ -203,10 +216,12 @@ def lagrangian_terms(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     r, v, omega, a0 = _vectors(r=r, v=v, omega=omega, a0=a0)
     potential = _scalar(potential, "potential")
     m = _scalar(mass, "mass", positive=True)
-    wr = np.cross(omega, r)
-    terms = (0.5 * m * _dot(v, v), m * _dot(v, wr), 0.5 * m * _dot(wr, wr), -m * _dot(a0, r), -potential)
-    shape = np.broadcast_shapes(*(np.shape(x) for x in terms))
-    return LagrangianTerms(*(np.broadcast_to(x, shape).copy() for x in terms))
+
+    def compute():
+        wr = np.cross(omega, r)
+        return 0.5 * m * _dot(v, v), m * _dot(v, wr), 0.5 * m * _dot(wr, wr), -m * _dot(a0, r), -potential
+
+    return LagrangianTerms(*_energy_terms(compute, "Lagrangian", "r, v, omega, a0, potential and mass"))
 
 
 def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
@@ -217,7 +232,17 @@ def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     >>> float(lagrangian([1, 0, 0], [0, 1, 0], [0, 0, 1]))
     2.0
     """
-    return sum(lagrangian_terms(r, v, omega, a0, potential, mass))
+    r, v, omega, a0 = _vectors(r=r, v=v, omega=omega, a0=a0)
+    potential = _scalar(potential, "potential")
+    m = _scalar(mass, "mass", positive=True)
+
+    def compute():
+        # the inertial speed as a whole: its square overflows only when the kinetic energy does, and
+        # ṙ and ω×r may cancel
+        speed = norm(v + np.cross(omega, r))
+        return 0.5 * m * speed * speed, -m * _dot(a0, r), -potential
+
+    return sum(_energy_terms(compute, "Lagrangian", "r, v, omega, a0, potential and mass"))
 
 
 def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
@@ -243,9 +268,11 @@ def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     r, p, omega, a0 = _vectors(r=r, p=p, omega=omega, a0=a0)
     potential = _scalar(potential, "potential")
     m = _scalar(mass, "mass", positive=True)
-    terms = (_dot(p, p) / (2.0 * m), -_dot(p, np.cross(omega, r)), m * _dot(a0, r), potential)
-    shape = np.broadcast_shapes(*(np.shape(x) for x in terms))
-    return HamiltonianTerms(*(np.broadcast_to(x, shape).copy() for x in terms))
+
+    def compute():
+        return _dot(p, p) / (2.0 * m), -_dot(p, np.cross(omega, r)), m * _dot(a0, r), potential
+
+    return HamiltonianTerms(*_energy_terms(compute, "Hamiltonian", "r, p, omega, a0, potential and mass"))
 
 
 def hamiltonian(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):

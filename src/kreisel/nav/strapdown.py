@@ -24,6 +24,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..so3._coercion import as_quaternion
+from ..so3._norms import norm
 from . import _kernels
 from .coning import coning_coefficients
 
@@ -167,6 +168,16 @@ def attitude_from_rates(q0, t, omega_body, method="quaternion"):
     bad = ~np.isfinite(omega_body)
     if bad.any():
         raise ValueError(f"omega_body must be finite; first bad sample at index {np.argwhere(bad)[0][:-1].tolist()}")
+    # a turn of more than π within one interval is aliased (the samples cannot tell it from a shorter one
+    # the other way round) and far outside RK4's accuracy: refused, not integrated into a wrong attitude
+    speed = norm(omega_body)
+    with np.errstate(over="ignore"):
+        turn = np.maximum(speed[..., :-1], speed[..., 1:]) * step
+    if np.any(turn > np.pi):
+        worst = np.unravel_index(np.argmax(turn), turn.shape)
+        raise ValueError(f"omega_body turns the body by {float(turn[worst]):.3g} rad between samples {worst[-1]} "
+                         f"and {worst[-1] + 1} of t, more than π: sample faster (the rates do not determine the "
+                         "attitude between such samples)")
     q0b, data, batch = _batched(q0, omega_body, "omega_body")
     out = np.empty((data.shape[0], t.size, 4))
     _kernels.integrate_rates(q0b, np.ascontiguousarray(t), data, method == "bortz", out)
