@@ -128,3 +128,14 @@ def test_coning_drift_rejects_bad_n():
         nav.coning_drift(0.1, 1.0, 0.01, 5)
     with pytest.raises(TypeError, match="samples_per_update"):
         nav.coning_drift(0.1, 1.0, 0.01, 2.0)
+
+
+def test_coning_drift_at_extreme_magnitudes_against_mpmath():
+    # α ~1e-200 squares to 0 and λ^(2N) ~1e320 overflows on their own; ε itself is representable
+    mpmath = pytest.importorskip("mpmath")
+    for alpha, rate, ts, n in [(1e-200, 1e60, 1e-20, 2), (1e-3, 1e100, 1e-99, 4), (0.5, 1e-80, 1e10, 3)]:
+        c = mpmath.factorial(n) / (2 ** (n + 1) * mpmath.fac2(2 * n + 1))
+        exact = c * mpmath.mpf(alpha) ** 2 * mpmath.mpf(rate) ** (2 * n + 1) * mpmath.mpf(ts) ** (2 * n)
+        assert nav.coning_drift(alpha, rate, ts, n) == pytest.approx(float(exact), rel=1e-14)
+    with pytest.raises(ValueError, match="out of range"):
+        nav.coning_drift(0.1, 1e65, 0.01, 2)

@@ -212,6 +212,14 @@ def coning_drift(half_angle, rate, sample_time, samples_per_update):
     """
     n = _check_samples_per_update(samples_per_update)
     alpha, big_omega, ts = _positive_scalars(half_angle=half_angle, rate=rate, sample_time=sample_time)
-    lam = big_omega * ts
     coefficient = factorial(n) / (2.0 ** (n + 1) * _double_factorial_odd(n))
-    return (alpha**2 * big_omega * lam ** (2 * n) * coefficient)[()]
+    # ε = c α² Ω^(2N+1) T_s^(2N) from the mantissas and binary exponents of α, Ω and T_s (exact splits):
+    # no power overflows or underflows on the way to an ε that double precision holds
+    (fa, ea), (fo, eo), (ft, et) = (np.frexp(x) for x in (alpha, big_omega, ts))
+    mantissa = coefficient * fa**2 * fo ** (2 * n + 1) * ft ** (2 * n)
+    with np.errstate(over="ignore"):
+        eps = np.ldexp(mantissa, 2 * ea + (2 * n + 1) * eo + 2 * n * et)
+    if not np.isfinite(eps).all():
+        raise ValueError("half_angle, rate and sample_time are out of range: the drift rate α² Ω λ^(2N) … "
+                         "overflows double precision")
+    return eps[()]
