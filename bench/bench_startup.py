@@ -3,10 +3,12 @@
 Each command runs in a fresh interpreter, with the numba cache and the bytecode caches warm (one
 unmeasured run of each command first, ``PYTHONDONTWRITEBYTECODE`` unset so that the sources are
 compiled to ``__pycache__`` once, as ``pip install`` does). The commands run in alternation (a, b, c,
-a, b, c, ...) so that they share the machine's conditions; the table gives the best and the median wall
-time of the runs, and the least CPU time (user + system) of the child process, which other jobs on a
-shared machine inflate far less than the wall time. The peer is ``python -c "import scipy.spatial.transform"``, and ``import numba`` is listed
-because ``kreisel convert`` cannot start faster than it: its rotations are numba kernels.
+a, b, c, ...) so that they share the machine's conditions; the table gives the median and the best wall
+time of the runs, and the median and the least CPU time (user + system) of the child process, which other
+jobs on a shared machine inflate far less than the wall time. The peer is
+``python -c "import scipy.spatial.transform"``; ``import numba`` is listed because the compiled layer
+would cost ``kreisel convert`` at least that (its NumPy formulas load no numba), and ``import numpy,
+typer`` because convert cannot start faster than that.
 
 Usage: ``python bench/bench_startup.py [repeats]`` (default 7).
 """
@@ -16,6 +18,7 @@ from __future__ import annotations
 import os
 import pathlib
 import resource
+import statistics
 import subprocess
 import sys
 
@@ -29,7 +32,8 @@ COMMANDS = {
     "`kreisel --help`": ["-m", "kreisel", "--help"],
     "`kreisel convert --from euler:ZXZ --to quat -30 45 60 --degrees`":
         ["-m", "kreisel", "convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degrees"],
-    "`python -c 'import numba'` (what convert cannot undercut)": ["-c", "import numba"],
+    "`python -c 'import numpy, typer'` (what convert cannot undercut)": ["-c", "import numpy, typer"],
+    "`python -c 'import numba'` (what convert does not load)": ["-c", "import numba"],
     "`python -c 'pass'` (interpreter alone)": ["-c", "pass"],
 }
 GOALS = {"`python -c 'import kreisel'`": 0.4, "`kreisel --help`": 0.3,
@@ -55,18 +59,20 @@ def main(repeats=7):
     cpu = {name: [] for name in COMMANDS}
     runs = [command(args, cpu[name]) for name, args in COMMANDS.items()]
     timings = dict(zip(COMMANDS, interleaved(*runs, repeats=repeats)))
-    peer, peer_cpu = timings[PEER].best, min(cpu[PEER])
-    rows = [(name, f"{t.best:.3f}", f"{t.median:.3f}", f"{min(cpu[name]):.3f}", f"{t.best / peer:.2f}",
-             f"{min(cpu[name]) / peer_cpu:.2f}", GOALS.get(name, "")) for name, t in timings.items()]
+    peer_median_cpu = statistics.median(cpu[PEER])
+    rows = [(name, f"{t.median:.3f}", f"{t.best:.3f}", f"{statistics.median(cpu[name]):.3f}", f"{min(cpu[name]):.3f}",
+             f"{t.median / timings[PEER].median:.2f}", f"{statistics.median(cpu[name]) / peer_median_cpu:.2f}",
+             GOALS.get(name, "")) for name, t in timings.items()]
     lines = header(
         "Start-up time (`bench/bench_startup.py`)",
         f"Fresh interpreters, numba and bytecode caches warm, {repeats} runs of each command in alternation: "
-        "best and median wall time, least CPU time of the child process. On a loaded machine the CPU time is "
-        "the comparable number (a quiet machine's wall time is close to it); ratios are to the peer's.",
+        "median and best wall time, median and least CPU time (user + system) of the child process. On a "
+        "loaded machine the CPU time is the comparable number (a quiet machine's wall time is close to it); "
+        "ratios are of the medians to the peer's.",
         load_before=load_before,
     )
-    lines += markdown_table(["command", "best wall (s)", "median wall (s)", "least CPU (s)", "wall / peer",
-                             "CPU / peer", "goal (s)"], rows, align="lrrrrrr")
+    lines += markdown_table(["command", "median wall (s)", "best wall (s)", "median CPU (s)", "least CPU (s)",
+                             "wall / peer", "CPU / peer", "goal (s)"], rows, align="lrrrrrrr")
     write_results("startup", "\n".join(lines))
 
 

@@ -13,7 +13,7 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "src" / "kreisel"
 
 #: Layers from the bottom: a module may import its own layer and those below.
 LAYERS = (
-    ("_compiled", "_validation", "_fileio", "_version", "_html", "_display", "_optional"),
+    ("_compiled", "_validation", "_norms", "_fileio", "_version", "_html", "_display", "_optional"),
     ("so3",),
     ("kinematics", "se3"),
     ("inertia", "dynamics"),

@@ -139,3 +139,43 @@ def _size(nbytes: float) -> str:
         if nbytes >= size:
             return f"{nbytes / size:.3g} {unit}"
     return f"{nbytes:.0f} bytes"
+
+
+#: Axis letter -> index, for Euler axis sequences.
+AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def parse_sequence(seq: str) -> tuple[tuple[int, ...], bool]:
+    """Parse an Euler axis sequence.
+
+    Parameters
+    ----------
+    seq : str
+        Three letters from ``xyz``, all uppercase (intrinsic) or all lowercase
+        (extrinsic), no two adjacent letters equal ("ZXZ", "xyz", ...).
+
+    Returns
+    -------
+    axes : tuple of 3 int
+        Axis indices 0, 1, 2 for x, y, z, in the order written.
+    intrinsic : bool
+
+    Examples
+    --------
+    >>> parse_sequence("ZXZ")
+    ((2, 0, 2), True)
+    >>> parse_sequence("xyz")
+    ((0, 1, 2), False)
+    """
+    if not isinstance(seq, str):
+        raise ValueError(f"seq must be a 3-letter string of x, y, z, got {seq!r}")
+    if len(seq) != 3:
+        raise ValueError(f"seq must have exactly 3 letters, got {seq!r}")
+    if not (seq.isupper() or seq.islower()):
+        raise ValueError(f"seq must be all uppercase (intrinsic) or all lowercase (extrinsic), got {seq!r}")
+    lower = seq.lower()
+    if any(c not in AXES for c in lower):
+        raise ValueError(f"seq may only contain the letters x, y, z, got {seq!r}")
+    if lower[0] == lower[1] or lower[1] == lower[2]:
+        raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
+    return tuple(AXES[c] for c in lower), seq.isupper()

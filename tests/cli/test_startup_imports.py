@@ -1,4 +1,5 @@
-"""`kreisel --help` and `kreisel convert` load only what they need (not the simulation, plotting, Dask or web stacks)."""
+"""`kreisel --help` and `kreisel convert` load only what they need (not the simulation, plotting, Dask or web stacks,
+and for convert not numba)."""
 
 import json
 import os
@@ -56,7 +57,11 @@ def test_help_loads_no_numerics_and_no_rich():
     assert not any(m == "rich" or m.startswith("rich.") for m in modules)
 
 
-def test_convert_loads_only_the_rotation_layer():
+def test_convert_loads_no_compiled_code():
+    # numba's import and its compiler's start-up (which imports scipy.linalg) cost over a second of CPU: the
+    # command's NumPy formulas (kreisel.cli.rotations) need neither
     modules = loaded("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degrees")
-    assert "kreisel.so3" in modules
+    assert "kreisel.cli.rotations" in modules
     assert heavy(modules) == []
+    assert not [m for m in modules if m.split(".")[0] in ("numba", "scipy", "llvmlite") or m.startswith(
+        ("kreisel.so3", "kreisel._compiled"))]

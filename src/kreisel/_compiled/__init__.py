@@ -1,7 +1,7 @@
 """kreisel's compiled layer: the one home of the numba machinery every package shares.
 
 It sits below :mod:`kreisel.so3` (every package may import it; it imports no
-other kreisel package, only the private helpers ``kreisel._validation``) and
+other kreisel package, only the private helpers ``kreisel._validation`` and ``kreisel._norms``) and
 holds
 
 - :mod:`.gufunc`: :class:`~.gufunc.LazyGufunc` (per-element kernels broadcast

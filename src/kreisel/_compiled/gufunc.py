@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from numba import guvectorize, prange
 
+from .._norms import nearest_rotation
 from .._validation import as_float_array
 from . import cached, parallel
 from . import outputs
@@ -383,18 +384,6 @@ def _orthogonality_defect_parallel(flat, chunk):
 
 #: Defects below this are rounding noise of a rotation and pass untouched.
 _ROUNDING_DEFECT = 1e-13
-
-
-def nearest_rotation(M: ArrayLike) -> NDArray[np.float64]:
-    """Nearest rotation matrix (Frobenius norm) to each ``(..., 3, 3)`` matrix.
-
-    ``U diag(1, 1, det(U Vᵀ)) Vᵀ`` from the SVD ``M = U S Vᵀ`` — the special
-    orthogonal polar factor (Kabsch).
-    """
-    U, _, Vt = np.linalg.svd(M)
-    d = np.sign(np.linalg.det(U @ Vt))
-    U[..., :, 2] *= d[..., None]
-    return U @ Vt
 
 
 def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY_TOLERANCE) -> NDArray[np.float64]:

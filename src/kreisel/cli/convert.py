@@ -3,7 +3,8 @@
 Representations are named like ``quat``, ``matrix``, ``rotvec``, ``euler:ZXZ``
 (any of the 24 sequences), ``axis_angle``, ``gibbs``, ``mrp``, ``su2`` and
 ``cayley_klein``. Values come from the command line or, row by row, from
-standard input or a CSV file.
+standard input or a CSV file. The conversions are the NumPy formulas of
+:mod:`kreisel.cli.rotations`, so that the command never loads numba.
 """
 
 from __future__ import annotations
@@ -13,8 +14,8 @@ import io
 
 import numpy as np
 
-from ..so3.euler import parse_sequence
-from ..so3.rotation import Rotation
+from .._validation import parse_sequence
+from .rotations import from_quat, to_quat
 
 __all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows"]
 
@@ -142,45 +143,27 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     if src == "quat" and scalar_last:
         values = np.roll(values, 1, axis=-1)
     try:
-        rotation = _from(src, src_seq, values, degrees)
+        q = to_quat(src, src_seq, values, degrees)
+        out = from_quat(q, dst, dst_seq, degrees)
     except ValueError as exc:
-        raise ConversionError(_first_invalid(src, src_seq, values, degrees, lines, exc)) from None
-    out = _as(rotation, dst, dst_seq, degrees)
+        raise ConversionError(_first_invalid(src, src_seq, dst, dst_seq, values, degrees, lines, exc)) from None
     if dst == "quat" and scalar_last:
         out = np.roll(out, -1, axis=-1)
-    return out.reshape(out.shape[0], -1)
+    return out
 
 
-def _first_invalid(name, seq, values, degrees, lines, batch_error):
-    """Message naming the first row that ``_from`` refuses (and its input line)."""
+def _first_invalid(src, src_seq, dst, dst_seq, values, degrees, lines, batch_error):
+    """Message naming the first row that cannot be converted (and its input line)."""
     for index in range(len(values)):
+        what = f"invalid {src}"
         try:
-            _from(name, seq, values[index:index + 1], degrees)
+            q = to_quat(src, src_seq, values[index:index + 1], degrees)
+            what = f"no {dst} of this rotation"
+            from_quat(q, dst, dst_seq, degrees)
         except ValueError as exc:
             where = f"input line {lines[index]}: " if lines is not None and len(values) > 1 else ""
-            return f"{where}invalid {name}: {exc}"
-    return f"invalid {name}: {batch_error}"
-
-
-def _from(name, seq, values, degrees):
-    if name == "euler":
-        return Rotation.from_euler(seq, values, degrees=degrees)
-    if name == "axis_angle":
-        return Rotation.from_axis_angle(values[:, :3], values[:, 3], degrees=degrees)
-    if name == "rotvec":
-        return Rotation.from_rotvec(values, degrees=degrees)
-    return getattr(Rotation, f"from_{name}")(values)
-
-
-def _as(rotation, name, seq, degrees):
-    if name == "euler":
-        return rotation.as_euler(seq, degrees=degrees)
-    if name == "axis_angle":
-        axis, angle = rotation.as_axis_angle(degrees=degrees)
-        return np.concatenate([axis, angle[:, None]], axis=1)
-    if name == "rotvec":
-        return rotation.as_rotvec(degrees=degrees)
-    return getattr(rotation, f"as_{name}")()
+            return f"{where}{what}: {exc}"
+    return f"invalid {src}: {batch_error}"
 
 
 def format_rows(array, precision=10):

@@ -14,7 +14,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..so3._coercion import as_rotation_matrix
-from ..so3._norms import unit
+from .._norms import unit
 
 __all__ = [
     "points",

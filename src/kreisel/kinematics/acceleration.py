@@ -13,7 +13,7 @@ from .._compiled.outputs import deliver
 from .._compiled.gufunc import quaternion_array
 from .._validation import check_frame
 from ..so3 import quat_conjugate, quat_multiply
-from ..so3._norms import norm
+from .._norms import norm
 from ..so3.euler import parse_sequence
 from ._checks import batch_shape, frame_sign, rotation_batch, same_batch, vector_batch, vectors
 from .euler import _angles, euler_rate_matrix

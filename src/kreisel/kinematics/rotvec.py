@@ -28,7 +28,7 @@ from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
 from .._validation import as_float_array, check_tolerance, warn_if_any
-from ..so3._norms import norm
+from .._norms import norm
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
 from ._checks import frame_sign, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning

@@ -16,7 +16,7 @@ import numpy as np
 from .._validation import as_float_array
 from .._compiled.outputs import deliver
 from ._checks import batch_shape, vectors
-from ..so3._norms import norm
+from .._norms import norm
 
 __all__ = ["ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "centrodes"]
 

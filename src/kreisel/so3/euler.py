@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
+from .._validation import AXES as _AXES, parse_sequence
 from . import matrix as _matrix
 
 __all__ = [
@@ -45,9 +46,6 @@ __all__ = [
     "matrix_to_euler",
     "gimbal_lock",
 ]
-
-_AXES = {"x": 0, "y": 1, "z": 2}
-
 
 class KinematicSingularityWarning(UserWarning):
     """A parameterisation rate was requested where the parameterisation is singular."""
@@ -60,42 +58,6 @@ class GimbalLockWarning(KinematicSingularityWarning):
     and third rates are then NaN) and, on request, by
     ``Rotation.as_euler(..., suppress_warnings=False)``.
     """
-
-
-def parse_sequence(seq: str) -> tuple[tuple[int, ...], bool]:
-    """Parse an Euler axis sequence.
-
-    Parameters
-    ----------
-    seq : str
-        Three letters from ``xyz``, all uppercase (intrinsic) or all lowercase
-        (extrinsic), no two adjacent letters equal ("ZXZ", "xyz", ...).
-
-    Returns
-    -------
-    axes : tuple of 3 int
-        Axis indices 0, 1, 2 for x, y, z, in the order written.
-    intrinsic : bool
-
-    Examples
-    --------
-    >>> parse_sequence("ZXZ")
-    ((2, 0, 2), True)
-    >>> parse_sequence("xyz")
-    ((0, 1, 2), False)
-    """
-    if not isinstance(seq, str):
-        raise ValueError(f"seq must be a 3-letter string of x, y, z, got {seq!r}")
-    if len(seq) != 3:
-        raise ValueError(f"seq must have exactly 3 letters, got {seq!r}")
-    if not (seq.isupper() or seq.islower()):
-        raise ValueError(f"seq must be all uppercase (intrinsic) or all lowercase (extrinsic), got {seq!r}")
-    lower = seq.lower()
-    if any(c not in _AXES for c in lower):
-        raise ValueError(f"seq may only contain the letters x, y, z, got {seq!r}")
-    if lower[0] == lower[1] or lower[1] == lower[2]:
-        raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
-    return tuple(_AXES[c] for c in lower), seq.isupper()
 
 
 def _short_sequence(seq: str) -> tuple[tuple[int, ...], bool] | None:

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import kernels
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
-from ._norms import unit
+from .._norms import unit
 
 __all__ = ["quat_slerp", "quat_mean"]
 

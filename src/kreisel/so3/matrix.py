@@ -12,7 +12,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels, parallel
 from .._compiled.outputs import deliver
-from .._compiled.gufunc import finite_array, gufunc, matrix_array, nearest_rotation, quaternion_array
+from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
+from .._norms import nearest_rotation
 
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 

@@ -23,7 +23,7 @@ from .._compiled.gufunc import (
 )
 from .._validation import as_float_array
 from .._validation import batch_shape
-from ._norms import norm
+from .._norms import norm
 
 __all__ = [
     "quat_multiply",

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array, vector_array
 from .._compiled.outputs import deliver
-from ._norms import norm, unit
+from .._norms import norm, unit
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
 

@@ -22,7 +22,7 @@ from .._compiled.gufunc import (
     refuse_nonfinite, vector_array,
 )
 from .._validation import as_float_array
-from ._norms import norm, unit
+from .._norms import norm, unit
 
 __all__ = [
     "generators",

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled.gufunc import quaternion_array
 from .._compiled.outputs import deliver
 from .._validation import as_float_array
-from ._norms import unit
+from .._norms import unit
 
 __all__ = [
     "quat_to_su2",

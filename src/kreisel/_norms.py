@@ -1,10 +1,13 @@
-"""Euclidean norms that neither overflow nor underflow, for the Python-level functions.
+"""Euclidean norms that neither overflow nor underflow, and the nearest rotation matrix, in plain NumPy.
 
 Squaring a component above ~1e154 overflows and one below ~1e-162 underflows
 to zero, so ``sqrt(x·x)`` is wrong (inf, 0 or digits lost) for finite vectors
 far from unit size. As ``math.hypot`` does, the vector is first divided by
 its largest component. The compiled kernels do the same in their rare slow
 path (:mod:`kreisel._compiled.kernels`).
+
+This module imports no numba: ``kreisel convert`` uses it without loading
+the compiled layer (:mod:`kreisel.cli.rotations`).
 """
 
 from __future__ import annotations
@@ -30,3 +33,15 @@ def unit(x: ArrayLike, name: str) -> NDArray[np.float64]:
         raise ValueError(f"{name} must be nonzero (a zero vector has no direction)")
     scaled = x / largest
     return scaled / np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
+
+
+def nearest_rotation(M: ArrayLike) -> NDArray[np.float64]:
+    """Nearest rotation matrix (Frobenius norm) to each ``(..., 3, 3)`` matrix.
+
+    ``U diag(1, 1, det(U Vᵀ)) Vᵀ`` from the SVD ``M = U S Vᵀ`` — the special
+    orthogonal polar factor (Kabsch).
+    """
+    U, _, Vt = np.linalg.svd(M)
+    d = np.sign(np.linalg.det(U @ Vt))
+    U[..., :, 2] *= d[..., None]
+    return U @ Vt
