@@ -166,3 +166,34 @@ def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):
     assert (tmp_path / "f.png").stat().st_size > 10_000
     usage_error(kreisel("plot", "f.nc", "--kind", "euler", "-o", "g.png", cwd=tmp_path),
                 "f.nc holds a Foucault pendulum result, which plots as azimuth")
+
+
+def test_serve_opens_a_bundled_scenario_by_name(tmp_path):
+    import re
+    import signal
+
+    import httpx
+
+    usage_error(kreisel("serve", "tenis_racket", "--no-browser", cwd=tmp_path), "did you mean 'tennis_racket'?")
+    (tmp_path / "data.toml").write_bytes(b"\x89PNG\r\n\x1a\n\x00\xff")
+    usage_error(kreisel("serve", "data.toml", "--no-browser", cwd=tmp_path), "data.toml: not a text file")
+    env = dict(os.environ, PYTHONPATH=str(SRC))
+    server = subprocess.Popen([sys.executable, "-m", "kreisel", "serve", "tennis_racket", "--port", "0",
+                               "--no-browser"], cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+    try:
+        url = None
+        for line in server.stdout:
+            found = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            if found:
+                url = found.group(0)
+                break
+        assert url, "kreisel serve did not print its URL"
+        assert 'title = "Tennis racket' in httpx.get(url + "api/initial", timeout=60).json()["toml"]
+    finally:
+        server.send_signal(signal.SIGINT)
+        try:
+            server.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait()

@@ -148,7 +148,7 @@ def test_unknown_command_is_a_usage_error():
 
 def test_serve_refuses_bad_input_before_starting(tmp_path):
     result = run("serve", str(tmp_path / "absent.toml"), "--no-browser")
-    assert result.exit_code == 2 and "cannot read" in result.output
+    assert result.exit_code == 2 and "absent.toml: no such file" in result.output
     result = run("serve", "--port", "70000", "--no-browser")
     assert result.exit_code == 2 and "port" in result.output
 

@@ -412,7 +412,8 @@ def fit(
 
 @app.command()
 def serve(
-    scenario: Optional[pathlib.Path] = typer.Argument(None, help="Scenario TOML to open in the viewer."),
+    scenario: Optional[pathlib.Path] = typer.Argument(
+        None, help="Scenario TOML to open in the viewer, or the name of a bundled one (`kreisel examples`)."),
     host: str = typer.Option("127.0.0.1", "--host", help="Interface to bind (loopback by default)."),
     port: int = typer.Option(0, "--port", help="Port; 0 picks a free one."),
     no_browser: bool = typer.Option(False, "--no-browser", help="Do not open a browser window."),

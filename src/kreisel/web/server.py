@@ -62,7 +62,8 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
     Parameters
     ----------
     scenario : str or path-like, optional
-        A scenario TOML file shown first (checked before the server starts).
+        A scenario TOML file, or the name of a bundled one (``kreisel examples``), shown first (checked
+        before the server starts).
     host : str
         Interface to listen on; the default keeps the viewer private to this machine. Only requests
         that name this host (or a loopback name) with the server's port, from the server's own pages,
@@ -100,11 +101,16 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
 
     text = None
     if scenario is not None:
-        path = pathlib.Path(scenario)
+        from ..io.bundled import scenario_path
+        from ..io.scenario import ScenarioError
+        from ..io.schema import read_text
+
+        # a file, or a bundled scenario's name, read as `kreisel simulate` reads it
         try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise ValueError(f"scenario: cannot read {path} ({exc.strerror})") from None
+            path = scenario_path(scenario)
+        except FileNotFoundError as exc:
+            raise ValueError(str(exc)) from None
+        text = read_text(path, ScenarioError, "scenario")
         load(text, path=path)
     data = None
     if recording is not None:
