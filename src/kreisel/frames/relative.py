@@ -27,7 +27,7 @@ from collections import namedtuple
 import numpy as np
 
 from .._validation import as_float_array
-from ..so3._norms import norm
+from .._norms import norm
 
 __all__ = [
     "InertialForces",

@@ -24,7 +24,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..so3._coercion import as_quaternion
-from ..so3._norms import norm
+from .._norms import norm
 from . import _kernels
 from .coning import coning_coefficients
 
