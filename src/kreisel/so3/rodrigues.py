@@ -50,8 +50,15 @@ def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
 
     Parameters
     ----------
+    g : array_like, shape (..., 3)
+        Gibbs vectors ``n tan(ψ/2)``, any length.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternions with q0 > 0.
 
     Examples
     --------
@@ -85,8 +92,15 @@ def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
 
     Parameters
     ----------
+    p : array_like, shape (..., 3)
+        Modified Rodrigues parameters ``n tan(ψ/4)``.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternions; a shadow-set |p| > 1 gives the same rotation.
 
     Examples
     --------
