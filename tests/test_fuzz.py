@@ -378,8 +378,6 @@ OPEN = {
     "so3.quat_to_euler": "q ~1e155: overflow",
     "so3.align_vectors": "extreme vectors: overflow or wrong scaling",
     "tops.fit_free_rotation": "extreme magnitudes: overflow or misleading refusal",
-    "tops.poinsot": "extreme magnitudes: overflow or misleading refusal",
-    "tops.solve_free_batch": "extreme magnitudes: overflow or misleading refusal",
 }
 
 

@@ -331,3 +331,17 @@ def test_q0_accepts_every_rotation_input_of_simulate(same):
     top = kr.EulerTop(1.0, 2.0, 3.0)
     reference = top.solve([0.0, 0.5], [0.3, 1.0, 0.2], _Q0)
     np.testing.assert_allclose(top.solve([0.0, 0.5], [0.3, 1.0, 0.2], same).q, reference.q, rtol=0, atol=1e-15)
+
+
+def test_solve_free_batch_at_extreme_moments_and_turns():
+    # the motion depends on the moments' ratios only: bodies scaled by 2^±1000 move exactly alike
+    bodies = np.array([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]])
+    t = np.linspace(0.0, 2.0, 5)
+    base = kr.tops.solve_free_batch(bodies, t, [0.1, 1.0, 0.1])
+    for k in (1000, -1060):
+        scaled = kr.tops.solve_free_batch(np.ldexp(bodies, k), t, [0.1, 1.0, 0.1])
+        np.testing.assert_array_equal(scaled.omega, base.omega)
+        np.testing.assert_array_equal(scaled.q, base.q)
+    # more than 1e15 rad over t: rounding alone would leave the attitude undetermined
+    with pytest.raises(ValueError, match=r"t and omega0 are out of range: the body turns through up to 6\.06e\+22 rad"):
+        kr.tops.solve_free_batch(bodies, t * 1e22, [0.1, 1.0, 0.1])

@@ -40,3 +40,18 @@ def test_bad_input():
         kr.poinsot(object(), [0.0], [1.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="nonzero"):
         kr.poinsot(kr.EulerTop(1.0, 2.0, 3.0), [0.0], [0.0, 0.0, 0.0])
+
+
+def test_poinsot_at_extreme_rates_is_the_time_scaled_geometry():
+    # ω0 × s traces the same polhode and herpolhode at times t / s (Euler's equations are homogeneous);
+    # its energy (~s²) and momentum once overflowed or underflowed
+    top = kr.EulerTop(1.0, 2.0, 3.0)
+    t = np.linspace(0.0, 5.0, 11)
+    base = kr.tops.poinsot(top, t, [0.3, 0.2, 1.0])
+    for s in (1e-300, 1e-160, 1e160, 1e300):
+        g = kr.tops.poinsot(top, t / s, np.array([0.3, 0.2, 1.0]) * s)
+        np.testing.assert_allclose(g.polhode, base.polhode, rtol=1e-12, atol=1e-14)
+        np.testing.assert_allclose(g.herpolhode, base.herpolhode, rtol=1e-12, atol=1e-14)
+        np.testing.assert_allclose(g.plane_distance, base.plane_distance, rtol=1e-14)
+    with pytest.raises(ValueError, match="t and omega0 are out of range"):
+        kr.tops.poinsot(top, t * 1e20, [0.3, 0.2, 1.0])

@@ -21,6 +21,7 @@ from .._validation import as_float, as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
+from ..so3._norms import norm
 from . import _free_top
 
 __all__ = ["EulerTop", "SteadyRotation", "Regime", "SolutionAccuracy", "solve_free_batch"]
@@ -529,6 +530,10 @@ def _check_inputs(t: ArrayLike, omega0: ArrayLike,
     return t, omega0, q0
 
 
+#: Largest angle (rad) a body may turn through over the requested times.
+_MAX_TURN = 1e15
+
+
 def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, meta_body: str) -> Trajectory:
     """Broadcast (bodies, ω0, q0), run the compiled samples, wrap a Trajectory."""
     t, omega0, q0 = _check_inputs(t, omega0, q0)
@@ -537,9 +542,17 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     except ValueError:
         raise ValueError(f"the batch shapes of bodies {moments.shape}, omega0 {omega0.shape} and q0 {q0.shape} "
                          "do not broadcast") from None
+    # |ω| <= |ω0| I_max/I_min: beyond ~1e15 rad a turn's rounding (1e-16 of it) is more than 0.1 rad
+    with np.errstate(over="ignore"):
+        turn = np.max(np.abs(t), initial=0.0) * norm(omega0) * (np.max(moments, axis=-1) / np.min(moments, axis=-1))
+    if np.any(turn > _MAX_TURN):
+        raise ValueError(f"t and omega0 are out of range: the body turns through up to {float(np.max(turn)):.3g} rad "
+                         f"over t, more than {_MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+    # the motion depends on the moments' ratios only: a power of two (exact) brings the largest to ~1
+    scaled = np.ldexp(moments, -np.frexp(np.max(moments, axis=-1, keepdims=True))[1])
     count = int(np.prod(batch, dtype=np.int64))
     flat = [np.ascontiguousarray(np.broadcast_to(a, batch + a.shape[-1:])).reshape(count, -1)
-            for a in (moments, omega0, q0)]
+            for a in (scaled, omega0, q0)]
     omega = np.empty((count, t.size, 3))
     quat = np.empty((count, t.size, 4))
     if count == 1:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array
+from ..so3._norms import norm, unit
 from ..so3 import quat_apply
 from .euler_top import EulerTop
 
@@ -93,11 +94,12 @@ def poinsot(top, t, omega0, q0=None):
     if omega0.ndim != 1 or not np.any(omega0 != 0.0):
         raise ValueError("omega0 must be one nonzero body angular velocity of shape (3,)")
     tr = top.solve(t, omega0, q0)
-    scale = 1.0 / np.sqrt(2.0 * top.energy(omega0))
-    polhode = tr.omega * scale
+    # √(2T) = |√I ω| and |J| = |I ω| as norms that neither overflow nor underflow (ω0 from 1e-300 to 1e300)
+    root_energy = norm(np.sqrt(top.moments) * omega0)
+    polhode = tr.omega / root_energy
     space = quat_apply(tr.q, polhode)
     momentum = quat_apply(tr.q[0], top.moments * omega0)
-    normal = momentum / np.linalg.norm(momentum)
+    normal = unit(momentum, "omega0")
     start = space[0] - (space[0] @ normal) * normal
     if np.linalg.norm(start) == 0.0:
         # rotation about J itself: any in-plane direction serves
@@ -110,6 +112,6 @@ def poinsot(top, t, omega0, q0=None):
         herpolhode=np.stack([space @ ex, space @ ey], axis=-1),
         herpolhode_space=space,
         plane_normal=normal,
-        plane_distance=float(np.sqrt(2.0 * top.energy(omega0)) / top.angular_momentum(omega0)),
+        plane_distance=float(root_energy / norm(top.moments * omega0)),
         inertia_ellipsoid_axes=1.0 / np.sqrt(top.moments),
     )
