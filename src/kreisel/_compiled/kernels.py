@@ -232,7 +232,7 @@ def write_matrix(q0: float, q1: float, q2: float, q3: float, out: NDArray[np.flo
 
 
 @inlined
-def write_matrix_at(out, i, q0, q1, q2, q3):
+def write_matrix_at(out: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float) -> None:
     """Write ``R(q)`` into the top-left 3×3 block of ``out[i]``, entry by entry (the ``prange`` loops' form).
 
     Inlined: a ``prange`` index is ``int64`` or ``uint64`` depending on the loop, which would give a

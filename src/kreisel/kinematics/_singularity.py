@@ -13,3 +13,5 @@ from __future__ import annotations
 # Defined in so3, whose Rotation.as_euler and inverse Jacobians issue them too; re-exported here.
 from ..so3.euler import GimbalLockWarning, KinematicSingularityWarning  # noqa: F401
 from ..so3.jacobians import SINGULAR_TOL, RotationVectorSingularityWarning  # noqa: F401
+
+__all__ = ["GimbalLockWarning", "KinematicSingularityWarning", "RotationVectorSingularityWarning", "SINGULAR_TOL"]

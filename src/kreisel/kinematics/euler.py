@@ -24,7 +24,10 @@ from __future__ import annotations
 
 import math
 
+from typing import cast
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, dexp, parallel
@@ -44,7 +47,7 @@ __all__ = [
 ]
 
 
-def _code(seq, frame):
+def _code(seq: str, frame: str) -> NDArray[np.int64]:
     """Kernel code ``(a, b, c, extrinsic, body)``, (a, b, c) the equivalent intrinsic axes."""
     body = check_frame(frame)
     axes, intrinsic = parse_sequence(seq)
@@ -58,12 +61,12 @@ def _code(seq, frame):
 # itself, and in the parallel loops every thread would update the reference
 # count of the one shared code array.
 @cached
-def _code_tuple(code):
+def _code_tuple(code: NDArray[np.int64]) -> dexp.EulerCode:
     return code[0], code[1], code[2], code[3], code[4]
 
 
 @cached
-def _omega_element(x0, x1, x2, r0, r1, r2, code):
+def _omega_element(x0: float, x1: float, x2: float, r0: float, r1: float, r2: float, code: dexp.EulerCode) -> tuple[float, float, float]:
     """ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order."""
     c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
     if code[3]:
@@ -76,7 +79,8 @@ def _omega_element(x0, x1, x2, r0, r1, r2, code):
 
 
 @cached
-def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
+def _rates_element(x0: float, x1: float, x2: float, w0: float, w1: float, w2: float, code: dexp.EulerCode,
+                   tol: float) -> tuple[float, float, float]:
     """Rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2)."""
     c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
     middle = c1[0] * w0 + c1[1] * w1 + c1[2] * w2
@@ -98,35 +102,37 @@ def _rates_element(x0, x1, x2, w0, w1, w2, code, tol):
 
 
 @parallel
-def _omega_from_rates_parallel(angles, rates, code, out):
-    code = _code_tuple(code[::1])
+def _omega_from_rates_parallel(angles: NDArray[np.float64], rates: NDArray[np.float64], code: NDArray[np.int64],
+                               out: NDArray[np.float64]) -> None:
+    axes = _code_tuple(code[::1])
     for i in prange(angles.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _omega_element(
-            angles[i, 0], angles[i, 1], angles[i, 2], rates[i, 0], rates[i, 1], rates[i, 2], code
+            angles[i, 0], angles[i, 1], angles[i, 2], rates[i, 0], rates[i, 1], rates[i, 2], axes
         )
 
 
 @parallel
-def _rates_from_omega_parallel(angles, w, code, tol, out):
-    code = _code_tuple(code[::1])
+def _rates_from_omega_parallel(angles: NDArray[np.float64], w: NDArray[np.float64], code: NDArray[np.int64], tol: float,
+                               out: NDArray[np.float64]) -> None:
+    axes = _code_tuple(code[::1])
     for i in prange(angles.shape[0]):
         out[i, 0], out[i, 1], out[i, 2] = _rates_element(
-            angles[i, 0], angles[i, 1], angles[i, 2], w[i, 0], w[i, 1], w[i, 2], code, tol
+            angles[i, 0], angles[i, 1], angles[i, 2], w[i, 0], w[i, 1], w[i, 2], axes, tol
         )
 
 
 @gufunc(["void(f8[:], f8[:], i8[:], f8[:])"], "(3),(3),(5)->(3)", parallel=_omega_from_rates_parallel, shared=(2,))
-def _omega_from_rates(angles, rates, code, out):
+def _omega_from_rates(angles: NDArray[np.float64], rates: NDArray[np.float64], code: NDArray[np.int64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = _omega_element(angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], _code_tuple(code))
 
 
 @gufunc(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(3),(3),(5),()->(3)", parallel=_rates_from_omega_parallel, shared=(2, 3))
-def _rates_from_omega(angles, w, code, tol, out):
+def _rates_from_omega(angles: NDArray[np.float64], w: NDArray[np.float64], code: NDArray[np.int64], tol: float, out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2] = _rates_element(angles[0], angles[1], angles[2], w[0], w[1], w[2], _code_tuple(code), tol)
 
 
 @gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(5)->(3,3)")
-def _matrix(angles, code, out):
+def _matrix(angles: NDArray[np.float64], code: NDArray[np.int64], out: NDArray[np.float64]) -> None:
     c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     if code[3]:
         c0, c2 = c2, c0
@@ -137,7 +143,7 @@ def _matrix(angles, code, out):
 
 
 @gufunc(["void(f8[:], i8[:], f8, f8[:, :])"], "(3),(5),()->(3,3)")
-def _matrix_inverse(angles, code, tol, out):
+def _matrix_inverse(angles: NDArray[np.float64], code: NDArray[np.int64], tol: float, out: NDArray[np.float64]) -> None:
     c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
     first, last = (2, 0) if code[3] else (0, 2)
     inv = math.nan if abs(det) <= tol else 1.0 / det
@@ -149,12 +155,12 @@ def _matrix_inverse(angles, code, tol, out):
         out[last, i] = b[i] * inv
 
 
-def _angles(angles, degrees, name="angles"):
+def _angles(angles: ArrayLike, degrees: bool, name: str = "angles") -> NDArray[np.float64]:
     a = vectors(angles, name)
     return np.deg2rad(a) if degrees else a
 
 
-def euler_rate_matrix(seq, angles, frame="space", degrees=False, *, out=None):
+def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (Theory §3.6).
 
     For ``"ZXZ"`` (φ, θ, ψ) the space matrix is the chapter's
@@ -190,7 +196,8 @@ def euler_rate_matrix(seq, angles, frame="space", degrees=False, *, out=None):
     return _matrix(_angles(angles, degrees), code, out=out)
 
 
-def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SINGULAR_TOL, *, out=None):
+def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False,
+                              tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (Theory §3.6).
 
     For ``"ZXZ"`` body components this is the chapter's
@@ -228,7 +235,8 @@ def euler_rate_matrix_inverse(seq, angles, frame="space", degrees=False, tol=SIN
     return np.rad2deg(out, out=out) if degrees else out
 
 
-def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees=False, *, out=None):
+def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayLike, frame: str = "space",
+                                      degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from Euler angles and their rates (Theory §3.6, Euler kinematic equations).
 
     Parameters
@@ -263,7 +271,8 @@ def angular_velocity_from_euler_rates(seq, angles, rates, frame="space", degrees
     return _omega_from_rates(angles, rates, code, out=out)
 
 
-def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_TOL, *, out=None):
+def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "space", degrees: bool = False,
+                tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler-angle rates from the angular velocity (Theory §3.6, inverted Euler kinematic equations).
 
     At gimbal lock (|sin β| ≤ ``tol`` for proper Euler sequences, |cos β| ≤ ``tol``
@@ -311,7 +320,8 @@ def euler_rates(seq, angles, omega, frame="space", degrees=False, tol=SINGULAR_T
     return np.rad2deg(out, out=out) if degrees else out
 
 
-def euler_rates_singular(seq, angles, degrees=False, tol=SINGULAR_TOL, *, out=None):
+def euler_rates_singular(seq: str, angles: ArrayLike, degrees: bool = False, tol: float = SINGULAR_TOL, *,
+                         out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Mask of the Euler angles at which :func:`euler_rates` is singular (no warning).
 
     Parameters

@@ -22,7 +22,10 @@ small ψ), so the maps are accurate to a few ulp for all ψ; J⁻¹ has poles at
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
 from .._compiled.outputs import deliver
@@ -42,11 +45,11 @@ __all__ = [
 
 
 @gufunc(["void(f8, f8[:])"], "()->()")
-def _bortz(angle, out):
+def _bortz(angle: float, out: NDArray[np.float64]) -> None:
     out[0] = dexp.bortz_coefficient(angle)
 
 
-def bortz_coefficient(angle, *, out=None):
+def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64] | float:
     """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (Theory §3.5).
 
     Evaluated as ``(1 − (ψ/2) cot(ψ/2))/ψ²``, which is the same function
@@ -81,7 +84,7 @@ def bortz_coefficient(angle, *, out=None):
     return value if value.ndim else float(value)
 
 
-def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
+def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from a rotation vector and its rate, the dexp map (Theory §3.4).
 
     ``ω = ((e^{ψ·X} − 1)/(ψ·X)) ψ̇ = ψ̇ + A ψ×ψ̇ + B ψ×(ψ×ψ̇)`` (space),
@@ -112,7 +115,7 @@ def angular_velocity_from_rotvec_rate(psi, psidot, frame="space", *, out=None):
     return dexp.apply_jacobian(psi, psidot, sign, out=out)
 
 
-def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL, *, out=None):
+def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation-vector rate from the angular velocity: dexp⁻¹ (Theory §3.5).
 
     With body components this is the Bortz equation
@@ -152,7 +155,7 @@ def rotvec_rate(psi, omega, frame="space", tol=SINGULAR_TOL, *, out=None):
     return out
 
 
-def rotvec_rate_singular(psi, tol=SINGULAR_TOL, *, out=None):
+def rotvec_rate_singular(psi: ArrayLike, tol: float = SINGULAR_TOL, *, out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Mask of rotation vectors where :func:`rotvec_rate` is singular (no warning).
 
     Parameters
