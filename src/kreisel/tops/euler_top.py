@@ -21,7 +21,7 @@ from .._validation import as_float, as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
-from ..so3._norms import norm
+from .._norms import norm
 from . import _free_top
 
 __all__ = ["EulerTop", "SteadyRotation", "Regime", "SolutionAccuracy", "solve_free_batch"]

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array
-from ..so3._norms import norm, unit
+from .._norms import norm, unit
 from ..so3 import quat_apply
 from .euler_top import EulerTop
 
