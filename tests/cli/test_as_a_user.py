@@ -141,7 +141,8 @@ def test_convert_input_files(tmp_path):
 
 def test_convert_help_states_the_layouts():
     text = " ".join(kreisel("convert", "--help").stdout.split())
-    for phrase in ("scalar first", "--scalar-last", "row-major", "the axis, then the angle", "-30 45 60"):
+    for phrase in ("scalar first", "--scalar-last", "row-major", "the axis, then the angle", "-30 45 60",
+                   "mrp | euler_parameters", "euler_parameters e0 e1 e2 e3, the conjugate quaternion"):
         assert phrase in text, phrase
 
 
@@ -154,9 +155,18 @@ def test_a_heavy_top_reports_its_first_integrals_not_drift(tmp_path):
     assert sorted(rows) == ["E", "J_3", "J_z"]
     for line in rows.values():   # each kept to rounding error by the default integrator
         assert float(line.rsplit("change", 1)[1]) < 1e-9
-    process = kreisel("plot", "fast.nc", "--kind", "energy", "-o", "energy.png", cwd=tmp_path)
-    assert process.returncode == 0, process.stderr
-    assert (tmp_path / "energy.png").stat().st_size > 10_000
+    for kind in ("energy", "polhode"):
+        process = kreisel("plot", "fast.nc", "--kind", kind, "-o", f"{kind}.png", cwd=tmp_path)
+        assert process.returncode == 0, process.stderr
+        assert (tmp_path / f"{kind}.png").stat().st_size > 10_000
+    # gravity changes T: the polhode is drawn on axes fitted to the path (on the energy ellipsoid the fast
+    # top's ω′, within 0.05 rad/s of its pole, was not to be seen)
+    code = ("import kreisel as kr; from kreisel.plot import polhode; ax = polhode(kr.io.load_result('fast.nc')).axes[0]; "
+            "print(ax.get_title().replace(chr(10), ' '), ax.get_xlim()[1] - ax.get_xlim()[0])")
+    shown = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=dict(os.environ, PYTHONPATH=str(SRC)),
+                           capture_output=True, text=True, timeout=600)
+    title, width = shown.stdout.rsplit(" ", 1)
+    assert "no energy ellipsoid" in title and float(width) < 0.2, shown
 
 
 def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):

@@ -113,7 +113,8 @@ _CONVERT_HELP = (
     "Numbers per rotation, in and out: quat q0 q1 q2 q3, scalar first (--scalar-last: x y z w); "
     "matrix 9 numbers, row-major (R maps body to space); rotvec, gibbs, mrp x y z; "
     "axis_angle x y z angle (the axis, then the angle); euler:SEQ three angles in the order of SEQ "
-    "(uppercase intrinsic, lowercase extrinsic); su2 and cayley_klein (output only) complex numbers.\n\n"
+    "(uppercase intrinsic, lowercase extrinsic); euler_parameters e0 e1 e2 e3, the conjugate quaternion "
+    "(Theory §A); su2 and cayley_klein (output only) complex numbers a b -b* a*.\n\n"
 )
 
 
@@ -125,10 +126,12 @@ def convert(
         show_default=False),
     # --from and --to are checked in the body: NUMBERS take unknown options (negative numbers), so
     # a misspelt option must be named before a missing one is reported
-    source: List[str] = typer.Option([], "--from", metavar="REPR", show_default=False,
-                                     help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp"),
+    source: List[str] = typer.Option(
+        [], "--from", metavar="REPR", show_default=False,
+        help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | euler_parameters"),
     target: List[str] = typer.Option(
-        [], "--to", metavar="REPR", show_default=False, help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | su2 | cayley_klein"),
+        [], "--to", metavar="REPR", show_default=False,
+        help="quat | matrix | rotvec | euler:SEQ | axis_angle | gibbs | mrp | euler_parameters | su2 | cayley_klein"),
     degrees: bool = typer.Option(False, "--degrees", help="Angles in degrees (euler, axis_angle, rotvec)."),
     scalar_last: bool = typer.Option(False, "--scalar-last", help="Quaternions in and out as x y z w."),
     input_file: Optional[pathlib.Path] = typer.Option(

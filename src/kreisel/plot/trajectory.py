@@ -171,6 +171,9 @@ def euler(traj, seq=None, degrees=True):
 def polhode(traj):
     """Path of ω′ in the body frame on the energy ellipsoid (Theory §5.6).
 
+    Under a torque (a heavy top) the kinetic energy changes and ω′ is on no one
+    ellipsoid: the path is then drawn alone, on axes fitted to it.
+
     Examples
     --------
     The polhode lies on the energy ellipsoid ω′·I ω′ = 2T:
@@ -184,17 +187,24 @@ def polhode(traj):
     fig = Figure(figsize=(5.5, 5), layout="constrained")
     ax = fig.add_subplot(projection="3d")
     w = traj.omega.reshape(-1, traj.t.size, 3)
-    moments = np.diagonal(traj.inertia.reshape(-1, 3, 3)[0])
-    t2 = float(np.einsum("i,i,i->", moments, w[0, 0], w[0, 0]))
-    semi = np.sqrt(t2 / moments)
-    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 40), np.linspace(0, np.pi, 20))
-    ax.plot_wireframe(semi[0] * np.cos(u) * np.sin(v), semi[1] * np.sin(u) * np.sin(v), semi[2] * np.cos(v),
-                      color="0.8", linewidth=0.4)
+    energy = np.asarray(traj.energy).reshape(-1, traj.t.size)
     for path in w:
         ax.plot(path[:, 0], path[:, 1], path[:, 2], color="C3", linewidth=1.5)
     ax.set(xlabel="ω′1 (rad/s)", ylabel="ω′2 (rad/s)", zlabel="ω′3 (rad/s)")
-    ax.set_title("polhode on the energy ellipsoid")
-    ax.set_box_aspect(semi / semi.max(), zoom=0.8)   # zoom < 1 leaves room for the axis labels
+    if np.all(np.ptp(energy, axis=-1) <= 1e-6 * np.max(np.abs(energy), axis=-1)):
+        moments = np.diagonal(traj.inertia.reshape(-1, 3, 3)[0])
+        t2 = float(np.einsum("i,i,i->", moments, w[0, 0], w[0, 0]))
+        semi = np.sqrt(t2 / moments)
+        u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 40), np.linspace(0, np.pi, 20))
+        ax.plot_wireframe(semi[0] * np.cos(u) * np.sin(v), semi[1] * np.sin(u) * np.sin(v), semi[2] * np.cos(v),
+                          color="0.8", linewidth=0.4)
+        ax.set_title("polhode on the energy ellipsoid")
+        ax.set_box_aspect(semi / semi.max(), zoom=0.8)   # zoom < 1 leaves room for the axis labels
+    else:
+        # under a torque T changes and ω′ leaves the ellipsoid; a fast top's ω′ circles its pole so closely
+        # that on the ellipsoid's scale the path would not be seen: the axes fit the path instead
+        ax.set_title("path of ω′ in the body (T changes under the torque:\nno energy ellipsoid)")
+        ax.set_box_aspect(None, zoom=0.8)
     ax.locator_params(nbins=5)
     return fig
 
@@ -275,8 +285,14 @@ def foucault(dataset):
     --------
     >>> import kreisel as kr
     >>> ds = kr.io.run_scenario(kr.io.load_scenario("foucault"))
-    >>> [ax.get_ylabel() for ax in foucault(ds).axes]
-    ['swing azimuth change (°)', 'string angle from vertical (°)']
+    >>> fig = foucault(ds)
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['swing azimuth change (°)', 'swing amplitude (°)']
+
+    The amplitude, nearly constant, is drawn from 0 in plain degrees (no axis offset):
+
+    >>> fig.axes[1].get_ylim()[0], fig.axes[1].yaxis.get_major_formatter().get_useOffset()
+    (0.0, False)
     """
     t = dataset["time"].values
     azimuth = np.degrees(np.unwrap(dataset["swing_azimuth"].values))
@@ -288,8 +304,12 @@ def foucault(dataset):
         turn.plot(t / 3600, np.degrees(rate * (t - t[0])), "k--", linewidth=0.8, label="−Ω sin λ t")
     turn.set(ylabel="swing azimuth change (°)", title="Foucault pendulum: the swing plane turns")
     turn.legend(loc="best", fontsize=8)
-    tilt.plot(t / 3600, np.degrees(dataset["tilt"].values), linewidth=0.5)
-    tilt.set(xlabel="t (h)", ylabel="string angle from vertical (°)")
+    amplitude = np.degrees(dataset["tilt"].values)
+    tilt.plot(t / 3600, amplitude, linewidth=0.8)
+    # the amplitude barely changes: from 0 and without an offset ("1e-9 + 2.86478897") its scale reads at a glance
+    tilt.set_ylim(0.0, 1.2 * float(np.max(amplitude, initial=0.0)) or 1.0)
+    tilt.ticklabel_format(axis="y", useOffset=False)
+    tilt.set(xlabel="t (h)", ylabel="swing amplitude (°)", title="string angle from the vertical at each swing")
     return fig
 
 
