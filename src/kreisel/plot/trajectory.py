@@ -291,7 +291,7 @@ def foucault(dataset):
 
     The amplitude, nearly constant, is drawn from 0 in plain degrees (no axis offset):
 
-    >>> fig.axes[1].get_ylim()[0], fig.axes[1].yaxis.get_major_formatter().get_useOffset()
+    >>> float(fig.axes[1].get_ylim()[0]), fig.axes[1].yaxis.get_major_formatter().get_useOffset()
     (0.0, False)
     """
     t = dataset["time"].values
