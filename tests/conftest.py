@@ -2,11 +2,27 @@
 
 import pathlib
 import shutil
+import signal
 import subprocess
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def interrupt():
+    """``interrupt(process, timeout)``: stop a child as Ctrl+C does, killing it if it has not exited within ``timeout`` s."""
+
+    def stop(process, timeout):
+        process.send_signal(signal.SIGINT)
+        try:
+            process.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+
+    return stop
 
 
 @pytest.fixture(scope="session")

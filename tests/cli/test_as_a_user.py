@@ -178,9 +178,8 @@ def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):
                 "f.nc holds a Foucault pendulum result, which plots as azimuth")
 
 
-def test_serve_opens_a_bundled_scenario_by_name(tmp_path):
+def test_serve_opens_a_bundled_scenario_by_name(tmp_path, interrupt):
     import re
-    import signal
 
     import httpx
 
@@ -201,9 +200,4 @@ def test_serve_opens_a_bundled_scenario_by_name(tmp_path):
         assert url, "kreisel serve did not print its URL"
         assert 'title = "Tennis racket' in httpx.get(url + "api/initial", timeout=60).json()["toml"]
     finally:
-        server.send_signal(signal.SIGINT)
-        try:
-            server.wait(timeout=60)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        interrupt(server, 60)

@@ -6,7 +6,6 @@ import os
 import pathlib
 import re
 import shutil
-import signal
 import site
 import subprocess
 import sys
@@ -98,7 +97,7 @@ def installed(tmp_path_factory, repository_copy):
 
 
 @pytest.fixture(scope="module")
-def served(installed):
+def served(installed, interrupt):
     """``kreisel serve`` from the fresh environment, as a user starts it: its URL."""
     python, base = installed
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
@@ -116,12 +115,7 @@ def served(installed):
         assert url, "kreisel serve did not print its URL"
         yield url
     finally:
-        server.send_signal(signal.SIGINT)  # Ctrl+C: the server stops its run workers on the way out
-        try:
-            server.wait(timeout=60)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        interrupt(server, 60)  # Ctrl+C: the server stops its run workers on the way out
 
 
 def test_installed_viewer_serves_the_page_and_its_script(served):

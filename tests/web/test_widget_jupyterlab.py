@@ -17,7 +17,6 @@ import os
 import pathlib
 import secrets
 import shutil
-import signal
 import socket
 import subprocess
 import sys
@@ -98,7 +97,7 @@ def _lab_environment(home):
 
 
 @pytest.fixture(scope="module")
-def lab(tmp_path_factory):
+def lab(tmp_path_factory, interrupt):
     """A running JupyterLab serving a folder with ``show.ipynb``: (base URL, token, server log)."""
     import httpx
 
@@ -133,12 +132,7 @@ def lab(tmp_path_factory):
             time.sleep(0.5)
         yield url, token, log
     finally:
-        server.send_signal(signal.SIGINT)
-        try:
-            server.wait(timeout=30)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        interrupt(server, 30)
 
 
 class Witness:
