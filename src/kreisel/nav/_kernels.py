@@ -138,14 +138,8 @@ def integrate_rates(q0, t, omega, use_bortz, out):
     """
     n_batch = omega.shape[0]
     n = t.shape[0]
-    y = _buffer()
-    ys = _buffer()
-    k1 = _buffer()
-    k2 = _buffer()
-    k3 = _buffer()
-    k4 = _buffer()
-    dq = _buffer()
-    qn = _buffer()
+    y, ys, dq, qn = _buffer(), _buffer(), _buffer(), _buffer()
+    k1, k2, k3, k4 = _buffer(), _buffer(), _buffer(), _buffer()  # the RK4 stages
     for b in range(n_batch):
         _start(q0, b, y, out)
         for j in range(n - 1):
