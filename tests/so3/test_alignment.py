@@ -173,3 +173,39 @@ def test_large_batches_use_both_cores_and_agree(rng):
 def test_bad_input_is_refused_by_name(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_vectors_and_weights_of_any_size(rng):
+    """a, b and the weights scaled by 1e-300 ... 1e300: the same rotation (scipy), the rssd scaled
+    with the vectors and the sensitivity inversely to them (the profile matrix, its eigen-solve and
+    ζ over- or underflowed; 1e-109 vectors raised a bare ZeroDivisionError)."""
+    a, b = rng.normal(size=(5, 3)), rng.normal(size=(5, 3))
+    w = rng.uniform(0.5, 2.0, size=5)
+    r, rssd, sensitivity = S.align_vectors(a, b, w, return_sensitivity=True)
+    want = r.as_quat(scalar_first=True) * np.sign(r.as_quat(scalar_first=True)[0])
+    for exponent in (-300, -160, -109, 154, 300):
+        s = 10.0**exponent
+        # the sensitivity of vectors scaled by s is 1/s² times: beyond the float range below 1e-154,
+        # a subnormal or zero above 1e154
+        inverse_square = None if exponent < -150 else 10.0 ** (-2 * exponent)
+        for aa, bb, ww, rssd_scale, sensitivity_scale in ((s * a, s * b, w, s, inverse_square),
+                                                          (a, b, s * w, np.sqrt(s), 1.0)):
+            if sensitivity_scale is None:
+                with pytest.raises(ValueError, match="a and b are out of range"):
+                    kr.so3.align_vectors(aa, bb, ww, return_sensitivity=True)
+                q, got_rssd = kr.so3.align_vectors(aa, bb, ww)
+            else:
+                q, got_rssd, got_sensitivity = kr.so3.align_vectors(aa, bb, ww, return_sensitivity=True)
+                np.testing.assert_allclose(got_sensitivity, sensitivity * sensitivity_scale, rtol=1e-12, atol=1e-300)
+            np.testing.assert_allclose(q, want, atol=1e-15)
+            np.testing.assert_allclose(got_rssd, rssd * rssd_scale, rtol=1e-13)
+        q, _ = kr.so3.align_vectors(s * a[:2], b[:2], [np.inf, 1.0])  # primary vector and best turn
+        np.testing.assert_allclose(q, kr.so3.align_vectors(a[:2], b[:2], [np.inf, 1.0])[0], atol=1e-15)
+
+
+def test_parallel_vectors_have_no_sensitivity_matrix():
+    a = np.array([[1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    q, rssd = kr.so3.align_vectors(a, a)
+    np.testing.assert_allclose(q, [1.0, 0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="do not determine the rotation"):
+        kr.so3.align_vectors(a, a, return_sensitivity=True)

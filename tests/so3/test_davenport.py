@@ -107,3 +107,18 @@ def test_large_batches_and_single_calls_agree(rng):
             np.testing.assert_array_equal(Rotation.from_davenport(axes, order, angles[i]).as_quat(), r[i].as_quat())
             np.testing.assert_array_equal(r[i].as_davenport(axes, order), back[i])
         np.testing.assert_allclose(Rotation.from_davenport(axes, order, back).as_matrix(), r.as_matrix(), atol=3e-15)
+
+
+def test_axes_of_any_size_give_the_same_rotation(rng):
+    """The axes are directions: scaled by 1e-300 ... 1e300 they give the same quaternion
+    (their lengths' squares over- or underflowed beyond 1e±154, and 1e-300 axes were called zero)."""
+    axes = np.array([[0.0, 0.0, 1.0], [0.6, 0.8, 0.0], [0.0, 0.0, 1.0]])
+    angles = rng.uniform(-2, 2, size=(5, 3))
+    want = S.from_davenport(axes, "extrinsic", angles).as_quat(scalar_first=True)
+    want *= np.sign(want[:, :1])
+    for exponent in (-300, -160, 160, 300):
+        got = kr.davenport_to_quat(10.0**exponent * axes, "extrinsic", angles)
+        np.testing.assert_allclose(got * np.sign(got[:, :1]), want, atol=1e-15)
+        back = kr.so3.quat_to_davenport(10.0**exponent * axes, "extrinsic", 10.0**exponent * got)
+        again = kr.davenport_to_quat(axes, "extrinsic", back)
+        np.testing.assert_allclose(np.abs(np.sum(again * got, axis=-1)), 1.0, atol=2e-15)

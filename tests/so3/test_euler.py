@@ -208,3 +208,25 @@ def test_as_euler_warns_at_gimbal_lock_only_on_request():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         locked[1].as_euler("ZYX", suppress_warnings=False)
+
+
+@pytest.mark.parametrize("seq", ["ZXZ", "xyz", "ZX"])
+def test_quaternions_of_any_size_give_the_same_angles(seq, random_quats):
+    """quat_to_euler is scale invariant from 1e-300 to 1e300 (the half-angle pairs' squares
+    overflowed beyond 1e154)."""
+    q = random_quats(20) if len(seq) == 3 else kr.euler_to_quat(seq, np.random.default_rng(3).uniform(-2, 2, (20, 2)))
+    want = kr.quat_to_euler(seq, q)
+    for exponent in (-300, -160, 160, 300):
+        np.testing.assert_allclose(kr.quat_to_euler(seq, 10.0**exponent * q), want, rtol=0, atol=4e-15)
+
+
+def test_a_scaled_matrix_is_refused_as_not_a_rotation(random_quats):
+    """R·1e103 has finite entries whose squares overflow: it is not a rotation (never 'must be finite')."""
+    R = kr.quat_to_matrix(random_quats(1))[0]
+    for fn in (lambda m: kr.matrix_to_euler("ZXZ", m), kr.matrix_to_rotvec, kr.matrix_to_quat):
+        with pytest.raises(ValueError, match=r"R must be rotation matrices \(entries in \[-1, 1\]\), got entries as large as"):
+            fn(1e103 * R)
+        with pytest.raises(ValueError, match=r"R must be rotation matrices: max \|R\^T R - 1\| = 1 exceeds"):
+            fn(1e-200 * R)
+        with pytest.raises(ValueError, match="must be finite"):
+            fn(np.full((3, 3), np.inf))

@@ -403,14 +403,18 @@ def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY
     else:
         worst, smallest_det = _orthogonality_defect(flat, 0, flat.size)
     if not np.isfinite(worst) or not np.isfinite(smallest_det):
-        raise ValueError(f"{name} must be finite rotation matrices (no NaN or inf)")
-    if smallest_det <= 0.0:
-        raise ValueError(f"{name} must be rotation matrices with det > 0 (got det = {smallest_det:.3g})")
+        largest = np.max(np.abs(flat))
+        if not np.isfinite(largest):
+            raise ValueError(f"{name} must be finite rotation matrices (no NaN or inf)")
+        # finite entries whose squares overflow: far from orthonormal, not a rotation at any scale
+        raise ValueError(f"{name} must be rotation matrices (entries in [-1, 1]), got entries as large as {largest:.3g}")
     if worst > tolerance:
         raise ValueError(
             f"{name} must be rotation matrices: max |R^T R - 1| = {worst:.3g} exceeds {tolerance:g} "
             "(use orthonormalize for a larger projection)"
         )
+    if smallest_det <= 0.0:
+        raise ValueError(f"{name} must be rotation matrices with det > 0 (got det = {smallest_det:.3g})")
     if worst > _ROUNDING_DEFECT:
         a = nearest_rotation(a)
     return a

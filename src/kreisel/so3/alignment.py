@@ -149,15 +149,46 @@ def _shortest_arc(ax: float, ay: float, az: float, bx: float, by: float, bz: flo
 
 
 @cached
+def _power_of_two(m: float) -> float:
+    """The largest power of two at most ``m`` (1.0 for 0): dividing by it is exact, so no bit is lost."""
+    if m == 0.0:
+        return 1.0
+    return math.ldexp(1.0, math.frexp(m)[1] - 1)
+
+
+@cached
+def _vector_scale(x: NDArray[np.float64], i: int) -> float:
+    """Scale of the vectors of problem ``i``: a power of two within a factor 2 of their largest |component|."""
+    m = 0.0
+    for j in range(x.shape[1]):
+        for r in range(3):
+            m = max(m, abs(x[i, j, r]))
+    return _power_of_two(m)
+
+
+@cached
+def _weight_scale(w: NDArray[np.float64], i: int) -> float:
+    """Scale of the finite weights of problem ``i``: a power of two within a factor 2 of the largest."""
+    m = 0.0
+    for j in range(w.shape[1]):
+        if w[i, j] != np.inf:
+            m = max(m, w[i, j])
+    return _power_of_two(m)
+
+
+@cached
 def _solve(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], i: int, primary: int, out: NDArray[np.float64]) -> None:
-    """Problem ``i`` of the batch into ``out[i]``; ``primary`` is the index of the infinite weight or -1."""
+    """Problem ``i`` of the batch into ``out[i]``; ``primary`` is the index of the infinite weight or -1.
+
+    The vectors and the finite weights enter divided by powers of two near their largest |entry|
+    (``sa``, ``sb``, ``sw``):
+    the rotation does not depend on these scales, the rssd and the sensitivity carry them as
+    factors applied last, so no product of huge or tiny inputs over- or underflows.
+    """
     n = a.shape[1]
+    sa, sb, sw = _vector_scale(a, i), _vector_scale(b, i), _weight_scale(w, i)
     if primary < 0:
-        B = np.zeros((3, 3))
-        for j in range(n):
-            for r in range(3):
-                for c in range(3):
-                    B[r, c] += w[i, j] * a[i, j, r] * b[i, j, c]
+        B = _profile(a, b, w, i, sa, sb, sw)
         tr = B[0, 0] + B[1, 1] + B[2, 2]
         K = np.empty((4, 4))
         K[0, 0] = tr
@@ -172,8 +203,8 @@ def _solve(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64
     else:
         ax, ay, az = a[i, primary, 0], a[i, primary, 1], a[i, primary, 2]
         bx, by, bz = b[i, primary, 0], b[i, primary, 1], b[i, primary, 2]
-        na = math.sqrt(ax * ax + ay * ay + az * az)
-        nb = math.sqrt(bx * bx + by * by + bz * bz)
+        na = kernels.norm3(ax, ay, az)
+        nb = kernels.norm3(bx, by, bz)
         ax, ay, az, bx, by, bz = ax / na, ay / na, az / na, bx / nb, by / nb, bz / nb
         p0, p1, p2, p3 = _shortest_arc(ax, ay, az, bx, by, bz)
         # Then the turn φ about a that best aligns the secondary vectors
@@ -183,43 +214,56 @@ def _solve(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64
         for j in range(n):
             if j == primary:
                 continue
-            cx, cy, cz = kernels.rotated(p0, p1, p2, p3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
-            ex, ey, ez = a[i, j, 0], a[i, j, 1], a[i, j, 2]
-            sin_sum += w[i, j] * ((cy * ez - cz * ey) * ax + (cz * ex - cx * ez) * ay + (cx * ey - cy * ex) * az)
-            cos_sum += w[i, j] * (cx * ex + cy * ey + cz * ez - (cx * ax + cy * ay + cz * az) * (ex * ax + ey * ay + ez * az))
+            cx, cy, cz = kernels.rotated(p0, p1, p2, p3, b[i, j, 0] / sb, b[i, j, 1] / sb, b[i, j, 2] / sb)
+            ex, ey, ez = a[i, j, 0] / sa, a[i, j, 1] / sa, a[i, j, 2] / sa
+            wj = w[i, j] / sw
+            sin_sum += wj * ((cy * ez - cz * ey) * ax + (cz * ex - cx * ez) * ay + (cx * ey - cy * ex) * az)
+            cos_sum += wj * (cx * ex + cy * ey + cz * ez - (cx * ax + cy * ay + cz * az) * (ex * ax + ey * ay + ez * az))
         half = 0.5 * math.atan2(sin_sum, cos_sum)
         s = math.sin(half)
         q0, q1, q2, q3 = kernels.quat_product(math.cos(half), s * ax, s * ay, s * az, p0, p1, p2, p3)
         if q0 < 0.0:
             q0, q1, q2, q3 = -q0, -q1, -q2, -q3
     # The rssd straight from the residuals: the textbook Σ w(|a|² + |b|²) - 2 λ_max
-    # loses every digit of a good fit to cancellation.
+    # loses every digit of a good fit to cancellation. Residuals are summed in units of the
+    # larger vector scale.
+    scale = max(sa, sb)
     ssd = 0.0
     for j in range(n):
         if j == primary and (n > 1 or w[i, j] == np.inf):
             continue
-        x, y, z = kernels.rotated(q0, q1, q2, q3, b[i, j, 0], b[i, j, 1], b[i, j, 2])
-        dx, dy, dz = a[i, j, 0] - x, a[i, j, 1] - y, a[i, j, 2] - z
-        ssd += w[i, j] * (dx * dx + dy * dy + dz * dz)
+        x, y, z = kernels.rotated(q0, q1, q2, q3, b[i, j, 0] / scale, b[i, j, 1] / scale, b[i, j, 2] / scale)
+        dx, dy, dz = a[i, j, 0] / scale - x, a[i, j, 1] / scale - y, a[i, j, 2] / scale - z
+        ssd += w[i, j] / sw * (dx * dx + dy * dy + dz * dz)
     out[i, 0], out[i, 1], out[i, 2], out[i, 3] = q0, q1, q2, q3
-    out[i, 4] = math.sqrt(ssd)
+    out[i, 4] = math.sqrt(ssd) * math.sqrt(sw) * scale
     if primary < 0:
-        _sensitivity(a, b, w, i, q0, q1, q2, q3, out)
+        _sensitivity(_profile(a, b, w, i, sa, sb, sw), w, i, q0, q1, q2, q3, sa, sb, sw, out)
 
 
 @cached
-def _sensitivity(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float,
-                 out: NDArray[np.float64]) -> None:
-    # M = Rᵀ B is symmetric with eigenvalues s₁, s₂, s₃' (the corrected singular
-    # values); κ and ζ are its elementary symmetric functions.
-    n = a.shape[1]
+def _profile(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], i: int, sa: float, sb: float, sw: float) -> NDArray[np.float64]:
+    """The attitude profile matrix ``B = Σ w a bᵀ`` of problem ``i`` divided by ``sa sb sw``."""
     B = np.zeros((3, 3))
-    wsum = 0.0
-    for j in range(n):
-        wsum += w[i, j]
+    for j in range(a.shape[1]):
+        wj = w[i, j] / sw
         for r in range(3):
             for c in range(3):
-                B[r, c] += w[i, j] * a[i, j, r] * b[i, j, c]
+                B[r, c] += wj * (a[i, j, r] / sa) * (b[i, j, c] / sb)
+    return B
+
+
+@cached
+def _sensitivity(B: NDArray[np.float64], w: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float, sa: float, sb: float,
+                 sw: float, out: NDArray[np.float64]) -> None:
+    # M = Rᵀ B is symmetric with eigenvalues s₁, s₂, s₃' (the corrected singular
+    # values); κ and ζ are its elementary symmetric functions. B is the profile
+    # matrix divided by sa sb sw (:func:`_profile`): S does not change when the
+    # weights are scaled and is inversely proportional to sa and sb.
+    n = w.shape[1]
+    wsum = 0.0
+    for j in range(n):
+        wsum += w[i, j] / sw
     R = kernels.quat_matrix(q0, q1, q2, q3)
     M = np.empty((3, 3))
     for r in range(3):
@@ -233,11 +277,12 @@ def _sensitivity(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.f
         + B[0, 2] * (B[1, 0] * B[2, 1] - B[1, 1] * B[2, 0])
     )
     zeta = sigma1 * kappa - det
-    scale = wsum / n / zeta
+    # ζ = 0: the vectors are all parallel and leave the turn about them undetermined (NaN, refused)
+    scale = wsum / n / zeta if zeta != 0.0 else math.nan
     for r in range(3):
         for c in range(3):
             bbt = B[r, 0] * B[c, 0] + B[r, 1] * B[c, 1] + B[r, 2] * B[c, 2]
-            out[i, 5 + 3 * r + c] = scale * ((kappa if r == c else 0.0) + bbt)
+            out[i, 5 + 3 * r + c] = scale * ((kappa if r == c else 0.0) + bbt) / sa / sb
 
 
 @cached
@@ -342,13 +387,19 @@ def align_vectors(a: ArrayLike, b: ArrayLike, weights: ArrayLike | None = None,
         raise ValueError("the sensitivity matrix is undefined with an infinite weight or a single vector pair")
     if (primary >= 0).any():
         rows = np.flatnonzero(primary >= 0)
-        pa = np.linalg.norm(a[rows, primary[rows]], axis=-1)
-        pb = np.linalg.norm(b[rows, primary[rows]], axis=-1)
+        pa = np.max(np.abs(a[rows, primary[rows]]), axis=-1)
+        pb = np.max(np.abs(b[rows, primary[rows]]), axis=-1)
         if not (pa > 0).all() or not (pb > 0).all():
             raise ValueError("a and b must not have zero-length primary vectors (infinite weight or single pair)")
     out = np.full((a.shape[0], _WIDTH), np.nan)
     solve = _solve_parallel if a.shape[0] * n >= PARALLEL_THRESHOLD else _solve_serial
     solve(a, b, w, primary, out)
+    if return_sensitivity and np.isnan(out[:, 5]).any():
+        raise ValueError("a and b do not determine the rotation (the vectors of a problem are all parallel): "
+                         "its sensitivity matrix is undefined")
+    if not np.isfinite(out[:, 4] if not return_sensitivity else out).all():
+        raise ValueError("a and b are out of range: the rssd or the sensitivity of vectors this far from "
+                         "unit size exceeds the largest float (~1.8e308)")
     out = out.reshape(*batch, _WIDTH)
     quat, rssd = out[..., :4], out[..., 4]
     if return_sensitivity:

@@ -76,6 +76,7 @@ _SETUPS: dict[tuple[bytes, tuple[int, ...], str], _Setup] = {}
 def _angles_of(q0: float, q1: float, q2: float, q3: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int,
                reverse: int) -> tuple[float, float, float]:
     """Three Davenport angles of q: XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch."""
+    q0, q1, q2, q3 = k.squarable(q0, q1, q2, q3)
     a0, a1, a2, a3 = k.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
     e0, e1, e2, e3 = k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
     first, b, third = _euler._euler_angles(e0, e1, e2, e3, 0, 1, 0, 0)
@@ -151,10 +152,14 @@ def _parse(axes: ArrayLike, order: str) -> tuple[NDArray[np.float64], bool]:
         a = a[None]
     if a.ndim != 2 or not 1 <= a.shape[0] <= 3:
         raise ValueError(f"axes must have shape (3,) or (k, 3) with k = 1, 2 or 3, got {np.shape(axes)}")
-    norm = np.linalg.norm(a, axis=-1, keepdims=True)
-    if not (norm > 0).all():
+    largest = np.max(np.abs(a), axis=-1, keepdims=True)
+    if not (largest > 0).all():
         raise ValueError("axes must be nonzero vectors")
-    a = a / norm
+    # divided by a power of two near the largest component first (exact): the squares of the
+    # norm neither over- nor underflow, and unit-size axes keep the bits of scipy's normalisation,
+    # on whose rounding the choice of angle branch below depends
+    a = np.ldexp(a, -np.frexp(largest)[1])
+    a = a / np.linalg.norm(a, axis=-1, keepdims=True)
     dots = np.abs(np.sum(a[1:] * a[:-1], axis=-1))
     if (dots > ORTHOGONAL_AXES_TOLERANCE).any():
         raise ValueError(f"axes: consecutive axes must be orthogonal (|cos| = {dots.max():.3g})")

@@ -37,6 +37,7 @@ from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from .._validation import AXES as _AXES, parse_sequence
 from . import matrix as _matrix
+from ._norms import unit
 
 __all__ = [
     "parse_sequence",
@@ -103,7 +104,7 @@ def _short_sequence_angles(seq: str, axes: tuple[int, ...], intrinsic: bool, q: 
     if not intrinsic:
         # Extrinsic "ab" is intrinsic "BA" with the angles reversed.
         return _short_sequence_angles(seq, axes[::-1], True, q)[..., ::-1]
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    q = unit(q, "q")
     q0 = q[..., 0]
     qa = q[..., 1 + axes[0]]
     if len(axes) == 1:
@@ -191,7 +192,8 @@ def _euler_to_matrix_parallel(angles: NDArray[np.float64], axes: NDArray[np.int6
 def _quat_to_euler_parallel(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
     a0, a1, a2 = axes[0], axes[1], axes[2]
     for i in prange(q.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q[i, 0], q[i, 1], q[i, 2], q[i, 3], a0, a1, a2, reverse)
+        q0, q1, q2, q3 = kernels.squarable(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
+        out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q0, q1, q2, q3, a0, a1, a2, reverse)
 
 
 @parallel
@@ -217,7 +219,8 @@ def _euler_to_matrix(angles: NDArray[np.float64], axes: NDArray[np.int64], rever
 
 @gufunc(["void(f8[:], i8[:], i8, f8[:])"], "(4),(3),()->(3)", parallel=_quat_to_euler_parallel, shared=(1, 2))
 def _quat_to_euler(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2] = _euler_angles(q[0], q[1], q[2], q[3], axes[0], axes[1], axes[2], reverse)
+    q0, q1, q2, q3 = kernels.squarable(q[0], q[1], q[2], q[3])
+    out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
 
 
 @gufunc(["void(f8[:, :], i8[:], i8, f8[:])"], "(3,3),(3),()->(3)", parallel=_matrix_to_euler_parallel, shared=(1, 2))
@@ -272,9 +275,10 @@ def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1:
 
 @cached
 def _pair_norm(a: float, b: float) -> float:
-    # The pairs come from a unit quaternion (entries <= 2), so a² + b² cannot
-    # overflow; only below ~1e-150 can it underflow, and there math.hypot
-    # (twice as slow in a loop that is mostly transcendental calls) takes over.
+    # The pairs come from a quaternion whose largest entry is of unit size
+    # (kernels.squarable), so a² + b² cannot overflow; only below ~1e-150 can
+    # it underflow, and there math.hypot (twice as slow in a loop that is
+    # mostly transcendental calls) takes over.
     n2 = a * a + b * b
     if n2 > 1e-290:
         return math.sqrt(n2)
