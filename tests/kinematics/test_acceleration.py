@@ -176,3 +176,37 @@ def test_bad_input():
         angular_acceleration_from_euler("XXY", [0.1, 0.2, 0.3], [0, 0, 1.0], [0, 0, 0.0])
     with pytest.raises(ValueError, match="Rddot"):
         angular_acceleration(np.eye(3), np.zeros((3, 3)), np.zeros(3))
+
+
+@pytest.mark.parametrize("frame", ["space", "body"])
+def test_from_quaternion_scaled_alone_against_mpmath(frame):
+    """Only q scaled (1e-300 ... 1e300), q̇ and q̈ unit size: ε = 2 vec(q̈ q⁻¹ − (q̇ q⁻¹)²) grows as
+    1/|q|² until it leaves the float range, where it is refused as out of range (|q|² alone
+    over- or underflowed beyond 1e±154 before)."""
+    import mpmath as mp
+
+    def reference(q, qd, qdd):
+        with mp.workdps(50):
+            def mul(p, r):
+                return [p[0] * r[0] - p[1] * r[1] - p[2] * r[2] - p[3] * r[3],
+                        p[0] * r[1] + p[1] * r[0] + p[2] * r[3] - p[3] * r[2],
+                        p[0] * r[2] - p[1] * r[3] + p[2] * r[0] + p[3] * r[1],
+                        p[0] * r[3] + p[1] * r[2] - p[2] * r[1] + p[3] * r[0]]
+            q, qd, qdd = ([mp.mpf(float(x)) for x in v] for v in (q, qd, qdd))
+            n2 = sum(x * x for x in q)
+            inv = [q[0] / n2, -q[1] / n2, -q[2] / n2, -q[3] / n2]
+            rate, curv = (mul(inv, qd), mul(inv, qdd)) if frame == "body" else (mul(qd, inv), mul(qdd, inv))
+            sq = mul(rate, rate)
+            return np.array([float(2 * (curv[k] - sq[k])) for k in (1, 2, 3)])
+
+    q = np.array([0.5, 0.5, -0.5, 0.5])
+    qdot = np.array([0.3, -0.3, 0.2, 0.4])  # not orthogonal to q: the 1/|q|² term is present
+    qddot = np.array([-0.2, 0.1, 0.3, -0.1])
+    for exponent in (-300, -160, -100, 0, 100, 160, 300):
+        scaled = 10.0**exponent * q
+        if exponent <= -160:
+            with pytest.raises(ValueError, match="q, qdot and qddot are out of range"):
+                angular_acceleration_from_quat(scaled, qdot, qddot, frame=frame)
+            continue
+        want = reference(scaled, qdot, qddot)
+        np.testing.assert_allclose(angular_acceleration_from_quat(scaled, qdot, qddot, frame=frame), want, rtol=1e-14)

@@ -89,3 +89,20 @@ def test_angular_velocity_and_acceleration_refuse_matrices_that_are_not_rotation
         with pytest.raises(ValueError, match=match):
             kr.angular_acceleration(bad, Rdot, Rdot)
     np.testing.assert_allclose(kr.angular_velocity(R, Rdot), [0.1, 0.2, 0.3], atol=1e-15)
+
+
+@pytest.mark.parametrize("frame", ["space", "body"])
+def test_angular_velocity_from_quat_rate_of_any_size(frame):
+    """ω = 2 vec(q̇ q⁻¹) scales as |q̇|/|q|: exact powers of ten from 1e-300 to 1e300 in either
+    argument, with |q|² never formed (it over- or underflowed beyond 1e±154); an ω beyond the
+    float range is refused as out of range."""
+    q = np.array([0.5, 0.5, -0.5, 0.5]) * 1.3
+    qdot = np.array([0.1, -0.3, 0.2, 0.4])
+    base = kr.angular_velocity_from_quat_rate(q, qdot, frame=frame)
+    for exponent in (-300, -200, -154, -100, 100, 154, 200, 300):
+        s = 10.0**exponent
+        np.testing.assert_allclose(kr.angular_velocity_from_quat_rate(s * q, s * qdot, frame=frame), base, rtol=1e-14)
+        np.testing.assert_allclose(kr.angular_velocity_from_quat_rate(q, s * qdot, frame=frame), s * base, rtol=1e-14)
+        np.testing.assert_allclose(kr.angular_velocity_from_quat_rate(s * q, qdot, frame=frame), base / s, rtol=1e-14)
+    with pytest.raises(ValueError, match="q and qdot are out of range"):
+        kr.angular_velocity_from_quat_rate(1e-316 * q, qdot, frame=frame)

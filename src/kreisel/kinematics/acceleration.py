@@ -98,13 +98,22 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
     q, qdot, qddot = same_batch(
         1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4), qddot=vectors(qddot, "qddot", 4)
     )
-    size = norm(q, keepdims=True)  # scaled: |q|² over- or underflows for |q| beyond ~1e±154
-    q_inv = quat_conjugate(q) / size / size
+    # q = |q| u with u a unit quaternion: q⁻¹ = u*/|q|, so ε = 2 vec(q̈ u*)/|q| − 2 vec((q̇ u*)²)/|q|²
+    # (space); the powers of |q| are divided out last, so no intermediate over- or underflows
+    # unless ε does (|q|² itself would beyond ~1e±154).
+    size = norm(q, keepdims=True)
+    u_inv = quat_conjugate(q / size)
     if body:
-        rate, curvature = quat_multiply(q_inv, qdot), quat_multiply(q_inv, qddot)
+        rate, curvature = quat_multiply(u_inv, qdot), quat_multiply(u_inv, qddot)
     else:
-        rate, curvature = quat_multiply(qdot, q_inv), quat_multiply(qddot, q_inv)
-    return deliver(2.0 * (curvature - quat_multiply(rate, rate))[..., 1:], out)
+        rate, curvature = quat_multiply(qdot, u_inv), quat_multiply(qddot, u_inv)
+    # vec(r²) = 2 r₀ r⃗ for a quaternion r
+    with np.errstate(over="ignore", invalid="ignore"):
+        eps = 2.0 * (curvature[..., 1:] / size - 2.0 * (rate[..., :1] / size) * (rate[..., 1:] / size))
+    if not np.isfinite(eps).all():
+        raise ValueError("q, qdot and qddot are out of range: the angular acceleration (of size "
+                         "|qddot|/|q| + |qdot|²/|q|²) exceeds the largest float (~1.8e308)")
+    return deliver(eps, out)
 
 
 def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out=None):

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled import kernels
 from .._compiled.gufunc import gufunc, quaternion_array
 from .._compiled.outputs import deliver
 from .._validation import check_frame
@@ -82,17 +83,20 @@ def _quat_rate(q: NDArray[np.float64], w: NDArray[np.float64], sign: float, out:
 
 # ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
 # for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
+# q is divided by its largest component m first: q̇ q⁻¹ = q̇ (q/m)* / (|q/m|² m),
+# so neither |q|² nor a product of q and q̇ over- or underflows unless ω does.
 @gufunc(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(4),(4),(),(3)->(3)")
 def _quat_angular_velocity(q: NDArray[np.float64], qd: NDArray[np.float64], sign: float, carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    q0, vx, vy, vz = q[0], q[1], q[2], q[3]
+    m = kernels.size(q[0], q[1], q[2], q[3])
+    q0, vx, vy, vz = q[0] / m, q[1] / m, q[2] / m, q[3] / m
     p0, px, py, pz = qd[0], qd[1], qd[2], qd[3]
     s = 2.0 / (q0 * q0 + vx * vx + vy * vy + vz * vz)
     cx = py * vz - pz * vy
     cy = pz * vx - px * vz
     cz = px * vy - py * vx
-    out[0] = s * (q0 * px - p0 * vx - sign * cx)
-    out[1] = s * (q0 * py - p0 * vy - sign * cy)
-    out[2] = s * (q0 * pz - p0 * vz - sign * cz)
+    out[0] = s * (q0 * px - p0 * vx - sign * cx) / m
+    out[1] = s * (q0 * py - p0 * vy - sign * cy) / m
+    out[2] = s * (q0 * pz - p0 * vz - sign * cz) / m
 
 
 def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -157,4 +161,9 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
     """
     sign = frame_sign(frame)
     q, qdot = same_batch(1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4))
-    return _quat_angular_velocity(q, qdot, sign, out=out)
+    with np.errstate(over="ignore"):
+        omega = _quat_angular_velocity(q, qdot, sign, out=out)
+    if not np.isfinite(omega).all():
+        raise ValueError("q and qdot are out of range: the angular velocity 2|qdot|/|q| exceeds "
+                         "the largest float (~1.8e308)")
+    return omega
