@@ -185,3 +185,26 @@ def test_bad_input():
         kr.angular_velocity_from_euler_rates("ZXZ", [0.1, 0.2, 0.3], [1.0, 2.0])
     with pytest.raises(ValueError, match="angles"):
         kr.euler_rates("ZXZ", [0.1, np.inf, 0.3], [0, 0, 1.0])
+
+
+def test_inverse_near_gimbal_lock_is_right_or_a_documented_refusal():
+    """Angles scaled towards 0 put "ZXZ" at gimbal lock: within ``tol`` of it the outer rows are
+    NaN with a GimbalLockWarning (never a silent non-finite result); with ``tol=0`` the inverse is
+    computed down to |θ| = 1e-300 and matches the chapter's body matrix in 60-digit arithmetic."""
+    import mpmath as mp
+
+    for scale in (1e-300, 1e-100, 1e-9):
+        angles = scale * np.array([0.8, 0.5, 1.1])
+        with pytest.warns(GimbalLockWarning, match="1 of 1 samples"):
+            locked = kr.kinematics.euler_rate_matrix_inverse("ZXZ", angles, frame="body")
+        assert np.isnan(locked[[0, 2]]).all() and np.isfinite(locked[1]).all()
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            got = kr.kinematics.euler_rate_matrix_inverse("ZXZ", angles, frame="body", tol=0.0)
+        with mp.workdps(60):
+            theta, psi = (mp.mpf(float(x)) for x in angles[1:])
+            cot = mp.cos(theta) / mp.sin(theta)
+            want = np.array([[mp.sin(psi) / mp.sin(theta), mp.cos(psi) / mp.sin(theta), 0],
+                             [mp.cos(psi), -mp.sin(psi), 0],
+                             [-cot * mp.sin(psi), -cot * mp.cos(psi), 1]], dtype=float)
+        np.testing.assert_allclose(got, want, rtol=4e-16, atol=1e-300)

@@ -156,10 +156,11 @@ def test_the_jacobians_are_reexported_from_so3():
     assert kr.kinematics.right_jacobian_inverse is kr.so3.right_jacobian_inverse
 
 
-@pytest.mark.parametrize("scale", [1e-300, 1e-160, 1e160, 1e300])
+@pytest.mark.parametrize("scale", [1e-300, 1e-160, 1e7])
 @pytest.mark.parametrize("frame", ["space", "body"])
 def test_rate_maps_at_extreme_magnitudes_are_the_jacobian_matrices(scale, frame):
-    """No overflow or underflow of |ψ| or ψ×(ψ×v); the matrices are checked against mpmath in tests/so3."""
+    """No overflow or underflow of |ψ| or ψ×(ψ×v); the matrices are checked against mpmath in tests/so3
+    (longer rotation vectors than 1e8 rad are refused by the rates, tested there)."""
     psi = scale * np.array([[0.0, 0.0, 1.0], [0.36, -0.48, 0.8], [1.0, 2.0, -2.0]])
     v = np.array([[1.0, 2.0, 0.0], [0.3, -1.2, 0.5], [-0.7, 0.1, 0.4]])
     J = kr.so3.left_jacobian(psi) if frame == "space" else kr.so3.right_jacobian(psi)

@@ -88,10 +88,11 @@ def test_left_jacobian_matches_series(i):
     np.testing.assert_allclose(se3_left_jacobian(xi), jacobian_series(xi), rtol=0, atol=1e-15)
 
 
-def test_coupling_coefficients_are_continuous_at_the_series_switch():
-    below, above = _q_coefficients(np.array([2.0 - 1e-13])), _q_coefficients(np.array([2.0 + 1e-13]))
+@pytest.mark.parametrize("switch", [1.0, 2.0])
+def test_coupling_coefficients_are_continuous_at_the_series_switch(switch):
+    below, above = _q_coefficients(np.array([switch - 1e-13])), _q_coefficients(np.array([switch + 1e-13]))
     for b, a in zip(below, above):
-        np.testing.assert_allclose(b, a, rtol=1e-13)
+        np.testing.assert_allclose(b, a, rtol=1e-12)  # their slopes (< 1 relative) move them by < 2e-13
 
 
 def finite_difference_jacobian(xi, side, h=1e-6):
@@ -145,3 +146,40 @@ def test_refuses_wrong_twist_shapes(call):
 def test_vee_refuses_wrong_shape():
     with pytest.raises(ValueError, match="matrix"):
         se3_vee(np.zeros((3, 3)))
+
+
+def _mp_jacobian_series(xi, terms):
+    """Σ ad_ξⁿ/(n+1)! in 60-digit arithmetic: a reference for |ω| up to ~20 where floats cancel."""
+    import mpmath as mp
+
+    with mp.workdps(60):
+        a = mp.matrix(ad(xi).tolist())
+        total, term = mp.zeros(6, 6), mp.eye(6)
+        for n in range(terms):
+            total += term
+            term = term * a / (n + 2)
+        return np.array(total.tolist(), dtype=float)
+
+
+@pytest.mark.parametrize("angle", [1e-300, 1e-160, 0.7, 5.0, 20.0])
+def test_jacobians_of_any_rotation_size_against_mpmath(angle):
+    """Q is built on the unit axis with its coefficients times powers of |ω|: no overflow
+    (|ω|⁵ overflowed at 1e62) and no underflow; a few ulp of the matrix against the series."""
+    rng = np.random.default_rng(7)
+    axis = rng.normal(size=3)
+    xi = np.concatenate([angle * axis / np.linalg.norm(axis), rng.normal(size=3)])
+    want = _mp_jacobian_series(xi, 160)
+    np.testing.assert_allclose(se3_left_jacobian(xi), want, rtol=0, atol=1e-15 * np.abs(want).max())
+    np.testing.assert_allclose(se3_left_jacobian_inverse(xi) @ want, np.eye(6), rtol=0, atol=4e-14 * angle + 1e-15)
+
+
+def test_long_rotation_parts_and_out_of_range_couplings_are_refused():
+    """Beyond |ω| = 1e8 rad the coupling block depends on |ω| mod 2π (refused, as for SO(3)'s
+    inverses); a J⁻¹ Q J⁻¹ beyond the float range is refused as out of range, not inf."""
+    for fn in (se3_left_jacobian, se3_right_jacobian, se3_left_jacobian_inverse, se3_right_jacobian_inverse):
+        with pytest.raises(ValueError, match=r"xi is out of range: the rotation part \|omega\| = 1\.3e\+62"):
+            fn(np.array([0.5, -1.2, 0.0, 1.0, 2.0, 3.0]) * 1e62)
+    near_pole = np.array([0.0, 0.0, 6.2, 1e308, 1e308, 3.0])  # J⁻¹ ~ 75: J⁻¹ Q J⁻¹ ~ 75² |v|
+    with pytest.raises(ValueError, match="xi is out of range: the coupling block"):
+        se3_left_jacobian_inverse(near_pole)
+    assert np.isfinite(se3_left_jacobian(near_pole)).all()

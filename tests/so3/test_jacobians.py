@@ -46,17 +46,39 @@ def _mp_jacobians(psi):
         return (np.array(m.tolist(), dtype=float) for m in (left, inverse))
 
 
-@pytest.mark.parametrize("exponent", [-996, -530, 530, 996])
+@pytest.mark.parametrize("exponent", [-996, -530, 24, 530, 996])
 def test_jacobians_at_extreme_magnitudes_against_mpmath(exponent):
     """|ψ| from 1e-300 to 1e300: no overflow or underflow; a few ulp of the matrix norm.
 
-    The directions have norms that are exact in binary: at |ψ| ~ 1e160 one
-    rounding of |ψ| moves ψ mod 2π anywhere, so only an exactly representable
-    angle makes the comparison meaningful.
+    The directions have norms that are exact in binary, so that the reference
+    has the same |ψ| mod 2π. The inverses, which depend on it at full size,
+    are refused beyond 1e8 rad (there one rounding of a general |ψ| moves
+    ψ/2 mod π by more than the singularity tolerance).
     """
     for direction in ([0.0, 0.0, 1.0], [3.0, 4.0, 0.0], [2.0, -1.0, 2.0]):
         psi = 2.0**exponent * np.array(direction)
         left, inverse = _mp_jacobians(psi)
         np.testing.assert_allclose(kr.so3.left_jacobian(psi), left, rtol=0, atol=4e-16 * np.abs(left).max())
-        np.testing.assert_allclose(kr.so3.left_jacobian_inverse(psi), inverse, rtol=0, atol=4e-16 * np.abs(inverse).max())
         np.testing.assert_allclose(kr.so3.right_jacobian(psi), left.T, rtol=0, atol=4e-16 * np.abs(left).max())
+        if exponent < 27:
+            np.testing.assert_allclose(kr.so3.left_jacobian_inverse(psi), inverse, rtol=0,
+                                       atol=4e-16 * np.abs(inverse).max())
+        else:
+            with pytest.raises(ValueError, match=r"psi is out of range: \|psi\| = .* exceeds 1e\+08 rad"):
+                kr.so3.left_jacobian_inverse(psi)
+
+
+def test_inverse_jacobians_of_long_rotation_vectors_are_refused_not_noise():
+    """A general ψ of length 1e155: its rounded length puts ψ/2 anywhere mod π, and the old
+    finite result was off by O(1) (against mpmath); now a clear refusal, also in a batch with
+    valid and singular samples, and for the rotation-vector rates and their singularity mask."""
+    psi = np.array([[0.3, -0.5, 0.7], [0.0, 0.0, 2 * np.pi], [0.1, 0.2, 0.3]])
+    psi[0] *= 1e155 / np.linalg.norm(psi[0])
+    for fn in (kr.so3.left_jacobian_inverse, kr.so3.right_jacobian_inverse,
+               lambda p: kr.rotvec_rate(p, [1.0, 2.0, 3.0]), kr.kinematics.rotvec_rate_singular):
+        with pytest.raises(ValueError, match="psi is out of range.*reduce it to"):
+            fn(psi)
+    # just inside the range: right to the conditioning |ψ|·eps of the rounded length
+    psi = np.array([0.3, -0.5, 0.7]) * (0.9e8 / np.sqrt(0.83))
+    _, inverse = _mp_jacobians(psi)
+    np.testing.assert_allclose(kr.so3.left_jacobian_inverse(psi), inverse, rtol=0, atol=3e-8 * np.abs(inverse).max())

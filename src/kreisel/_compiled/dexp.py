@@ -112,18 +112,26 @@ def dexp_coefficient_slopes(angle: float) -> tuple[float, float, float]:
 
 
 @cached
-def se3_coupling_coefficients(angle: float) -> tuple[float, float, float]:
-    """The coefficients of the coupling block Q of the SE(3) Jacobians (Barfoot):
-    ``(ψ − sin ψ)/ψ³`` (:func:`sine_remainder`), ``(ψ² + 2 cos ψ − 2)/(2ψ⁴)``
-    and ``(2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, the last two from their series below ψ = 2."""
-    b = sine_remainder(angle)
+def se3_coupling_coefficients(angle: float) -> tuple[float, float, float, float]:
+    """The coefficients of the coupling block Q of the SE(3) Jacobians (Barfoot), times powers of the angle:
+    ``bψ``, ``bψ²``, ``cψ²`` and ``dψ³`` with ``b = (ψ − sin ψ)/ψ³`` (:func:`sine_remainder`),
+    ``c = (ψ² + 2 cos ψ − 2)/(2ψ⁴)`` and ``d = (2ψ − 3 sin ψ + ψ cos ψ)/(2ψ⁵)``, for Q written with
+    the unit axis (no power of a huge or tiny angle is formed); c and d from their series below ψ = 2."""
+    # the square is formed of the clipped angle: compiled code may hoist it out of the series
+    # branches, and beyond 1e154 it would overflow (numpy then warns of the overflow)
+    small = min(angle, SE3_SERIES_BELOW)
+    x = small * small
+    if angle < SINE_REMAINDER_SERIES_BELOW:
+        b = horner(SINE_REMAINDER_SERIES, x)
+        b1, b2 = b * angle, b * x
+    else:
+        b2 = 1.0 - math.sin(angle) / angle
+        b1 = b2 / angle
     if angle < SE3_SERIES_BELOW:
-        x = angle * angle
-        return b, horner(COSINE_REMAINDER_SERIES, x), horner(SE3_COUPLING_SERIES, x)
+        return b1, b2, horner(COSINE_REMAINDER_SERIES, x) * x, horner(SE3_COUPLING_SERIES, x) * x * angle
     sn = math.sin(angle)
     cs = math.cos(angle)
-    a2 = angle * angle
-    return b, (a2 + 2.0 * cs - 2.0) / (2.0 * a2 * a2), (2.0 * angle - 3.0 * sn + angle * cs) / (2.0 * a2 * a2 * angle)
+    return b1, b2, 0.5 - (1.0 - cs) / angle / angle, (2.0 + cs - 3.0 * sn / angle) / (2.0 * angle)
 
 
 @cached
@@ -145,10 +153,18 @@ def bortz_times_square(angle: float) -> float:
     return 1.0 - h * math.cos(h) / math.sin(h)
 
 
+#: Longest rotation vector (rad) whose dexp⁻¹ is computed. dexp⁻¹ depends on |ψ| mod 2π at full
+#: size (through (ψ/2) cot(ψ/2)), and rounding |ψ| moves it by about |ψ|·1.1e-16: beyond 1e8 rad
+#: that exceeds the 1e-8 singularity tolerance (:data:`kreisel.so3.jacobians.SINGULAR_TOL`), and
+#: by ~1e16 rad the result would be noise. The kernels return NaN there and the callers refuse it.
+ROTVEC_RATE_RANGE = 1e8
+
+
 @cached
 def rotvec_singular(angle: float, tol: float) -> bool:
-    """True where dexp⁻¹ has a pole: |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``."""
-    return angle > math.pi and abs(math.sin(0.5 * angle)) <= tol
+    """True where dexp⁻¹ is not computed: its poles |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``,
+    and beyond :data:`ROTVEC_RATE_RANGE`."""
+    return angle > math.pi and (angle > ROTVEC_RATE_RANGE or abs(math.sin(0.5 * angle)) <= tol)
 
 
 @cached

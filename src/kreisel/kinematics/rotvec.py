@@ -30,9 +30,10 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import gufunc
-from .._validation import as_float_array, check_tolerance, warn_if_any
+from .._validation import as_float_array, check_tolerance
 from .._norms import norm
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
+from ..so3.jacobians import check_rotvec_range, singular_or_out_of_range
 from ._checks import frame_sign, vector_batch, vectors
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning
 
@@ -151,7 +152,7 @@ def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: flo
     sign = frame_sign(frame)
     psi, omega = vector_batch(psi=psi, omega=omega)
     out = dexp.apply_jacobian_inverse(psi, omega, sign, check_tolerance(tol), out=out)
-    warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
+    singular_or_out_of_range(psi, out[..., 0], RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out
 
 
@@ -180,4 +181,5 @@ def rotvec_rate_singular(psi: ArrayLike, tol: float = SINGULAR_TOL, *, out: NDAr
     psi = vectors(psi, "psi")
     tol = check_tolerance(tol)
     angle = norm(psi)
+    check_rotvec_range(angle, "psi")
     return deliver((angle > np.pi) & (np.abs(np.sin(0.5 * angle)) <= tol), out)

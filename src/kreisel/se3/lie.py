@@ -31,7 +31,8 @@ from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc
 from .._validation import as_float_array
 from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
-from ..so3.jacobians import SINGULAR_TOL
+from .._norms import norm
+from ..so3.jacobians import SINGULAR_TOL, check_rotvec_range
 from ..so3.jacobians import left_jacobian as so3_left_jacobian
 from ..so3.jacobians import left_jacobian_inverse as so3_left_jacobian_inverse
 
@@ -48,15 +49,20 @@ __all__ = [
 _LEFT = 1.0
 
 
-@gufunc(["void(f8, f8[:], f8[:])"], "(),(3)->(3)")
-def _coupling_coefficients(theta, carrier3, out):
-    out[0], out[1], out[2] = dexp.se3_coupling_coefficients(theta)
+@gufunc(["void(f8, f8[:], f8[:])"], "(),(4)->(4)")
+def _coupling_coefficients(theta, carrier4, out):
+    out[0], out[1], out[2], out[3] = dexp.se3_coupling_coefficients(theta)
 
 
 def _q_coefficients(theta):
-    """(θ - sin θ)/θ³, (θ² + 2 cos θ - 2)/(2θ⁴), (2θ - 3 sin θ + θ cos θ)/(2θ⁵) of angles θ >= 0."""
+    """bθ, bθ², cθ², dθ³ with b = (θ - sin θ)/θ³, c = (θ² + 2 cos θ - 2)/(2θ⁴), d = (2θ - 3 sin θ + θ cos θ)/(2θ⁵)."""
     c = _coupling_coefficients(theta)
-    return c[..., 0], c[..., 1], c[..., 2]
+    return c[..., 0], c[..., 1], c[..., 2], c[..., 3]
+
+
+# Q depends on |ω| mod 2π at its full size |v|/|ω| for long ω, like dexp⁻¹ at its full size: both
+# Jacobians and their inverses refuse rotation parts beyond so3's ROTVEC_RATE_RANGE.
+_ROTATION_PART = "the rotation part |omega|"
 
 
 def _split(xi):
@@ -144,16 +150,19 @@ def adjoint(rotation_matrix, translation):
     return a
 
 
-def _coupling(omega, v):
-    """Barfoot's Q(ω, v): the lower-left block of the SE(3) left Jacobian."""
-    theta = np.sqrt(np.sum(omega * omega, axis=-1))
-    c1, c2, c3 = (c[..., None, None] for c in _q_coefficients(theta))
-    W, V = hat(omega), hat(v)
-    WV, VW = W @ V, V @ W
-    WVW = WV @ W
-    WWV = W @ WV
-    VWW = VW @ W
-    return 0.5 * V + c1 * (WV + VW + WVW) + c2 * (WWV + VWW - 3.0 * WVW) + c3 * (WVW @ W + W @ WVW)
+def _coupling(omega, v, theta):
+    """Barfoot's Q(ω, v), the lower-left block of the SE(3) left Jacobian, for ω of length ``theta``.
+
+    ``Q = ½V + b(WV + VW + WVW) + c(WWV + VWW − 3WVW) + d(WVW W + W WVW)`` with W = hat(ω),
+    V = hat(v), written with the unit axis u (W = θ hat(u)) and the coefficients times the
+    matching powers of θ: no entry over- or underflows for any finite ω.
+    """
+    b1, b2, c2, d3 = (c[..., None, None] for c in _q_coefficients(theta))
+    U = hat(omega / np.where(theta > 0.0, theta, 1.0)[..., None])
+    V = hat(v)
+    UV, VU = U @ V, V @ U
+    UVU = UV @ U
+    return 0.5 * V + b1 * (UV + VU) + (b2 - 3.0 * c2) * UVU + c2 * (U @ UV + VU @ U) + d3 * (UVU @ U + U @ UVU)
 
 
 def _blocks(diagonal, lower):
@@ -168,7 +177,9 @@ def _blocks(diagonal, lower):
 def se3_left_jacobian(xi, *, out=None):
     """Left Jacobian of SE(3), ``(..., 6, 6)``: ``exp(ξ + δ) ≈ exp(J_l δ) exp(ξ)``.
 
-    Also the map from ``ξ̇`` to the space twist ``(Ṫ T⁻¹)^∨`` of ``T = exp(ξ)``.
+    Also the map from ``ξ̇`` to the space twist ``(Ṫ T⁻¹)^∨`` of ``T = exp(ξ)``. Rotation parts
+    longer than 1e8 rad are refused (the coupling block then depends on |ω| mod 2π, which the
+    rounding of |ω| no longer determines).
 
     Parameters
     ----------
@@ -190,7 +201,9 @@ def se3_left_jacobian(xi, *, out=None):
     """
     xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
-    return deliver(_blocks(so3_left_jacobian(omega), _coupling(omega, v)), out)
+    theta = norm(omega)
+    check_rotvec_range(theta, "xi", _ROTATION_PART)
+    return deliver(_blocks(so3_left_jacobian(omega), _coupling(omega, v, theta)), out)
 
 
 def se3_right_jacobian(xi, *, out=None):
@@ -220,7 +233,8 @@ def se3_right_jacobian(xi, *, out=None):
 def se3_left_jacobian_inverse(xi, *, out=None):
     """Inverse of :func:`se3_left_jacobian`, ``[[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]``, without a matrix solve.
 
-    Finite for ``|ω| < 2π`` (logarithms have ``|ω| <= π``).
+    Finite for ``|ω| < 2π`` (logarithms have ``|ω| <= π``); rotation parts longer than 1e8 rad
+    are refused, as by :func:`se3_left_jacobian`.
 
     Parameters
     ----------
@@ -243,8 +257,15 @@ def se3_left_jacobian_inverse(xi, *, out=None):
     """
     xi = finite_array(xi, "xi", (6,))
     omega, v = _split(xi)
+    theta = norm(omega)
+    check_rotvec_range(theta, "xi", _ROTATION_PART)
     inverse = so3_left_jacobian_inverse(omega)
-    return deliver(_blocks(inverse, -inverse @ _coupling(omega, v) @ inverse), out)
+    with np.errstate(over="ignore", invalid="ignore"):
+        lower = -inverse @ _coupling(omega, v, theta) @ inverse
+    if not np.isfinite(lower[np.isfinite(inverse[..., 0, 0])]).all():
+        raise ValueError("xi is out of range: the coupling block J⁻¹ Q J⁻¹ (of size about |J⁻¹|² |v|) "
+                         "exceeds the largest float (~1.8e308)")
+    return deliver(_blocks(inverse, lower), out)
 
 
 def se3_right_jacobian_inverse(xi, *, out=None):

@@ -37,7 +37,7 @@ from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from .._validation import AXES as _AXES, parse_sequence
 from . import matrix as _matrix
-from ._norms import unit
+from .._norms import unit
 
 __all__ = [
     "parse_sequence",

@@ -12,7 +12,10 @@ With ``R = exp(ψ·X)`` (:func:`~kreisel.so3.rotvec_to_matrix`),
 
 ``f = (1 − (ψ/2) cot(ψ/2))/ψ²`` the Bortz coefficient, with poles at
 |ψ| = 2π, 4π, … where the entries are NaN and a
-:class:`~kreisel.kinematics.RotationVectorSingularityWarning` is issued. Every coefficient is
+:class:`~kreisel.kinematics.RotationVectorSingularityWarning` is issued.
+Rotation vectors longer than ``ROTVEC_RATE_RANGE`` (1e8 rad) are refused by
+the inverses: their entries depend on |ψ| mod 2π, which the rounding of
+so long a vector's length no longer determines. Every coefficient is
 summed from its series at small ψ, so the matrices are accurate to a few ulp.
 The group, its exp/log and its Jacobians live together here, as in Sophus
 and manif; the SE(3) Jacobians of :mod:`kreisel.se3` are built on these.
@@ -23,8 +26,10 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import dexp
+from .._compiled.dexp import ROTVEC_RATE_RANGE
 from .._compiled.gufunc import vector_array
 from .._validation import check_tolerance, warn_if_any
+from .._norms import norm
 from .euler import KinematicSingularityWarning
 
 __all__ = ["left_jacobian", "right_jacobian", "left_jacobian_inverse", "right_jacobian_inverse"]
@@ -41,10 +46,30 @@ class RotationVectorSingularityWarning(KinematicSingularityWarning):
     """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
 
 
+def check_rotvec_range(angle, name, what="|psi|"):
+    """Refuse rotation vectors longer than :data:`ROTVEC_RATE_RANGE` (``angle`` their lengths), naming ``name``."""
+    longest = np.max(angle, initial=0.0)
+    if longest > ROTVEC_RATE_RANGE:
+        raise ValueError(
+            f"{name} is out of range: {what} = {longest:.3g} rad exceeds {ROTVEC_RATE_RANGE:g} rad, beyond which "
+            "the rate of a rotation vector (which depends on its length modulo 2*pi) is lost to the rounding "
+            "of its length; reduce it to |psi| <= pi (same rotation) first"
+        )
+
+
+def singular_or_out_of_range(psi, values, category, message, name="psi"):
+    """Refuse the samples of ``psi`` beyond :data:`ROTVEC_RATE_RANGE`, else warn of the poles, where ``values`` is NaN."""
+    undefined = np.isnan(values)
+    if undefined.any():
+        check_rotvec_range(norm(np.broadcast_to(psi, undefined.shape + (3,))[undefined]), name)
+        warn_if_any(undefined, category, message)
+
+
 def _inverse(psi, sign, tol, out):
     psi = vector_array(psi, "psi")
     out = dexp.jacobian_inverse_matrix(psi, sign, check_tolerance(tol), out=out)
-    warn_if_any(np.isnan(out[..., 0, 0]), RotationVectorSingularityWarning, "SO(3) Jacobian inverse at |psi| = 2*pi*k")
+    singular_or_out_of_range(psi, out[..., 0, 0], RotationVectorSingularityWarning,
+                             "SO(3) Jacobian inverse at |psi| = 2*pi*k")
     return out
 
 
