@@ -203,3 +203,12 @@ def test_axis_angle(rng):
     assert angle0 == 0 and np.array_equal(axis0, [0, 0, 1])
     with pytest.raises(ValueError, match="axis must be nonzero"):
         kr.axis_angle_to_rotvec([0.0, 0, 0], 1.0)
+
+
+def test_adjoint_action_does_not_depend_on_the_memory_layout(random_quats, rng):
+    """A strided Q gave other last bits in two of three cases (einsum's summation order)."""
+    Q = kr.quat_to_matrix(random_quats(200))
+    psi = rng.normal(size=(200, 3))
+    strided = np.repeat(Q, 2, axis=-1)[..., ::2]
+    np.testing.assert_array_equal(kr.so3.adjoint_action(strided, psi), kr.so3.adjoint_action(Q, psi))
+    np.testing.assert_array_equal(kr.so3.adjoint_action(Q, np.repeat(psi, 2, axis=-1)[..., ::2]), kr.so3.adjoint_action(Q, psi))

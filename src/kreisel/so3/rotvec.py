@@ -434,6 +434,7 @@ def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | N
     >>> np.round(adjoint_action(Q, [0.1, 0.0, 0.0]), 12) + 0.0
     array([0. , 0.1, 0. ])
     """
-    Q = matrix_array(Q, "Q")
-    psi = vector_array(psi, "psi")
+    # contiguous: einsum sums in another order over a strided Q, and the result would depend on the layout
+    Q = np.ascontiguousarray(matrix_array(Q, "Q"))
+    psi = np.ascontiguousarray(vector_array(psi, "psi"))
     return deliver(np.einsum("...ij,...j->...i", Q, psi), out)
