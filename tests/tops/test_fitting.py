@@ -176,3 +176,19 @@ def test_predict_validates_and_includes_bias():
     np.testing.assert_allclose(fit.predict(t) - fit.bias, fit.top.omega(t - t[0], fit.omega0), atol=1e-12)
     with pytest.raises(ValueError, match="one-dimensional"):
         fit.predict(np.zeros((2, 2)))
+
+
+def test_fit_at_extreme_rates_is_the_time_scaled_fit():
+    # data ω(t) and c ω(c t) have the same moments: with c = 2^±600 (their squares once overflowed or
+    # underflowed) the fit is the same, its rates c times larger
+    t = np.linspace(0.0, 4.0, 60)
+    omega = kr.EulerTop(1.0, 2.0, 2.5).solve(t, [0.1, 1.0, 0.1]).omega
+    base = kr.fit_free_rotation(t, omega)
+    for k in (600, -600):
+        fit = kr.fit_free_rotation(np.ldexp(t, -k), np.ldexp(omega, k))
+        np.testing.assert_array_equal(fit.moments, base.moments)
+        np.testing.assert_array_equal(fit.omega0, np.ldexp(base.omega0, k))
+        assert fit.rms == np.ldexp(base.rms, k) and fit.t0 == 0.0
+        np.testing.assert_allclose(fit.predict(fit.t), fit.omega, rtol=0, atol=np.ldexp(1e-9, k))
+    with pytest.raises(ValueError, match="t and omega are out of range: the body turns through up to"):
+        kr.fit_free_rotation(t * 1e20, omega)

@@ -18,7 +18,7 @@ import numpy as np
 from .._html import html_table, number
 from .._validation import as_float, as_float_array
 from ..so3 import rotvec_to_matrix
-from .euler_top import EulerTop
+from .euler_top import _MAX_TURN, EulerTop
 
 __all__ = ["FreeRotationFit", "NotFreeRotationWarning", "fit_free_rotation"]
 
@@ -485,6 +485,19 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         )
     from scipy.optimize import least_squares  # 0.13 s to import: only when fitting
 
+    # free rotation is homogeneous: data ω(t) and c ω(c t) have the same moments. The fit runs with time
+    # from the first sample and rates divided by c, a power of two (exact) near the largest |ω|, so that
+    # no sum of squares overflows or underflows; rates come back multiplied by c
+    t_data, omega_data = t, omega
+    k = int(np.frexp(np.max(np.abs(omega), initial=0.0))[1])
+    with np.errstate(over="ignore"):
+        t = np.ldexp(t - t[0], k)
+    if not t[-1] <= _MAX_TURN:
+        raise ValueError(f"t and omega are out of range: the body turns through up to {float(t[-1]):.3g} rad over t, "
+                         f"more than {_MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+    omega = np.ldexp(omega, -k)
+    scale = np.ldexp(1.0, k)
+
     model, x0 = _start(t, omega, bool(bias), bool(align))
     lower = np.full(model.size, -np.inf)
     lower[:2] = 1e-9
@@ -514,8 +527,9 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     moments, w0, b, rotation = model.split(x)
     moments = moments / moments.max()
     top = EulerTop(*moments)
-    rms = float(np.sqrt(np.mean(residual**2)))
-    signal = float(np.sqrt(np.mean(omega**2)))
+    rms = float(np.sqrt(np.mean(residual**2)) * scale)
+    signal = float(np.sqrt(np.mean(omega**2)) * scale)
+    values[3:], stderr[3:], b = values[3:] * scale, stderr[3:] * scale, b * scale
     middle = int(np.argsort(moments)[1])
     energy, momentum = float(top.energy(w0)), float(top.angular_momentum(w0))
     distance = (momentum**2 - 2.0 * energy * moments[middle]) / (2.0 * energy * moments[middle])
@@ -552,9 +566,9 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         misalignment=float(np.arccos(cos_angle)),
         rms=rms,
         signal_rms=signal,
-        t0=float(t[0]),
-        t=t,
-        omega=omega,
+        t0=float(t_data[0]),
+        t=t_data,
+        omega=omega_data,
         top=top,
         regime=top.regime(w0),
         intermediate_axis=middle,
@@ -562,5 +576,5 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         free_rotation=free,
         message=message,
         nfev=int(solution.nfev),
-        _omega0_principal=w0.copy(),
+        _omega0_principal=w0 * scale,
     )
