@@ -247,9 +247,12 @@ def _profile(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float
     B = np.zeros((3, 3))
     for j in range(a.shape[1]):
         wj = w[i, j] / sw
-        for r in range(3):
-            for c in range(3):
-                B[r, c] += wj * (a[i, j, r] / sa) * (b[i, j, c] / sb)
+        a0, a1, a2 = a[i, j, 0] / sa, a[i, j, 1] / sa, a[i, j, 2] / sa
+        b0, b1, b2 = b[i, j, 0] / sb, b[i, j, 1] / sb, b[i, j, 2] / sb
+        for r, ar in enumerate((a0, a1, a2)):
+            B[r, 0] += wj * ar * b0
+            B[r, 1] += wj * ar * b1
+            B[r, 2] += wj * ar * b2
     return B
 
 
