@@ -131,7 +131,9 @@ def test_results_do_not_depend_on_where_the_run_pauses(monkeypatch, method):
         six = kr.simulate_6dof([1, 2, 3], t, [0.1, 1, 0.1], velocity0=[1, 0, 0], method=method, dt=dt,
                                torque=lambda tt, q, w: [0.1 * np.sin(tt), 0.0, 0.0])
         batch = kr.simulate_batch([[1, 2, 3], [2, 2, 3]], t, [0.1, 1, 0.1], method=method, dt=dt)
-        runs.append([free.omega, free.q, forced.omega, forced.q, six.position, six.q, batch.omega, batch.q])
+        sparse = kr.simulate_batch([[1, 2, 3], [2, 2, 3]], t, [0.1, 1, 0.1], method=method, dt=dt, every=3)
+        runs.append([free.omega, free.q, forced.omega, forced.q, six.position, six.q, batch.omega, batch.q,
+                     sparse.omega, sparse.q])
     for a, b in zip(*runs):
         np.testing.assert_array_equal(a, b)
 

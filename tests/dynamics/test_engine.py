@@ -60,6 +60,32 @@ def test_batch_matches_single_simulations(method, dt):
         np.testing.assert_allclose(batch.q[b], single.q, rtol=0, atol=1e-15)
 
 
+
+@pytest.mark.parametrize("method,dt", [("dop853", None), ("splitting", 0.01), ("splitting4", 0.02), ("rk4", 0.01),
+                                       ("dmv", 0.01)])
+def test_batch_every_keeps_exactly_the_full_runs_samples(method, dt):
+    # decimated output: the same steps as the dense run, every k-th sample kept bit for bit
+    bodies = np.array([[1.0, 2.0, 3.0], [1.5, 1.5, 2.0], [2.0, 2.5, 3.0]])
+    w0, q0 = rng.normal(size=(3, 3)), random_unit_quaternions(3)
+    t = np.linspace(0, 3, 61)
+    for torque in (None, GravityTorque(0.7, [0.0, 0.1, 0.3])):
+        full = kr.simulate_batch(bodies, t, w0, q0, torque=torque, method=method, dt=dt)
+        for every in (1, 4, 60):
+            kept = kr.simulate_batch(bodies, t, w0, q0, torque=torque, method=method, dt=dt, every=every)
+            np.testing.assert_array_equal(kept.t, t[::every])
+            np.testing.assert_array_equal(kept.omega, full.omega[:, ::every])
+            np.testing.assert_array_equal(kept.q, full.q[:, ::every])
+        reduced = kr.simulate_batch(bodies, t, w0, q0, torque=torque, method=method, dt=dt, every=5, chunk_size=2,
+                                    reduce=lambda tr: tr.q)
+        np.testing.assert_array_equal(reduced, full.q[:, ::5])
+
+
+def test_batch_every_refuses_what_would_drop_the_last_time():
+    t = np.linspace(0, 1, 11)
+    for every, error in ((3, ValueError), (0, ValueError), (-2, ValueError), (2.0, TypeError), (True, TypeError)):
+        with pytest.raises(error, match="every must be a positive integer"):
+            kr.simulate_batch([[1.0, 2.0, 3.0]], t, [0.1, 1, 0.1], method="rk4", dt=0.1, every=every)
+
 def test_batch_broadcasting_and_reduce():
     bodies = np.array([1.0, 2.0, 3.0]) + np.zeros((2, 3, 1))  # batch (2, 3)
     tilt = np.linspace(0.01, 0.3, 3)

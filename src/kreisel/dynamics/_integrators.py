@@ -136,40 +136,6 @@ def _strang_free(h, inertia, y):
 
 
 @cached
-def _strang_run(h, n, weights, inertia, y, m, pending, first, last):
-    """``n`` free steps, each a composition of Strang steps of sizes ``weights·h``; returns ``pending``.
-
-    Consecutive half-flows about axis 0 are merged into one (they commute and
-    add: m_0 is their invariant), saving one flow in five. A run cut into
-    pieces carries the body momentum ``m`` and the not yet applied flow
-    ``pending`` from one piece to the next: ``first`` starts from ω′ = y[0:3],
-    ``last`` applies the pending flow and writes ω′ back.
-    """
-    if first:
-        for a in range(3):
-            m[a] = inertia[a] * y[a]
-        pending = 0.0
-    s = (m[0], m[1], m[2], y[3], y[4], y[5], y[6])
-    for _ in range(n):
-        for g in weights:
-            pending += 0.5 * g * h
-            s = _axis_flow(0, pending, inertia, *s)
-            s = _axis_flow(1, 0.5 * g * h, inertia, *s)
-            s = _axis_flow(2, g * h, inertia, *s)
-            s = _axis_flow(1, 0.5 * g * h, inertia, *s)
-            pending = 0.5 * g * h
-    if last:
-        s = _axis_flow(0, pending, inertia, *s)
-        pending = 0.0
-    m[0], m[1], m[2] = s[0], s[1], s[2]
-    y[3], y[4], y[5], y[6] = s[3], s[4], s[5], s[6]
-    if last:
-        for a in range(3):
-            y[a] = m[a] / inertia[a]
-    return pending
-
-
-@cached
 def _kick(t, h, inertia, rows, y, scratch):
     """Explicit kick ω′ += h I⁻¹ M′(t, q, ω′): the exact flow when M′ does not depend on ω′."""
     evaluate_torque(rows, t, y, scratch)
@@ -392,13 +358,12 @@ def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
     return _midpoint(t, h, inertia, rows, y, wa, wb, scratch)
 
 
-@cached
-def _advance(method, t0, h, s0, n, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch, carry):
-    """Rotation steps ``s0 … s0+n-1`` of ``n_sub`` steps of size ``h`` from ``t0``; returns a status.
+# inlined: a call per output interval passing arrays costs ~100 ns, as much as a step
+@inlined
+def _advance(method, t0, h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch):
+    """Rotation steps ``s0 … s0+n-1`` of size ``h`` from ``t0``; returns a status.
 
-    One loop per method keeps the dispatch out of the hot loop. ``carry`` is
-    the part of the driver state that :func:`_strang_run` continues from
-    (``[pending, m0, m1, m2]``).
+    One loop per method keeps the dispatch out of the hot loop.
     """
     if method == RK4:
         for s in range(s0, s0 + n):
@@ -406,17 +371,6 @@ def _advance(method, t0, h, s0, n, n_sub, inertia, rows, y, wa, wb, wc, wd, scra
     elif method == RKMK4:
         for s in range(s0, s0 + n):
             _rkmk4(t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-    elif (method == SPLITTING or method == SPLITTING4) and rows is None:
-        for a in range(3):
-            wa[a] = carry[1 + a]
-        first, last = s0 == 0, s0 + n == n_sub
-        if method == SPLITTING:
-            carry[0] = _strang_run(h, n, (1.0,), inertia, y, wa, carry[0], first, last)
-        else:
-            weights = (YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER)
-            carry[0] = _strang_run(h, n, weights, inertia, y, wa, carry[0], first, last)
-        for a in range(3):
-            carry[1 + a] = wa[a]
     else:
         for s in range(s0, s0 + n):
             status = _rotation_step(method, t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
@@ -464,37 +418,119 @@ def substeps(span, dt):
 
 
 @cached
-def _unit_attitude(out, k):
-    """out[k, 3:7] ← q/|q|, the attitude of an output sample as a unit quaternion.
-
-    The squares are summed in numpy's order (``np.linalg.norm`` over the last
-    axis), so the samples carry the same bits as normalising the whole output
-    afterwards would give, without a second pass over it.
-    """
-    q0, q1, q2, q3 = out[k, 3], out[k, 4], out[k, 5], out[k, 6]
-    n = math.sqrt(((q0 * q0 + q1 * q1) + q2 * q2) + q3 * q3)
-    out[k, 3], out[k, 4], out[k, 5], out[k, 6] = q0 / n, q1 / n, q2 / n, q3 / n
+def _interval_steps(t_out, k, dt, s0, left):
+    """Output interval ``k`` in ceil(Δt/dt) equal steps: (step, steps, how many to take now from step ``s0``)."""
+    span = t_out[k + 1] - t_out[k]
+    n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
+    return span / n_sub, n_sub, min(n_sub - s0, left)
 
 
 @cached
-def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget):
+def _store(out, j, w0, w1, w2, q0, q1, q2, q3):
+    """out[j, 0:7] ← (ω′, q/|q|): an output sample, its attitude as a unit quaternion.
+
+    The squares are summed in numpy's order (``np.linalg.norm`` over the last
+    axis), so the samples carry the same bits as normalising the whole output
+    afterwards would give, without a second pass over it. The state arrives
+    as numbers: no array view per sample.
+    """
+    n = math.sqrt(((q0 * q0 + q1 * q1) + q2 * q2) + q3 * q3)
+    out[j, 0], out[j, 1], out[j, 2] = w0, w1, w2
+    out[j, 3], out[j, 4], out[j, 5], out[j, 6] = q0 / n, q1 / n, q2 / n, q3 / n
+
+
+@cached
+def _unit_attitude(out, k):
+    """out[k, 3:7] ← q/|q| in place (:func:`_store`)."""
+    _store(out, k, out[k, 0], out[k, 1], out[k, 2], out[k, 3], out[k, 4], out[k, 5], out[k, 6])
+
+
+@cached
+def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
+    """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
+
+    Each step is a composition of Strang steps of sizes ``weights·h``.
+    Consecutive half-flows about axis 0 are merged into one (they commute and
+    add: m_0 is their invariant), saving one flow in five; the flow still
+    pending at the end of an output interval is applied there, where ω′ is
+    stored. The flows act on m = I ω′, so that ω′ ↔ m round trips happen
+    once per interval. A pause inside an interval keeps the momentum and the
+    pending flow in ``state[2:6]``.
+
+    The whole run over the output intervals is one loop over numbers: no
+    array is handed to a helper per interval (each costs reference counting,
+    which two threads contend for on the shared output), so storing every
+    step costs little more than the flow that ends the interval.
+    """
+    i0, i1, i2 = inertia[0], inertia[1], inertia[2]
+    k, s0, pending = int(state[0]), int(state[1]), state[2]
+    w0, w1, w2 = state[6], state[7], state[8]
+    s = (state[3], state[4], state[5], state[9], state[10], state[11], state[12])
+    if k < 0:
+        _store(out, 0, w0, w1, w2, s[3], s[4], s[5], s[6])
+        k = 0
+    taken = 0
+    while k < t_out.size - 1:
+        if taken >= budget:
+            state[0], state[1], state[2] = k, s0, pending
+            state[3], state[4], state[5] = s[0], s[1], s[2]
+            state[6], state[7], state[8] = w0, w1, w2
+            state[9], state[10], state[11], state[12] = s[3], s[4], s[5], s[6]
+            return PAUSED
+        h, n_sub, n = _interval_steps(t_out, k, dt, s0, budget - taken)
+        taken += n
+        if s0 == 0:
+            s = (i0 * w0, i1 * w1, i2 * w2, s[3], s[4], s[5], s[6])
+            pending = 0.0
+        for _ in range(n):
+            for g in weights:
+                pending += 0.5 * g * h
+                s = _axis_flow(0, pending, inertia, *s)
+                s = _axis_flow(1, 0.5 * g * h, inertia, *s)
+                s = _axis_flow(2, g * h, inertia, *s)
+                s = _axis_flow(1, 0.5 * g * h, inertia, *s)
+                pending = 0.5 * g * h
+        s0 += n
+        if s0 < n_sub:
+            continue
+        s = _axis_flow(0, pending, inertia, *s)
+        pending = 0.0
+        w0, w1, w2 = s[0] / i0, s[1] / i1, s[2] / i2
+        if not (math.isfinite(w0) and math.isfinite(w1) and math.isfinite(w2) and math.isfinite(s[3])
+                and math.isfinite(s[4]) and math.isfinite(s[5]) and math.isfinite(s[6])):
+            return NOT_FINITE
+        k += 1
+        s0 = 0
+        if k % every == 0:
+            _store(out, k // every, w0, w1, w2, s[3], s[4], s[5], s[6])
+    return OK
+
+
+@cached
+def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget, every):
     """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps.
 
     At most ``budget`` steps per call (see the module note). The caller has
-    checked with :func:`substeps` that every step count fits an int.
+    checked with :func:`substeps` that every step count fits an int. The
+    state at ``t_out[k]`` is stored in ``out[k // every]`` when ``every``
+    divides ``k`` (decimated output: the same steps, fewer samples kept).
     """
     ny = state.size - 6
+    if ny == 7 and rows is None and method == SPLITTING:
+        return _splitting_free((1.0,), t_out, dt, state, inertia, out, budget, every)
+    if ny == 7 and rows is None and method == SPLITTING4:
+        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, dt, state, inertia, out,
+                               budget, every)
     y = np.empty(ny)
     for i in range(ny):
         y[i] = state[6 + i]
     wa, wb, wc, wd, scratch = np.empty(8), np.empty(8), np.empty(28), np.empty(12), np.empty(13)
-    carry = state[2:6]
     k = int(state[0])
     s0 = int(state[1])
     if k < 0:
-        for i in range(ny):
+        for i in range(7, ny):
             out[0, i] = y[i]
-        _unit_attitude(out, 0)
+        _store(out, 0, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
         k = 0
     taken = 0
     while k < t_out.size - 1:
@@ -504,13 +540,10 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
             for i in range(ny):
                 state[6 + i] = y[i]
             return PAUSED
-        span = t_out[k + 1] - t_out[k]
-        n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
-        h = span / n_sub
-        n = min(n_sub - s0, budget - taken)
+        h, n_sub, n = _interval_steps(t_out, k, dt, s0, budget - taken)
         taken += n
         if ny == 7:
-            if _advance(method, t_out[k], h, s0, n, n_sub, inertia, rows, y, wa, wb, wc, wd, scratch, carry) != OK:
+            if _advance(method, t_out[k], h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
                 return NO_CONVERGENCE
         for s in range(s0, s0 + n if ny == 13 else 0):
             t = t_out[k] + s * h
@@ -527,10 +560,12 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
         for i in range(ny):
             if not math.isfinite(y[i]):
                 return NOT_FINITE
-            out[k + 1, i] = y[i]
-        _unit_attitude(out, k + 1)
         k += 1
         s0 = 0
+        if k % every == 0:
+            for i in range(7, ny):
+                out[k // every, i] = y[i]
+            _store(out, k // every, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
     return OK
 
 
@@ -547,18 +582,21 @@ def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, ou
 
 
 @cached
-def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
+def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget, every):
     """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
 
-    ``out[k]`` receives the state at ``t_out[k]`` with its attitude as a unit quaternion.
+    ``out[k]`` receives the state at ``t_out[k·every]`` with its attitude as a
+    unit quaternion. DOP853 takes ``every = 1`` and the decimated times
+    instead: its steps depend on the first and last output time only, so
+    ``t_out[::every]`` gives the same steps, hence the same bits.
     """
     if method == DOP853:
         return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
-    return fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget)
+    return fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget, every)
 
 
 @parallel
-def run_batch(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, status, budget):
+def run_batch(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, status, budget, every):
     """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
 
     Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
@@ -566,4 +604,4 @@ def run_batch(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, 
     for b in prange(state.shape[0]):
         if status[b] == PAUSED:
             status[b] = run(method, t_out, dt, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
-                            tables, out[b], budget)
+                            tables, out[b], budget, every)

@@ -58,6 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
+from .._compiled.outputs import empty
 from .._validation import as_float_array, check_allocation
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
@@ -156,6 +157,16 @@ def resolve_body(body: RigidBody | ArrayLike,
     if np.linalg.det(axes) < 0.0:
         axes[:, 2] = -axes[:, 2]
     return a, check_principal_moments(moments, allow_unphysical=allow_unphysical), axes, mass
+
+
+def _check_every(every: object, n_times: int) -> int:
+    """``every`` as a positive int dividing ``n_times - 1``; TypeError/ValueError naming it."""
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)):
+        raise TypeError(f"every must be a positive integer, got {type(every).__name__}")
+    if every < 1 or (n_times - 1) % every:
+        raise ValueError(f"every must be a positive integer dividing len(t) - 1 = {n_times - 1} (so that the "
+                         f"last time is kept), got {every}")
+    return int(every)
 
 
 def _check_times(t: ArrayLike) -> _Array:
@@ -260,14 +271,19 @@ def _checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., _Array
 
 def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
          frows: _Array | None, rtol: float, atol: _Array, max_steps: int,
-         progress: Callable[[float], object] | None = None) -> tuple[_Array, NDArray[np.int64]]:
+         progress: Callable[[float], object] | None = None, every: int = 1) -> tuple[_Array, NDArray[np.int64]]:
     """Integrate bodies ``y0 (count, ny)`` in compiled chunks (:func:`kreisel._compiled.chunks.run_chunked`).
 
-    Returns ``(out, status)``; ``progress(t_reached)`` is told the earliest
-    time over the bodies.
+    Returns ``(out, status)``, ``out`` the samples at ``t[::every]``;
+    ``progress(t_reached)`` is told the earliest time over the bodies. The
+    output comes from the pool of recycled pages (:func:`kreisel._compiled.outputs.empty`):
+    a dense run's first touches of a fresh multi-gigabyte output would cost
+    more than writing it.
     """
     count, ny = y0.shape
-    out = np.empty((count, t.size, ny))
+    if code == _integrators.DOP853:  # its steps do not depend on the output times in between: same bits
+        t, every = np.ascontiguousarray(t[::every]), 1
+    out = empty((count, (t.size - 1) // every + 1, ny))
     state = np.stack([_integrators.new_state(code, y) for y in y0])
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
@@ -275,10 +291,10 @@ def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, ma
     def step(budget: int) -> bool:
         if count == 1:
             status[0] = _integrators.run(code, t, dt, state[0], moments[0], mass[0], rows, frows, rtol, atol[0],
-                                         tables, out[0], budget)
+                                         tables, out[0], budget, every)
         else:
             _integrators.run_batch(code, t, dt, state, moments, mass, rows, frows, rtol, atol, tables, out, status,
-                                   budget)
+                                   budget, every)
         return not np.any(status == _dop853.PAUSED)
 
     def reached() -> float:
@@ -289,10 +305,12 @@ def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, ma
     return out, status
 
 
-def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_steps: int | None) -> int:
+def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_steps: int | None,
+                    every: int = 1) -> int:
     """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget."""
     max_steps = check_max_steps(max_steps)
-    check_allocation(count * t.size * ny * 8.0, f"the output ({count} × {t.size} samples × {ny} states)")
+    samples = (t.size - 1) // every + 1
+    check_allocation(count * samples * ny * 8.0, f"the output ({count} × {samples} samples × {ny} states)")
     if method in ADAPTIVE:
         return max_steps
     steps = _integrators.substeps(np.diff(t), dt)
@@ -613,7 +631,7 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
                    torque: _TorqueArg = None, method: str | None = None, dt: float | None = None,
                    reduce: Callable[[Trajectory], ArrayLike] | None = None, rtol: float = DEFAULT_RTOL,
                    atol: float | None = None, chunk_size: int | None = None, allow_unphysical: bool = False,
-                   max_steps: int | None = None) -> Trajectory | NDArray[Any]:
+                   max_steps: int | None = None, every: int = 1) -> Trajectory | NDArray[Any]:
     """Many rigid bodies in one compiled, parallel call (numba ``prange``).
 
     Parameters
@@ -640,6 +658,13 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
         reshaped to the batch shape.
     chunk_size : int, optional
         Bodies per chunk when ``reduce`` is given (default 4096).
+    every : int
+        Keep every ``every``-th sample: the trajectory is sampled at
+        ``t[::every]`` (``every`` must divide ``len(t) - 1``, so that the
+        last time is kept), integrated over all of ``t`` as without it. The
+        kept samples are bit for bit those of the full run (fixed-step
+        methods step each interval of ``t``; DOP853's steps do not depend on
+        the times in between), at a fraction of the memory.
 
     Returns
     -------
@@ -658,9 +683,12 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
     ...                          reduce=lambda tr: tr.omega[:, :, 1].min(axis=1))
     >>> flip.shape
     (2,)
+    >>> kr.simulate_batch(bodies, np.linspace(0, 1, 101), [0.1, 1.0, 0.1], every=25).t
+    array([0.  , 0.25, 0.5 , 0.75, 1.  ])
     """
     moments = check_principal_moments(bodies, "bodies", allow_unphysical)
     t = _check_times(t)
+    every = _check_every(every, t.size)
     method, dt = _check_method(method, dt, t)
     if method == "scipy":
         raise ValueError("simulate_batch runs compiled methods only; 'scipy' is available in simulate")
@@ -683,7 +711,8 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
     chunk = 4096 if chunk_size is None else operator.index(chunk_size)
     if chunk < 1:
         raise ValueError(f"chunk_size must be a positive integer, got {chunk}")
-    max_steps = _check_workload(method, t, dt, count if reduce is None else min(count, chunk), 7, max_steps)
+    max_steps = _check_workload(method, t, dt, count if reduce is None else min(count, chunk), 7, max_steps,
+                                every)
     # writable C copies: the batch kernel then reuses the single-body specialisation of the integrators
     moments = np.array(np.broadcast_to(moments, batch + (3,)).reshape(count, 3), order="C")
     y0 = np.empty((count, 7))
@@ -697,21 +726,22 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
 
     def integrate(lo: int, hi: int) -> _Array:
         out, status = _run(code, t, dt, y0[lo:hi], moments[lo:hi], mass[lo:hi], rows, None, rtol, atol_v[lo:hi],
-                           max_steps)
+                           max_steps, every=every)
         _raise_status(status)
         return out
 
+    kept = t[::every]
     if reduce is None:
         y = integrate(0, count)
         # views of the drivers' output (unit attitudes already): dense output costs no pass after the run
-        omega = y[..., 0:3].reshape(batch + (t.size, 3))
-        q = y[..., 3:7].reshape(batch + (t.size, 4))
-        return Trajectory(t, q, omega, moments.reshape(batch + (3,))[..., None] * np.eye(3), meta=meta)
+        omega = y[..., 0:3].reshape(batch + (kept.size, 3))
+        q = y[..., 3:7].reshape(batch + (kept.size, 4))
+        return Trajectory(kept, q, omega, moments.reshape(batch + (3,))[..., None] * np.eye(3), meta=meta)
     pieces = []
     for lo in range(0, count, chunk):
         hi = min(count, lo + chunk)
         y = integrate(lo, hi)
-        tr = Trajectory(t, y[..., 3:7], y[..., 0:3], moments[lo:hi, :, None] * np.eye(3), meta=meta)
+        tr = Trajectory(kept, y[..., 3:7], y[..., 0:3], moments[lo:hi, :, None] * np.eye(3), meta=meta)
         piece = np.asarray(reduce(tr))
         if piece.ndim < 1 or piece.shape[0] != hi - lo:
             raise ValueError(f"reduce must return an array whose first axis is the {hi - lo} bodies "
