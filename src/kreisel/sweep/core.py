@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import collections
 import collections.abc
+import contextlib
 import dataclasses
 import functools
 import hashlib
@@ -263,12 +264,13 @@ class _Checkpoint:
     def _path(self, chunk):
         return self.directory / f"chunk-{chunk:06d}.npz"
 
-    def load(self, n_chunks):
+    def load(self, n_chunks, sink=None):
         """``({chunk: arrays}, {chunk: why it was discarded})`` of the chunk files on disk.
 
         A chunk file that cannot be read whole (empty, truncated, corrupted by a
         crash of the disk or of another program) is deleted, so that its chunk
-        is computed again.
+        is computed again. With ``sink``, each chunk read is handed to
+        ``sink(chunk, arrays)`` and not kept (its value in the mapping is None).
         """
         found, discarded = {}, dict(self.outdated)
         for chunk in range(n_chunks):
@@ -286,6 +288,10 @@ class _Checkpoint:
                 discarded[chunk] = (f"checkpoint file {path.name} ({size} bytes) is unreadable "
                                     f"({type(exc).__name__}: {exc or 'empty'}); computing the chunk again")
                 path.unlink(missing_ok=True)
+                continue
+            if sink is not None:
+                sink(chunk, found[chunk])
+                found[chunk] = None
         return found, discarded
 
     def save(self, chunk, result):
@@ -418,6 +424,17 @@ class _Reporter:
 
 
 # ---- assembly and output --------------------------------------------------------------------
+def _check_chunk_variables(chunk, result, layout):
+    """Refuse a chunk whose variables or trailing shapes differ from ``layout`` (the first chunk's)."""
+    if set(result) != set(layout):
+        raise ValueError(f"sweep function returned variables {sorted(result)} for chunk {chunk} but "
+                         f"{sorted(layout)} for chunk 0")
+    for name, array in result.items():
+        if array.shape[1:] != layout[name][0]:
+            raise ValueError(f"sweep function result {name!r}: trailing shape {array.shape[1:]} in chunk "
+                             f"{chunk} differs from {layout[name][0]} in chunk 0")
+
+
 def _assemble(grid, shape, chunk_size, results, variable_attrs, attrs):
     xr = require("xarray", extra="sweep", feature="kreisel.sweep")
     first = results[0]
@@ -425,15 +442,11 @@ def _assemble(grid, shape, chunk_size, results, variable_attrs, attrs):
     data = {}
     for name, array in first.items():
         data[name] = np.empty((total,) + array.shape[1:], dtype=array.dtype)
+    layout = {name: (array.shape[1:], array.dtype) for name, array in first.items()}
     for chunk, result in results.items():
-        if set(result) != set(first):
-            raise ValueError(f"sweep function returned variables {sorted(result)} for chunk {chunk} but "
-                             f"{sorted(first)} for chunk 0")
+        _check_chunk_variables(chunk, result, layout)
         lo = chunk * chunk_size
         for name, array in result.items():
-            if array.shape[1:] != first[name].shape[1:]:
-                raise ValueError(f"sweep function result {name!r}: trailing shape {array.shape[1:]} in chunk "
-                                 f"{chunk} differs from {first[name].shape[1:]} in chunk 0")
             data[name][lo:lo + array.shape[0]] = array
     dims = tuple(grid)
     variables = {}
@@ -476,19 +489,112 @@ def write_dataset(dataset, output):
         with atomic_output(output) as tmp:
             dataset.to_netcdf(tmp)
         return
+    require("zarr", extra="sweep", feature="kreisel.sweep")
+    with _zarr_store(output) as tmp:
+        dataset.to_zarr(tmp, mode="w", zarr_format=2, consolidated=True)  # v2 + consolidated: widest reader support
+
+
+@contextlib.contextmanager
+def _zarr_store(output):
+    """Yield a temporary store path next to ``output``; swap it in when the block succeeds.
+
+    Two renames (the old store, if any, is moved aside first and deleted
+    after), so readers never see a half-written store.
+    """
     remove_stale_temporaries(output)  # stores left by a killed write
     tag = uuid.uuid4().hex[:8]
     tmp = output.with_name(f"{temporary_prefix(output)}{tag}.tmp")
     old = output.with_name(f"{temporary_prefix(output)}{tag}.old")
-    require("zarr", extra="sweep", feature="kreisel.sweep")
     try:
-        dataset.to_zarr(tmp, mode="w", zarr_format=2, consolidated=True)  # v2 + consolidated: widest reader support
+        yield tmp
         if output.exists():
             os.replace(output, old)
         os.replace(tmp, output)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
         shutil.rmtree(old, ignore_errors=True)
+
+
+def _flat_blocks(lo, hi, shape):
+    """Cover the C-order flat points ``lo … hi-1`` of a grid of ``shape`` by rectangular blocks.
+
+    Yields ``(region, start, count)``: a tuple of slices, one per axis, and
+    the block's first point (counted from ``lo``) and number of points; a
+    block's points are consecutive in C order. At most two blocks per axis.
+
+    Examples
+    --------
+    >>> [(tuple((r.start, r.stop) for r in region), start, count)
+    ...  for region, start, count in _flat_blocks(2, 9, (3, 4))]
+    [(((0, 1), (2, 4)), 0, 2), (((1, 2), (0, 4)), 2, 4), (((2, 3), (0, 1)), 6, 1)]
+    """
+    if len(shape) == 1:
+        if lo < hi:
+            yield (slice(lo, hi),), 0, hi - lo
+        return
+    stride = math.prod(shape[1:])
+    row, done = lo // stride, 0
+    if lo % stride:  # the partial first row (perhaps also the last)
+        end = min(hi, (row + 1) * stride)
+        for region, start, count in _flat_blocks(lo - row * stride, end - row * stride, shape[1:]):
+            yield (slice(row, row + 1),) + region, start, count
+        row, done = row + 1, end - lo
+    whole = max(0, (hi - row * stride) // stride)
+    if whole:
+        yield (slice(row, row + whole),) + tuple(slice(0, n) for n in shape[1:]), done, whole * stride
+        row, done = row + whole, done + whole * stride
+    if lo + done < hi:  # the partial last row
+        for region, start, count in _flat_blocks(0, hi - row * stride, shape[1:]):
+            yield (slice(row, row + 1),) + region, start + done, count
+
+
+class _ZarrStream:
+    """A sweep's ``.zarr`` output written chunk by chunk as the chunks arrive (``stream=True``).
+
+    The store at ``path`` is laid out on the first chunk (its variables'
+    trailing shapes and dtypes); each chunk is written into its part of every
+    variable and dropped, so memory holds about one chunk whatever the
+    sweep's size. A Zarr chunk spans about ``chunk_size`` grid points, so
+    writing a sweep chunk reads and rewrites at most a few of them.
+    """
+
+    def __init__(self, path, grid, shape, chunk_size, variable_attrs, attrs):
+        self.path, self.grid, self.shape, self.chunk_size = path, grid, shape, chunk_size
+        self.variable_attrs, self.attrs = variable_attrs, attrs
+        self.layout = self.group = None
+
+    def _lay_out(self, first):
+        xr = require("xarray", extra="sweep", feature="kreisel.sweep")
+        dask_array = require("dask.array", extra="sweep", feature="kreisel.sweep")
+        self.layout = {name: (array.shape[1:], array.dtype) for name, array in first.items()}
+        grid_chunks, points = [], 1
+        for n in reversed(self.shape):  # C order: whole trailing axes while they fit in chunk_size points
+            size = max(1, min(n, self.chunk_size // points))
+            grid_chunks.insert(0, size)
+            points *= size
+        variables = {}
+        for name, (trailing, dtype) in self.layout.items():
+            dims = tuple(self.grid) + tuple(f"{name}_dim_{i}" for i in range(len(trailing)))
+            data = dask_array.zeros(self.shape + trailing, dtype=dtype, chunks=tuple(grid_chunks) + trailing)
+            variables[name] = xr.Variable(dims, data, attrs=dict(self.variable_attrs.get(name, {})))
+        template = xr.Dataset(variables, coords=dict(self.grid), attrs=self.attrs)
+        template.to_zarr(self.path, mode="w", zarr_format=2, consolidated=False, compute=False)
+        self.group = require("zarr", extra="sweep", feature="kreisel.sweep").open_group(self.path, mode="r+")
+
+    def write(self, chunk, result):
+        """Write the arrays of sweep chunk ``chunk`` into their places in the store."""
+        if self.layout is None:
+            self._lay_out(result)
+        _check_chunk_variables(chunk, result, self.layout)
+        lo = chunk * self.chunk_size
+        for region, start, count in _flat_blocks(lo, lo + len(next(iter(result.values()))), self.shape):
+            block = tuple(r.stop - r.start for r in region)
+            for name, array in result.items():
+                self.group[name][region] = array[start:start + count].reshape(block + array.shape[1:])
+
+    def close(self):
+        """Consolidate the metadata (one read opens the store)."""
+        require("zarr", extra="sweep", feature="kreisel.sweep").consolidate_metadata(self.path)
 
 
 def _default_checkpoint(output):
@@ -502,7 +608,7 @@ def _chunk_label(parameters):
 # ---- the sweep ---------------------------------------------------------------------------------
 def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_workers=None,
           threads_per_worker=1, output=None, checkpoint=None, keep_checkpoint=False, retries=2,
-          progress=None, console=None, variable_attrs=None, attrs=None):
+          progress=None, console=None, variable_attrs=None, attrs=None, stream=False):
     """Evaluate ``function`` over a parameter grid in chunks, on Dask by default.
 
     Parameters
@@ -547,6 +653,13 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
         ``{variable: {attribute: value}}`` (units, long names) for the dataset.
     attrs : mapping, optional
         Global attributes of the dataset (strings or numbers).
+    stream : bool
+        For sweeps too large for memory: write each chunk into the ``.zarr``
+        ``output`` as it arrives (resumed chunks likewise) and keep none in
+        memory, which then holds about one chunk whatever the sweep's size.
+        The store is swapped in when the sweep succeeds, as without
+        ``stream``; the returned dataset reads it lazily (dask arrays) and
+        holds the same values as the in-memory sweep's.
 
     Returns
     -------
@@ -582,6 +695,10 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
         raise TypeError(f"progress must be callable, got {type(progress).__name__}")
     _check_scheduler(scheduler, n_workers, threads_per_worker)
     output = _check_output(output)
+    if not isinstance(stream, bool):
+        raise TypeError(f"stream must be True or False, got {type(stream).__name__}")
+    if stream and (output is None or output.suffix != ".zarr"):
+        raise ValueError("stream=True writes the chunks into a .zarr output as they arrive: pass output='….zarr'")
     # what the run needs, checked before any chunk is computed
     for module, needed in (("xarray", True), ("distributed", scheduler != SERIAL),
                            ("zarr", output is not None and output.suffix == ".zarr")):
@@ -596,58 +713,71 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
     directory = checkpoint if checkpoint is not None else _default_checkpoint(output)
     store = _Checkpoint(directory, key, description) if directory is not None else None
 
-    results, discarded = store.load(n_chunks) if store is not None else ({}, {})
-    if discarded and console is None:  # the console shows each discarded chunk; a library caller is warned
-        warnings.warn(f"checkpoint: discarded {len(discarded)} of the chunks in {str(store.directory)!r} (first: "
-                      f"{discarded[min(discarded)]})", stacklevel=2)
-    report = _Reporter(progress, console, n_chunks, description)
-    failures = {}
-    try:
-        for chunk, message in sorted(discarded.items()):
-            report("discarded", chunk, message)
-        for chunk in sorted(results):
-            report("resumed", chunk)
-        todo = [chunk for chunk in range(n_chunks) if chunk not in results]
-        if todo:
-            session = _open_session(scheduler, n_workers, threads_per_worker,
-                                    hashlib.sha256("".join(key).encode()).hexdigest())
-            try:
-                parameters = {chunk: _chunk_parameters(grid, shape, chunk * chunk_size,
-                                                       min(total, (chunk + 1) * chunk_size)) for chunk in todo}
-                for chunk in todo:
-                    session.executor.submit(chunk, function, parameters[chunk], constants)
-                failed_attempts = collections.Counter()
-                for chunk, result, error in session.executor.completed():
-                    if error is None:
-                        results[chunk] = result
-                        if store is not None:
-                            store.save(chunk, result)
-                        report("done", chunk)
-                        continue
-                    failed_attempts[chunk] += 1
-                    message = (f"({_chunk_label(parameters[chunk])}) attempt {failed_attempts[chunk]}: "
-                               f"{type(error).__name__}: {error}")
-                    if failed_attempts[chunk] <= retries:
-                        report("retry", chunk, message)
-                        session.executor.submit(chunk, function, parameters[chunk], constants)
-                    else:
-                        failures[chunk] = error
-                        report("failed", chunk, message)
-            finally:
-                session.close()
-    finally:
-        report.close()
-    if failures:
-        first = min(failures)
-        raise SweepError(f"{len(failures)} of {n_chunks} chunks failed after {retries} retries "
-                         f"(first: chunk {first}, {type(failures[first]).__name__}: {failures[first]}); "
-                         + ("finished chunks are kept in " + str(store.directory) if store is not None
-                            else "pass checkpoint= to keep finished chunks"), failures)
     meta = {"sweep_function": _describe_function(function), "sweep_constants": json.dumps(constants, default=repr),
             "sweep_chunk_size": chunk_size, "sweep_chunks": n_chunks, **(attrs or {})}
-    dataset = _assemble(grid, shape, chunk_size, results, variable_attrs or {}, meta)
-    if output is not None:
-        write_dataset(dataset, output)
+    with contextlib.ExitStack() as finish:
+        sink = None
+        if stream:
+            sink = _ZarrStream(finish.enter_context(_zarr_store(output)), grid, shape, chunk_size,
+                               variable_attrs or {}, meta)
+        results, discarded = store.load(n_chunks, sink and sink.write) if store is not None else ({}, {})
+        if discarded and console is None:  # the console shows each discarded chunk; a library caller is warned
+            warnings.warn(f"checkpoint: discarded {len(discarded)} of the chunks in {str(store.directory)!r} (first: "
+                          f"{discarded[min(discarded)]})", stacklevel=2)
+        report = _Reporter(progress, console, n_chunks, description)
+        failures = {}
+        try:
+            for chunk, message in sorted(discarded.items()):
+                report("discarded", chunk, message)
+            for chunk in sorted(results):
+                report("resumed", chunk)
+            todo = [chunk for chunk in range(n_chunks) if chunk not in results]
+            if todo:
+                session = _open_session(scheduler, n_workers, threads_per_worker,
+                                        hashlib.sha256("".join(key).encode()).hexdigest())
+                try:
+                    parameters = {chunk: _chunk_parameters(grid, shape, chunk * chunk_size,
+                                                           min(total, (chunk + 1) * chunk_size)) for chunk in todo}
+                    for chunk in todo:
+                        session.executor.submit(chunk, function, parameters[chunk], constants)
+                    failed_attempts = collections.Counter()
+                    for chunk, result, error in session.executor.completed():
+                        if error is None:
+                            if store is not None:
+                                store.save(chunk, result)
+                            if sink is not None:  # written now, not kept
+                                sink.write(chunk, result)
+                                result = None
+                            results[chunk] = result
+                            report("done", chunk)
+                            continue
+                        failed_attempts[chunk] += 1
+                        message = (f"({_chunk_label(parameters[chunk])}) attempt {failed_attempts[chunk]}: "
+                                   f"{type(error).__name__}: {error}")
+                        if failed_attempts[chunk] <= retries:
+                            report("retry", chunk, message)
+                            session.executor.submit(chunk, function, parameters[chunk], constants)
+                        else:
+                            failures[chunk] = error
+                            report("failed", chunk, message)
+                finally:
+                    session.close()
+        finally:
+            report.close()
+        if failures:
+            first = min(failures)
+            raise SweepError(f"{len(failures)} of {n_chunks} chunks failed after {retries} retries "
+                             f"(first: chunk {first}, {type(failures[first]).__name__}: {failures[first]}); "
+                             + ("finished chunks are kept in " + str(store.directory) if store is not None
+                                else "pass checkpoint= to keep finished chunks"), failures)
+        if sink is not None:
+            sink.close()
+    if stream:
+        dataset = require("xarray", extra="sweep", feature="kreisel.sweep").open_zarr(output)
+    else:
+        dataset = _assemble(grid, shape, chunk_size, results, variable_attrs or {}, meta)
+        if output is not None:
+            write_dataset(dataset, output)
     if store is not None and not keep_checkpoint:
         store.remove()
     return dataset
