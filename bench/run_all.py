@@ -19,7 +19,7 @@ import sys
 
 from _common import HERE, RESULTS, atomic_write, header, load_average
 
-ORDER = ("so3", "kinematics", "se3", "dynamics", "tops", "earth", "nav", "sweep")
+ORDER = ("so3", "kinematics", "se3", "dynamics", "batch", "tops", "earth", "nav", "sweep")
 
 
 def topics():
