@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._validation import as_float_array
 from .properties import MassProperties
@@ -88,7 +89,7 @@ def _tetrahedron_moments(vertices, faces, origin):
     return volume, first, second
 
 
-def from_mesh(vertices, faces, density=1.0):
+def from_mesh(vertices: ArrayLike, faces: ArrayLike, density: float = 1.0) -> MassProperties:
     """Mass, centre of mass and central inertia of a homogeneous closed triangle mesh.
 
     Exact for the polyhedron the mesh bounds (up to rounding): the solid is

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float, as_float_array
+from ..so3._coercion import RotationLike
 from .tensors import (
     _positive,
     _outer_term,
@@ -48,7 +51,7 @@ class MassProperties(NamedTuple):
     com: np.ndarray
     inertia: np.ndarray
 
-    def about(self, point):
+    def about(self, point: ArrayLike) -> NDArray[np.float64]:
         """Inertia tensor about ``point`` (same axes), by the parallel-axis theorem (Theory §4.1).
 
         Examples
@@ -61,7 +64,7 @@ class MassProperties(NamedTuple):
         p = as_float_array(point, "point", tail=(3,))
         return self.inertia + _outer_term(self.mass, self.com - p)
 
-    def transformed(self, position=None, rotation=None):
+    def transformed(self, position: ArrayLike | None = None, rotation: RotationLike | None = None) -> MassProperties:
         """The same body placed at a pose: com → position + R com, I → R I Rᵀ.
 
         Parameters
@@ -95,7 +98,7 @@ class MassProperties(NamedTuple):
         return MassProperties(self.mass, com, inertia)
 
 
-def from_points(masses, positions):
+def from_points(masses: ArrayLike, positions: ArrayLike) -> MassProperties:
     """Mass properties of a set of point masses.
 
     Parameters
@@ -140,7 +143,7 @@ def from_points(masses, positions):
     return MassProperties(total, com, point_inertia(m, offsets))
 
 
-def _as_part(entry, index):
+def _as_part(entry: object, index: int) -> MassProperties:
     """(MassProperties, position, rotation) from one entry of ``combine``'s parts.
 
     A :class:`~kreisel.RigidBody` is recognised by its ``mass_properties``
@@ -169,7 +172,7 @@ def _as_part(entry, index):
     return MassProperties(mass, com, inertia).transformed(position, rotation)
 
 
-def combine(parts):
+def combine(parts: Iterable[object]) -> MassProperties:
     """Mass properties of a body built from parts placed at poses.
 
     M = Σ m_i, C = Σ m_i c_i / M, I_C = Σ [R_i I_i R_iᵀ + m_i (d_i² 1 − d_i d_iᵀ)]

@@ -10,6 +10,7 @@ I = ∫ ρ (r² 1 − r rᵀ) dV (Theory §4.1).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
 from .tensors import _binary_exponent, _out_of_range, _positive
@@ -86,7 +87,7 @@ def _round(mass, radius, transverse, axial):
     return _axisymmetric(_moment(m, [(transverse, r)], names), _moment(m, [(axial, r)], names))
 
 
-def box(mass, size):
+def box(mass: ArrayLike, size: ArrayLike) -> NDArray[np.float64]:
     """Solid rectangular box centred on the origin, edges along the axes.
 
     I = m/12 diag(b² + c², a² + c², a² + b²) for full edge lengths (a, b, c).
@@ -112,7 +113,7 @@ def box(mass, size):
     return _from_extents(mass, edges, 1.0 / 12.0, "mass and size are")
 
 
-def solid_ellipsoid(mass, semi_axes):
+def solid_ellipsoid(mass: ArrayLike, semi_axes: ArrayLike) -> NDArray[np.float64]:
     """Solid ellipsoid x²/a² + y²/b² + z²/c² <= 1.
 
     I = m/5 diag(b² + c², a² + c², a² + b²).
@@ -135,7 +136,7 @@ def solid_ellipsoid(mass, semi_axes):
     return _from_extents(mass, semi, 0.2, "mass and semi_axes are")
 
 
-def solid_sphere(mass, radius):
+def solid_sphere(mass: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     """Solid ball: I = 2/5 m r² 1.
 
     Examples
@@ -147,7 +148,7 @@ def solid_sphere(mass, radius):
     return _round(mass, radius, 0.4, 0.4)
 
 
-def hollow_sphere(mass, radius, inner_radius=None):
+def hollow_sphere(mass: ArrayLike, radius: ArrayLike, inner_radius: ArrayLike | None = None) -> NDArray[np.float64]:
     """Spherical shell: thin (``inner_radius=None``) or thick (inner <= r <= radius).
 
     Thin shell: I = 2/3 m r². Thick shell: I = 2/5 m (R⁵ − r⁵)/(R³ − r³),
@@ -179,7 +180,7 @@ def hollow_sphere(mass, radius, inner_radius=None):
     return _diagonal(moment, moment, moment)
 
 
-def solid_cylinder(mass, radius, height):
+def solid_cylinder(mass: ArrayLike, radius: ArrayLike, height: ArrayLike) -> NDArray[np.float64]:
     """Solid circular cylinder, axis z, centred on the origin.
 
     I_z = m r²/2, I_x = I_y = m (3 r² + h²)/12.
@@ -193,7 +194,8 @@ def solid_cylinder(mass, radius, height):
     return hollow_cylinder(mass, radius, height, inner_radius=0.0)
 
 
-def hollow_cylinder(mass, radius, height, inner_radius=None):
+def hollow_cylinder(mass: ArrayLike, radius: ArrayLike, height: ArrayLike,
+                    inner_radius: ArrayLike | None = None) -> NDArray[np.float64]:
     """Cylindrical tube, axis z, centred on the origin.
 
     I_z = m (R² + r²)/2, I_x = I_y = m (3 (R² + r²) + h²)/12, with outer
@@ -228,7 +230,7 @@ def hollow_cylinder(mass, radius, height, inner_radius=None):
 _CONE_REFERENCE = {"center_of_mass": 0.0, "apex": 0.75, "base": -0.25}
 
 
-def solid_cone(mass, radius, height, about="center_of_mass"):
+def solid_cone(mass: ArrayLike, radius: ArrayLike, height: ArrayLike, about: str = "center_of_mass") -> NDArray[np.float64]:
     """Solid right circular cone, axis z.
 
     The centre of mass lies on the axis 3h/4 from the apex and h/4 from the
@@ -269,7 +271,7 @@ def solid_cone(mass, radius, height, about="center_of_mass"):
                          _moment(m, [(0.3, r)], names))
 
 
-def thin_rod(mass, length):
+def thin_rod(mass: ArrayLike, length: ArrayLike) -> NDArray[np.float64]:
     """Thin straight rod along z, centred on the origin: I = m L²/12 diag(1, 1, 0).
 
     The tensor is only semi-definite (no moment about the rod's own axis).
@@ -287,7 +289,7 @@ def thin_rod(mass, length):
     return _axisymmetric(transverse, np.zeros_like(transverse))
 
 
-def thin_disk(mass, radius):
+def thin_disk(mass: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     """Thin uniform disk in the xy plane, centred on the origin.
 
     I_z = m r²/2, I_x = I_y = m r²/4 (a thin plate: I_z = I_x + I_y).
@@ -301,7 +303,7 @@ def thin_disk(mass, radius):
     return _round(mass, radius, 0.25, 0.5)
 
 
-def thin_ring(mass, radius):
+def thin_ring(mass: ArrayLike, radius: ArrayLike) -> NDArray[np.float64]:
     """Thin circular hoop in the xy plane, centred on the origin.
 
     I_z = m r², I_x = I_y = m r²/2.
@@ -315,7 +317,7 @@ def thin_ring(mass, radius):
     return _round(mass, radius, 0.5, 1.0)
 
 
-def torus(mass, major_radius, minor_radius):
+def torus(mass: ArrayLike, major_radius: ArrayLike, minor_radius: ArrayLike) -> NDArray[np.float64]:
     """Solid torus about the z axis, centred on the origin.
 
     I_z = m (R² + 3/4 a²), I_x = I_y = m (R²/2 + 5/8 a²), with R the distance

@@ -41,7 +41,7 @@ def _scale(tensor):
     return np.max(np.abs(tensor), axis=(-2, -1))
 
 
-def as_symmetric_tensor(tensor, name="I"):
+def as_symmetric_tensor(tensor: ArrayLike, name: str = "I") -> NDArray[np.float64]:
     """Validate a ``(..., 3, 3)`` symmetric matrix and return its symmetric part.
 
     Raises ``ValueError`` naming ``name`` when the matrix is not symmetric to
@@ -57,7 +57,7 @@ def as_symmetric_tensor(tensor, name="I"):
     return 0.5 * (a + np.swapaxes(a, -1, -2))
 
 
-def check_moments(moments, name="I", definite=False):
+def check_moments(moments: NDArray[np.float64], name: str = "I", definite: bool = False) -> None:
     """Refuse principal moments ``(..., 3)`` that no mass distribution has.
 
     A physical inertia tensor is positive semi-definite (definite unless all
@@ -291,7 +291,7 @@ def rotate(I, rotation):
     return 0.5 * (out + np.swapaxes(out, -1, -2))
 
 
-def principal_axes(I):
+def principal_axes(I: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Principal moments and principal axes of an inertia tensor (Theory §4.2).
 
     Parameters

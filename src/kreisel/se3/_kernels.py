@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import prange
+from numpy.typing import NDArray
 
 from .._compiled import kernels, parallel
 from .._compiled.gufunc import gufunc
@@ -18,18 +20,18 @@ from .._compiled.gufunc import gufunc
 _F8 = "f8[:]"
 
 
-def _signature(n_arrays):
+def _signature(n_arrays: int) -> list[str]:
     return ["void(" + ", ".join([_F8] * n_arrays) + ")"]
 
 
-def split(pose):
+def split(pose: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Views ``(q, t)`` of packed poses ``(..., 7)``."""
     return pose[..., :4], pose[..., 4:]
 
 
 # Results are packed as [q, t] in one (7,) core: one output array per call.
 @gufunc(_signature(6), "(4),(3),(4),(3),(7)->(7)")
-def _compose(q1, t1, q2, t2, carrier, out):
+def _compose(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.float64], t2: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     kernels.qmul(q1, q2, out[:4])
     kernels.qrotate(q1, t2, out[4:])
     out[4] += t1[0]
@@ -38,7 +40,7 @@ def _compose(q1, t1, q2, t2, carrier, out):
 
 
 @gufunc(_signature(4), "(4),(3),(7)->(7)")
-def _invert(q, t, carrier, out):
+def _invert(q: NDArray[np.float64], t: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0] = q[0]
     out[1] = -q[1]
     out[2] = -q[2]
@@ -49,18 +51,18 @@ def _invert(q, t, carrier, out):
     out[6] = -out[6]
 
 
-def compose(q1, t1, q2, t2):
+def compose(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.float64], t2: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(q1, t1)(q2, t2) = (q1 q2, R(q1) t2 + t1): apply pose 2, then pose 1."""
     return split(_compose(q1, t1, q2, t2))
 
 
-def invert(q, t):
+def invert(q: NDArray[np.float64], t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(q, t)⁻¹ = (q*, -R(q)ᵀ t)."""
     return split(_invert(q, t))
 
 
 @gufunc(_signature(4), "(4),(3),(3)->(3)")
-def apply(q, t, p, out):
+def apply(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """r_P = R r′_CP + r_C (Theory §1.3, Chasles)."""
     kernels.qrotate(q, p, out)
     out[0] += t[0]
@@ -69,7 +71,7 @@ def apply(q, t, p, out):
 
 
 @gufunc(_signature(4), "(4),(3),(3)->(3)")
-def apply_inverse(q, t, p, out):
+def apply_inverse(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """r′_CP = Rᵀ (r_P - r_C): space point back to body components."""
     d0 = p[0] - t[0]
     d1 = p[1] - t[1]
@@ -83,7 +85,7 @@ def apply_inverse(q, t, p, out):
 
 
 @parallel
-def _as_matrix_parallel(q, t, out):
+def _as_matrix_parallel(q: NDArray[np.float64], t: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         kernels.write_matrix_at(out, i, q[i, 0], q[i, 1], q[i, 2], q[i, 3])
         out[i, 0, 3], out[i, 1, 3], out[i, 2, 3] = t[i, 0], t[i, 1], t[i, 2]
@@ -91,7 +93,7 @@ def _as_matrix_parallel(q, t, out):
 
 
 @gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(4,4)", parallel=_as_matrix_parallel)
-def as_matrix(q, t, out):
+def as_matrix(q: NDArray[np.float64], t: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Homogeneous matrix [[R(q), t], [0, 0, 0, 1]]."""
     kernels.write_matrix(q[0], q[1], q[2], q[3], out)
     for i in range(3):
@@ -101,7 +103,7 @@ def as_matrix(q, t, out):
 
 
 @gufunc(["void(f8[:, :], f8[:], f8[:])"], "(4,4),(8)->(8)")
-def from_matrix(m, carrier, out):
+def from_matrix(m: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Packed [q, t, defect] of a homogeneous matrix.
 
     ``defect`` is the largest of |bottom row - (0, 0, 0, 1)| and

@@ -25,6 +25,7 @@ against the series ``Σ ad_ξⁿ/(n+1)!`` and finite differences.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
 from .._compiled.outputs import deliver
@@ -50,11 +51,11 @@ _LEFT = 1.0
 
 
 @gufunc(["void(f8, f8[:], f8[:])"], "(),(4)->(4)")
-def _coupling_coefficients(theta, carrier4, out):
+def _coupling_coefficients(theta: float, carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0], out[1], out[2], out[3] = dexp.se3_coupling_coefficients(theta)
 
 
-def _q_coefficients(theta):
+def _q_coefficients(theta: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """bθ, bθ², cθ², dθ³ with b = (θ - sin θ)/θ³, c = (θ² + 2 cos θ - 2)/(2θ⁴), d = (2θ - 3 sin θ + θ cos θ)/(2θ⁵)."""
     c = _coupling_coefficients(theta)
     return c[..., 0], c[..., 1], c[..., 2], c[..., 3]
@@ -65,11 +66,11 @@ def _q_coefficients(theta):
 _ROTATION_PART = "the rotation part |omega|"
 
 
-def _split(xi):
+def _split(xi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     return xi[..., :3], xi[..., 3:]
 
 
-def se3_hat(xi, *, out=None):
+def se3_hat(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """4×4 twist matrices ``[[hat ω, v], [0, 0]]`` of twists ``ξ = (ω, v)``.
 
     Parameters
@@ -100,7 +101,7 @@ def se3_hat(xi, *, out=None):
     return deliver(m, out)
 
 
-def se3_vee(matrix, *, out=None):
+def se3_vee(matrix: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Twists ``(ω, v)`` of 4×4 twist matrices (inverse of :func:`se3_hat`).
 
     Parameters
@@ -125,14 +126,14 @@ def se3_vee(matrix, *, out=None):
     return deliver(np.concatenate([vee(m[..., :3, :3]), m[..., :3, 3]], axis=-1), out)
 
 
-def exp(xi):
+def exp(xi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``(q, r_C)`` of ``exp(ξ^)`` for validated twists ``(..., 6)``."""
     omega, v = _split(xi)
     # r_C = J_l(ω) v: the dexp map ψ̇ -> ω (space) of Theory §3.4, applied to v
     return rotvec_to_quat(omega), dexp.apply_jacobian(omega, v, _LEFT)
 
 
-def log(quat, translation):
+def log(quat: NDArray[np.float64], translation: NDArray[np.float64]) -> NDArray[np.float64]:
     """Twists ``(ω, v)`` with ``|ω| <= π`` of poses given as unit quaternions and translations."""
     omega = quat_to_rotvec(quat)
     # v = J_l(ω)⁻¹ r_C: the inverse dexp map of Theory §3.5 (no pole for |ω| <= π)
@@ -140,7 +141,7 @@ def log(quat, translation):
     return np.concatenate([omega, v], axis=-1)
 
 
-def adjoint(rotation_matrix, translation):
+def adjoint(rotation_matrix: NDArray[np.float64], translation: NDArray[np.float64]) -> NDArray[np.float64]:
     """``Ad_T = [[R, 0], [hat(t) R, R]]``: ``T exp(ξ^) T⁻¹ = exp((Ad_T ξ)^)`` for ξ = (ω, v)."""
     batch = np.broadcast_shapes(rotation_matrix.shape[:-2], translation.shape[:-1])
     a = np.zeros(batch + (6, 6))
@@ -150,7 +151,7 @@ def adjoint(rotation_matrix, translation):
     return a
 
 
-def _coupling(omega, v, theta):
+def _coupling(omega: NDArray[np.float64], v: NDArray[np.float64], theta: NDArray[np.float64]) -> NDArray[np.float64]:
     """Barfoot's Q(ω, v), the lower-left block of the SE(3) left Jacobian, for ω of length ``theta``.
 
     ``Q = ½V + b(WV + VW + WVW) + c(WWV + VWW − 3WVW) + d(WVW W + W WVW)`` with W = hat(ω),
@@ -165,7 +166,7 @@ def _coupling(omega, v, theta):
     return 0.5 * V + b1 * (UV + VU) + (b2 - 3.0 * c2) * UVU + c2 * (U @ UV + VU @ U) + d3 * (UVU @ U + U @ UVU)
 
 
-def _blocks(diagonal, lower):
+def _blocks(diagonal: NDArray[np.float64], lower: NDArray[np.float64]) -> NDArray[np.float64]:
     batch = np.broadcast_shapes(diagonal.shape[:-2], lower.shape[:-2])
     j = np.zeros(batch + (6, 6))
     j[..., :3, :3] = diagonal
@@ -174,7 +175,7 @@ def _blocks(diagonal, lower):
     return j
 
 
-def se3_left_jacobian(xi, *, out=None):
+def se3_left_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Left Jacobian of SE(3), ``(..., 6, 6)``: ``exp(ξ + δ) ≈ exp(J_l δ) exp(ξ)``.
 
     Also the map from ``ξ̇`` to the space twist ``(Ṫ T⁻¹)^∨`` of ``T = exp(ξ)``. Rotation parts
@@ -206,7 +207,7 @@ def se3_left_jacobian(xi, *, out=None):
     return deliver(_blocks(so3_left_jacobian(omega), _coupling(omega, v, theta)), out)
 
 
-def se3_right_jacobian(xi, *, out=None):
+def se3_right_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Right Jacobian of SE(3): ``exp(ξ + δ) ≈ exp(ξ) exp(J_r δ)``; ``J_r(ξ) = J_l(-ξ)``.
 
     Parameters
@@ -230,7 +231,7 @@ def se3_right_jacobian(xi, *, out=None):
     return deliver(se3_left_jacobian(-finite_array(xi, "xi", (6,))), out)
 
 
-def se3_left_jacobian_inverse(xi, *, out=None):
+def se3_left_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`se3_left_jacobian`, ``[[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]``, without a matrix solve.
 
     Finite for ``|ω| < 2π`` (logarithms have ``|ω| <= π``); rotation parts longer than 1e8 rad
@@ -268,7 +269,7 @@ def se3_left_jacobian_inverse(xi, *, out=None):
     return deliver(_blocks(inverse, lower), out)
 
 
-def se3_right_jacobian_inverse(xi, *, out=None):
+def se3_right_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`se3_right_jacobian`; ``J_r⁻¹(ξ) = J_l⁻¹(-ξ)``.
 
     Parameters

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
 from .._compiled.gufunc import finite_array
@@ -60,7 +61,7 @@ class Screw(NamedTuple):
     pitch: np.ndarray
 
 
-def screw_parameters(quat, translation):
+def screw_parameters(quat: NDArray[np.float64], translation: NDArray[np.float64]) -> Screw:
     """:class:`Screw` of poses given as unit quaternions and translations.
 
     With ``q = (cos(θ/2), s)``, ``s = n sin(θ/2)`` (hemisphere ``q0 >= 0``),
@@ -100,7 +101,8 @@ def screw_parameters(quat, translation):
     return Screw(axis, point, angle, along, pitch)
 
 
-def screw_pose(axis, point, angle, translation=0.0):
+def screw_pose(axis: ArrayLike, point: ArrayLike, angle: ArrayLike,
+               translation: ArrayLike = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Unit quaternions and translations of screw displacements (inverse of :func:`screw_parameters`).
 
     ``q = (cos(θ/2), n sin(θ/2))`` and ``t = (1 - R) p + d n``, with
