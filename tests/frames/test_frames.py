@@ -163,3 +163,15 @@ def test_lagrangian_at_extreme_magnitudes_is_exact_or_refused_as_out_of_range():
                  lambda: F.hamiltonian([0, 0, 0], [1e200, 0, 0], [0, 0, 1])):
         with pytest.raises(ValueError, match="out of range"):
             call()
+
+
+@pytest.mark.parametrize("omega, omega_dot", [([1e72, 0, 0], [0, 0, 0]), ([0, 0, 1e10], [0, 0, 0]), ([0, 0, 0], [0, 1e200, 0])])
+def test_a_frame_turning_beyond_double_precision_is_refused_before_the_run(omega, omega_dot):
+    # 1e10 rad/s over 1e6 s is 1e16 rad: the steps would fall below the rounding of t
+    with pytest.raises(ValueError, match="omega and t are out of range.*rad"):
+        F.simulate_particle([0.0, 1e6], [1.0, 0, 0], [0, 0, 0], omega, omega_dot=omega_dot)
+
+
+def test_a_frame_turning_just_within_range_is_integrated():
+    tr = F.simulate_particle([0.0, 1e-6], [1.0, 0, 0], [0, 0, 0], [0, 0, 1e3])
+    assert np.all(np.isfinite(tr.r))

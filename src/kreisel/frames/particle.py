@@ -13,6 +13,7 @@ from numba import njit, objmode
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
+from .._norms import norm
 from .._validation import as_float, as_float_array
 from ..dynamics.engine import _checked_callable
 from .relative import canonical_momentum, hamiltonian
@@ -278,6 +279,8 @@ def simulate_particle(
     if omega_dot is None:
         omega_dot = (0.0, 0.0, 0.0)
     max_steps = check_max_steps(max_steps)
+    if not (callable(omega) or callable(omega_dot)):
+        _check_turn(_vector(omega, "omega"), _vector(omega_dot, "omega_dot"), t)
 
     y0 = np.concatenate([r0, v0])
     tables = _dop853.tableau()
@@ -324,6 +327,25 @@ def simulate_particle(
     else:
         potential = None
     return ParticleTrajectory(t, r, v, omega_t, a0_t, potential, mass)
+
+
+#: Largest angle (rad) the frame may turn through over the requested times.
+_MAX_TURN = 1e15
+
+
+def _check_turn(omega, omega_dot, t):
+    """Refuse a frame that turns too far for double precision to resolve over ``t``.
+
+    Beyond ~1e15 rad the rounding of the turned angle (1e-16 of it) exceeds 0.1 rad
+    and the integrator's steps fall below the rounding of ``t`` itself.
+    """
+    span = float(t[-1] - t[0])
+    with np.errstate(over="ignore", invalid="ignore"):
+        # |ω(t)| is largest at an end of t, since ω changes linearly
+        turn = max(float(norm(omega)), float(norm(omega + omega_dot * span))) * span
+    if not turn <= _MAX_TURN:
+        raise ValueError(f"omega and t are out of range: the frame turns through about {turn:.3g} rad over t, "
+                         f"more than {_MAX_TURN:g} rad, where double precision no longer resolves its motion")
 
 
 def _sample(value, name, t):
