@@ -45,3 +45,35 @@ def nearest_rotation(M: ArrayLike) -> NDArray[np.float64]:
     d = np.sign(np.linalg.det(U @ Vt))
     U[..., :, 2] *= d[..., None]
     return U @ Vt
+
+
+#: Largest orthogonality defect ``max |RᵀR − 1|`` of a matrix accepted as a rotation (projected onto SO(3)).
+ORTHOGONALITY_TOLERANCE = 1e-6
+
+#: Defects below this are rounding noise of a rotation and pass untouched.
+ROUNDING_DEFECT = 1e-13
+
+
+def checked_rotation_matrices(a: NDArray[np.float64], name: str, worst: float, smallest_det: float,
+                              tolerance: float = ORTHOGONALITY_TOLERANCE) -> NDArray[np.float64]:
+    """Refuse or accept the matrices ``a`` from their defect ``worst`` and smallest determinant.
+
+    The one verdict of the compiled and the NumPy-only checks: non-finite or
+    overflowing entries, a defect above ``tolerance`` or det <= 0 raise
+    ``ValueError`` naming ``name``; a defect above rounding level is projected
+    onto the nearest rotations.
+    """
+    if not np.isfinite(worst) or not np.isfinite(smallest_det):
+        largest = np.max(np.abs(a))
+        if not np.isfinite(largest):
+            raise ValueError(f"{name} must be finite rotation matrices (no NaN or inf)")
+        # finite entries whose squares overflow: far from orthonormal, not a rotation at any scale
+        raise ValueError(f"{name} must be rotation matrices (entries in [-1, 1]), got entries as large as {largest:.3g}")
+    if worst > tolerance:
+        raise ValueError(
+            f"{name} must be rotation matrices: max |R^T R - 1| = {worst:.3g} exceeds {tolerance:g} "
+            "(use orthonormalize for a larger projection)"
+        )
+    if smallest_det <= 0.0:
+        raise ValueError(f"{name} must be rotation matrices with det > 0 (got det = {smallest_det:.3g})")
+    return nearest_rotation(a) if worst > ROUNDING_DEFECT else a

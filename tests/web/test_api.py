@@ -151,7 +151,7 @@ def test_serve_checks_its_arguments(tmp_path):
     bad.write_text("[body]\nmoments = [1, 2]\n")
     with pytest.raises(ValueError, match=r"bad.toml:2: body.moments"):  # the file by name, as simulate says it
         serve(bad, open_browser=False)
-    with pytest.raises(ValueError, match="cannot read"):
+    with pytest.raises(ValueError, match="missing.toml: no such file, and no bundled scenario of that name"):
         serve(tmp_path / "missing.toml", open_browser=False)
     with pytest.raises(ValueError, match="port"):
         serve(port=70000, open_browser=False)

@@ -24,15 +24,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from numba import guvectorize, prange
 
-from .._norms import nearest_rotation
+from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices
 from .._validation import as_float_array
 from . import cached, parallel
 from . import outputs
 from .outputs import check_out, empty
-
-#: Nearly orthogonal matrices (max |RᵀR - 1| below this) are projected onto
-#: SO(3); farther ones are refused as "not a rotation".
-ORTHOGONALITY_TOLERANCE = 1e-6
 
 #: Batches with at least this many elements (rotations, vectors) use the
 #: multi-core loops; below it, waking the worker threads costs more than it saves.
@@ -382,10 +378,6 @@ def _orthogonality_defect_parallel(flat, chunk):
     return worst.max(), smallest_det.min()
 
 
-#: Defects below this are rounding noise of a rotation and pass untouched.
-_ROUNDING_DEFECT = 1e-13
-
-
 def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY_TOLERANCE) -> NDArray[np.float64]:
     """Validate rotation matrices ``(..., 3, 3)``; project nearly orthogonal ones.
 
@@ -402,19 +394,4 @@ def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY
         worst, smallest_det = _orthogonality_defect_parallel(flat, _CHUNK)
     else:
         worst, smallest_det = _orthogonality_defect(flat, 0, flat.size)
-    if not np.isfinite(worst) or not np.isfinite(smallest_det):
-        largest = np.max(np.abs(flat))
-        if not np.isfinite(largest):
-            raise ValueError(f"{name} must be finite rotation matrices (no NaN or inf)")
-        # finite entries whose squares overflow: far from orthonormal, not a rotation at any scale
-        raise ValueError(f"{name} must be rotation matrices (entries in [-1, 1]), got entries as large as {largest:.3g}")
-    if worst > tolerance:
-        raise ValueError(
-            f"{name} must be rotation matrices: max |R^T R - 1| = {worst:.3g} exceeds {tolerance:g} "
-            "(use orthonormalize for a larger projection)"
-        )
-    if smallest_det <= 0.0:
-        raise ValueError(f"{name} must be rotation matrices with det > 0 (got det = {smallest_det:.3g})")
-    if worst > _ROUNDING_DEFECT:
-        a = nearest_rotation(a)
-    return a
+    return checked_rotation_matrices(a, name, float(worst), float(smallest_det), tolerance)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._norms import nearest_rotation, norm, unit
+from .._norms import checked_rotation_matrices, norm, unit
 from .._validation import as_float_array, parse_sequence
 
 __all__ = ["to_quat", "from_quat", "quat_unit", "matrix_quat", "quat_matrix", "rotvec_quat", "quat_rotvec",
@@ -31,10 +31,6 @@ __all__ = ["to_quat", "from_quat", "quat_unit", "matrix_quat", "quat_matrix", "r
 #: square without overflow or loss to underflow
 SIZE_LOW = 1e-140
 SIZE_HIGH = 1e140
-#: As :data:`kreisel._compiled.gufunc.ORTHOGONALITY_TOLERANCE` (projected below, refused above) and the
-#: rounding level below which a matrix is taken as it is
-ORTHOGONALITY_TOLERANCE = 1e-6
-ROUNDING_DEFECT = 1e-13
 _CONJUGATE = np.array([1.0, -1.0, -1.0, -1.0])
 
 
@@ -116,19 +112,13 @@ def _rotation_matrices(R):
     a = as_float_array(R, "R", (3, 3), finite=False)
     if a.size == 0:
         return a
-    if not np.all(np.isfinite(a)):
-        raise ValueError("R must be finite rotation matrices (no NaN or inf)")
     (a_, b, c), (d, e, f), (g, h, i) = (_columns(row) for row in np.moveaxis(a, -2, 0))
-    worst = np.max([np.abs(a_ * a_ + d * d + g * g - 1.0), np.abs(b * b + e * e + h * h - 1.0),
-                    np.abs(c * c + f * f + i * i - 1.0), np.abs(a_ * b + d * e + g * h),
-                    np.abs(a_ * c + d * f + g * i), np.abs(b * c + e * f + h * i)])
-    smallest_det = np.min(a_ * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g))
-    if smallest_det <= 0.0:
-        raise ValueError(f"R must be rotation matrices with det > 0 (got det = {smallest_det:.3g})")
-    if worst > ORTHOGONALITY_TOLERANCE:
-        raise ValueError(f"R must be rotation matrices: max |R^T R - 1| = {worst:.3g} exceeds "
-                         f"{ORTHOGONALITY_TOLERANCE:g} (use orthonormalize for a larger projection)")
-    return nearest_rotation(a) if worst > ROUNDING_DEFECT else a
+    with np.errstate(over="ignore", invalid="ignore"):  # NaN, inf and overflowing squares: refused below
+        worst = np.max([np.abs(a_ * a_ + d * d + g * g - 1.0), np.abs(b * b + e * e + h * h - 1.0),
+                        np.abs(c * c + f * f + i * i - 1.0), np.abs(a_ * b + d * e + g * h),
+                        np.abs(a_ * c + d * f + g * i), np.abs(b * c + e * f + h * i)])
+        smallest_det = np.min(a_ * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g))
+    return checked_rotation_matrices(a, "R", float(worst), float(smallest_det))
 
 
 def matrix_quat(R):
