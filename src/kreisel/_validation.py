@@ -21,6 +21,11 @@ FRAMES = ("space", "body")
 REAL_KINDS = "biufO"
 
 
+#: Largest angle (rad) a body or frame may turn through over the requested times: beyond
+#: ~1e15 rad the rounding of the angle alone (1e-16 of it) is more than 0.1 rad.
+MAX_TURN = 1e15
+
+
 def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = None,
                    finite: bool = True) -> NDArray[np.float64]:
     """Return ``x`` as a float64 array, checking its trailing shape.

@@ -14,7 +14,7 @@ from numba import njit, objmode
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._norms import norm
-from .._validation import as_float, as_float_array
+from .._validation import MAX_TURN, as_float, as_float_array
 from ..dynamics.engine import _checked_callable
 from .relative import canonical_momentum, hamiltonian
 
@@ -329,10 +329,6 @@ def simulate_particle(
     return ParticleTrajectory(t, r, v, omega_t, a0_t, potential, mass)
 
 
-#: Largest angle (rad) the frame may turn through over the requested times.
-_MAX_TURN = 1e15
-
-
 def _check_turn(omega, omega_dot, t):
     """Refuse a frame that turns too far for double precision to resolve over ``t``.
 
@@ -343,9 +339,9 @@ def _check_turn(omega, omega_dot, t):
     with np.errstate(over="ignore", invalid="ignore"):
         # |ω(t)| is largest at an end of t, since ω changes linearly
         turn = max(float(norm(omega)), float(norm(omega + omega_dot * span))) * span
-    if not turn <= _MAX_TURN:
+    if not turn <= MAX_TURN:
         raise ValueError(f"omega and t are out of range: the frame turns through about {turn:.3g} rad over t, "
-                         f"more than {_MAX_TURN:g} rad, where double precision no longer resolves its motion")
+                         f"more than {MAX_TURN:g} rad, where double precision no longer resolves its motion")
 
 
 def _sample(value, name, t):

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import as_float, as_float_array
+from .._validation import MAX_TURN, as_float, as_float_array
 from ..dynamics.engine import check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
@@ -530,10 +530,6 @@ def _check_inputs(t: ArrayLike, omega0: ArrayLike,
     return t, omega0, q0
 
 
-#: Largest angle (rad) a body may turn through over the requested times.
-_MAX_TURN = 1e15
-
-
 def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, meta_body: str) -> Trajectory:
     """Broadcast (bodies, ω0, q0), run the compiled samples, wrap a Trajectory."""
     t, omega0, q0 = _check_inputs(t, omega0, q0)
@@ -545,9 +541,9 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     # |ω| <= |ω0| I_max/I_min: beyond ~1e15 rad a turn's rounding (1e-16 of it) is more than 0.1 rad
     with np.errstate(over="ignore"):
         turn = np.max(np.abs(t), initial=0.0) * norm(omega0) * (np.max(moments, axis=-1) / np.min(moments, axis=-1))
-    if np.any(turn > _MAX_TURN):
+    if np.any(turn > MAX_TURN):
         raise ValueError(f"t and omega0 are out of range: the body turns through up to {float(np.max(turn)):.3g} rad "
-                         f"over t, more than {_MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+                         f"over t, more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
     # the motion depends on the moments' ratios only: a power of two (exact) brings the largest to ~1
     scaled = np.ldexp(moments, -np.frexp(np.max(moments, axis=-1, keepdims=True))[1])
     count = int(np.prod(batch, dtype=np.int64))

@@ -16,9 +16,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._html import html_table, number
-from .._validation import as_float, as_float_array
+from .._validation import MAX_TURN, as_float, as_float_array
 from ..so3 import rotvec_to_matrix
-from .euler_top import _MAX_TURN, EulerTop
+from .euler_top import EulerTop
 
 __all__ = ["FreeRotationFit", "NotFreeRotationWarning", "fit_free_rotation"]
 
@@ -492,9 +492,9 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     k = int(np.frexp(np.max(np.abs(omega), initial=0.0))[1])
     with np.errstate(over="ignore"):
         t = np.ldexp(t - t[0], k)
-    if not t[-1] <= _MAX_TURN:
+    if not t[-1] <= MAX_TURN:
         raise ValueError(f"t and omega are out of range: the body turns through up to {float(t[-1]):.3g} rad over t, "
-                         f"more than {_MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+                         f"more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
     omega = np.ldexp(omega, -k)
     scale = np.ldexp(1.0, k)
 
