@@ -185,7 +185,7 @@ _BIG = 1.7976931348623157e308
 
 
 @cached
-def checked_quat_size(q0, q1, q2, q3):
+def checked_quat_size(q0: float, q1: float, q2: float, q3: float) -> float:
     """The size of ``q``, its largest ``|component|``, or -1 if ``q`` is not finite.
 
     No squares: they would overflow or underflow far from unit size. NaN
@@ -198,7 +198,7 @@ def checked_quat_size(q0, q1, q2, q3):
 
 
 @cached
-def finite3(x, y, z):
+def finite3(x: float, y: float, z: float) -> bool:
     """Whether ``x``, ``y`` and ``z`` are all finite."""
     return abs(x) <= _BIG and abs(y) <= _BIG and abs(z) <= _BIG
 

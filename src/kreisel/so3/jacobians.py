@@ -24,6 +24,7 @@ and manif; the SE(3) Jacobians of :mod:`kreisel.se3` are built on these.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
 from .._compiled.dexp import ROTVEC_RATE_RANGE
@@ -46,7 +47,7 @@ class RotationVectorSingularityWarning(KinematicSingularityWarning):
     """Rotation-vector rates requested at |ψ| = 2πk (k >= 1): those rates are NaN."""
 
 
-def check_rotvec_range(angle, name, what="|psi|"):
+def check_rotvec_range(angle: ArrayLike, name: str, what: str = "|psi|") -> None:
     """Refuse rotation vectors longer than :data:`ROTVEC_RATE_RANGE` (``angle`` their lengths), naming ``name``."""
     longest = np.max(angle, initial=0.0)
     if longest > ROTVEC_RATE_RANGE:
@@ -57,7 +58,8 @@ def check_rotvec_range(angle, name, what="|psi|"):
         )
 
 
-def singular_or_out_of_range(psi, values, category, message, name="psi"):
+def singular_or_out_of_range(psi: NDArray[np.float64], values: NDArray[np.float64], category: type[Warning],
+                             message: str, name: str = "psi") -> None:
     """Refuse the samples of ``psi`` beyond :data:`ROTVEC_RATE_RANGE`, else warn of the poles, where ``values`` is NaN."""
     undefined = np.isnan(values)
     if undefined.any():
@@ -65,15 +67,15 @@ def singular_or_out_of_range(psi, values, category, message, name="psi"):
         warn_if_any(undefined, category, message)
 
 
-def _inverse(psi, sign, tol, out):
-    psi = vector_array(psi, "psi")
-    out = dexp.jacobian_inverse_matrix(psi, sign, check_tolerance(tol), out=out)
-    singular_or_out_of_range(psi, out[..., 0, 0], RotationVectorSingularityWarning,
+def _inverse(psi: ArrayLike, sign: float, tol: float, out: NDArray[np.float64] | None) -> NDArray[np.float64]:
+    vectors = vector_array(psi, "psi")
+    out = dexp.jacobian_inverse_matrix(vectors, sign, check_tolerance(tol), out=out)
+    singular_or_out_of_range(vectors, out[..., 0, 0], RotationVectorSingularityWarning,
                              "SO(3) Jacobian inverse at |psi| = 2*pi*k")
     return out
 
 
-def left_jacobian(psi, *, out=None):
+def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
 
     ``J_l = 1 + A hat(ψ) + B hat(ψ)²`` maps ψ̇ to the space angular velocity,
@@ -101,7 +103,7 @@ def left_jacobian(psi, *, out=None):
     return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT, out=out)
 
 
-def right_jacobian(psi, *, out=None):
+def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
 
     Maps ψ̇ to the body angular velocity, ``ω′ = J_r(ψ) ψ̇`` (Theory §3.4).
@@ -126,7 +128,8 @@ def right_jacobian(psi, *, out=None):
     return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT, out=out)
 
 
-def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
+def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
+                          out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse left Jacobian, ``J_l⁻¹ = 1 − ½ hat(ψ) + f hat(ψ)²``.
 
     ``ψ̇ = J_l⁻¹(ψ) ω`` (space components); ``f`` is the Bortz coefficient
@@ -155,7 +158,8 @@ def left_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
     return _inverse(psi, _LEFT, tol, out)
 
 
-def right_jacobian_inverse(psi, tol=SINGULAR_TOL, *, out=None):
+def right_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
+                           out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (Theory §3.5).
 
     ``ψ̇ = J_r⁻¹(ψ) ω′`` (body components). Singular at |ψ| = 2πk.

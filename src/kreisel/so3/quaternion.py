@@ -148,7 +148,7 @@ def _map_checked(q: NDArray[np.float64], out: NDArray[np.float64], chunk: int, o
                 else:
                     out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q0, q1, q2, q3)
         smallest[c] = least
-    return smallest.min()
+    return float(smallest.min())
 
 
 def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tuple[NDArray[np.float64], float]:
