@@ -1,10 +1,15 @@
 """``out=`` on every array function of kreisel.so3, kreisel.kinematics and kreisel.se3.
 
-Data-driven: the functions are enumerated from the modules' ``__all__``; each
+Data-driven: the functions are enumerated from the modules' ``__all__``, the
+methods from the public classes there (public methods and ``__call__``); each
 is called on sample inputs with and without ``out=`` (bitwise identical
 results), with refused ``out`` arrays, and with ``out`` aliasing each input
-of the result's shape and dtype. A function added to an ``__all__`` without
-a sample input here (or a reason to be left out) fails the enumeration test.
+of the result's shape and dtype. A name added without ``out=`` fails the
+enumeration tests unless it is listed as returning no single array, and
+every such listing is checked by calling it: a function moved into the list
+that does return an array fails too. Left out by construction: alternative
+constructors (classmethods, checked to be annotated as returning no array),
+properties (which take no arguments) and the named tuples that carry results.
 """
 
 from __future__ import annotations
@@ -23,24 +28,7 @@ import kreisel.so3 as so3
 from kreisel import release_memory as kr_release
 from kreisel._compiled import gufunc, outputs
 
-#: Public functions that return no single array (tuples, objects, constants, parsed names).
-NOT_ARRAY_FUNCTIONS = {
-    "generators": "a constant (3, 3, 3) array of no input",
-    "parse_sequence": "returns (axes, intrinsic)",
-    "rotvec_to_axis_angle": "returns (axis, angle)",
-    "align_vectors": "returns (quaternions, rssd[, sensitivity])",
-    "create_group": "returns quaternions of a group given by name",
-    "reduce_quat": "returns (quaternions, left indices, right indices)",
-    "three_term_velocity": "returns VelocityTerms",
-    "five_term_acceleration": "returns AccelerationTerms",
-    "point_trajectory": "returns PointMotion",
-    "screw_axis": "returns ScrewAxis",
-    "centrodes": "returns Centrodes",
-    "change_base_point": "returns a RigidTransform",
-    "sclerp": "returns a RigidTransform",
-    "release_memory": "frees kreisel's idle memory, returns a byte count",
-}
-
+MODULES = (so3, kinematics, se3)
 N = 5
 _rng = np.random.default_rng(7)
 
@@ -74,6 +62,7 @@ SPECIAL = {
     "quat_power": {"p": 0.3},
     "mrp_to_quat": {"p": so3.quat_to_mrp(QUATS)},
     "quat_identity": {"shape": (N,)},
+    "create_group": {"group": "O"},
     "davenport_to_quat": {"angles": so3.quat_to_davenport(DAVENPORT_AXES, "e", QUATS)},
     "davenport_gimbal_lock": {"angles": so3.quat_to_davenport(DAVENPORT_AXES, "e", QUATS)},
     "quat_mean": {"q": QUATS[None]},
@@ -84,12 +73,39 @@ SPECIAL = {
 }
 
 
+ROTATIONS = so3.Rotation.from_quat(QUATS)
+POSES = se3.RigidTransform.from_rotation_translation(QUATS, VECTORS[::-1].copy())
+
+#: Public functions that return no single array: (why, a sample call whose result is checked not to be one).
+NOT_ARRAY_FUNCTIONS = {
+    "parse_sequence": ("returns (axes, intrinsic)", lambda: so3.parse_sequence("ZXZ")),
+    "rotvec_to_axis_angle": ("returns (axis, angle)", lambda: so3.rotvec_to_axis_angle(ROTVECS)),
+    "align_vectors": ("returns (quaternions, rssd[, sensitivity])", lambda: so3.align_vectors(VECTORS, VECTORS[::-1])),
+    "reduce_quat": ("returns (quaternions, left indices, right indices)",
+                    lambda: so3.reduce_quat(QUATS, right=so3.create_group("C4"))),
+    "three_term_velocity": ("returns VelocityTerms", lambda: kinematics.three_term_velocity(VECTORS, ROTVECS, ANGLES)),
+    "five_term_acceleration": ("returns AccelerationTerms",
+                               lambda: kinematics.five_term_acceleration(VECTORS, ROTVECS, ANGLES, VECTORS, ROTVECS)),
+    "point_trajectory": ("returns PointMotion",
+                         lambda: kinematics.point_trajectory(VECTORS[0], np.linspace(0.0, 1.0, N), QUATS)),
+    "screw_axis": ("returns ScrewAxis", lambda: kinematics.screw_axis(VECTORS, ROTVECS)),
+    "centrodes": ("returns Centrodes", lambda: kinematics.centrodes(np.linspace(0.0, 1.0, N), np.linspace(0.0, 2.0, N) ** 2,
+                                                                    np.zeros((N, 2)))),
+    "change_base_point": ("returns a RigidTransform", lambda: se3.change_base_point(POSES, VECTORS)),
+    "sclerp": ("returns a RigidTransform", lambda: se3.sclerp(POSES, POSES[::-1], 0.5)),
+    "release_memory": ("frees kreisel's idle memory, returns a byte count", so3.release_memory),
+}
+
+
 def _array_functions():
     found = {}
-    for module in (so3, kinematics, se3):
+    for module in MODULES:
         for name in module.__all__:
             obj = getattr(module, name)
-            if inspect.isfunction(obj) and name not in NOT_ARRAY_FUNCTIONS:
+            if inspect.isclass(obj):
+                continue
+            assert inspect.isfunction(obj), f"{module.__name__}.{name} is a {type(obj).__name__}: enumerate it here"
+            if name not in NOT_ARRAY_FUNCTIONS:
                 found[name] = obj
     return found
 
@@ -109,16 +125,48 @@ def _arguments(name):
     return arguments
 
 
+def _takes_out(function):
+    parameter = inspect.signature(function).parameters.get("out")
+    return (parameter is not None and parameter.kind is parameter.KEYWORD_ONLY and parameter.default is None
+            and "out : ndarray, optional" in function.__doc__)
+
+
 def test_every_array_function_takes_out():
-    for name, function in FUNCTIONS.items():
-        parameter = inspect.signature(function).parameters.get("out")
-        assert parameter is not None and parameter.kind is parameter.KEYWORD_ONLY, name
-        assert parameter.default is None, name
-        assert "out : ndarray, optional" in function.__doc__, name
-    assert not set(NOT_ARRAY_FUNCTIONS) - {n for m in (so3, kinematics, se3) for n in m.__all__}
+    assert {"quat_to_matrix", "generators", "create_group", "quat_slerp", "quat_mean", "left_jacobian", "euler_rates",
+            "instantaneous_centre", "se3_hat", "se3_left_jacobian"} <= set(FUNCTIONS)
+    missing = sorted(name for name, function in FUNCTIONS.items() if not _takes_out(function))
+    assert not missing, f"array functions without a documented keyword-only out=None: {missing}"
 
 
-#: Public methods of the exported classes that return no single array.
+@pytest.mark.parametrize("name", sorted(NOT_ARRAY_FUNCTIONS))
+def test_functions_left_out_return_no_array(name):
+    assert any(name in module.__all__ for module in MODULES), name
+    result = NOT_ARRAY_FUNCTIONS[name][1]()
+    assert not isinstance(result, np.ndarray), f"{name} returns an array: give it out="
+
+
+SPLINE = so3.RotationSpline([0.0, 1.0, 3.0], so3.Rotation.from_quat(QUATS[:3]))
+SPLINE_TIMES = np.linspace(-0.5, 3.5, 2 * N).reshape(2, N)
+#: A sample object of every public class with methods.
+INSTANCES = {"Rotation": ROTATIONS, "RigidTransform": POSES, "RotationSpline": SPLINE,
+             "Slerp": so3.Slerp([0.0, 1.0, 3.0], so3.Rotation.from_quat(QUATS[:3]))}
+
+#: The object and positional arguments of a method call (otherwise: the sample object, no arguments).
+METHOD_CALLS = {
+    "Rotation.as_quat": (ROTATIONS, (False, False)),
+    "Rotation.as_euler": (ROTATIONS, ("ZXZ", True)),
+    "Rotation.as_davenport": (ROTATIONS, (DAVENPORT_AXES, "e")),
+    "Rotation.apply": (ROTATIONS, (VECTORS, True)),
+    "Rotation.approx_equal": (ROTATIONS, (so3.Rotation.from_quat(QUATS[::-1].copy()), 1.0)),
+    "Rotation.slerp": (ROTATIONS, (ROTATIONS[::-1], 0.3)),
+    "RigidTransform.apply": (POSES, (VECTORS, True)),
+    "RigidTransform.apply_vector": (POSES, (VECTORS,)),
+    "RigidTransform.change_base_point": (POSES, (VECTORS,)),
+    "RotationSpline.__call__": (SPLINE, (SPLINE_TIMES, 2, "space")),
+    "Slerp.__call__": (INSTANCES["Slerp"], (SPLINE_TIMES.clip(0.0, 3.0),)),
+}
+
+#: Public methods of the exported classes that return no single array (each checked by calling it).
 NOT_ARRAY_METHODS = {
     "Rotation.reduce": "returns a Rotation (and indices)",
     "Rotation.as_axis_angle": "returns (axis, angle)",
@@ -132,54 +180,82 @@ NOT_ARRAY_METHODS = {
     "RigidTransform.mean": "returns a RigidTransform",
     "RigidTransform.inv": "returns a RigidTransform",
     "RigidTransform.change_base_point": "returns a RigidTransform",
-}
-
-ROTATIONS = so3.Rotation.from_quat(QUATS)
-POSES = se3.RigidTransform.from_rotation_translation(QUATS, VECTORS[::-1].copy())
-#: The object and positional arguments of each array method (the defaults of the others).
-METHOD_CALLS = {
-    "Rotation.as_quat": (ROTATIONS, (False, False)),
-    "Rotation.as_euler": (ROTATIONS, ("ZXZ", True)),
-    "Rotation.as_davenport": (ROTATIONS, (DAVENPORT_AXES, "e")),
-    "Rotation.apply": (ROTATIONS, (VECTORS, True)),
-    "Rotation.approx_equal": (ROTATIONS, (so3.Rotation.from_quat(QUATS[::-1].copy()), 1.0)),
-    "RigidTransform.apply": (POSES, (VECTORS, True)),
-    "RigidTransform.apply_vector": (POSES, (VECTORS,)),
+    "Slerp.__call__": "returns a Rotation",
 }
 
 
-def _array_methods():
+def _public_classes():
+    classes = {}
+    for module in MODULES:
+        for name in module.__all__:
+            cls = getattr(module, name)
+            if inspect.isclass(cls) and not issubclass(cls, (Warning, tuple)):  # named tuples carry results
+                classes[name] = cls
+    return classes
+
+
+CLASSES = _public_classes()
+
+
+def _all_methods():
+    """Every public method and ``__call__`` of the public classes, by ``Class.name``."""
     found = {}
-    for module in (so3, kinematics, se3):
-        for class_name in module.__all__:
-            cls = getattr(module, class_name)
-            if inspect.isclass(cls):
-                for name, member in vars(cls).items():
-                    qualified = f"{class_name}.{name}"
-                    if not name.startswith("_") and inspect.isfunction(member) and qualified not in NOT_ARRAY_METHODS:
-                        found[qualified] = member
+    for class_name, cls in CLASSES.items():
+        for name, member in vars(cls).items():
+            if (not name.startswith("_") or name == "__call__") and inspect.isfunction(member):
+                found[f"{class_name}.{name}"] = member
     return found
 
 
-METHODS = _array_methods()
+ALL_METHODS = _all_methods()
+METHODS = {name: method for name, method in ALL_METHODS.items() if name not in NOT_ARRAY_METHODS}
 
 
 def _method_call(qualified):
     """``call(**keywords)`` of the method on its sample object and arguments."""
-    default = POSES if qualified.startswith("RigidTransform.") else ROTATIONS
-    obj, args = METHOD_CALLS.get(qualified, (default, ()))
-    return lambda **keywords: METHODS[qualified](obj, *args, **keywords)
+    obj, args = METHOD_CALLS.get(qualified, (INSTANCES[qualified.split(".")[0]], ()))
+    return lambda **keywords: ALL_METHODS[qualified](obj, *args, **keywords)
 
 
 def test_every_array_method_takes_out():
-    assert {"Rotation.as_matrix", "Rotation.apply", "RigidTransform.as_matrix", "RigidTransform.apply"} <= set(METHODS)
-    for name, method in METHODS.items():
-        parameter = inspect.signature(method).parameters.get("out")
-        assert parameter is not None and parameter.kind is parameter.KEYWORD_ONLY, name
-        assert parameter.default is None, name
-        assert "out : ndarray, optional" in method.__doc__, name
-    assert set(NOT_ARRAY_METHODS) <= {f"{cls.__name__}.{name}" for cls in (so3.Rotation, se3.RigidTransform)
-                                      for name in vars(cls)}
+    assert set(CLASSES) == set(INSTANCES)
+    assert {"Rotation.as_matrix", "Rotation.apply", "RigidTransform.as_matrix", "RigidTransform.apply",
+            "RotationSpline.__call__"} <= set(METHODS)
+    missing = sorted(name for name, method in METHODS.items() if not _takes_out(method))
+    assert not missing, f"array methods without a documented keyword-only out=None: {missing}"
+
+
+@pytest.mark.parametrize("name", sorted(NOT_ARRAY_METHODS))
+def test_methods_left_out_return_no_array(name):
+    assert name in ALL_METHODS, name
+    result = _method_call(name)()
+    assert not isinstance(result, np.ndarray), f"{name} returns an array: give it out="
+
+
+def test_constructors_return_no_array():
+    for class_name, cls in CLASSES.items():
+        for name, member in vars(cls).items():
+            if isinstance(member, (classmethod, staticmethod)) and not name.startswith("_"):
+                returns = str(inspect.signature(member.__func__).return_annotation)
+                assert returns in (class_name, "Self") or returns.startswith("tuple"), (class_name, name, returns)
+
+
+def test_spline_out_for_each_order_and_frame():
+    for order, frame in ((1, "body"), (1, "space"), (2, "body"), (2, "space")):
+        expected = SPLINE(SPLINE_TIMES, order, frame)
+        out = np.full(SPLINE_TIMES.shape + (3,), np.nan)
+        assert SPLINE(SPLINE_TIMES, order, frame, out=out) is out
+        assert out.tobytes() == expected.tobytes()
+        strided = np.full(SPLINE_TIMES.shape + (6,), np.nan)[..., ::2]  # not contiguous: filled through a copy
+        assert SPLINE(SPLINE_TIMES, order, frame, out=strided).tobytes() == expected.tobytes()
+    # out over the memory of the times it reads: as if it did not overlap
+    buffer = np.zeros((2 * N, 3))
+    buffer[:, 0] = SPLINE_TIMES.ravel()
+    expected = SPLINE(buffer[:, 0].copy(), 1, "body")
+    assert SPLINE(buffer[:, 0], 1, "body", out=buffer) is buffer
+    assert buffer.tobytes() == expected.tobytes()
+    with pytest.raises(ValueError, match="out is for the angular rates"):
+        SPLINE(SPLINE_TIMES, 0, out=np.empty(SPLINE_TIMES.shape + (4,)))
 
 
 @pytest.mark.parametrize("name", sorted(METHODS))

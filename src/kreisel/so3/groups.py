@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array
+from .._compiled.outputs import deliver
 from .quaternion import quat_multiply, quat_normalize
 from .rotvec import rotvec_to_quat
 
@@ -57,7 +58,7 @@ def _turn(axis: ArrayLike, angle: float) -> NDArray[np.float64]:
     return rotvec_to_quat(angle * axis / np.linalg.norm(axis))
 
 
-def create_group(group: str, axis: str = "Z") -> NDArray[np.float64]:
+def create_group(group: str, axis: str = "Z", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternions of a rotation group: ``"I"``, ``"O"``, ``"T"``, ``"Dn"`` or ``"Cn"`` (n >= 1).
 
     Parameters
@@ -65,6 +66,8 @@ def create_group(group: str, axis: str = "Z") -> NDArray[np.float64]:
     group : str
     axis : {"X", "Y", "Z"} (either case)
         Main axis of ``Cn`` and ``Dn`` (ignored for the others).
+    out : ndarray, optional
+        Result array of shape (order, 4) (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -76,6 +79,10 @@ def create_group(group: str, axis: str = "Z") -> NDArray[np.float64]:
     >>> create_group("O").shape, create_group("D3", axis="x").shape
     ((24, 4), (6, 4))
     """
+    return deliver(_group(group, axis), out)
+
+
+def _group(group: str, axis: str) -> NDArray[np.float64]:
     if not isinstance(group, str):
         raise ValueError(f"group must be a string 'I', 'O', 'T', 'Dn' or 'Cn', got {group!r}")
     if not isinstance(axis, str) or axis.lower() not in ("x", "y", "z"):

@@ -122,10 +122,15 @@ def _compose_rotvec(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray
     out[0], out[1], out[2] = kernels.quat_rotvec(r0, r1, r2, r3)
 
 
-def generators() -> NDArray[np.float64]:
+def generators(*, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The generators ``X_1, X_2, X_3`` of Theory §2.2 (2), shape (3, 3, 3).
 
     ``(X_j)_kl = -ε_jkl``; ``[X_j, X_k] = ε_jkl X_l`` and ``R(ψ) = exp(ψ_j X_j)``.
+
+    Parameters
+    ----------
+    out : ndarray, optional
+        Result array of shape (3, 3, 3) (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -134,7 +139,7 @@ def generators() -> NDArray[np.float64]:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  0.]])
     """
-    return hat(np.eye(3))
+    return hat(np.eye(3), out=out)
 
 
 def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:

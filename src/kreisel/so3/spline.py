@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
+from .._compiled.outputs import check_out, empty
 from .._validation import check_frame
 from .rotation import Rotation
 
@@ -204,15 +205,18 @@ class RotationSpline:
         self._quats = np.ascontiguousarray(q)
 
     @overload
-    def __call__(self, times: ArrayLike, order: Literal[0] = 0, frame: str | None = None) -> Rotation: ...
+    def __call__(self, times: ArrayLike, order: Literal[0] = 0, frame: str | None = None, *, out: None = None) -> Rotation: ...
 
     @overload
-    def __call__(self, times: ArrayLike, order: Literal[1, 2], frame: str | None = None) -> NDArray[np.float64]: ...
+    def __call__(self, times: ArrayLike, order: Literal[1, 2], frame: str | None = None, *,
+                 out: NDArray[np.float64] | None = None) -> NDArray[np.float64]: ...
 
     @overload
-    def __call__(self, times: ArrayLike, order: int, frame: str | None = None) -> Rotation | NDArray[np.float64]: ...
+    def __call__(self, times: ArrayLike, order: int, frame: str | None = None, *,
+                 out: NDArray[np.float64] | None = None) -> Rotation | NDArray[np.float64]: ...
 
-    def __call__(self, times: ArrayLike, order: int = 0, frame: str | None = None) -> Rotation | NDArray[np.float64]:
+    def __call__(self, times: ArrayLike, order: int = 0, frame: str | None = None, *,
+                 out: NDArray[np.float64] | None = None) -> Rotation | NDArray[np.float64]:
         """Attitudes (``order=0``), angular velocities (1) or angular accelerations (2) at ``times``.
 
         Parameters
@@ -223,6 +227,10 @@ class RotationSpline:
         frame : {"body", "space"}
             Required for ``order`` 1 and 2. ``"body"`` (``hat ω' = Rᵀ Ṙ``) is
             what scipy's ``RotationSpline`` returns; ``"space"`` is ``R ω'``.
+        out : ndarray, optional
+            Result array for ``order`` 1 and 2, shape ``times.shape + (3,)``
+            (keyword only; :ref:`out-arrays`); it may share memory with
+            ``times``. ``order=0`` returns a new :class:`Rotation` and refuses it.
 
         Returns
         -------
@@ -246,15 +254,26 @@ class RotationSpline:
             raise ValueError(
                 "frame must be given for derivatives: 'body' (what scipy's RotationSpline returns) or 'space'"
             )
+        if out is not None and order == 0:
+            raise ValueError("out is for the angular rates (order 1 or 2); order 0 returns a new Rotation")
         space = order > 0 and not check_frame(frame)
         t = finite_array(times, "times", None)
+        shape = (*t.shape, 4 if order == 0 else 3)
+        if out is not None:
+            check_out(out, shape)
         flat = np.ascontiguousarray(t.reshape(-1))
         index = np.clip(np.searchsorted(self.times, flat, side="right") - 1, 0, len(self.times) - 2)
-        out = np.empty((flat.size, 4 if order == 0 else 3))
+        # the loop writes each row after reading its time: out must not overlap the times it reads
+        direct = out is not None and out.flags.c_contiguous and not np.may_share_memory(out, flat)
+        result = out if out is not None and direct else empty(shape)
         run = _evaluate_parallel if flat.size >= PARALLEL_THRESHOLD else _evaluate_serial
-        run(flat, self.times, index, self._coeff, self._quats, order, space, out)
-        out = out.reshape(*t.shape, out.shape[-1])
-        return Rotation._wrap(out) if order == 0 else out
+        run(flat, self.times, index, self._coeff, self._quats, order, space, result.reshape(flat.size, shape[-1]))
+        if order == 0:
+            return Rotation._wrap(result)
+        if out is not None and not direct:
+            out[...] = result
+            return out
+        return result
 
 
 class Slerp:
