@@ -24,6 +24,7 @@ from ..so3 import (
     quat_to_rotvec,
 )
 from ..so3.interpolation import gather_samples, mean_over
+from ..so3._batch import QuaternionBatch
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
 from .._compiled.gufunc import finite_array
@@ -43,7 +44,7 @@ RIGIDITY_TOLERANCE = ORTHOGONALITY_TOLERANCE
 
 
 
-class RigidTransform:
+class RigidTransform(QuaternionBatch):
     """Rigid displacements ``r -> R r + r_C`` (Theory §1.3), batched like numpy arrays.
 
     The rotation ``R`` maps body components to space components and ``r_C``
@@ -75,10 +76,9 @@ class RigidTransform:
            [0., 0., 0., 1.]])
     """
 
-    __slots__ = ("_quat", "_translation")
+    __slots__ = ("_translation",)
     __array_ufunc__ = None  # ndarray * RigidTransform raises instead of looping elementwise
 
-    _quat: NDArray[np.float64]
     _translation: NDArray[np.float64]
 
     def __init__(self, rotation: Rotation | ArrayLike, translation: ArrayLike) -> None:
@@ -89,7 +89,7 @@ class RigidTransform:
 
     def _set(self, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> None:
         batch = np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1])
-        self._quat = np.broadcast_to(quat, batch + (4,))
+        self._q = np.broadcast_to(quat, batch + (4,))
         self._translation = np.broadcast_to(translation, batch + (3,))
 
     @classmethod
@@ -143,7 +143,7 @@ class RigidTransform:
         if not parts or not all(isinstance(t, RigidTransform) for t in parts):
             raise TypeError("transforms must be a non-empty sequence of kreisel RigidTransform objects")
         return cls._from_arrays(
-            np.concatenate([np.atleast_2d(t._quat) for t in parts]),
+            np.concatenate([np.atleast_2d(t._q) for t in parts]),
             np.concatenate([np.atleast_2d(t._translation) for t in parts]),
         )
 
@@ -319,19 +319,9 @@ class RigidTransform:
     # -- conversion ----------------------------------------------------------------------------
 
     @property
-    def shape(self) -> tuple[int, ...]:
-        """Batch shape (``()`` for a single transform)."""
-        return self._quat.shape[:-1]
-
-    @property
-    def single(self) -> bool:
-        """True for a single transform (batch shape ``()``)."""
-        return self._quat.ndim == 1
-
-    @property
     def rotation(self) -> Rotation:
         """The rotation part as a kreisel :class:`~kreisel.so3.Rotation`."""
-        return Rotation.from_quat(self._quat)
+        return Rotation.from_quat(self._q)
 
     @property
     def translation(self) -> NDArray[np.float64]:
@@ -353,7 +343,7 @@ class RigidTransform:
         >>> T.as_quat().round(6).tolist()
         [0.707107, 0.0, 0.0, 0.707107]
         """
-        return np.array(self._quat) if out is None else deliver(self._quat, out)
+        return np.array(self._q) if out is None else deliver(self._q, out)
 
     def as_components(self) -> tuple[Rotation, NDArray[np.float64]]:
         """``(rotation, translation)``: a kreisel ``Rotation`` and ``r_C``.
@@ -393,7 +383,7 @@ class RigidTransform:
         >>> bool(np.allclose((T * T).as_matrix(), M @ M))
         True
         """
-        return _kernels.as_matrix(self._quat, self._translation, out=out)
+        return _kernels.as_matrix(self._q, self._translation, out=out)
 
     def as_dual_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
@@ -413,7 +403,7 @@ class RigidTransform:
         """
         pure = np.zeros(self.shape + (4,))
         pure[..., 1:] = self._translation
-        return deliver(np.concatenate([self._quat, 0.5 * quat_multiply(pure, self._quat)], axis=-1), out)
+        return deliver(np.concatenate([self._q, 0.5 * quat_multiply(pure, self._q)], axis=-1), out)
 
     def as_exp_coords(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
@@ -430,7 +420,7 @@ class RigidTransform:
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_exp_coords()
         array([0., 0., 0., 1., 2., 3.])
         """
-        return deliver(lie.log(self._quat, self._translation), out)
+        return deliver(lie.log(self._q, self._translation), out)
 
     def as_screw(self) -> Screw:
         """Chasles/Mozzi screw of each displacement, as a :class:`~kreisel.se3.Screw`.
@@ -447,7 +437,7 @@ class RigidTransform:
         >>> T.as_screw().axis, float(T.as_screw().translation)
         (array([0., 1., 0.]), 3.0)
         """
-        return screw_parameters(self._quat, self._translation)
+        return screw_parameters(self._q, self._translation)
 
     def adjoint(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
@@ -472,7 +462,7 @@ class RigidTransform:
         >>> bool(np.allclose((T1 * T2).adjoint(), T1.adjoint() @ T2.adjoint()))
         True
         """
-        return deliver(lie.adjoint(quat_to_matrix(self._quat), self._translation), out)
+        return deliver(lie.adjoint(quat_to_matrix(self._q), self._translation), out)
 
     def to_scipy(self) -> ScipyRigidTransform:
         """Equivalent ``scipy.spatial.transform.RigidTransform``.
@@ -487,7 +477,7 @@ class RigidTransform:
         from scipy.spatial.transform import RigidTransform as ScipyRigidTransform
         from scipy.spatial.transform import Rotation as ScipyRotation
 
-        rotation = ScipyRotation.from_quat(self._quat, scalar_first=True)
+        rotation = ScipyRotation.from_quat(self._q, scalar_first=True)
         return ScipyRigidTransform.from_components(self._translation, rotation)
 
     # -- group operations ------------------------------------------------------------------------
@@ -495,7 +485,7 @@ class RigidTransform:
     def __mul__(self, other: RigidTransform) -> RigidTransform:
         if not isinstance(other, RigidTransform):
             return NotImplemented
-        return RigidTransform._from_arrays(*_kernels.compose(self._quat, self._translation, other._quat, other._translation))
+        return RigidTransform._from_arrays(*_kernels.compose(self._q, self._translation, other._q, other._translation))
 
     def __pow__(self, p: ArrayLike, modulus: None = None) -> RigidTransform:
         """``T ** p = exp(p log T)``: the screw motion scaled by ``p`` (scipy's ``RigidTransform.__pow__``).
@@ -525,7 +515,7 @@ class RigidTransform:
             if exponent == -1.0:
                 return self.inv()
             return RigidTransform.identity(self.shape)
-        xi = lie.log(self._quat, self._translation)
+        xi = lie.log(self._q, self._translation)
         return RigidTransform._from_arrays(*lie.exp(exponent[..., None] * xi))
 
     def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> RigidTransform:
@@ -552,7 +542,7 @@ class RigidTransform:
         >>> m.translation.tolist(), round(float(m.rotation.magnitude()), 12)
         ([1.0, 0.0, 0.0], 0.2)
         """
-        quat, axes = mean_over(self._quat, weights, axis)
+        quat, axes = mean_over(self._q, weights, axis)
         nd = len(self.shape)
         t = gather_samples(np.asarray(self._translation), nd, axes)
         if weights is None:
@@ -570,7 +560,7 @@ class RigidTransform:
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).inv().translation
         array([-1., -2., -3.])
         """
-        return RigidTransform._from_arrays(*_kernels.invert(self._quat, self._translation))
+        return RigidTransform._from_arrays(*_kernels.invert(self._q, self._translation))
 
     def apply(self, points: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
@@ -598,7 +588,7 @@ class RigidTransform:
         """
         points = finite_array(points, "points")
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
-        return kernel(self._quat, self._translation, points, out=out)
+        return kernel(self._q, self._translation, points, out=out)
 
     def apply_vector(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
@@ -617,7 +607,7 @@ class RigidTransform:
         >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
         array([1., 0., 0.])
         """
-        return quat_apply(self._quat, finite_array(vectors, "vectors"), inverse=inverse, out=out)
+        return quat_apply(self._q, finite_array(vectors, "vectors"), inverse=inverse, out=out)
 
     def change_base_point(self, offset: ArrayLike) -> RigidTransform:
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.
@@ -638,62 +628,59 @@ class RigidTransform:
         """
         return change_base_point(self, offset)
 
-    # -- container protocol ----------------------------------------------------------------------
-
-    def __len__(self) -> int:
-        if self.single:
-            raise TypeError("a single RigidTransform has no len()")
-        return self.shape[0]
+    # -- container protocol (shape, single and len: QuaternionBatch) -----------------------------
 
     def __getitem__(self, key: Any) -> RigidTransform:
         if self.single:
-            raise TypeError("a single RigidTransform is not subscriptable")
+            raise self._single_error("is not subscriptable")
         # Index an array of batch positions so that any numpy index (slices,
         # masks, Ellipsis, fancy) acts on the batch axes only.
         index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
         return RigidTransform._from_arrays(
-            self._quat.reshape(-1, 4)[index], self._translation.reshape(-1, 3)[index]
+            self._q.reshape(-1, 4)[index], self._translation.reshape(-1, 3)[index]
         )
 
     def __iter__(self) -> Iterator[RigidTransform]:
+        if self.single:
+            raise self._single_error("is not iterable")
         for i in range(len(self)):
             yield self[i]
 
     def __setitem__(self, key: Any, value: RigidTransform) -> None:
         if self.single:
-            raise TypeError("a single RigidTransform does not support item assignment")
+            raise self._single_error("does not support item assignment")
         if not isinstance(value, RigidTransform):
             raise TypeError(f"value must be a kreisel RigidTransform, got {type(value).__name__}")
         # Fresh arrays: the stored ones may be broadcast views shared with other transforms.
-        quat, translation = np.array(self._quat), np.array(self._translation)
+        quat, translation = np.array(self._q), np.array(self._translation)
         index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
-        quat.reshape(-1, 4)[index] = value._quat
+        quat.reshape(-1, 4)[index] = value._q
         translation.reshape(-1, 3)[index] = value._translation
-        self._quat, self._translation = quat, translation
+        self._q, self._translation = quat, translation
 
     def __repr__(self) -> str:
         def fmt(a: NDArray[np.float64]) -> str:
             return np.array2string(a, separator=", ", precision=6, threshold=24, floatmode="maxprec_equal")
 
         if self.single:
-            q = "[" + ", ".join(repr(float(x)) for x in self._quat) + "]"
+            q = "[" + ", ".join(repr(float(x)) for x in self._q) + "]"
             t = "[" + ", ".join(repr(float(x)) for x in self._translation) + "]"
             return f"RigidTransform(quat={q}, translation={t})"
-        return f"RigidTransform(shape={self.shape}, quat={fmt(self._quat)}, translation={fmt(self._translation)})"
+        return f"RigidTransform(shape={self.shape}, quat={fmt(self._q)}, translation={fmt(self._translation)})"
 
     def _repr_html_(self) -> str:
         note = "r_P = R r′_P + r_C; quaternion scalar-first, R maps body to space"
         rows: list[tuple[str, object]]
         if self.single:
             rows = [
-                ("quaternion", number(self._quat)),
-                ("angle", number(np.degrees(np.linalg.norm(quat_to_rotvec(self._quat)))) + "°"),
+                ("quaternion", number(self._q)),
+                ("angle", number(np.degrees(np.linalg.norm(quat_to_rotvec(self._q)))) + "°"),
                 ("translation r_C", number(self._translation)),
             ]
         else:
             rows = [("shape", self.shape), ("count", int(np.prod(self.shape)))]
             if np.prod(self.shape):
-                rows += [("first quaternion", number(self._quat.reshape(-1, 4)[0])),
+                rows += [("first quaternion", number(self._q.reshape(-1, 4)[0])),
                          ("first translation", number(self._translation.reshape(-1, 3)[0]))]
         return html_table("RigidTransform", rows, note=note)
 
@@ -732,4 +719,4 @@ def change_base_point(transform: RigidTransform, offset: ArrayLike) -> RigidTran
     if not isinstance(transform, RigidTransform):
         raise TypeError(f"transform must be a RigidTransform, got {type(transform).__name__}")
     offset = finite_array(offset, "offset")
-    return RigidTransform._from_arrays(transform._quat, transform.apply(offset))
+    return RigidTransform._from_arrays(transform._q, transform.apply(offset))

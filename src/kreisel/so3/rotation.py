@@ -27,6 +27,7 @@ from . import quaternion as _quat
 from . import rodrigues as _rodrigues
 from . import rotvec as _rotvec
 from . import su2 as _su2
+from ._batch import QuaternionBatch
 
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation as ScipyRotation
@@ -66,7 +67,7 @@ def canonical_quat(q: ArrayLike) -> NDArray[np.float64]:
     return np.where(first < 0.0, -q, q) + 0.0  # + 0.0 turns -0.0 into 0.0: bitwise unique
 
 
-class Rotation:
+class Rotation(QuaternionBatch):
     """Rotations of batch shape ``shape`` (``()`` for a single rotation).
 
     Build with a ``from_*`` class method, read with the matching ``as_*``.
@@ -84,9 +85,7 @@ class Rotation:
     180.0
     """
 
-    __slots__ = ("_q",)
-
-    _q: NDArray[np.float64]
+    __slots__ = ()
 
     def __init__(self, quat: ArrayLike, *, _validated: bool = False) -> None:
         # Internal constructors pass quaternions that are already unit.
@@ -859,25 +858,10 @@ class Rotation:
         """
         return deliver((self.inv() * other).magnitude() <= atol, out)
 
-    # -- container protocol -------------------------------------------------
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """Batch shape (``()`` for a single rotation)."""
-        return self._q.shape[:-1]
-
-    @property
-    def single(self) -> bool:
-        """True for a single rotation (batch shape ``()``)."""
-        return self._q.ndim == 1
-
-    def __len__(self) -> int:
-        if self.single:
-            raise TypeError("a single Rotation has no len()")
-        return int(self._q.shape[0])
-
+    # -- container protocol (shape, single and len: QuaternionBatch) --------
     def __iter__(self) -> Iterator[Rotation]:
         if self.single:
-            raise TypeError("a single Rotation is not iterable")
+            raise self._single_error("is not iterable")
         for i in range(len(self)):
             yield self[i]
 
@@ -887,7 +871,7 @@ class Rotation:
 
     def __setitem__(self, index: Any, value: Rotation) -> None:
         if self.single:
-            raise TypeError("a single Rotation does not support item assignment")
+            raise self._single_error("does not support item assignment")
         if not isinstance(value, Rotation):
             raise TypeError(f"value must be a kreisel Rotation, got {type(value).__name__}")
         if isinstance(index, tuple):
@@ -899,7 +883,7 @@ class Rotation:
 
     def __getitem__(self, index: Any) -> Rotation:
         if self.single:
-            raise TypeError("a single Rotation is not subscriptable")
+            raise self._single_error("is not subscriptable")
         if isinstance(index, tuple):
             index = (*index, slice(None))
         return Rotation._wrap(self._q[index])
