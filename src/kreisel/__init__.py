@@ -1,9 +1,9 @@
 """kreisel — rigid-body mechanics after a lecture chapter on rigid-body mechanics (see the Theory pages of the docs).
 
-Layers, each depending only on the ones before it::
+Layers, each depending only on the ones before it (and se3 on so3 alone)::
 
-    so3 <- kinematics <- inertia, dynamics <- tops, frames, earth, nav
-    so3 <- se3 (side by side with kinematics: neither imports the other)
+    so3 <- kinematics <- inertia, dynamics <- tops, frames, earth, nav, se3
+        <- io, plot, cli, web, sweep, tour
 
 Conventions: scalar-first Hamilton quaternions, active rotations, ``R`` maps
 body components to space components, uppercase Euler sequences intrinsic and

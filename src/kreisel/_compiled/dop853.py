@@ -54,11 +54,13 @@ _TABLES = []
 def tableau():
     """Hairer's DOP853 coefficients ``(A, B, C, E3, E5, D)`` as contiguous float arrays (scipy's numbers)."""
     if not _TABLES:
-        from scipy.integrate._ivp import dop853_coefficients as c
+        from scipy.integrate._ivp import dop853_coefficients as scipy_tables
 
-        if c.N_STAGES != N_STAGES or c.N_STAGES_EXTENDED != N_STAGES_EXTENDED or c.INTERPOLATOR_POWER != 7:
+        if (scipy_tables.N_STAGES != N_STAGES or scipy_tables.N_STAGES_EXTENDED != N_STAGES_EXTENDED
+                or scipy_tables.INTERPOLATOR_POWER != 7):
             raise RuntimeError("scipy's DOP853 coefficient tables changed layout; kreisel needs 12+4 stages")
-        _TABLES.append(tuple(np.ascontiguousarray(a, dtype=np.float64) for a in (c.A, c.B, c.C, c.E3, c.E5, c.D)))
+        tables = (scipy_tables.A, scipy_tables.B, scipy_tables.C, scipy_tables.E3, scipy_tables.E5, scipy_tables.D)
+        _TABLES.append(tuple(np.ascontiguousarray(a, dtype=np.float64) for a in tables))
     return _TABLES[0]
 
 

@@ -31,7 +31,7 @@ from numba import prange
 
 from .._compiled import cached, parallel
 from .._compiled.outputs import deliver
-from .._compiled import kernels as k
+from .._compiled import kernels
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._validation import as_float_array
 from . import euler as _euler
@@ -76,9 +76,9 @@ _SETUPS: dict[tuple[bytes, tuple[int, ...], str], _Setup] = {}
 def _angles_of(q0: float, q1: float, q2: float, q3: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int,
                reverse: int) -> tuple[float, float, float]:
     """Three Davenport angles of q: XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch."""
-    q0, q1, q2, q3 = k.squarable(q0, q1, q2, q3)
-    a0, a1, a2, a3 = k.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
-    e0, e1, e2, e3 = k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+    q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
+    a0, a1, a2, a3 = kernels.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
+    e0, e1, e2, e3 = kernels.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
     first, b, third = _euler._euler_angles(e0, e1, e2, e3, 0, 1, 0, 0)
     # scipy's branch: the middle angle in [λ, λ + π] when n₁·(n₃ × n₂) >= 0, else
     # in [λ - π, λ], from the other set (α + π, -b, γ + π) of the Euler angles.
@@ -97,8 +97,8 @@ def _quat_of(x: float, y: float, z: float, f: NDArray[np.float64], g: NDArray[np
     if reverse:
         x, z = z, x
     e0, e1, e2, e3 = _euler._euler_quat(x, y - lam, z, 0, 1, 0, 0)
-    a0, a1, a2, a3 = k.quat_product(f[0], f[1], f[2], f[3], e0, e1, e2, e3)
-    return k.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+    a0, a1, a2, a3 = kernels.quat_product(f[0], f[1], f[2], f[3], e0, e1, e2, e3)
+    return kernels.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
 
 
 @parallel
