@@ -359,17 +359,7 @@ def test_malformed_arguments_are_refused_clearly_or_change_nothing(qualified):
 MISLEADING = re.compile(r"must be finite|non-?finite|must be non-?zero|is zero|must not be zero|NaN", re.I)
 
 
-# Findings of this suite not fixed yet (each an open bug: overflow inside the computation, reported as
-# numpy's RuntimeWarning or as a misleading "must be finite", at magnitudes whose answer is representable).
-# Not strict: the fixes land one by one.
-OPEN = {
-    "tops.fit_free_rotation": "t or omega x 1e-5 and below: the record hardly turns, and the undetermined fit "
-                              "answers NaN standard errors (with its NotFreeRotationWarning), not an error",
-}
-
-
-@pytest.mark.parametrize("qualified", [pytest.param(n, marks=pytest.mark.xfail(reason=OPEN[n], strict=False))
-                                       if n in OPEN else n for n in NAMES])
+@pytest.mark.parametrize("qualified", NAMES)
 @FUZZ
 @given(data=st.data())
 def test_extreme_magnitudes_give_right_answers_or_clear_refusals(qualified, data):

@@ -141,6 +141,42 @@ def test_steady_spin_leaves_ratios_undetermined():
     assert not fit.free_rotation
 
 
+@pytest.mark.parametrize("span", [1e-2, 1e-3, 1e-5])
+def test_a_short_exact_record_gives_the_moments_within_their_standard_errors(span):
+    # ω′ changes by ~0.13 span of its size: the ratios show only through that change, and the standard
+    # errors widen as it shrinks; the known moments stay within them
+    t = np.linspace(0.0, 4.0 * span, 60)
+    fit = kr.fit_free_rotation(t, kr.EulerTop(1.0, 2.0, 2.5).omega(t, [0.1, 1.0, 0.1]))
+    assert fit.free_rotation
+    assert_within(fit.moments, [0.4, 0.8, 1.0], fit.moments_stderr, k=3.0)
+
+
+@pytest.mark.parametrize("span", [1e-6, 1e-300])
+def test_a_record_that_hardly_changes_is_refused_before_fitting(span):
+    t = np.linspace(0.0, 4.0 * span, 60)
+    omega = kr.EulerTop(1.0, 2.0, 2.5).omega(t, [0.1, 1.0, 0.1])
+    with pytest.raises(ValueError, match=r"cannot determine the moment ratios: omega changes over the record by "
+                                         r"only \S+ of its largest size, less than 1e-06"):
+        kr.fit_free_rotation(t, omega)
+    with pytest.raises(ValueError, match="steady spin about a principal axis"):
+        kr.fit_free_rotation(np.linspace(0.0, 2.0, 100), np.tile([0.0, 0.0, 10.0], (100, 1)))
+
+
+def test_a_record_changing_faster_than_free_rotation_can_is_refused_with_the_numbers():
+    # a 4 s record replayed with t in units 1e5 times too large: ω′ moves by 0.128 of its size while the
+    # body turns 4.04e-5 rad, and |dω′/dt| <= |ω|²/√3 allows 2.33e-5
+    t = np.linspace(0.0, 4.0, 60)
+    omega = kr.EulerTop(1.0, 2.0, 2.5).omega(t, [0.1, 1.0, 0.1])
+    with pytest.raises(ValueError, match=r"not a free rotation: over the record the body turns through 4.04e-05 "
+                                         r"rad, .* at most 2.33e-05 of its largest size .* changes by 0.128"):
+        kr.fit_free_rotation(t * 1e-5, omega)
+    # with a bias the true |ω| is unknown: the fit runs, and what the record leaves free has an infinite error
+    with pytest.warns(NotFreeRotationWarning, match="not determined"):
+        fit = kr.fit_free_rotation(t * 1e-5, omega, bias=True)
+    assert not fit.free_rotation and np.isinf(fit.bias_stderr).all() and not np.isnan(fit.moments_stderr).any()
+    assert np.isinf(fit.moments_stderr).sum() == 2 and np.all(np.isfinite(fit.moments))
+
+
 def test_free_rotation_emits_no_warning():
     t, omega = recording(PHONE, [0.6, 12.0, 0.8], seed=10)
     with warnings.catch_warnings():

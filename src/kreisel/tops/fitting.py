@@ -29,6 +29,10 @@ NOT_FREE_FRACTION = 0.1
 UNDETERMINED = 0.5
 # samples required beyond the number of fitted parameters
 MARGIN = 10
+# the ratios show only through the change of ω′ over the record; the fit's difference quotients (steps
+# of 1.5e-8 of the parameters) resolve changes down to ~1e-14 of the signal, so a change below this
+# fraction of the largest |ω′| leaves them to rounding
+MIN_CHANGE = 1e-6
 
 
 class NotFreeRotationWarning(UserWarning):
@@ -84,11 +88,14 @@ class FreeRotationFit:
         Principal moments about the sensor's x, y, z axes (about the fitted
         principal axes ``axes`` when ``align=True``), relative: the largest is 1.
     moments_stderr : (3,) ndarray
-        Their standard errors (0 for the largest, fixed by the normalisation).
+        Their standard errors (0 for the largest, fixed by the normalisation;
+        inf for a value the data leave free, which also makes ``free_rotation``
+        False).
     omega0, omega0_stderr : (3,) ndarray
         Angular velocity at ``t0`` in the sensor axes (without the bias), rad/s.
     bias, bias_stderr : (3,) ndarray
-        Constant gyroscope offset, rad/s (zeros unless ``bias=True``).
+        Constant gyroscope offset, rad/s (zeros unless ``bias=True``). Standard
+        errors are inf where the data leave the value free, as for the moments.
     axes : (3, 3) ndarray
         Columns: the principal axes in sensor components (identity unless ``align=True``).
     misalignment : float
@@ -403,13 +410,41 @@ def _start(t, omega, bias, align):
     return best_model, best
 
 
+def _determinable(t, omega, bias):
+    """Refuse, before the fit, a record whose ω′ changes too little or faster than free rotation can.
+
+    ``t`` and ``omega`` are the scaled ones (time from the first sample, |ω| of order 1). By Euler's
+    equations and the triangle inequalities |I_j − I_k| <= I_i, |dω′/dt| <= |ω|²/√3, so over the
+    record ω′ can move by at most ∫|ω|² dt/√3 from its first value (with a bias the true |ω| is not
+    known and this bound is not used).
+    """
+    speed = np.linalg.norm(omega, axis=1)
+    change = float(np.max(np.linalg.norm(omega - omega[0], axis=1)))
+    size = float(np.max(speed))
+    if change < MIN_CHANGE * size:
+        raise ValueError(
+            f"t and omega cannot determine the moment ratios: omega changes over the record by only "
+            f"{change / size:.3g} of its largest size, less than {MIN_CHANGE:g}; the ratios show only through "
+            "that change (a steady spin about a principal axis fits every body)"
+        )
+    dt = np.diff(t)
+    turn = float(0.5 * np.sum((speed[1:] + speed[:-1]) * dt))
+    reach = float(0.5 * np.sum((speed[1:] ** 2 + speed[:-1] ** 2) * dt)) / np.sqrt(3.0)
+    if not bias and change > 2.0 * reach:
+        raise ValueError(
+            f"t and omega are not a free rotation: over the record the body turns through {turn:.3g} rad, "
+            f"so Euler's equations let omega change by at most {reach / size:.3g} of its largest size "
+            f"(|dω/dt| <= |ω|²/√3), but it changes by {change / size:.3g} (a wrong time unit, a torque, or "
+            "noise larger than the motion)"
+        )
+
+
 def _covariance(jacobian, residual, dof):
-    """s² (JᵀJ)⁻¹ by the SVD; NaN where the data do not determine a direction."""
+    """s² (JᵀJ)⁺ by the SVD, and the parameter directions the data do not determine (rows)."""
     _, singular, vt = np.linalg.svd(jacobian, full_matrices=False)
     s2 = residual @ residual / dof
-    if singular[-1] <= 1e-10 * singular[0]:
-        return np.full((vt.shape[1], vt.shape[1]), np.nan)
-    return s2 * (vt.T / singular**2) @ vt
+    determined = singular > 1e-10 * singular[0]
+    return s2 * (vt[determined].T / singular[determined] ** 2) @ vt[determined], vt[~determined]
 
 
 def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
@@ -452,8 +487,13 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     Raises
     ------
     ValueError
-        Wrong shapes, NaN or inf, time not strictly increasing, a bad window, or
-        fewer samples than the fitted parameters plus 10.
+        Wrong shapes, NaN or inf, time not strictly increasing, a bad window,
+        fewer samples than the fitted parameters plus 10, or a record that
+        cannot determine the ratios: ω′ changes by less than 1e-6 of its size
+        (they show only through that change), or, without ``bias``, by more
+        than Euler's equations allow while the body turns through
+        θ = ∫|ω| dt (|dω′/dt| <= |ω|²/√3, so at most ∫|ω|² dt/√3; twice that
+        is refused).
 
     Warns
     -----
@@ -497,6 +537,7 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
                          f"more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
     omega = np.ldexp(omega, -k)
     scale = np.ldexp(1.0, k)
+    _determinable(t, omega, bool(bias))
 
     model, x0 = _start(t, omega, bool(bias), bool(align))
     lower = np.full(model.size, -np.inf)
@@ -509,7 +550,7 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     x = solution.x
     residual = solution.fun
     jacobian = model.jacobian(x)
-    covariance = _covariance(jacobian, residual, residual.size - model.size)
+    covariance, null = _covariance(jacobian, residual, residual.size - model.size)
 
     def reported(x):
         moments, w0, b, rotation = model.split(x)
@@ -523,6 +564,9 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
         shifted[j] += step
         gradient[:, j] = (reported(shifted) - values) / step
     stderr = np.sqrt(np.abs(np.diag(gradient @ covariance @ gradient.T)))
+    # a reported number that moves along a direction the data do not fix has no finite standard error
+    loose = np.abs(gradient @ null.T).max(axis=1, initial=0.0) > 1e-8 * np.abs(gradient).max(axis=1, initial=0.0)
+    stderr[loose] = np.inf
 
     moments, w0, b, rotation = model.split(x)
     moments = moments / moments.max()
@@ -539,10 +583,11 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
             f"residual RMS {rms:.3g} rad/s is {100 * rms / signal:.0f} % of the signal's {signal:.3g} rad/s: "
             "this is not a free rotation (hand contact, a catch or a torque?); cut the free flight with a window"
         )
-    elif not np.all(np.isfinite(relative)) or np.max(relative) > UNDETERMINED:
+    elif not np.max(relative) <= UNDETERMINED:
         free, message = False, (
-            f"the moment ratios are not determined by the data (standard error up to "
-            f"{100 * np.nanmax(np.r_[relative, np.inf if np.isnan(relative).any() else 0.0]):.3g} %): "
+            "the moment ratios are not determined by the data ("
+            + (f"standard error up to {100 * np.max(relative):.3g} %): " if np.all(np.isfinite(relative))
+               else "the fit's derivatives leave a combination of them free): ")
             + ("the fitted axis rotation trades off against them (a single flip near the separatrix "
                "cannot tell them apart; fit without align)" if align else
                "the body hardly tumbles (toss it spinning about its middle axis)")
