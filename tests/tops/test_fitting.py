@@ -1,5 +1,6 @@
 """fit_free_rotation: synthetic gyroscope recordings with known moments, ω0, bias and noise."""
 
+import json
 import warnings
 
 import numpy as np
@@ -175,6 +176,8 @@ def test_a_record_changing_faster_than_free_rotation_can_is_refused_with_the_num
         fit = kr.fit_free_rotation(t * 1e-5, omega, bias=True)
     assert not fit.free_rotation and np.isinf(fit.bias_stderr).all() and not np.isnan(fit.moments_stderr).any()
     assert np.isinf(fit.moments_stderr).sum() == 2 and np.all(np.isfinite(fit.moments))
+    record = json.loads(json.dumps(fit.to_dict(), allow_nan=False))
+    assert record["bias_stderr"] == [None] * 3 and record["moments_stderr"].count(None) == 2
 
 
 def test_free_rotation_emits_no_warning():

@@ -257,6 +257,9 @@ class FreeRotationFit:
     def to_dict(self):
         """The results as plain JSON-ready numbers (what ``kreisel fit --json`` writes).
 
+        A standard error the data leave unbounded (inf) is written as ``None``
+        (JSON null): strict JSON has no infinity.
+
         Examples
         --------
         >>> import json, numpy as np, kreisel as kr
@@ -268,13 +271,13 @@ class FreeRotationFit:
         """
         return {
             "moments": self.moments.tolist(),
-            "moments_stderr": self.moments_stderr.tolist(),
+            "moments_stderr": _json_errors(self.moments_stderr),
             "normalisation": "largest moment = 1",
             "omega0": self.omega0.tolist(),
-            "omega0_stderr": self.omega0_stderr.tolist(),
+            "omega0_stderr": _json_errors(self.omega0_stderr),
             "t0": self.t0,
             "bias": self.bias.tolist(),
-            "bias_stderr": self.bias_stderr.tolist(),
+            "bias_stderr": _json_errors(self.bias_stderr),
             "principal_axes": self.axes.tolist(),
             "misalignment_deg": float(np.degrees(self.misalignment)),
             "rms": self.rms,
@@ -289,6 +292,10 @@ class FreeRotationFit:
             "free_rotation": self.free_rotation,
             "message": self.message,
         }
+
+
+def _json_errors(stderr):
+    return [float(e) if np.isfinite(e) else None for e in stderr]
 
 
 def _check(t, omega, window):
