@@ -137,7 +137,7 @@ def file_reference(root):
         title = f"``model = \"{name}\"``"
         lines += [title, "^" * len(title), "", summary, "",
                   "Grid parameters: " + ", ".join(f"``{g}``" for g in model.grid) + ".", ""]
-        constants = {c: _constant_key(kind, default) for c, (kind, default) in model.constants.items()}
+        constants = {c: _constant_key(kind, default, model.notes.get(c, "")) for c, (kind, default) in model.constants.items()}
         lines += key_table(constants, ("constants",))
         outputs = ", ".join(f"``{v}``" + (f" ({meta['units']})" if "units" in meta else "")
                             for v, meta in model.units.items())
@@ -147,7 +147,7 @@ def file_reference(root):
     return "\n".join(lines) + "\n"
 
 
-def _constant_key(kind, default):
+def _constant_key(kind, default, doc):
     from kreisel.io.schema import Key
 
-    return Key(kind, default=default)
+    return Key(kind, default=default, doc=doc)

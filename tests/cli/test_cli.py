@@ -181,6 +181,33 @@ theta0_deg = 34.0
     assert result.exit_code == 2 and "colour" in result.output
 
 
+def test_sweep_streams_into_zarr_on_request(tmp_path):
+    import xarray as xr
+
+    text = """
+model = "lagrange_apex"
+chunk_size = 2
+[grid.phi_dot]
+values = [-0.2, 0.0, 0.35]
+[grid.psi_dot]
+values = [10.0, 20.0]
+"""
+    sweep_file = tmp_path / "small.toml"
+    sweep_file.write_text(text)
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "--stream", "-o", str(tmp_path / "s.zarr"))
+    assert result.exit_code == 0, result.output
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "-o", str(tmp_path / "m.zarr"))
+    assert result.exit_code == 0, result.output
+    with xr.open_zarr(tmp_path / "s.zarr") as streamed, xr.open_zarr(tmp_path / "m.zarr") as memory:
+        xr.testing.assert_identical(streamed.load(), memory.load())
+    # the file's stream = true is overridden by --no-stream; a NetCDF output cannot be streamed into
+    sweep_file.write_text("stream = true\n" + text)
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "--no-stream", "-o", str(tmp_path / "m.nc"))
+    assert result.exit_code == 0, result.output
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "-o", str(tmp_path / "s.nc"))
+    assert result.exit_code == 2 and ".zarr" in result.output and not (tmp_path / "s.nc").exists()
+
+
 def test_convert_reads_a_csv_file(tmp_path):
     rows = tmp_path / "angles.csv"
     rows.write_text("# phi, theta, psi in degrees\n30, 45, 60\n0, 90, 0\n")

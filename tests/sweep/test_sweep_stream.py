@@ -7,6 +7,7 @@ import pytest
 import xarray as xr
 
 import kreisel as kr
+import kreisel.sweep as ks
 from kreisel.sweep import sweep
 
 T = np.linspace(0.0, 2.0, 41)
@@ -65,3 +66,57 @@ def test_stream_needs_a_zarr_output(tmp_path):
     with pytest.raises(TypeError, match="stream must be"):
         sweep(large, {"index": [1.0]}, constants={"size": 2}, scheduler="serial", stream=1,
               output=tmp_path / "a.zarr")
+
+
+HISTORIES = """
+model = "tennis_racket"
+chunk_size = 2
+output = "histories.zarr"
+stream = true
+
+[grid.middle_moment]
+values = [1.2, 1.5, 1.8]
+
+[grid.tilt_deg]
+values = [2.0, 20.0]
+
+[constants]
+t_end = 20.0
+n_samples = 201
+store_omega = true
+every = 10
+"""
+
+
+def test_sweep_file_streams_decimated_histories_chunk_by_chunk(tmp_path):
+    import zarr
+
+    path = tmp_path / "histories.toml"
+    path.write_text(HISTORIES, encoding="utf-8")
+    streamed = ks.run_sweep_file(path, scheduler="serial")
+    assert streamed.omega.chunks is not None  # lazy: read from the store on demand
+    assert streamed.omega.dims == ("middle_moment", "tilt_deg", "omega_dim_0", "omega_dim_1")
+    assert streamed.omega.shape == (3, 2, 21, 3)  # 201 samples, every 10th kept
+    # the store holds one Zarr chunk per sweep chunk of 2 points: writing one touched no other
+    omega = zarr.open_group(tmp_path / "histories.zarr", mode="r")["omega"]
+    assert omega.chunks == (1, 2, 21, 3) and omega.nchunks_initialized == 3
+    memory = ks.run_sweep_file(path, scheduler="serial", output=tmp_path / "memory.zarr", stream=False)
+    xr.testing.assert_identical(streamed.load(), memory)
+    # the kept samples are those of a decimated batch run; the flip time still uses every sample
+    t = np.linspace(0.0, 20.0, 201)
+    tilt = np.radians(20.0)
+    direct = kr.simulate_batch([1.0, 1.5, 2.0], t, [np.sin(tilt), np.cos(tilt), 0.0], every=10)
+    np.testing.assert_array_equal(memory.omega.values[1, 1], direct.omega)
+    flips = ks.tennis_racket_flip(np.array([1.5]), np.array([20.0]), t_end=20.0, n_samples=201)
+    assert memory.flip_time.values[1, 1] == flips["flip_time"][0]
+
+
+@pytest.mark.parametrize("edit, match", [
+    (lambda s: s.replace("store_omega = true", "store_omega = false"), "set store_omega = true"),
+    (lambda s: s.replace("every = 10", "every = 7"), "every must divide n_samples - 1 = 200"),
+    (lambda s: s.replace("every = 10", "every = 0"), "every must be a positive integer"),
+    (lambda s: s.replace('"histories.zarr"', '"histories.nc"'), r"h\.toml:5: stream: streams into a \.zarr output"),
+])
+def test_bad_history_files_refused(edit, match):
+    with pytest.raises(ks.SweepFileError, match=match):
+        ks.parse_sweep_file(edit(HISTORIES), "h.toml")

@@ -328,6 +328,10 @@ def sweep(
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes of the local cluster."),
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="out.zarr | out.nc"),
     plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Also draw the map: fig.png | .svg | .pdf"),
+    stream: Optional[bool] = typer.Option(
+        None, "--stream/--no-stream",
+        help="Write each chunk into the .zarr output as it arrives, keeping about one chunk in memory "
+             "(default: the file's stream key)."),
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
     from ..io.bundled import suggestion
@@ -339,11 +343,16 @@ def sweep(
                         f"{suggestion(sweep_file, EXAMPLES)}")
         sweep_file = example_path(str(sweep_file))
     try:
-        if output is None and load_sweep_file(sweep_file).output is None:
+        spec = load_sweep_file(sweep_file)
+        if output is None and spec.output is None:
             # results (and the checkpoint that lets an interrupted run resume) go to the working directory
             output = pathlib.Path(f"{sweep_file.stem}.zarr")
+        target = output if output is not None else spec.output
+        if (spec.stream if stream is None else stream) and target.suffix != ".zarr":
+            usage_error(f"streaming writes the chunks into a .zarr output as they arrive, not {target.name}: "
+                        "pass -o NAME.zarr, or --no-stream")
         dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output,
-                                 console=_console(stderr=True))
+                                 console=_console(stderr=True), stream=stream)
     except SweepError as exc:
         error_line(exc)
         raise typer.Exit(1)

@@ -5,6 +5,15 @@ runs a TOML sweep file (``kreisel sweep SWEEP.toml``); three sweeps are
 bundled (:data:`EXAMPLES`): the tennis-racket stability map, the Lagrange-top
 apex-locus map and an attitude-error Monte Carlo under gyro noise, each with
 a plot. Dask, xarray and matplotlib are imported only when used.
+
+Sweeps too large for memory: ``sweep(..., stream=True)`` (a sweep file's
+``stream = true``, ``kreisel sweep --stream``) writes each chunk into the
+``.zarr`` output as it arrives, so memory holds about one chunk whatever the
+sweep's size, and returns the dataset reading the store lazily. Decimate what
+each point stores: :func:`kreisel.simulate_batch` keeps every k-th sample with
+``every=k`` in a sweep function of your own, and the bundled tennis-racket
+sweep stores the angular-velocity histories with ``store_omega = true`` and
+``every = k`` among its constants.
 """
 
 from .core import SweepError, SweepProgress, sweep, write_dataset

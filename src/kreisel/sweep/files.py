@@ -10,6 +10,7 @@ the key and its line; the checks are those of :mod:`kreisel.io.schema`)::
     chunk_size = 64                # optional, grid points per task (default 256)
     retries = 2                    # optional, resubmissions of a failing chunk
     output = "map.zarr"            # optional, .zarr or .nc, relative to the file
+    stream = false                 # optional, write chunks into the .zarr output as they arrive
 
     [grid.<parameter>]             # one table per grid parameter of the model, each exactly one of:
     values = [1.0, 2.0]            #   explicit values
@@ -60,6 +61,8 @@ _TOP = {
     "chunk_size": Key("int", default=256, positive=True, doc="grid points per task"),
     "retries": Key("int", default=2, minimum=0, doc="resubmissions of a failing chunk"),
     "output": Key("str", doc=".zarr or .nc, relative to the file"),
+    "stream": Key("bool", default=False, doc="write each chunk into the .zarr output as it arrives and keep none "
+                  "in memory, which then holds about one chunk whatever the sweep's size"),
     "grid": Key("table"),  # its keys depend on the model: checked once the model is known
     "constants": Key("table"),
 }
@@ -102,6 +105,7 @@ class SweepFile:
     chunk_size: int
     retries: int
     output: pathlib.Path | None
+    stream: bool = False
 
 
 def example_path(name):
@@ -170,7 +174,8 @@ def parse_sweep_file(text, path=None):
                              f"{', '.join(model.grid)}") for name in model.grid}
     axes = document.table(axes_schema, data.get("grid", {}), ("grid",))
     grid = {name: _axis(document, name, axis) for name, axis in axes.items()}
-    constants_schema = {name: Key(kind, default=default) for name, (kind, default) in model.constants.items()}
+    constants_schema = {name: Key(kind, default=default, doc=model.notes.get(name, ""))
+                        for name, (kind, default) in model.constants.items()}
     constants = document.table(constants_schema, data.get("constants", {}), ("constants",))
     try:
         model.check(grid, constants)
@@ -183,8 +188,10 @@ def parse_sweep_file(text, path=None):
             document.fail(("output",), f"must end in .zarr or .nc, got {data['output']!r}")
         if path is not None and not output.is_absolute():
             output = pathlib.Path(path).parent / output
+    if data["stream"] and output is not None and output.suffix != ".zarr":
+        document.fail(("stream",), f"streams into a .zarr output, not {data['output']!r}")
     return SweepFile(pathlib.Path(path) if path is not None else None, data["title"], data["description"],
-                     data["model"], grid, constants, data["chunk_size"], data["retries"], output)
+                     data["model"], grid, constants, data["chunk_size"], data["retries"], output, data["stream"])
 
 
 def load_sweep_file(path):
@@ -203,12 +210,15 @@ def load_sweep_file(path):
     return parse_sweep_file(read_text(path, SweepFileError, "sweep file"), path)
 
 
-def run_sweep_file(path, scheduler=None, n_workers=None, output=None, console=None, progress=None):
+def run_sweep_file(path, scheduler=None, n_workers=None, output=None, console=None, progress=None, stream=None):
     """Run the sweep a TOML file describes; return its dataset (written to ``output`` if given).
 
-    ``output`` overrides the file's own ``output`` key. The checkpoint lives
-    next to the output (``<output>.chunks``), so running the same command
-    again after an interruption resumes.
+    ``output`` overrides the file's own ``output`` key, ``stream`` (True or
+    False) its ``stream`` key: a streamed sweep writes each chunk into the
+    ``.zarr`` output as it arrives and returns the dataset reading it lazily
+    (see :func:`kreisel.sweep.sweep`). The checkpoint lives next to the output
+    (``<output>.chunks``), so running the same command again after an
+    interruption resumes.
 
     Examples
     --------
@@ -219,7 +229,8 @@ def run_sweep_file(path, scheduler=None, n_workers=None, output=None, console=No
     attrs = {"title": spec.title, "description": spec.description, "sweep_model": spec.model}
     return sweep(model.function, spec.grid, constants=spec.constants, chunk_size=spec.chunk_size,
                  scheduler=scheduler, n_workers=n_workers, output=output if output is not None else spec.output,
-                 retries=spec.retries, progress=progress, console=console, variable_attrs=model.units, attrs=attrs)
+                 retries=spec.retries, progress=progress, console=console, variable_attrs=model.units, attrs=attrs,
+                 stream=spec.stream if stream is None else stream)
 
 
 def plot_sweep(dataset):

@@ -65,8 +65,19 @@ def _first_middle_axis_zero(trajectory):
     return np.where(has, t[j] + 0.5 * (lo + hi) * h, np.nan)
 
 
+def _check_omega_samples(store_omega, every, n_samples):
+    """``every`` decimates the stored ω′ and must keep the last sample (as in :func:`kreisel.simulate_batch`)."""
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+        raise ValueError(f"every must be a positive integer, got {every!r}")
+    if not store_omega and every != 1:
+        raise ValueError("every decimates the stored angular velocity: set store_omega = true, or leave every at 1")
+    if (n_samples - 1) % every:
+        raise ValueError(f"every must divide n_samples - 1 = {n_samples - 1} (so that the last sample is kept), "
+                         f"got {every}")
+
+
 def tennis_racket_flip(middle_moment, tilt_deg, *, I1=1.0, I3=2.0, spin=1.0, t_end=60.0, n_samples=1201,
-                       method="dop853", dt=None, exact=True):
+                       method="dop853", dt=None, exact=True, store_omega=False, every=1):
     """Flip time of a body spun near its middle axis (Dzhanibekov effect, Theory §5.4).
 
     The body (I1, I2 = ``middle_moment``, I3) starts with ω′ = spin (sin τ, cos τ, 0),
@@ -78,6 +89,13 @@ def tennis_racket_flip(middle_moment, tilt_deg, *, I1=1.0, I3=2.0, spin=1.0, t_e
     no flip happens before ``t_end``; ``flip_time_exact`` (when ``exact``) is
     the closed form from Jacobi elliptic functions.
 
+    With ``store_omega`` the body angular velocity ω′ of every body is also
+    returned, as ``omega`` of shape ``(points, samples, 3)`` at the times
+    ``linspace(0, t_end, n_samples)[::every]``: ``every`` (dividing
+    ``n_samples - 1``) decimates the stored samples, while the flip time is
+    still found from all of them. Run such a sweep with ``stream=True`` (a
+    sweep file's ``stream = true``) when the histories outgrow memory.
+
     Examples
     --------
     The simulated flip time agrees with the closed form from Jacobi elliptic
@@ -88,23 +106,35 @@ def tennis_racket_flip(middle_moment, tilt_deg, *, I1=1.0, I3=2.0, spin=1.0, t_e
     True
     >>> bool(out["flip_time"][1] > out["flip_time"][0])
     True
+    >>> tennis_racket_flip(np.array([1.5]), np.array([1.0]), n_samples=1201, store_omega=True, every=100)["omega"].shape
+    (1, 13, 3)
     """
     from ..dynamics import simulate_batch
     from ..tops import EulerTop
 
+    _check_omega_samples(store_omega, every, n_samples)
     middle = np.asarray(middle_moment, dtype=float)
     tilt = np.radians(np.asarray(tilt_deg, dtype=float))
     bodies = np.stack([np.full_like(middle, I1), middle, np.full_like(middle, I3)], axis=-1)
     omega0 = spin * np.stack([np.sin(tilt), np.cos(tilt), np.zeros_like(tilt)], axis=-1)
     t = np.linspace(0.0, t_end, n_samples)
-    first = simulate_batch(bodies, t, omega0, method=method, dt=dt, reduce=_first_middle_axis_zero)
+    if store_omega:
+        # one row per body: the zero of ω2 (from every sample), then the kept samples of ω′
+        rows = simulate_batch(bodies, t, omega0, method=method, dt=dt, reduce=lambda tr: np.concatenate(
+            [_first_middle_axis_zero(tr)[:, None], tr.omega[:, ::every].reshape(len(tr.omega), -1)], axis=1))
+        first = rows[:, 0]
+    else:
+        first = simulate_batch(bodies, t, omega0, method=method, dt=dt, reduce=_first_middle_axis_zero)
     out = {"flip_time": 2.0 * first}
     if exact:
         out["flip_time_exact"] = np.array([EulerTop(*b).dzhanibekov_flip_time(w) for b, w in zip(bodies, omega0)])
+    if store_omega:
+        out["omega"] = rows[:, 1:].reshape(len(rows), -1, 3)
     return out
 
 
 def _check_tennis_racket(grid, constants):
+    _check_omega_samples(constants.get("store_omega", False), constants.get("every", 1), constants.get("n_samples", 1201))
     I1, I3 = constants.get("I1", 1.0), constants.get("I3", 2.0)
     middle = np.asarray(grid["middle_moment"])
     if not (np.all(middle > I1) and np.all(middle < I3)):
@@ -302,7 +332,7 @@ def plot_imu_attitude_error(dataset):
 # ---- registry ------------------------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class SweepModel:
-    """A bundled sweep: chunk function, grid parameters, typed constants, check, plot, units."""
+    """A bundled sweep: chunk function, grid parameters, typed constants, check, plot, units, constants' meaning."""
 
     function: object
     grid: tuple
@@ -310,16 +340,22 @@ class SweepModel:
     check: object
     plot: object
     units: dict
+    notes: dict = dataclasses.field(default_factory=dict)  # constant -> meaning, for the file reference
 
 
 MODELS = {
     "tennis_racket": SweepModel(
         tennis_racket_flip, ("middle_moment", "tilt_deg"),
         {"I1": ("number", 1.0), "I3": ("number", 2.0), "spin": ("number", 1.0), "t_end": ("number", 60.0),
-         "n_samples": ("int", 1201), "method": ("str", "dop853"), "dt": ("number", None), "exact": ("bool", True)},
+         "n_samples": ("int", 1201), "method": ("str", "dop853"), "dt": ("number", None), "exact": ("bool", True),
+         "store_omega": ("bool", False), "every": ("int", 1)},
         _check_tennis_racket, plot_tennis_racket,
         {"flip_time": {"units": "s", "long_name": "flip time (simulated)"},
-         "flip_time_exact": {"units": "s", "long_name": "flip time (Jacobi elliptic closed form)"}}),
+         "flip_time_exact": {"units": "s", "long_name": "flip time (Jacobi elliptic closed form)"},
+         "omega": {"units": "rad/s", "long_name": "body angular velocity at linspace(0, t_end, n_samples)[::every]"}},
+        {"store_omega": "also store the body angular velocity of every point as `omega` (points × samples × 3, rad/s)",
+         "every": "keep every k-th sample of the stored `omega` (k divides `n_samples` − 1); the flip time "
+                  "uses all samples"}),
     "lagrange_apex": SweepModel(
         lagrange_apex_locus, ("phi_dot", "psi_dot"),
         {"I1": ("number", 1.0), "I3": ("number", 0.5), "mgl": ("number", 1.0), "theta0_deg": ("number", 60.0)},
