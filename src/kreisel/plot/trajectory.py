@@ -307,9 +307,9 @@ def foucault(dataset):
     amplitude = np.degrees(dataset["tilt"].values)
     tilt.plot(t / 3600, amplitude, linewidth=0.8)
     # the amplitude barely changes: from 0 and without an offset ("1e-9 + 2.86478897") its scale reads at a glance
-    tilt.set_ylim(0.0, 1.2 * float(np.max(amplitude, initial=0.0)) or 1.0)
     tilt.ticklabel_format(axis="y", useOffset=False)
-    tilt.set(xlabel="t (h)", ylabel="swing amplitude (°)", title="string angle from the vertical at each swing")
+    top = 1.2 * float(np.max(amplitude, initial=0.0)) or 1.0
+    tilt.set(ylim=(0.0, top), xlabel="t (h)", ylabel="swing amplitude (°)", title="string angle from the vertical at each swing")
     return fig
 
 
@@ -318,10 +318,13 @@ def coning(dataset):
 
     Examples
     --------
-    >>> import kreisel as kr
-    >>> ds = kr.io.run_scenario(kr.io.load_scenario("coning"))
-    >>> coning(ds).axes[0].get_ylabel()
-    'attitude error (rad)'
+    One curve for each body-axis component of the error the run stored:
+
+    >>> from kreisel.io import load_scenario, run_scenario
+    >>> ds = run_scenario(load_scenario("coning"))
+    >>> ax = coning(ds).axes[0]
+    >>> ax.get_ylabel(), [bool((line.get_ydata() == ds["attitude_error"][:, k]).all()) for k, line in enumerate(ax.lines)]
+    ('attitude error (rad)', [True, True, True])
     """
     t = dataset["time"].values
     error = dataset["attitude_error"].values

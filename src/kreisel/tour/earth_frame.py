@@ -6,7 +6,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .. import earth
-from .report import Check, Section
+from .report import Check, Section, panel
 
 __all__ = ["eastward_deflection", "foucault_pendulum", "SECTIONS"]
 
@@ -51,13 +51,11 @@ def foucault_pendulum(quick):
     north = earth.foucault_pendulum(10.0, _LATITUDE, duration, 0.02, g=_G, omega=_OMEGA)
     south = earth.foucault_pendulum(10.0, -_LATITUDE, duration, 0.02, g=_G, omega=_OMEGA)
     theory = float(earth.foucault_precession_rate(_LATITUDE, omega=_OMEGA))
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("t (min)", "swing-plane azimuth change (°)", "10 m pendulum, measured at each maximal excursion")
     for run, label in ((north, "Hefei (north)"), (south, "31.86° S")):
         ax.plot(run.t / 60, np.degrees(run.swing_azimuth - run.swing_azimuth[0]), label=label)
     ax.plot(north.t / 60, np.degrees(theory * north.t), "k--", linewidth=0.8, label="∓ ω sin λ t")
     ax.plot(north.t / 60, -np.degrees(theory * north.t), "k--", linewidth=0.8)
-    ax.set(xlabel="t (min)", ylabel="swing-plane azimuth change (°)", title="10 m pendulum, measured at each maximal excursion")
     ax.legend(fontsize=8)
     return Section(
         "Foucault pendulum", "§8.3",

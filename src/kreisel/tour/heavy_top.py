@@ -7,7 +7,7 @@ from matplotlib.figure import Figure
 
 from .. import so3
 from ..tops import KovalevskayaTop, LagrangeTop
-from .report import Check, Section
+from .report import Check, Section, panel
 
 __all__ = ["lagrange_top", "fast_and_sleeping_top", "kovalevskaya_top", "SECTIONS"]
 
@@ -90,11 +90,9 @@ def fast_and_sleeping_top(quick):
     measured = np.unwrap(np.arctan2(tips[:, 1], tips[:, 0]))
     measured_rate = (measured[-1] - measured[0]) / (t[-1] - t[0])
     threshold = _TOP.sleeping_top_threshold()
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("spin ω3 (rad/s)", "mean precession rate (rad/s)", "fast top released from rest at θ0 = 0.6 rad")
     ax.loglog(spins, exact_rates, "o-", label="exact mean φ̇")
     ax.loglog(spins, approx_rates, "--", label="m g l/(I3 ω3)")
-    ax.set(xlabel="spin ω3 (rad/s)", ylabel="mean precession rate (rad/s)", title="fast top released from rest at θ0 = 0.6 rad")
     ax.legend()
     return Section(
         "Fast top and sleeping top", "§6.6–7",
@@ -121,11 +119,9 @@ def kovalevskaya_top(quick):
     traj = top.simulate(t, [0.3, 0.7, 1.5], so3.euler_to_quat("ZXZ", [0.0, 0.7, 0.35]))
     integrals = top.integrals(traj.omega, traj.gamma)
     K = integrals.kovalevskaya
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("t (s)", "ω′ (rad/s)", f"Kovalevskaya top: K = {K[0]:.6f} conserved to {np.ptp(K) / abs(K[0]):.1e}")
     ax.plot(t, traj.omega, linewidth=0.8, label=["ω′1", "ω′2", "ω′3"])
     ax.legend(loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8)   # beside the panel: the curves fill it
-    ax.set(xlabel="t (s)", ylabel="ω′ (rad/s)", title=f"Kovalevskaya top: K = {K[0]:.6f} conserved to {np.ptp(K) / abs(K[0]):.1e}")
     return Section(
         "Kovalevskaya top", "§7",
         "With I1 = I2 = 2 I3 and the centre of mass in the equatorial plane the heavy top has a fourth "

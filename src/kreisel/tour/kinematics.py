@@ -6,7 +6,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .. import kinematics
-from .report import Check, Section
+from .report import Check, Section, panel
 
 __all__ = ["rolling_wheel_centrodes", "bortz_coefficient", "SECTIONS"]
 
@@ -79,12 +79,10 @@ def bortz_coefficient(quick):
     big = psi > 0.5
     closed[big] = (2 * np.sin(psi[big]) - psi[big] * (1 + np.cos(psi[big]))) / (2 * psi[big] ** 2 * np.sin(psi[big]))
     small = psi < 1e-3
-    fig = Figure(figsize=(7, 3.6), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("ψ (rad)", "coefficient", "Bortz equation: ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)", figsize=(7, 3.6))
     ax.semilogy(psi, coefficient, label="kreisel")
     ax.semilogy(psi[big], closed[big], "--", label="closed form (2 sin ψ − ψ(1 + cos ψ))/(2ψ² sin ψ)")
     ax.axvline(2 * np.pi, color="0.6", linestyle=":")
-    ax.set(xlabel="ψ (rad)", ylabel="coefficient", title="Bortz equation: ψ̇ = ω′ + ½ ψ × ω′ + c(ψ) ψ × (ψ × ω′)")
     ax.legend(fontsize=8)
     return Section(
         "The Bortz coefficient", "§3.5",

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
-from matplotlib.figure import Figure
 
 from .. import nav, so3
-from .report import Check, Section
+from .report import Check, Section, panel
 
 __all__ = ["measured_drift", "coning_drift", "SECTIONS"]
 
@@ -31,8 +30,7 @@ def coning_drift(quick):
     """Coning drift of strapdown attitude algorithms"""
     alpha, rate = np.radians(1.0), 2 * np.pi
     cones = 10 if quick else 40
-    fig = Figure(figsize=(7, 4.2), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("λ = Ω T_s", "drift rate (rad/s)", "coning α = 1°, Ω = 2π rad/s: N-sample updates", figsize=(7, 4.2))
     checks = []
     for n, grid in _SAMPLES_PER_CONE.items():
         drifts, steps = zip(*(measured_drift(alpha, rate, per_cone, cones, n) for per_cone in grid))
@@ -49,7 +47,6 @@ def coning_drift(quick):
                    Check.close(f"N = {n}: angle between the drift and body −x (rad)",
                                float(np.arccos(min(1.0, along_minus_x))), alpha, rtol=1e-3,
                                source="α: the drift is about the cone axis")]
-    ax.set(xlabel="λ = Ω T_s", ylabel="drift rate (rad/s)", title="coning α = 1°, Ω = 2π rad/s: N-sample updates")
     ax.legend(fontsize=7, ncol=2)
     return Section(
         "Strapdown attitude and coning drift", "§3.3, §3.5",

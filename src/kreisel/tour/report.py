@@ -8,8 +8,9 @@ import html
 import io
 
 import numpy as np
+from matplotlib.figure import Figure
 
-__all__ = ["Check", "Section", "plain", "render_html"]
+__all__ = ["Check", "Section", "panel", "plain", "render_html"]
 
 
 @dataclasses.dataclass
@@ -67,6 +68,21 @@ class Section:
         # in a notebook (the tour's notebooks end each section cell with its Section)
         mark = "all checks pass" if self.ok else "FAIL"
         return _section_html(self, "section") + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>"
+
+
+def panel(xlabel, ylabel, title, figsize=(7, 3.8)):
+    """A figure with one axes, labelled and titled: ``(fig, ax)``, the plot most sections draw.
+
+    Examples
+    --------
+    >>> fig, ax = panel("t (s)", "ω′ (rad/s)", "spin")
+    >>> ax.get_xlabel(), ax.get_title(), fig.axes == [ax], fig.get_size_inches().tolist()
+    ('t (s)', 'spin', True, [7.0, 3.8])
+    """
+    fig = Figure(figsize=figsize, layout="constrained")
+    ax = fig.add_subplot()
+    ax.set(xlabel=xlabel, ylabel=ylabel, title=title)
+    return fig, ax
 
 
 def _png(fig):

@@ -9,7 +9,7 @@ from matplotlib.figure import Figure
 from scipy.spatial.transform import Rotation as ScipyRotation
 
 from .. import kinematics, so3
-from .report import Check, Section
+from .report import Check, Section, panel
 
 __all__ = ["euler_angles_and_nodal_line", "gimbal_lock", "quaternion_renormalisation", "SECTIONS"]
 
@@ -88,12 +88,10 @@ def gimbal_lock(quick):
         locked = kinematics.euler_rates("ZXZ", [0.7, 0.0, -1.1], omega, frame="body")
     warned = any(issubclass(w.category, kinematics.GimbalLockWarning) for w in caught)
 
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("θ (rad)", "rate", "ZXZ Euler rates blow up like 1/sin θ; quaternion rates do not")
     ax.loglog(theta, np.abs(rates[:, 0]), label="|φ̇|")
     ax.loglog(theta, np.abs(rates[:, 2]), "--", label="|ψ̇|")
     ax.loglog(theta, np.linalg.norm(qdot, axis=-1), label="|q̇| = |ω|/2")
-    ax.set(xlabel="θ (rad)", ylabel="rate", title="ZXZ Euler rates blow up like 1/sin θ; quaternion rates do not")
     ax.legend()
     return Section(
         "Gimbal lock", "§2.3, §3.6",
@@ -143,12 +141,10 @@ def quaternion_renormalisation(quick):
         Rn = so3.orthonormalize(Rn)
         err[n] = [abs(np.linalg.norm(q) - 1), abs(np.linalg.norm(qn) - 1),
                   np.linalg.norm(R.T @ R - np.eye(3)), np.linalg.norm(Rn.T @ Rn - np.eye(3))]
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = panel("t (s)", "| |q| − 1 |  or  |RᵀR − 1|", "RK4 attitude integration, h = 0.01 s")
     t = h * np.arange(1, steps + 1)
     for k, label in enumerate(["quaternion, raw", "quaternion, renormalised", "DCM, raw", "DCM, SVD-projected"]):
         ax.semilogy(t, np.maximum(err[:, k], 1e-17), label=label, linewidth=1)
-    ax.set(xlabel="t (s)", ylabel="| |q| − 1 |  or  |RᵀR − 1|", title="RK4 attitude integration, h = 0.01 s")
     ax.legend()
     return Section(
         "Quaternion renormalisation vs DCM drift", "§2.4(2)",
