@@ -1,4 +1,4 @@
-"""Fixtures shared by the tests that install kreisel the way a user does."""
+"""Fixtures shared across test folders: a short scenario, and tools for the tests that install kreisel the way a user does."""
 
 import pathlib
 import shutil
@@ -8,6 +8,24 @@ import subprocess
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def racket_toml():
+    """A short rigid-body scenario, TOML text: the bundled tennis racket's body and spin, 10 s in 101 samples.
+
+    Tests make their variants with ``str.replace`` of whole lines.
+    """
+    return """\
+title = "short tennis racket"
+[body]
+moments = [1.0, 2.0, 3.0]
+[initial]
+omega = [0.01, 1.0, 0.01]
+[integration]
+t_end = 10.0
+n_samples = 101
+"""
 
 
 @pytest.fixture(scope="session")

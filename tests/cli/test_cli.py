@@ -12,18 +12,6 @@ from kreisel.cli import app
 
 runner = CliRunner()
 
-SHORT = """
-title = "short tennis racket"
-[body]
-moments = [1.0, 2.0, 3.0]
-[initial]
-omega = [0.01, 1.0, 0.01]
-[integration]
-t_end = 10.0
-n_samples = 101
-"""
-
-
 def run(*args, input=None):
     return runner.invoke(app, list(args), input=input)
 
@@ -80,9 +68,9 @@ def test_convert_usage_errors_exit_2(args, message):
     assert "Traceback" not in result.output
 
 
-def test_simulate_plot_animate(tmp_path):
+def test_simulate_plot_animate(tmp_path, racket_toml):
     scenario = tmp_path / "short.toml"
-    scenario.write_text(SHORT)
+    scenario.write_text(racket_toml)
     out = tmp_path / "traj.nc"
     result = run("simulate", str(scenario), "-o", str(out))
     assert result.exit_code == 0, result.output
@@ -102,17 +90,17 @@ def test_simulate_plot_animate(tmp_path):
 
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
-def test_simulate_writes_other_formats(tmp_path, suffix):
+def test_simulate_writes_other_formats(tmp_path, racket_toml, suffix):
     scenario = tmp_path / "short.toml"
-    scenario.write_text(SHORT)
+    scenario.write_text(racket_toml)
     out = tmp_path / f"traj{suffix}"
     assert run("simulate", str(scenario), "-o", str(out)).exit_code == 0
     assert run("plot", str(out), "-o", str(tmp_path / "w.svg")).exit_code == 0
 
 
-def test_simulate_and_plot_errors(tmp_path):
+def test_simulate_and_plot_errors(tmp_path, racket_toml):
     bad = tmp_path / "bad.toml"
-    bad.write_text(SHORT.replace("t_end = 10.0", "t_end = 10.0\nspeed = 3"))
+    bad.write_text(racket_toml.replace("t_end = 10.0", "t_end = 10.0\nspeed = 3"))
     result = run("simulate", str(bad))
     assert result.exit_code == 2 and "integration.speed: unknown key" in result.output
     result = run("simulate", str(tmp_path / "absent.toml"))
@@ -219,28 +207,31 @@ def test_convert_reads_a_csv_file(tmp_path):
     assert result.exit_code == 2 and "cannot read" in result.output
 
 
-RUNAWAY = SHORT.replace("n_samples = 101\n", "")  # each test adds its own sampling
+@pytest.fixture
+def runaway(racket_toml):
+    """The short scenario without its sampling: each test adds its own."""
+    return racket_toml.replace("n_samples = 101\n", "")
 
 
 @pytest.mark.parametrize("extra,message", [
     ('n_samples = 11\nmethod = "rk4"\ndt = 1e-300\n', r"needs 1e\+301 steps, about .* years"),
     ("n_samples = 1000000000000\n", r"n_samples = 1000000000000: the result would need 120 TB"),
 ])
-def test_simulate_refuses_runaway_scenarios_before_work(tmp_path, extra, message):
+def test_simulate_refuses_runaway_scenarios_before_work(tmp_path, runaway, extra, message):
     path = tmp_path / "runaway.toml"
-    path.write_text(RUNAWAY + extra, encoding="utf-8")
+    path.write_text(runaway + extra, encoding="utf-8")
     result = run("simulate", str(path))
     assert result.exit_code == 2
     assert re.search(message, " ".join(result.output.split())), result.output
 
 
-def test_simulate_reports_progress_of_a_long_run(tmp_path, monkeypatch):
+def test_simulate_reports_progress_of_a_long_run(tmp_path, runaway, monkeypatch):
     from kreisel._compiled import chunks
     from kreisel.dynamics import engine
     from kreisel.io import run as io_run
 
     path = tmp_path / "long.toml"
-    path.write_text(RUNAWAY + 'n_samples = 3\nmethod = "rk4"\ndt = 1e-2\n', encoding="utf-8")
+    path.write_text(runaway + 'n_samples = 3\nmethod = "rk4"\ndt = 1e-2\n', encoding="utf-8")
     monkeypatch.setattr(chunks, "CHUNK_SECONDS", 0.0)
     monkeypatch.setattr(engine, "_FIRST_CHUNK_STEPS", 1)
     seen = []
