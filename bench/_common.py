@@ -41,6 +41,9 @@ Stable API (names, signatures and return types are kept; additions only):
     object is passed through ``str``); ``align`` is a string with one of
     ``"l"``, ``"r"``, ``"c"`` or ``"-"`` (unspecified) per column, or None for
     all unspecified.
+``table_section(title, notes, columns, rows, align=None, *, load_before=None) -> list[str]``
+    ``header(title, *notes, load_before=load_before)`` followed by
+    ``markdown_table(columns, rows, align)``: the usual results section.
 ``write_results(topic, text, *, echo=True) -> pathlib.Path``
     Writes ``text`` (newline-terminated) to ``bench/results/<topic>.md``
     atomically (temporary file in the same folder, then ``os.replace``), so
@@ -193,6 +196,12 @@ def markdown_table(columns: Sequence[str], rows: Sequence[Sequence[Any]], align:
             raise ValueError(f"every row must have {len(columns)} cells, got {len(row)}: {row!r}")
     lines = ["| " + " | ".join(columns) + " |", "|" + "|".join(rules[a] for a in align) + "|"]
     return lines + ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
+
+
+def table_section(title: str | None, notes: Sequence[str], columns: Sequence[str], rows: Sequence[Sequence[Any]],
+                  align: str | None = None, *, load_before: str | None = None) -> list[str]:
+    """``header`` (title, notes, machine and load) followed by the markdown table of ``rows``."""
+    return header(title, *notes, load_before=load_before) + markdown_table(columns, rows, align)
 
 
 def write_results(topic: str, text: str, *, echo: bool = True) -> pathlib.Path:

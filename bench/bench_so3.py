@@ -30,12 +30,11 @@ from _common import (
     NOTES_MARKER,
     RESULTS,
     atomic_write,
-    header,
     interleaved,
     load_average,
-    markdown_table,
     median_time,
     streaming_copy,
+    table_section,
     write_results,
 )
 from scipy.spatial.transform import Rotation as S
@@ -137,21 +136,18 @@ def main():
     single = median_time(lambda: [kr.quat_multiply(a, b) for _ in range(1000)]) / 1000
     single_scipy = median_time(lambda: [(sa * sb).as_quat() for _ in range(1000)]) / 1000
 
-    lines = header(
+    lines = table_section(
         "kreisel.so3 vs scipy.spatial.transform and numpy-quaternion",
-        f"10^6 rotations, float64; medians and bests of {REPEATS} runs taken in alternation (kreisel, scipy, copies, "
-        f"numpy-quaternion {npq.__version__}) in one process. Copy bound: `np.copyto` of input- and output-sized "
-        "preallocated buffers; copy to new output: the same, but the output buffer is allocated per run, as every "
-        "function returning a new array must (in this VM first touches of fresh pages are slow and erratic). "
-        "kreisel CPU/wall: about 2 when both cores work. "
-        "† transcendental-bound (the others are memory-bound: goal within 2× of the copy bound).",
-        load_before=load_before,
-    )
-    lines += markdown_table(
+        [f"10^6 rotations, float64; medians and bests of {REPEATS} runs taken in alternation (kreisel, scipy, copies, "
+         f"numpy-quaternion {npq.__version__}) in one process. Copy bound: `np.copyto` of input- and output-sized "
+         "preallocated buffers; copy to new output: the same, but the output buffer is allocated per run, as every "
+         "function returning a new array must (in this VM first touches of fresh pages are slow and erratic). "
+         "kreisel CPU/wall: about 2 when both cores work. "
+         "† transcendental-bound (the others are memory-bound: goal within 2× of the copy bound)."],
         ["operation", "kreisel (ms)", "scipy (ms)", "vs scipy", "numpy-quaternion (ms)", "vs numpy-quaternion",
          "copy bound (ms)", "kreisel / copy", "copy to new output (ms)", "kreisel / copy to new", "best kreisel (ms)", "best vs scipy", "best kreisel / best copy",
          "kreisel CPU / wall"],
-        rows, "l" + "r" * 13,
+        rows, "l" + "r" * 13, load_before=load_before,
     )
     lines += [
         "",
@@ -227,19 +223,15 @@ def parity(repeats=3):
                      f"{scipy_batch / t_ours.median:.1f}×", f"{t_ours.cpu_median / t_ours.median:.1f}",
                      f"{one * 1e6:.1f}", f"{one_scipy * 1e6:.1f}", f"{one_scipy / one:.1f}×"])
         print(" | ".join(rows[-1]), flush=True)
-    lines = [PARITY_HEADING, ""] + header(
+    return [PARITY_HEADING, ""] + table_section(
         None,
-        f"Batches of 10^6 rotations or times (align_vectors: {PROBLEMS} problems; scipy has no batched "
-        f"align_vectors, so its time is a loop of {SCIPY_LOOP} calls scaled to {PROBLEMS}); medians of {repeats} "
-        "runs in alternation, one process. Single call: median of 200 calls on one rotation, time, or problem.",
-        load_before=load_before,
-    )
-    lines += markdown_table(
+        [f"Batches of 10^6 rotations or times (align_vectors: {PROBLEMS} problems; scipy has no batched "
+         f"align_vectors, so its time is a loop of {SCIPY_LOOP} calls scaled to {PROBLEMS}); medians of {repeats} "
+         "runs in alternation, one process. Single call: median of 200 calls on one rotation, time, or problem."],
         ["operation", "kreisel (ms)", "scipy (ms)", "vs scipy", "kreisel CPU / wall", "single kreisel (µs)",
          "single scipy (µs)", "single vs scipy"],
-        rows, "l" + "r" * 7,
+        rows, "l" + "r" * 7, load_before=load_before,
     )
-    return lines
 
 
 #: Heading of the section on large fresh outputs in a script-like order of calls (kept above the notes).
@@ -316,22 +308,18 @@ def fresh_outputs():
                 f"{med['ours'] / med['new']:.2f}", _ms(med["into"]), str(int(np.median(r["faults"]))),
             ])
             print(" | ".join(rows[-1]), flush=True)
-    lines = [FRESH_HEADING, ""] + header(
+    return [FRESH_HEADING, ""] + table_section(
         None,
-        f"The order of calls that exposed quat -> matrix at 0.4× scipy: a new process allocates other 10^6-sized "
-        f"arrays first, then times each operation in alternation with scipy and a copy into a newly allocated "
-        f"output of the same size ({REPEATS} runs after one untimed call; every run returns a new 72 MB or 128 MB "
-        "array). 'recycled off' is kreisel with its recycling of large results switched off (each result on "
-        "freshly mapped pages, as numpy allocates it), 'on' the default. Page faults: minor faults of one "
-        "kreisel call (median).",
-        load_before=load_before,
-    )
-    lines += markdown_table(
+        [f"The order of calls that exposed quat -> matrix at 0.4× scipy: a new process allocates other 10^6-sized "
+         f"arrays first, then times each operation in alternation with scipy and a copy into a newly allocated "
+         f"output of the same size ({REPEATS} runs after one untimed call; every run returns a new 72 MB or 128 MB "
+         "array). 'recycled off' is kreisel with its recycling of large results switched off (each result on "
+         "freshly mapped pages, as numpy allocates it), 'on' the default. Page faults: minor faults of one "
+         "kreisel call (median)."],
         ["operation", "recycled", "kreisel runs (ms)", "kreisel (ms)", "scipy (ms)", "vs scipy",
          "copy to new output (ms)", "kreisel / copy to new", "kreisel into out= (ms)", "page faults"],
-        rows, "ll" + "r" * 8,
+        rows, "ll" + "r" * 8, load_before=load_before,
     )
-    return lines
 
 
 def write_section(heading, lines):
