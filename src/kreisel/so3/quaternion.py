@@ -17,12 +17,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
-from .._compiled.gufunc import (
-    checked_in_one_pass, checked_quat_size, finite_array, gufunc, quaternion_array, refuse_quaternions,
-    sized_quaternion_array, vector_array,
-)
-from .._validation import as_float_array
-from .._validation import batch_shape
+from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, gufunc, refuse_quaternions
+from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
+from .._validation import as_float_array, batch_shape
 from .._norms import norm
 
 __all__ = [

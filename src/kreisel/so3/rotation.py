@@ -295,12 +295,15 @@ class Rotation(QuaternionBatch):
 
         Examples
         --------
-        Unit-length modified Rodrigues parameters are a half turn (tan(π/4) = 1):
+        The modified Rodrigues parameters of a rotation are its Gibbs vector ``g``
+        divided by ``1 + sqrt(1 + |g|²)``; unit length is a half turn (tan(π/4) = 1):
 
         >>> import numpy as np
-        >>> r = Rotation.from_mrp([1.0, 0.0, 0.0])
-        >>> round(float(np.degrees(r.magnitude())), 9)
-        180.0
+        >>> g = np.array([0.0, 0.0, 1.0])                                    # a quarter turn about z
+        >>> bool(Rotation.from_mrp(g / (1.0 + np.sqrt(2.0))).approx_equal(Rotation.from_gibbs(g)))
+        True
+        >>> bool(np.isclose(Rotation.from_mrp([1.0, 0.0, 0.0]).magnitude(), np.pi))
+        True
         """
         return cls._wrap(_rodrigues.mrp_to_quat(p))
 
