@@ -186,6 +186,17 @@ def test_larmor_precession_is_the_fast_top_limit():
         assert rate == pytest.approx(kr.larmor_precession_rate(B, scale_e, scale_m), rel=2 * (mu * B) / omega**2)
 
 
+def test_larmor_rate_at_extreme_fields_rounds_once_or_is_refused():
+    # e B/(2m) at 1e-293 T passed through a subnormal product (e B ~ 1e-312) and lost 11 digits;
+    # the rate is linear in B, so the scaled field gives the scaled rate to rounding
+    field = np.array([-0.7, 0.03, 0.4])
+    for scale in (1e-293, 1e-300, 1e297):
+        np.testing.assert_allclose(kr.larmor_precession_rate(field * scale), kr.larmor_precession_rate(field) * scale,
+                                   rtol=4e-16, atol=0)
+    with pytest.raises(ValueError, match="magnetic_field, charge and mass are out of range: .* exceeds 1.8e308"):
+        kr.larmor_precession_rate(field * 1e298)
+
+
 def test_simulate_agrees_with_exact_solution():
     euler0, rates0 = STATES["loop"]
     t = np.linspace(0.0, 30.0, 301)

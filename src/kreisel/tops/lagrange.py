@@ -129,7 +129,15 @@ def larmor_precession_rate(magnetic_field: ArrayLike, charge: ArrayLike = ELEMEN
     m = as_float_array(mass, "mass")
     if np.any(m <= 0.0):
         raise ValueError("mass must be positive")
-    return np.abs(q) * b / (2.0 * m)
+    # mantissas and binary exponents apart: |q| b/(2m) of 1e-300 T or 1e300 T rounds once, at the end,
+    # instead of passing through a subnormal or an overflowing product
+    (mq, eq), (mb, eb), (mm, em) = np.frexp(np.abs(q)), np.frexp(b), np.frexp(m)
+    with np.errstate(over="ignore"):
+        rate = np.ldexp(mq * mb / mm, eq + eb - em - 1)
+    if not np.all(np.isfinite(rate)):
+        raise ValueError("magnetic_field, charge and mass are out of range: the Larmor rate |charge| magnetic_field"
+                         "/(2 mass) exceeds 1.8e308 rad/s, the largest double")
+    return rate
 
 
 # ---- double-double arithmetic for the constants of a state next to the separatrix
