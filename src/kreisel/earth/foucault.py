@@ -17,7 +17,7 @@ import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
-from .._validation import as_float, check_allocation
+from .._validation import MAX_TURN, as_float, check_allocation
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -226,7 +226,7 @@ class FoucaultSwing:
         self.tilt = tilt
         self.jacobi = jacobi
         self.final_state = final_state
-        self.precession_rate = float(np.polyfit(t, swing_azimuth, 1)[0]) if t.size > 1 else float("nan")
+        self.precession_rate = float(np.polyfit(t, swing_azimuth, 1)[0])
 
     def __repr__(self):
         return f"FoucaultSwing(n={self.t.size}, precession_rate={self.precession_rate:.6g} rad/s)"
@@ -289,6 +289,14 @@ def foucault_pendulum(
     FoucaultSwing
         The sampled swing of the bob.
 
+    Raises
+    ------
+    ValueError
+        Bad arguments; a pendulum that swings through more than 1e15 rad of
+        phase in ``duration`` (its steps would be lost in the rounding of t);
+        a run that ends before the first excursion after the release (less
+        than about half a period), which leaves no swing plane to measure.
+
     Examples
     --------
     A 1 m pendulum at the North Pole of a fast planet (ω = 0.01 rad/s):
@@ -316,6 +324,11 @@ def foucault_pendulum(
         [np.sin(amplitude) * np.cos(azimuth), np.sin(amplitude) * np.sin(azimuth), -np.cos(amplitude), 0.0, 0.0, 0.0]
     )
     period = 2.0 * np.pi * np.sqrt(length / g)
+    phase = 2.0 * np.pi * (duration / period)
+    if not phase <= MAX_TURN:
+        raise ValueError(f"length and duration are out of range: a {length:g} m pendulum swings through a phase of "
+                         f"{phase:.3g} rad in {duration:g} s (period {period:.3g} s), more than {MAX_TURN:g} rad, "
+                         "where double precision no longer resolves its steps")
     # several steps per swing keep at most one excursion maximum inside a step
     max_step = period / 16.0
     max_steps = check_max_steps(max_steps)
@@ -339,6 +352,10 @@ def foucault_pendulum(
     state = _swing_state(y0)
     _dop853.check_status(run_resumable(advance, state, duration, max_steps, 2**14, _PAUSED))
     count = int(state[_COUNT])
+    if count == 0:
+        raise ValueError(f"duration and length: in {duration:g} s the bob of a {length:g} m pendulum (period "
+                         f"{period:.3g} s) reached no excursion after its release, so there is no swing plane to "
+                         "measure; simulate for more than half a period")
     times, az, tilt = record[0][:, :count]
     y_end = state[_Y:_Y + 6].copy()
     t = np.concatenate([[0.0], times[:count]])
