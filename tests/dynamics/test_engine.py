@@ -80,6 +80,29 @@ def test_batch_every_keeps_exactly_the_full_runs_samples(method, dt):
         np.testing.assert_array_equal(reduced, full.q[:, ::5])
 
 
+@pytest.mark.parametrize("method,dt", [("dop853", None), ("scipy", None), ("splitting4", 0.02), ("rk4", 0.01)])
+def test_single_body_every_keeps_exactly_the_full_runs_samples(method, dt):
+    # simulate and simulate_6dof decimate like simulate_batch: the same steps, every k-th sample kept
+    t = np.linspace(0, 3, 61)
+    w0, q0 = rng.normal(size=3), random_unit_quaternions(1)[0]
+    inertia = np.array([[2.0, 0.1, 0.0], [0.1, 1.5, 0.2], [0.0, 0.2, 3.0]])  # non-principal: rotated in and out
+    full = kr.simulate(inertia, t, w0, q0, torque=GravityTorque(0.7, [0.0, 0.1, 0.3]), method=method, dt=dt)
+    six = kr.simulate_6dof(inertia, t, w0, q0, velocity0=[1.0, 0.0, 2.0], force=ConstantForce([0.0, 0.0, -9.8]),
+                           method=method, dt=dt)
+    for every in (4, 60):
+        kept = kr.simulate(inertia, t, w0, q0, torque=GravityTorque(0.7, [0.0, 0.1, 0.3]), method=method, dt=dt,
+                           every=every)
+        np.testing.assert_array_equal(kept.t, t[::every])
+        np.testing.assert_array_equal(kept.omega, full.omega[::every])
+        np.testing.assert_array_equal(kept.q, full.q[::every])
+        kept6 = kr.simulate_6dof(inertia, t, w0, q0, velocity0=[1.0, 0.0, 2.0], force=ConstantForce([0.0, 0.0, -9.8]),
+                                 method=method, dt=dt, every=every)
+        for name in ("omega", "q", "position", "velocity"):
+            np.testing.assert_array_equal(getattr(kept6, name), getattr(six, name)[::every], err_msg=name)
+    with pytest.raises(ValueError, match="every must be a positive integer dividing len"):
+        kr.simulate(inertia, t, w0, every=7)
+
+
 def test_batch_every_refuses_what_would_drop_the_last_time():
     t = np.linspace(0, 1, 11)
     for every, error in ((3, ValueError), (0, ValueError), (-2, ValueError), (2.0, TypeError), (True, TypeError)):

@@ -371,15 +371,15 @@ def _check_rtol(rtol: float) -> float:
 
 def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, mass: float, rows: _Array | None,
                frows: _Array | None, rtol: float, atol: _Array, max_steps: int,
-               progress: Callable[[float], object] | None) -> _Array:
+               progress: Callable[[float], object] | None, every: int = 1) -> _Array:
     # a fresh writable C array: numba compiles one specialisation per array layout
     moments = np.array(moments, dtype=np.float64, order="C")
-    if method == "scipy":
-        y = _scipy(t, y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
+    if method == "scipy":  # its steps do not depend on the output times: the kept samples are those of t
+        y = _scipy(np.ascontiguousarray(t[::every]), y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
         y[:, 3:7] = _normalized(y[:, 3:7])  # as the compiled drivers write their samples
         return y
     out, status = _run(METHODS[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
-                       rtol, atol[None, :], max_steps, progress)
+                       rtol, atol[None, :], max_steps, progress, every)
     _raise_status(status[0])
     return out[0]
 
@@ -434,14 +434,15 @@ def _normalized(q: _Array) -> _Array:
 def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, torque: _TorqueArg,
             method: str | None, dt: float | None, rtol: float, atol: float | None, allow_unphysical: bool,
             max_steps: int | None, progress: Callable[[float], object] | None,
-            translation: tuple[_Array, _Array] | None = None,
-            force: _ForceArg = None) -> tuple[_Array, float, _Array, _Array, _Array, _Array, dict[str, Any]]:
-    """Shared validation and integration of :func:`simulate` and :func:`simulate_6dof`."""
+            translation: tuple[_Array, _Array] | None = None, force: _ForceArg = None,
+            every: int = 1) -> tuple[_Array, float, _Array, _Array, _Array, _Array, dict[str, Any]]:
+    """Shared validation and integration of :func:`simulate` and :func:`simulate_6dof`; the samples at ``t[::every]``."""
     tensor, moments, axes, mass = resolve_body(body, allow_unphysical)
     t = _check_times(t)
+    every = _check_every(every, t.size)
     method, dt = _check_method(method, dt, t)
     rtol = _check_rtol(rtol)
-    max_steps = _check_workload(method, t, dt, 1, 7 if translation is None else 13, max_steps)
+    max_steps = _check_workload(method, t, dt, 1, 7 if translation is None else 13, max_steps, every)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable, got {type(progress).__name__}")
     w_body = as_float_array(omega0, "omega0", tail=(3,))
@@ -462,20 +463,20 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
         rows = _torque_rows(torque, axes, t[0], q_body, w_body)
         frows = _force_rows(force, axes, t[0], q_body, w_body, translation)
         atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
-        y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v, max_steps, progress)
+        y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v, max_steps, progress, every)
     finally:
         _model_tables.release_callback(rows)
         _model_tables.release_callback(frows)
     omega, q = _to_body_frame(y[:, 0:3], y[:, 3:7], axes)
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
-    return tensor, mass, t, omega, q, y, meta
+    return tensor, mass, t[::every], omega, q, y, meta
 
 
 def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
              torque: _TorqueArg = None, method: str | None = None, dt: float | None = None, rtol: float = DEFAULT_RTOL,
              atol: float | None = None, allow_unphysical: bool = False, max_steps: int | None = None,
-             progress: Callable[[float], object] | None = None) -> Trajectory:
+             progress: Callable[[float], object] | None = None, every: int = 1) -> Trajectory:
     """Integrate Euler's dynamic equations with quaternion attitude (Theory §4.4–5).
 
     Parameters
@@ -518,11 +519,15 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
     progress : callable, optional
         ``progress(t_reached)``, called about every 50 ms of a long run
         with the time the integration has reached.
+    every : int
+        Keep every ``every``-th sample, as in :func:`simulate_batch`: the
+        trajectory holds the samples at ``t[::every]`` (``every`` divides
+        ``len(t) - 1``) of the run over all of ``t``, bit for bit.
 
     Returns
     -------
     Trajectory
-        Samples at ``t``; ``meta`` records the method and its settings.
+        Samples at ``t[::every]``; ``meta`` records the method and its settings.
 
     Raises
     ------
@@ -546,9 +551,11 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
     True
     >>> tr.q.shape, tr.omega.shape
     ((5, 4), (5, 3))
+    >>> kr.simulate([1.0, 2.0, 3.0], np.linspace(0, 10, 1001), [0.1, 1.0, 0.1], every=250).t
+    array([ 0. ,  2.5,  5. ,  7.5, 10. ])
     """
     tensor, _, t, omega, q, _, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
-                                            allow_unphysical, max_steps, progress)
+                                            allow_unphysical, max_steps, progress, every=every)
     return Trajectory(t, q, omega, tensor, meta=meta)
 
 
@@ -579,7 +586,8 @@ def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, 
                   position0: ArrayLike = (0.0, 0.0, 0.0), velocity0: ArrayLike = (0.0, 0.0, 0.0),
                   force: _ForceArg = None, torque: _TorqueArg = None, method: str | None = None, dt: float | None = None,
                   rtol: float = DEFAULT_RTOL, atol: float | None = None, allow_unphysical: bool = False,
-                  max_steps: int | None = None, progress: Callable[[float], object] | None = None) -> Trajectory:
+                  max_steps: int | None = None, progress: Callable[[float], object] | None = None,
+                  every: int = 1) -> Trajectory:
     """A free rigid body in six degrees of freedom: centre of mass and attitude (Theory §4.4, §4.7).
 
     The centre of mass obeys m r̈ = F (space frame, Theory §4.7 with r_C the
@@ -592,7 +600,7 @@ def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, 
     ----------
     body : RigidBody or (3,) / (3, 3) array_like
         Inertia about the centre of mass; a plain array means mass 1 kg.
-    t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, max_steps, progress
+    t, omega0, q0, torque, method, dt, rtol, atol, allow_unphysical, max_steps, progress, every
         As in :func:`simulate`.
     position0, velocity0 : (3,) array_like
         Centre-of-mass position (m) and velocity (m/s) in space.
@@ -621,7 +629,7 @@ def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, 
         raise ValueError("position0 and velocity0 must have shape (3,)")
     tensor, mass, t, omega, q, y, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
                                                  allow_unphysical, max_steps, progress, translation=(r0, v0),
-                                                 force=force)
+                                                 force=force, every=every)
     meta["mass"] = mass
     meta["force"] = repr(force) if force is not None else "none"
     return Trajectory(t, q, omega, tensor, meta=meta, position=y[:, 7:10], velocity=y[:, 10:13])
