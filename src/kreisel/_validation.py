@@ -120,6 +120,40 @@ def batch_shape(shape: Any, name: str = "shape") -> tuple[int, ...]:
     return tuple(int(n) for n in items)
 
 
+class out_of_range:
+    """Context that turns an overflow of finite input into a ValueError naming the arguments.
+
+    Inside the block numpy's overflow warnings are silenced; :meth:`check` then refuses results that
+    came out non-finite (the true value exceeds the largest double, 1.8e308), saying so.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> with out_of_range("omega and r", "the centripetal acceleration") as guard:
+    ...     a = guard.check(np.float64(1e200) * np.float64(1e200))
+    Traceback (most recent call last):
+    ...
+    ValueError: omega and r are out of range: the centripetal acceleration exceeds the largest double (1.8e308)
+    """
+
+    def __init__(self, names: str, what: str) -> None:
+        self.names, self.what = names, what
+
+    def __enter__(self) -> "out_of_range":
+        self._state = np.seterr(over="ignore", invalid="ignore")
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        np.seterr(**self._state)
+
+    def check(self, *values: Any) -> Any:
+        """The values (one, or a tuple of several), refused when any entry is not finite."""
+        for value in values:
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)")
+        return values[0] if len(values) == 1 else values
+
+
 def memory_budget() -> int:
     """Bytes one result may take: half the machine's physical memory (16 GiB if it cannot be read)."""
     try:

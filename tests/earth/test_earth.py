@@ -196,3 +196,17 @@ def test_foucault_period_broadcasts_and_validates():
         E.foucault_pendulum(1.67e-143, 40.0, 20.0, 0.1)
     with pytest.raises(ValueError, match="elevation_deg"):
         E.shell_deviation(100.0, 0.0, 0.0, 10.0)
+
+
+def test_deflection_formulas_scale_without_overflow_or_refuse():
+    # h √(2h/g) ∝ h^1.5 and the shell estimate's T, T², T³ terms: h³ or T³ alone overflowed where the
+    # result is representable
+    base = E.eastward_deflection(100.0, 31.8584)
+    for scale in (1e100, 1e-100):
+        assert E.eastward_deflection(100.0 * scale, 31.8584) == pytest.approx(base * scale**1.5, rel=1e-15)
+    with pytest.raises(ValueError, match="height, g and omega are out of range: the deflection exceeds"):
+        E.eastward_deflection(1e300, 31.8584)
+    east, north = E.shell_deviation_estimate(1e102, 45.0, 30.0, 40.0)
+    assert np.isfinite(east) and np.isfinite(north)
+    with pytest.raises(ValueError, match="speed, g and omega are out of range: the deviation exceeds"):
+        E.shell_deviation_estimate(1e200, 45.0, 30.0, 40.0)

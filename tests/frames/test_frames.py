@@ -175,3 +175,9 @@ def test_a_frame_turning_beyond_double_precision_is_refused_before_the_run(omega
 def test_a_frame_turning_just_within_range_is_integrated():
     tr = F.simulate_particle([0.0, 1e-6], [1.0, 0, 0], [0, 0, 0], [0, 0, 1e3])
     assert np.all(np.isfinite(tr.r))
+
+
+def test_inertial_forces_beyond_the_largest_double_are_refused():
+    # the centrifugal force m ω × (ω × r) at |ω| = 1e155 rad/s: a refusal naming the inputs, not numpy's overflow
+    with pytest.raises(ValueError, match=r"r, v, omega, omega_dot, a0 and mass are out of range: an inertial force"):
+        F.inertial_forces([1.0, 0.5, 0.0], [0.0, 0.0, 0.0], [1e155, 0.0, 2e155])

@@ -210,3 +210,9 @@ def test_from_quaternion_scaled_alone_against_mpmath(frame):
             continue
         want = reference(scaled, qdot, qddot)
         np.testing.assert_allclose(angular_acceleration_from_quat(scaled, qdot, qddot, frame=frame), want, rtol=1e-14)
+
+
+def test_angular_acceleration_from_euler_beyond_the_largest_double_is_refused():
+    # products of rates of 1e155 rad/s exceed 1.8e308 rad/s²: a refusal naming them, not numpy's overflow
+    with pytest.raises(ValueError, match="rates and accelerations are out of range: the angular acceleration"):
+        angular_acceleration_from_euler("ZXZ", [0.1, 0.5, 0.2], [1e155, 2e155, 1e155], [0.0, 0.0, 0.0])

@@ -126,3 +126,17 @@ def test_five_terms_against_a_differentiated_platform_motion():
     ref = aC + Rdd @ rp + 2 * Rd @ vp + R @ ap
     np.testing.assert_allclose(terms.total, ref, rtol=1e-14, atol=1e-14)
     np.testing.assert_allclose(three_term_velocity(w, R @ rp, R @ vp).total, Rd @ rp + R @ vp, atol=1e-14)
+
+
+def test_accelerations_beyond_the_largest_double_are_refused_naming_the_arguments():
+    # ω × (ω × r) at |ω| = 1e155 is ~1e310: once numpy's overflow warning and inf, now a clear refusal
+    omega, r = np.array([1e155, 2e155, -1e155]), np.array([0.3, -1.0, 2.0])
+    for call in (lambda: point_acceleration(omega, np.zeros(3), r),
+                 lambda: five_term_acceleration(omega, np.zeros(3), r, np.zeros(3), np.zeros(3))):
+        with pytest.raises(ValueError, match=r"omega, epsilon, r, .* are out of range: the acceleration exceeds"):
+            call()
+    with pytest.raises(ValueError, match="omega, r, relative_velocity and reference_velocity are out of range"):
+        point_velocity(omega * 1e150, r * 1e10)
+    # one below, where the answer is representable, the result is exact to rounding
+    scaled = point_acceleration(omega * 1e-3, np.zeros(3), r)
+    np.testing.assert_allclose(scaled, point_acceleration(omega / 1e155, np.zeros(3), r) * 1e304, rtol=1e-15)

@@ -117,3 +117,16 @@ def test_centrode_batches_and_bad_input():
         centrodes(t, t[:4], pos[0])
     with pytest.raises(ValueError, match="position"):
         centrodes(t, t, np.ones((5, 3)))
+
+
+@pytest.mark.parametrize("scale", [2.0**514, 2.0**-514, 1e300, 1e-300])
+def test_centrodes_of_sampled_motion_are_independent_of_the_time_unit(scale):
+    # np.gradient multiplies three spacings: a span of 1e155 s overflowed and one of 1e-155 s lost digits;
+    # the centrodes do not depend on the unit of time
+    t = np.linspace(0.0, 1.0, 7)
+    angle, position = 0.3 + t + 0.2 * t**2, np.stack([np.cos(t), 2.0 * t], axis=-1)
+    base = centrodes(t, angle, position)
+    scaled = centrodes(t * scale, angle, position)
+    # (1e±300 times are rounded: differences of 1e-15 in the O(1) centrodes)
+    np.testing.assert_allclose(scaled.space, base.space, rtol=1e-13, atol=1e-14)
+    np.testing.assert_allclose(scaled.body, base.body, rtol=1e-13, atol=1e-14)

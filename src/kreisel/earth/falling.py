@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
-from .._validation import as_float_array
+from .._validation import as_float_array, out_of_range
 from ..frames.particle import _NPAR, _FIELD, _W, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
@@ -73,7 +73,9 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     c, _ = latitude_cos_sin(latitude_deg)
     g = _positive(g, "g")
     w = check_omega(omega)
-    return (2.0 / 3.0) * w * c * np.sqrt(2.0 * h**3 / g)
+    with out_of_range("height, g and omega", "the deflection") as guard:
+        # h √(2h/g), not √(2h³/g): h³ overflows from 1e103 m where the deflection is still representable
+        return guard.check((2.0 / 3.0) * w * c * (h * np.sqrt(2.0 * h / g)))
 
 
 @cached
@@ -281,7 +283,9 @@ def shell_deviation_estimate(speed, elevation_deg, azimuth_deg, latitude_deg, g=
     omega_vec = angular_velocity_enu(lat, w)
     gravity = np.stack([np.zeros_like(g), np.zeros_like(g), -g], axis=-1)
     T = (2.0 * v0[..., 2] / g)[..., None]
-    r1 = -np.cross(omega_vec, v0) * T**2 - np.cross(omega_vec, gravity) * T**3 / 3.0
-    shift = r1[..., 2:3] / v0[..., 2:3]
-    dev = r1[..., :2] + shift * v0[..., :2]
+    with out_of_range("speed, g and omega", "the deviation") as guard:
+        # one factor of T at a time: T³ alone overflows before the deviation does
+        r1 = -(np.cross(omega_vec, v0) * T) * T - (np.cross(omega_vec, gravity) * T) * T * T / 3.0
+        shift = r1[..., 2:3] / v0[..., 2:3]
+        dev = guard.check(r1[..., :2] + shift * v0[..., :2])
     return dev[..., 0], dev[..., 1]

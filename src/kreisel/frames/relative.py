@@ -26,7 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, out_of_range
 from .._norms import norm
 
 __all__ = [
@@ -150,11 +150,13 @@ def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), 
     """
     r, v, omega, omega_dot, a0 = _vectors(r=r, v=v, omega=omega, omega_dot=omega_dot, a0=a0)
     m = _scalar(mass, "mass", positive=True)[..., None]
-    translational = -m * a0
-    coriolis = -2.0 * m * np.cross(omega, v)
-    centrifugal = -m * np.cross(omega, np.cross(omega, r))
-    euler = -m * np.cross(omega_dot, r)
-    total = translational + coriolis + centrifugal + euler
+    with out_of_range("r, v, omega, omega_dot, a0 and mass", "an inertial force") as guard:
+        translational = -m * a0
+        coriolis = -2.0 * m * np.cross(omega, v)
+        centrifugal = -m * np.cross(omega, np.cross(omega, r))
+        euler = -m * np.cross(omega_dot, r)
+        total = guard.check(translational + coriolis + centrifugal + euler)
+        guard.check(translational, coriolis, centrifugal, euler)
     shape = total.shape
     return InertialForces(
         *(np.broadcast_to(x, shape).copy() for x in (translational, coriolis, centrifugal, euler)), total

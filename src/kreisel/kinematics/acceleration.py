@@ -11,7 +11,7 @@ import numpy as np
 from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import quaternion_array
-from .._validation import check_frame
+from .._validation import check_frame, out_of_range
 from ..so3 import quat_conjugate, quat_multiply
 from .._norms import norm
 from ..so3.euler import parse_sequence
@@ -189,9 +189,11 @@ def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="sp
     r = rates[..., order]
     c0, c1, c2 = c[..., 0, :], c[..., 1, :], c[..., 2, :]
     r0, r1, r2 = r[..., 0:1], r[..., 1:2], r[..., 2:3]
-    epsilon = (
-        np.einsum("...ij,...i->...j", M.swapaxes(-1, -2), accelerations)
-        + r0 * r1 * np.cross(c0, c1)
-        + r2 * np.cross(r0 * c0 + r1 * c1, c2)
-    )
+    with out_of_range("rates and accelerations", "the angular acceleration") as guard:
+        # products of rates: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
+        epsilon = guard.check(
+            np.einsum("...ij,...i->...j", M.swapaxes(-1, -2), accelerations)
+            + r0 * r1 * np.cross(c0, c1)
+            + r2 * np.cross(r0 * c0 + r1 * c1, c2)
+        )
     return deliver(epsilon, out)

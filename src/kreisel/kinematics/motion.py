@@ -10,6 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 from .._compiled.outputs import deliver
+from .._validation import out_of_range
 
 from ._checks import vector_batch
 
@@ -199,7 +200,9 @@ def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
         omega=omega, r=r, relative_velocity=_as_vector(relative_velocity), reference_velocity=_as_vector(reference_velocity)
     )
     shape = np.broadcast_shapes(omega.shape, r.shape, v_rel.shape, v_c.shape)
-    rotational = np.cross(omega, r)
+    with out_of_range("omega, r, relative_velocity and reference_velocity", "the velocity") as guard:
+        rotational = np.cross(omega, r)
+        guard.check(rotational, v_c + v_rel + rotational)
     return VelocityTerms(*(np.array(np.broadcast_to(x, shape)) for x in (v_c, v_rel, rotational)))
 
 
@@ -244,5 +247,8 @@ def five_term_acceleration(omega, epsilon, r, relative_velocity, relative_accele
         reference_acceleration=_as_vector(reference_acceleration),
     )
     shape = np.broadcast_shapes(omega.shape, epsilon.shape, r.shape, v_rel.shape, a_rel.shape, a_c.shape)
-    terms = (a_c, np.cross(epsilon, r), np.cross(omega, np.cross(omega, r)), a_rel, 2.0 * np.cross(omega, v_rel))
+    with out_of_range("omega, epsilon, r, relative_velocity, relative_acceleration and reference_acceleration",
+                      "the acceleration") as guard:
+        terms = (a_c, np.cross(epsilon, r), np.cross(omega, np.cross(omega, r)), a_rel, 2.0 * np.cross(omega, v_rel))
+        guard.check(*terms, sum(terms))
     return AccelerationTerms(*(np.array(np.broadcast_to(x, shape)) for x in terms))

@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, out_of_range
 from .._compiled.outputs import deliver
 from ._checks import batch_shape, vectors
 from .._norms import norm
@@ -202,7 +202,11 @@ def _sampled(value, rate, t, name, time_axis):
     if r is None:
         if t.size < 3:
             raise ValueError(f"{name} needs at least 3 samples to be differentiated")
-        r = np.gradient(v, t, axis=time_axis, edge_order=2)
+        # np.gradient multiplies three spacings: times are scaled by a power of two first (exact), so that
+        # spans of 1e155 s do not overflow nor 1e-155 s underflow where the rate itself is representable
+        e = int(np.frexp(np.max(np.abs(t)))[1])
+        with out_of_range(f"t and {name}", f"the rate of {name}") as guard:
+            r = guard.check(np.ldexp(np.gradient(v, np.ldexp(t, -e), axis=time_axis, edge_order=2), -e))
     r = as_float_array(r, f"{name} rate")
     if r.shape != v.shape:
         raise ValueError(f"the rate of {name} must have the shape of {name} {v.shape}, got {r.shape}")
