@@ -197,11 +197,19 @@ def _public_classes():
 CLASSES = _public_classes()
 
 
+def _own_and_inherited(cls):
+    """``{name: attribute}`` of ``cls`` and its bases but ``object`` (a shared base's methods count too)."""
+    members = {}
+    for owner in reversed(cls.__mro__[:-1]):
+        members.update(vars(owner))
+    return members
+
+
 def _all_methods():
     """Every public method and ``__call__`` of the public classes, by ``Class.name``."""
     found = {}
     for class_name, cls in CLASSES.items():
-        for name, member in vars(cls).items():
+        for name, member in _own_and_inherited(cls).items():
             if (not name.startswith("_") or name == "__call__") and inspect.isfunction(member):
                 found[f"{class_name}.{name}"] = member
     return found
@@ -234,7 +242,7 @@ def test_methods_left_out_return_no_array(name):
 
 def test_constructors_return_no_array():
     for class_name, cls in CLASSES.items():
-        for name, member in vars(cls).items():
+        for name, member in _own_and_inherited(cls).items():
             if isinstance(member, (classmethod, staticmethod)) and not name.startswith("_"):
                 returns = str(inspect.signature(member.__func__).return_annotation)
                 assert returns in (class_name, "Self") or returns.startswith("tuple"), (class_name, name, returns)
