@@ -5,6 +5,7 @@ The graph is read from the source with :mod:`ast`, so function-local imports
 """
 
 import ast
+import functools
 import pathlib
 
 import pytest
@@ -37,32 +38,84 @@ def _modules(root):
     return modules
 
 
+@functools.cache
+def _tree(path):
+    """The parsed source of ``path`` (each file is read once per test session)."""
+    return ast.parse(path.read_text(encoding="utf-8"), str(path))
+
+
+def _imports(root):
+    """``(importer, node, module)`` for every import statement of a kreisel module, ``module`` the dotted name
+    ``from ... import`` reads from (None for a plain ``import``)."""
+    modules = _modules(root)
+    for name, (path, is_package) in sorted(modules.items()):
+        package = name if is_package else name.rpartition(".")[0]
+        for node in ast.walk(_tree(path)):
+            if isinstance(node, ast.Import):
+                yield name, node, None
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    yield name, node, ".".join(base + ([node.module] if node.module else []))
+                else:
+                    yield name, node, node.module or ""
+
+
 def import_graph(root=PACKAGE):
     """Edges ``(importer, imported, line)`` between kreisel modules, function-local imports included."""
     modules = _modules(root)
     top = root.name
     edges = []
-    for name, (path, is_package) in sorted(modules.items()):
-        package = name if is_package else name.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
-            if isinstance(node, ast.Import):
-                targets = [alias.name for alias in node.names if alias.name.split(".")[0] == top]
-            elif isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
-                    module = ".".join(base + ([node.module] if node.module else []))
-                else:
-                    module = node.module or ""
-                    if module.split(".")[0] != top:
-                        continue
-                # ``from package import submodule`` imports the submodule
-                targets = [f"{module}.{alias.name}" if f"{module}.{alias.name}" in modules else module for alias in node.names]
-            else:
-                continue
-            edges.extend((name, target, node.lineno) for target in targets if target != name)
+    for name, node, module in _imports(root):
+        if module is None:
+            targets = [alias.name for alias in node.names if alias.name.split(".")[0] == top]
+        elif module.split(".")[0] != top:
+            continue
+        else:
+            # ``from package import submodule`` imports the submodule
+            targets = [f"{module}.{alias.name}" if f"{module}.{alias.name}" in modules else module for alias in node.names]
+        edges.extend((name, target, node.lineno) for target in targets if target != name)
     unknown = [(a, b, line) for a, b, line in edges if b not in modules]
     assert not unknown, f"imports of modules that do not exist: {unknown}"
     return modules, edges
+
+
+def compiled_modules(root=PACKAGE):
+    """Modules of kreisel's packages (the private base aside) that define compiled functions: a function
+    decorated by a name imported from numba or the compiled layer."""
+    compilers = {}
+    for name, node, module in _imports(root):
+        sources = [alias.name for alias in node.names] if module is None else [module] * len(node.names)
+        for alias, source in zip(node.names, sources):
+            if source.split(".")[0] == "numba" or "._compiled" in f".{source}":
+                compilers.setdefault(name, set()).add(alias.asname or alias.name.split(".")[0])
+    found = set()
+    for name, (path, _) in _modules(root).items():
+        if layer(name) == 0 or name not in compilers:
+            continue
+        for node in ast.walk(_tree(path)):
+            for decorator in getattr(node, "decorator_list", []) if isinstance(node, ast.FunctionDef) else []:
+                while isinstance(decorator, (ast.Call, ast.Attribute)):
+                    decorator = decorator.func if isinstance(decorator, ast.Call) else decorator.value
+                if isinstance(decorator, ast.Name) and decorator.id in compilers[name]:
+                    found.add(name)
+    return found
+
+
+def private_reaches(root=PACKAGE):
+    """Imports of a private compiled module of another package, or of a private name defined in one."""
+    modules, compiled = _modules(root), compiled_modules(root)
+    found = []
+    for name, node, module in _imports(root):
+        if module is None or module.split(".")[0] != root.name:
+            continue
+        for alias in node.names:
+            target = f"{module}.{alias.name}" if f"{module}.{alias.name}" in modules else module
+            if target not in compiled or package(target) == package(name):
+                continue
+            if target.rpartition(".")[2].startswith("_") or alias.name.startswith("_"):
+                found.append(f"{name}:{node.lineno}: {module}.{alias.name}")
+    return found
 
 
 def package(module):
@@ -140,6 +193,11 @@ def test_se3_imports_only_so3():
     assert [f"{a} -> {b} (line {line})" for a, b, line in narrower_than_layer(edges)] == []
 
 
+def test_no_package_reaches_into_another_packages_compiled_internals():
+    # shared compiled code lives in kreisel._compiled; a package's own kernels and their layouts stay its own
+    assert private_reaches() == []
+
+
 def test_every_package_has_a_layer():
     assert {path.name for path in PACKAGE.iterdir() if path.is_dir() and (path / "__init__.py").exists()} <= set(LAYER)
     assert {path.stem for path in PACKAGE.glob("*.py")} <= set(LAYER)
@@ -163,6 +221,27 @@ def test_the_checks_see_function_local_imports_and_upward_imports(tmp_path):
     assert [(a, b) for a, b, _ in narrower_than_layer(edges)] == [("kreisel.se3.d", "kreisel.kinematics")]
 
 
+def test_reaching_into_compiled_internals_is_found(tmp_path):
+    root = tmp_path / "kreisel"
+    for name in ("_compiled", "so3", "frames", "earth"):
+        (root / name).mkdir(parents=True)
+        (root / name / "__init__.py").write_text("")
+    (root / "__init__.py").write_text("")
+    (root / "so3" / "_kernels.py").write_text("from .._compiled import cached\n@cached\ndef g():\n    pass\n")
+    # calls compiled code without compiling any: a private helper, not compiled machinery
+    (root / "so3" / "_plain.py").write_text("from .._compiled import kernels\nX = 1\n")
+    (root / "frames" / "particle.py").write_text("import numba\n_NPAR = 14\nbuiltin = 1\n"
+                                                 "@numba.njit(cache=True)\ndef rhs():\n    pass\n")
+    (root / "frames" / "other.py").write_text("from .particle import _NPAR\n")
+    (root / "earth" / "falling.py").write_text(
+        "from ..so3 import _kernels, _plain\nfrom ..frames.particle import _NPAR, builtin\n"
+        "def f():\n    from kreisel.so3._kernels import g\n")
+    assert compiled_modules(root) == {"kreisel.so3._kernels", "kreisel.frames.particle"}
+    assert private_reaches(root) == ["kreisel.earth.falling:1: kreisel.so3._kernels",
+                                     "kreisel.earth.falling:2: kreisel.frames.particle._NPAR",
+                                     "kreisel.earth.falling:4: kreisel.so3._kernels.g"]
+
+
 @pytest.mark.parametrize("module", ["kreisel", "kreisel.__main__", "kreisel._compiled.gufunc", "kreisel.tour.runner"])
 def test_layer_of_the_facade_private_base_and_user_layers(module):
     assert layer(module) == {"kreisel._compiled.gufunc": 0}.get(module, len(LAYERS) - 1)
@@ -176,7 +255,7 @@ def short_aliases(root=PACKAGE):
     """``import x as y`` / ``from x import y as z`` with an alias of at most two letters (underscores aside)."""
     found = []
     for path in sorted(root.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        for node in ast.walk(_tree(path)):
             if isinstance(node, (ast.Import, ast.ImportFrom)):
                 found.extend(f"{path.relative_to(root.parent)}:{node.lineno}: {ast.unparse(node)}" for alias in node.names
                              if alias.asname and len(alias.asname.strip("_")) <= 2

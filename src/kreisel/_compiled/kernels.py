@@ -90,10 +90,6 @@ def rotated(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: f
     return x + q0 * t0 + q2 * t2 - q3 * t1, y + q0 * t1 + q3 * t0 - q1 * t2, z + q0 * t2 + q1 * t1 - q2 * t0
 
 
-#: The name the dynamics integrators import.
-_rotated = rotated
-
-
 @cached
 def quat_matrix(q0: float, q1: float, q2: float, q3: float) -> tuple[float, ...]:
     """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit (nonzero, finite) quaternion."""

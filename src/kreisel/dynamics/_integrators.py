@@ -27,7 +27,7 @@ from numba import prange
 from .._compiled import cached, inlined, parallel
 from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
 from .._compiled.dop853 import new_state as _dop853_state
-from .._compiled.kernels import _rotated as rotated
+from .._compiled.kernels import rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
 from ._model_tables import CALLBACK
 from .forces import evaluate_force

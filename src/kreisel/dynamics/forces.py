@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import cached, inlined
-from .._compiled.kernels import _rotated as rotated
+from .._compiled.kernels import rotated
 from .._validation import as_float_array
 from ._model_tables import RowModel, RowSum, in_principal_axes, row, sum_rows
 

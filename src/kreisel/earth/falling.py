@@ -22,7 +22,7 @@ import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
 from .._validation import as_float_array, out_of_range
-from ..frames.particle import _NPAR, _FIELD, _W, builtin_rhs
+from ..frames.particle import builtin_parameters, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = [
@@ -134,9 +134,7 @@ def _land_kernel(p, y0, rtol, atol, max_step, tables):
 
 def _land(position, velocity, latitude_deg, g, omega):
     """Landing time and ENU state of one particle under the model of the module note."""
-    p = np.zeros(_NPAR)
-    p[_W:_W + 3] = angular_velocity_enu(latitude_deg, omega)
-    p[_FIELD + 2] = -g
+    p = builtin_parameters(angular_velocity_enu(latitude_deg, omega), field=(0.0, 0.0, -g))
     y0 = np.concatenate([position, velocity]).astype(np.float64)
     # flight time without rotation; steps of an eighth of it keep the landing search well posed
     vz = velocity[2]

@@ -62,6 +62,39 @@ def builtin_rhs(t, y, p, out, offset):
     relative_acceleration(y[:3], y[3:], w, p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], f, out, offset + 3)
 
 
+def builtin_parameters(omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), field=(0.0, 0.0, 0.0), spring=0.0,
+                       t0=0.0):
+    """The parameter vector ``p`` of :func:`builtin_rhs` (its layout stays private to this module).
+
+    Parameters
+    ----------
+    omega, omega_dot : (3,) array_like
+        ω(t0), rad/s, and the constant ω̇, rad/s².
+    a0 : (3,) array_like
+        Acceleration of the frame's origin, m/s².
+    field : (3,) array_like
+        Uniform specific force (gravity), m/s².
+    spring : float
+        Isotropic spring constant over mass, 1/s².
+    t0 : float
+        Time at which ω = ``omega``, s.
+
+    Returns
+    -------
+    p : (14,) ndarray
+
+    Examples
+    --------
+    >>> p = builtin_parameters([0.0, 0.0, 1.0], field=[0.0, 0.0, -9.8])
+    >>> p.shape, float(p[2])
+    ((14,), 1.0)
+    """
+    p = np.zeros(_NPAR)
+    p[_W:_W + 3], p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], p[_FIELD:_FIELD + 3] = omega, omega_dot, a0, field
+    p[_SPRING], p[_T0] = spring, t0
+    return p
+
+
 @cached
 def _integrate_builtin(p, t, state, rtol, atol, max_step, tables, out, budget):
     # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._compiled.dop853)
@@ -292,9 +325,7 @@ def simulate_particle(
         w = _vector(omega, "omega")
         wdot = _vector(omega_dot, "omega_dot")
         acc0 = _vector(a0, "a0")
-        p = np.zeros(_NPAR)
-        p[_W:_W + 3], p[_WDOT:_WDOT + 3], p[_A0:_A0 + 3], p[_FIELD:_FIELD + 3] = w, wdot, acc0, gravity
-        p[_SPRING], p[_T0] = spring, t[0]
+        p = builtin_parameters(w, omega_dot=wdot, a0=acc0, field=gravity, spring=spring, t0=t[0])
         status = run_resumable(
             lambda state, budget: _integrate_builtin(p, t, state, rtol, atol, max_step, tables, y, budget),
             _dop853.new_state(y0), t[-1], max_steps, 2**14, _dop853.PAUSED)

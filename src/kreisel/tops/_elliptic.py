@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .._compiled import cached as _jit
+from .._compiled import cached
 from .._validation import as_float_array
 
 __all__ = ["elliptic_pi", "complete_elliptic_pi", "elliptic_f", "elliptic_k", "jacobi_elliptic"]
@@ -49,7 +49,7 @@ _HYPERBOLIC_M1 = 1e-17
 _LOG_M1 = 1e-30
 
 
-@_jit
+@cached
 def _rc1(t):
     """R_C(1, t) for t > 0: atan(√(t − 1))/√(t − 1), atanh(√(1 − t))/√(1 − t) (DLMF 19.2.18–19).
 
@@ -65,7 +65,7 @@ def _rc1(t):
     return 1.0
 
 
-@_jit
+@cached
 def carlson_rf(x, y, z):
     """R_F(x, y, z), x, y, z >= 0, at most one zero."""
     a0 = (x + y + z) / 3.0
@@ -85,7 +85,7 @@ def carlson_rf(x, y, z):
     return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / math.sqrt(a)
 
 
-@_jit
+@cached
 def _series_rd_rj(X, Y, Z, P):
     """The common degree-5 series of R_D and R_J (Carlson 1995, P = Z for R_D)."""
     e2 = X * Y + X * Z + Y * Z - 3.0 * P * P
@@ -98,7 +98,7 @@ def _series_rd_rj(X, Y, Z, P):
     )
 
 
-@_jit
+@cached
 def carlson_rd(x, y, z):
     """R_D(x, y, z) = R_J(x, y, z, z), x, y >= 0 (at most one zero), z > 0."""
     a0 = (x + y + 3.0 * z) / 5.0
@@ -117,7 +117,7 @@ def carlson_rd(x, y, z):
     return f * _series_rd_rj(X, Y, Z, Z) / (a * math.sqrt(a)) + 3.0 * total
 
 
-@_jit
+@cached
 def carlson_rj(x, y, z, p):
     """R_J(x, y, z, p), x, y, z >= 0 (at most one zero), p > 0."""
     a0 = (x + y + z + 2.0 * p) / 5.0
@@ -142,7 +142,7 @@ def carlson_rj(x, y, z, p):
     return f * _series_rd_rj(X, Y, Z, P) / (a * math.sqrt(a)) + 6.0 * total
 
 
-@_jit
+@cached
 def _t_function(nu, x):
     """∫₀^x dt/(1 − ν t²): atanh(√ν x)/√ν, atan(√−ν x)/√−ν."""
     if nu > 0.0:
@@ -154,7 +154,7 @@ def _t_function(nu, x):
     return x
 
 
-@_jit
+@cached
 def complete_k(m1, kc):
     """K(m) from m1 and k′ = √m1 (k′ also when m1 has underflowed)."""
     if m1 < _LOG_M1:
@@ -162,7 +162,7 @@ def complete_k(m1, kc):
     return carlson_rf(0.0, m1, 1.0)
 
 
-@_jit
+@cached
 def complete_pi(nu, one_minus_nu, m1, kc):
     """Π(ν | m), ν < 1, with 1 − ν given separately (accurate when ν is near 1)."""
     k = complete_k(m1, kc)
@@ -180,7 +180,7 @@ def complete_pi(nu, one_minus_nu, m1, kc):
     return k + nu / 3.0 * carlson_rj(0.0, m1, 1.0, one_minus_nu)
 
 
-@_jit
+@cached
 def amplitude_integral(s, c, m1, nu, one_minus_nu):
     """Π(φ, ν | m) for cos φ = c >= 0, sin φ = s (s² + c² = 1), with δ² = c² + m1 s²."""
     c2 = c * c
@@ -192,7 +192,7 @@ def amplitude_integral(s, c, m1, nu, one_minus_nu):
     return f + nu / 3.0 * s * s * s * carlson_rj(c2, d2, 1.0, c2 + one_minus_nu * s * s)
 
 
-@_jit
+@cached
 def _hyperbolic(r, m1, kc):
     """(sn, cn, dn)(r | m) to first order in m1 about tanh, sech (DLMF 22.10.4–6).
 
@@ -211,7 +211,7 @@ def _hyperbolic(r, m1, kc):
     return th + minus * sech * sech, sech - minus * th * sech, sech + plus * th * sech
 
 
-@_jit
+@cached
 def _agm(r, m1, kc):
     """(sn, cn, dn)(r | m) by the arithmetic–geometric mean from 1, √m1, √m (A&S 16.4)."""
     aa = np.empty(64)
@@ -232,7 +232,7 @@ def _agm(r, m1, kc):
     return sn, cn, math.sqrt(cn * cn + m1 * sn * sn)
 
 
-@_jit
+@cached
 def jacobi_near(r, m1, kc):
     """(sn, cn, dn)(r | m) for |r| <= K/2, each to a few ulp relative.
 
@@ -261,7 +261,7 @@ def jacobi_near(r, m1, kc):
     return s, c, d
 
 
-@_jit
+@cached
 def quarter_shift(n, sn, cn, dn, kc):
     """(sn, cn, dn) of u = nK + r from those of r (quarter-period shifts, DLMF 22.4.3)."""
     quadrant = n % 4
@@ -273,7 +273,7 @@ def quarter_shift(n, sn, cn, dn, kc):
     return sigma * cn / dn, -sigma * kc * sn / dn, kc / dn
 
 
-@_jit
+@cached
 def amplitude_split(n, sr, cr, kc):
     """am u for u = nK + r from sn, cn of r: (n/2)π + am r, or ((n − 1)/2)π + am(K + r)."""
     if n % 2 == 0:
@@ -281,14 +281,14 @@ def amplitude_split(n, sr, cr, kc):
     return 0.5 * (n - 1) * math.pi + math.atan2(cr, -kc * sr)
 
 
-@_jit
+@cached
 def split_phase(x, k):
     """(n, r) with x = nK + r, |r| <= K/2."""
     n = math.floor(x / k + 0.5)
     return int(n), x - n * k
 
 
-@_jit
+@cached
 def phase_from_sn_cn(sn0, cn0, m1, kc):
     """Split phase (n, r) of the u with (sn u, cn u) ∝ (sn0, cn0), sn0² + cn0² > 0.
 
@@ -308,7 +308,7 @@ def phase_from_sn_cn(sn0, cn0, m1, kc):
     return n, amplitude_integral(s / h, c / h, m1, 0.0, 1.0)
 
 
-@_jit
+@cached
 def pi_split(n, r, sn, cn, m1, kc, nu, one_minus_nu, pi_complete):
     """Π(am u, ν | m) at u = nK + r, from (sn, cn) of r (not of u)."""
     if n % 2 == 0:
@@ -328,7 +328,7 @@ def pi_split(n, r, sn, cn, m1, kc, nu, one_minus_nu, pi_complete):
     return head - nu * m1 * sn * sn * sn * rj / (3.0 * one_minus_nu * one_minus_nu)
 
 
-@_jit
+@cached
 def pi_separatrix(r, nu, one_minus_nu):
     """Π(gd r, ν | 1) = r/(1 − ν) − ν T(ν, tanh r)/(1 − ν)."""
     return (r - nu * _t_function(nu, math.tanh(r))) / one_minus_nu
@@ -337,7 +337,7 @@ def pi_separatrix(r, nu, one_minus_nu):
 # ---------------------------------------------------------------------------- array wrappers
 
 
-@_jit
+@cached
 def _pi_loop(phi, nu, m1, out):
     for i in range(phi.size):
         kc = math.sqrt(m1[i])
@@ -350,13 +350,13 @@ def _pi_loop(phi, nu, m1, out):
         out[i] = value
 
 
-@_jit
+@cached
 def _complete_pi_loop(nu, m1, out):
     for i in range(nu.size):
         out[i] = complete_pi(nu[i], 1.0 - nu[i], m1[i], math.sqrt(m1[i]))
 
 
-@_jit
+@cached
 def _jacobi_loop(u, m1, sn, cn, dn):
     for i in range(u.size):
         kc = math.sqrt(m1[i])

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import prange
 
-from .._compiled import cached as _jit
+from .._compiled import cached
 from .._compiled import parallel
 from .._compiled.kernels import matrix_entries_quat, quat_product, rotated, rotvec_quat
 from ._elliptic import (
@@ -47,7 +47,7 @@ INFO_FIELDS = ("regime", "m1", "k_prime", "quarter_period", "rate", "separatrix_
 _EPS = 2.0**-53
 
 
-@_jit
+@cached
 def _sort_axes(a, b, c):
     """Indices of the moments in ascending (stable) order and the sign of the third sorted axis."""
     i0, i1, i2 = 0, 1, 2
@@ -62,7 +62,7 @@ def _sort_axes(a, b, c):
     return i0, i1, i2, 1.0 if i1 == (i0 + 1) % 3 else -1.0
 
 
-@_jit
+@cached
 def _permutation_quat(i0, i1, i2, flip):
     """Unit quaternion of P with P[i_k, k] = 1 (column 2 times ``flip``): ω_user = P ω_sorted."""
     p = np.zeros((3, 3))
@@ -72,13 +72,13 @@ def _permutation_quat(i0, i1, i2, flip):
     return matrix_entries_quat(p[0, 0], p[0, 1], p[0, 2], p[1, 0], p[1, 1], p[1, 2], p[2, 0], p[2, 1], p[2, 2])
 
 
-@_jit
+@cached
 def _binary_scale(x):
     """The power of two nearest above |x| (x != 0): dividing by it is exact."""
     return math.ldexp(1.0, math.frexp(x)[1])
 
 
-@_jit
+@cached
 def _two_product(a, b):
     """a·b = p + e exactly (Dekker, Veltkamp splitting; no fused multiply–add needed)."""
     p = a * b
@@ -91,7 +91,7 @@ def _two_product(a, b):
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
-@_jit
+@cached
 def _dd_times(hi, lo, b):
     """(hi + lo)·b as an unevaluated sum, to about 2^-104 relative."""
     p, e = _two_product(hi, b)
@@ -100,7 +100,7 @@ def _dd_times(hi, lo, b):
     return s, e - (s - p)
 
 
-@_jit
+@cached
 def _dd_axis_term(Ia, Ib, Ic, v):
     """Ia (Ib − Ic) v² in double-double (Ib − Ic by an exact two-difference)."""
     d = Ib - Ic
@@ -111,7 +111,7 @@ def _dd_axis_term(Ia, Ib, Ic, v):
     return _dd_times(hi, lo, v)
 
 
-@_jit
+@cached
 def _middle_difference(I1, I2, I3, v1, v3):
     """J² − 2T I2 = I3(I3 − I2)v3² − I1(I2 − I1)v1² to full relative accuracy, as (s², D) with value s² D.
 
@@ -126,7 +126,7 @@ def _middle_difference(I1, I2, I3, v1, v3):
     return s, (a3 - a1) + (e3 - e1)
 
 
-@_jit
+@cached
 def _asymmetric(I1, I2, I3, w1, w2, w3):
     """Constants of the elliptic solution in the sorted frame (ω not along an axis).
 
@@ -180,7 +180,7 @@ def _asymmetric(I1, I2, I3, w1, w2, w3):
     return regime, ac, a2, ad, lam, m1, kc, k, s, 1.0, s, n0, r0, nu, pic, momentum, swap, distance
 
 
-@_jit
+@cached
 def _phase_functions(x, regime, m1, kc, k, n0):
     """Split phase (n, r), sn, cn, dn of u = n0 K + x and of r at the phase x = r0 + λt."""
     if regime == SEPARATRIX:
@@ -193,7 +193,7 @@ def _phase_functions(x, regime, m1, kc, k, n0):
     return n0 + j, r, sn, cn, dn, sr, cr, dr
 
 
-@_jit
+@cached
 def _model_quat(I1, I2, I3, o1, o2, o3, phi, psi_parity):
     """Rz(φ) Rx(θ) Rz(ψ) with cos θ = I3ω3/J, ψ = atan2(I1ω1, I2ω2) (+2π for odd parity)."""
     half_theta = 0.5 * math.atan2(math.hypot(I1 * o1, I2 * o2), I3 * o3)
@@ -203,7 +203,7 @@ def _model_quat(I1, I2, I3, o1, o2, o3, phi, psi_parity):
     return ch * math.cos(hs), sh * math.cos(hd), sh * math.sin(hd), ch * math.sin(hs)
 
 
-@_jit
+@cached
 def _psi_parity(regime, I1, I2, ac, a2, sc, o1, o2, alpha, sn, cn):
     """Parity of the winding of ψ about the largest axis (the quaternion has period 4π in ψ)."""
     if regime != ABOUT_LARGEST_AXIS:
@@ -216,7 +216,7 @@ def _psi_parity(regime, I1, I2, ac, a2, sc, o1, o2, alpha, sn, cn):
     return winding % 2.0
 
 
-@_jit
+@cached
 def _asymmetric_samples(I1, I2, I3, w1, w2, w3, q0, q1, q2, q3, t, omega, quat, permute):
     """Samples in the sorted frame; ``permute`` = (i0, i1, i2, flip, qp0..qp3) maps them back."""
     (regime, ac, a2, ad, lam, m1, kc, k, sc, s2, sd, n0, r0, nu, pic, momentum, swap,
@@ -262,7 +262,7 @@ def _asymmetric_samples(I1, I2, I3, w1, w2, w3, q0, q1, q2, q3, t, omega, quat, 
         omega[i, i2] = flip * o3
 
 
-@_jit
+@cached
 def _asymmetric_omega(I1, I2, I3, w1, w2, w3, t, omega, permute):
     """ω alone (no integral of the third kind) in the sorted frame, mapped back by ``permute``."""
     (regime, ac, a2, ad, lam, m1, kc, k, sc, s2, sd, n0, r0, _, _, _, swap,
@@ -277,7 +277,7 @@ def _asymmetric_omega(I1, I2, I3, w1, w2, w3, t, omega, permute):
         omega[i, i2] = flip * o3
 
 
-@_jit
+@cached
 def _symmetric_samples(moments, axis, perpendicular, w, q0, t, omega, quat):
     """Regular precession R(t) = exp(t J/I⊥·X) R0 exp(t c e_k·X), c = ω_k(1 − I_k/I⊥) (Theory §5.7)."""
     c = w[axis] * (1.0 - moments[axis] / perpendicular)
@@ -295,7 +295,7 @@ def _symmetric_samples(moments, axis, perpendicular, w, q0, t, omega, quat):
         omega[i, 0], omega[i, 1], omega[i, 2] = o0 / moments[0], o1 / moments[1], o2 / moments[2]
 
 
-@_jit
+@cached
 def _steady_samples(w, q0, t, omega, quat):
     """Rotation at constant body ω: q(t) = q0 ⊗ exp(t ω)."""
     for i in range(t.size):
@@ -304,7 +304,7 @@ def _steady_samples(w, q0, t, omega, quat):
         omega[i, 0], omega[i, 1], omega[i, 2] = w[0], w[1], w[2]
 
 
-@_jit
+@cached
 def _classify(moments, w):
     """(regime, symmetric axis, perpendicular moment, i0, i1, i2, flip, sorted ω) of one body."""
     i0, i1, i2, flip = _sort_axes(moments[0], moments[1], moments[2])
@@ -322,7 +322,7 @@ def _classify(moments, w):
     return regime, -1, 0.0, i0, i1, i2, flip, v1, v2, v3
 
 
-@_jit
+@cached
 def body_samples(moments, w, q, t, omega, quat):
     """Exact ω (n, 3) and q (n, 4) of one body at times t, written into ``omega``, ``quat``."""
     regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
@@ -337,7 +337,7 @@ def body_samples(moments, w, q, t, omega, quat):
                             quat, permute)
 
 
-@_jit
+@cached
 def body_omega(moments, w, t, omega):
     """Exact ω (n, 3) of one body at times t (the attitude is not computed)."""
     regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
@@ -360,7 +360,7 @@ def batch_samples(moments, w, q, t, omega, quat):
         body_samples(moments[b], w[b], q[b], t, omega[b], quat[b])
 
 
-@_jit
+@cached
 def setup_info(moments, w, info):
     """Per body (B rows): the :data:`INFO_FIELDS` of its motion."""
     for b in range(moments.shape[0]):

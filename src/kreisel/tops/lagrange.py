@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import cached as _jit
+from .._compiled import cached
 from .._html import html_table, number
 from .._validation import as_float, as_float_array
 from ..dynamics import GravityTorque, simulate
@@ -337,7 +337,7 @@ class _Quadrature:
         return float(total / (2.0 * self.quarter))
 
 
-@_jit
+@cached
 def _lagrange_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1: float, kc: float, quarter: float,
                       w1: float, w2: float, v1: float, terms: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     """Per sample: u, 1 − u, 1 + u, sn, cn, dn and c·ΔΠ of both partial fractions (Theory §6.3)."""
@@ -426,7 +426,7 @@ class _PlanarPendulum:
         return 0.0
 
 
-@_jit
+@cached
 def _pendulum_samples(t: NDArray[np.float64], lam: float, n0: int, r0: float, m1: float, kc: float, quarter: float,
                       out: NDArray[np.float64]) -> None:
     """sn, cn, dn and am of v = r0 + λt (split phase n0 K + ...; m1 = 0: tanh, sech, gd)."""
