@@ -3,6 +3,7 @@
 import ast
 import importlib
 import pathlib
+import sys
 
 import pytest
 
@@ -32,3 +33,79 @@ def test_public_module_declares_all(path):
 def test_every_listed_name_exists(name):
     module = importlib.import_module(name)
     assert [n for n in module.__all__ if not hasattr(module, n)] == []
+
+
+# One re-export convention: a package's __init__ lists in __all__ every public name it binds from its own modules
+# (or from the private base layer), and a name it re-exports from a public module is one that module lists in its
+# own __all__ (private modules, such as tops._elliptic, have no public surface of their own to agree with). A name
+# passed through from another public package is an alias kept for old imports: it stays unlisted, so that it is
+# documented once, where it lives.
+PACKAGES = sorted(path for path in PUBLIC if path.name == "__init__.py")
+
+
+def reexports(path):
+    """``(name, module)`` for each name ``path`` binds by a relative ``from ... import`` at module level, ``module``
+    the dotted module it is read from (None when the name is a submodule)."""
+    package = _module_name(path)
+    for node in ast.parse(path.read_text(encoding="utf-8")).body:
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = package.split(".")[: len(package.split(".")) - node.level + 1]
+            module = ".".join(base + ([node.module] if node.module else []))
+            for alias in node.names:
+                if alias.name == "*":
+                    continue
+                is_module = (PACKAGE.parent / module.replace(".", "/") / alias.name).is_dir() or (
+                    PACKAGE.parent / module.replace(".", "/") / f"{alias.name}.py").is_file()
+                yield alias.asname or alias.name, None if is_module else module
+
+
+def _top_package(module):
+    """``kreisel.so3`` for ``kreisel.so3.rotation``; None for the private base (``kreisel._compiled...``)."""
+    parts = module.split(".")
+    if len(parts) < 2 or parts[1].startswith("_"):
+        return None
+    return ".".join(parts[:2])
+
+
+def convention_breaches(path):
+    module = importlib.import_module(_module_name(path))
+    listed = set(module.__all__)
+    found = []
+    for name, source in reexports(path):
+        # submodules are attributes of their package whether imported or not: listing them is optional
+        if name.startswith("_") or source is None:
+            continue
+        if _top_package(source) not in (_top_package(module.__name__), None):
+            if name in listed:
+                found.append(f"{name} (from {source}) is another package's name but listed in __all__")
+        elif name not in listed:
+            found.append(f"{name} (from {source}) is bound but not in __all__")
+        elif not any(part.startswith("_") for part in source.split(".")[1:]):
+            if name not in getattr(importlib.import_module(source), "__all__", ()):
+                found.append(f"{name} is re-exported from {source}, whose __all__ does not list it")
+    return found
+
+
+@pytest.mark.parametrize("path", PACKAGES, ids=_module_name)
+def test_one_reexport_convention(path):
+    assert convention_breaches(path) == []
+
+
+def test_reexport_breaches_are_found(tmp_path, monkeypatch):
+    root = tmp_path / "probe"
+    for name in ("pkg", "other"):
+        (root / name).mkdir(parents=True)
+    (root / "__init__.py").write_text("")
+    (root / "other" / "__init__.py").write_text("__all__ = ['k', 'm']\ndef k(): pass\ndef m(): pass\n")
+    (root / "pkg" / "__init__.py").write_text(
+        "from .a import f, g, CONSTANT\nfrom .a import h as public_h\nfrom ..other import k, m\n"
+        "__all__ = ['f', 'g', 'k']\n")
+    (root / "pkg" / "a.py").write_text("__all__ = ['f']\ndef f(): pass\ndef g(): pass\ndef h(): pass\nCONSTANT = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(sys.modules[__name__], "PACKAGE", root)
+    assert convention_breaches(root / "pkg" / "__init__.py") == [
+        "g is re-exported from probe.pkg.a, whose __all__ does not list it",
+        "CONSTANT (from probe.pkg.a) is bound but not in __all__",
+        "public_h (from probe.pkg.a) is bound but not in __all__",
+        "k (from probe.other) is another package's name but listed in __all__",
+    ]

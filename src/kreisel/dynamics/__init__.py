@@ -8,7 +8,7 @@ callable; :func:`simulate_batch` runs many bodies in parallel;
 """
 
 from . import forces, torques
-from .engine import METHODS, simulate, simulate_6dof, simulate_batch
+from .engine import simulate, simulate_6dof, simulate_batch
 from .forces import *  # noqa: F403
 from .torques import *  # noqa: F403
 from .trajectory import Trajectory

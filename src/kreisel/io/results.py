@@ -10,7 +10,7 @@ from .._optional import require
 from ..dynamics import _trajectory_files
 from ..dynamics.trajectory import Trajectory
 
-__all__ = ["ResultError", "save_result", "load_trajectory", "SUFFIXES"]
+__all__ = ["ResultError", "save_result", "load_result", "load_trajectory", "SUFFIXES"]
 
 #: The formats of :meth:`Trajectory.save`, which writes and reads every trajectory file.
 SUFFIXES = _trajectory_files.SUFFIXES
@@ -46,7 +46,7 @@ def save_result(result, path):
     path = pathlib.Path(path)
     if path.suffix not in SUFFIXES:
         raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}, got {path.name!r}")
-    _require_backends(path.suffix, "writing results")
+    require_backends(path.suffix, "writing results")
     if isinstance(result, Trajectory):
         result.save(path)
         return path
@@ -84,7 +84,7 @@ def load_trajectory(path):
         raise ResultError(f"{path}: no such file")
     if path.suffix not in SUFFIXES:
         raise ResultError(f"{path}: unknown trajectory format (expected {', '.join(SUFFIXES)})")
-    _require_backends(path.suffix, "reading results")
+    require_backends(path.suffix, "reading results")
     try:
         return Trajectory.load(path)
     except (OSError, KeyError, ValueError, TypeError) as exc:
@@ -96,7 +96,7 @@ def load_trajectory(path):
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {reason})") from None
 
 
-def _require_backends(suffix, feature):
+def require_backends(suffix, feature):
     """Import what reads and writes ``suffix`` files (the ``io`` extra), or fail with the one line naming it."""
     for module in ("xarray", "pyarrow") if suffix == ".parquet" else ("xarray",):
         require(module, extra="io", feature=f"{feature} as {suffix}")

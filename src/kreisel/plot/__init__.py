@@ -8,11 +8,10 @@ from __future__ import annotations
 
 import pathlib
 
-from .._fileio import atomic_output
-from .._optional import require
+from .. import _fileio, _optional
 
 # every module of the package draws with matplotlib: without it, one line naming the extra
-require("matplotlib", extra="plot", feature="plotting (kreisel.plot)")
+_optional.require("matplotlib", extra="plot", feature="plotting (kreisel.plot)")
 
 from .fit import gyro_fit
 from .inertia import inertia_ellipsoid
@@ -40,6 +39,6 @@ def save(fig, path, dpi=120):
     path = pathlib.Path(path)
     if path.suffix.lower() not in _FORMATS:
         raise ValueError(f"path must end in one of {sorted(_FORMATS)}, got {path.name!r}")
-    with atomic_output(path) as tmp:
+    with _fileio.atomic_output(path) as tmp:
         fig.savefig(tmp, dpi=dpi, format=path.suffix.lower()[1:])
     return path

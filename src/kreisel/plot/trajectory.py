@@ -12,7 +12,8 @@ from matplotlib.figure import Figure
 
 from ..so3 import quat_apply
 
-__all__ = ["omega", "energy", "euler", "polhode", "herpolhode", "apex", "KINDS"]
+__all__ = ["omega", "energy", "euler", "polhode", "herpolhode", "apex", "coning", "foucault", "regular_sequence", "KINDS",
+           "DATASET_KINDS"]
 
 
 def omega(traj, frame="body"):

@@ -6,10 +6,10 @@ independent reference) and drawing its figures, then writes a
 self-contained ``index.html``.
 """
 
-from .._optional import require
+from .. import _optional
 
 # the sections draw their figures with matplotlib: without it, one line naming the extra
-require("matplotlib", extra="plot", feature="the tour (kreisel tour)")
+_optional.require("matplotlib", extra="plot", feature="the tour (kreisel tour)")
 
 from .report import Check, Section, render_html
 from .runner import SECTIONS, run_tour

@@ -13,7 +13,7 @@ import pathlib
 import numpy as np
 
 from .._compiled.chunks import StepBudgetExceeded
-from ..dynamics import METHODS as DYNAMICS_METHODS
+from ..dynamics.engine import METHODS as DYNAMICS_METHODS
 from ..dynamics.engine import ADAPTIVE
 from ..dynamics import simulate
 from ..io import ScenarioError, parse_scenario
