@@ -163,9 +163,13 @@ def test_the_command_runs_on_the_core_and_names_a_missing_extra(core):
     done = _run([bin_dir / "kreisel", "convert", "--from", "euler:ZXZ", "--to", "quat", "0", "0", "90",
                  "--degrees"], base)
     assert [float(x) for x in done.stdout.split()] == pytest.approx([0.5 ** 0.5, 0, 0, 0.5 ** 0.5], abs=1e-10)  # 10 digits
+    # the extra is named before any work: a long simulation or fit does not run only to fail at its output
     for args, extra in ((["tour", "--out", "tour"], "plot"), (["serve", "--no-browser"], "viewer"),
-                        (["sweep", "tennis_racket"], "sweep")):
+                        (["sweep", "tennis_racket"], "sweep"), (["simulate", "tennis_racket", "-o", "t.nc"], "io"),
+                        (["simulate", "tennis_racket", "-o", "t.parquet"], "io"),
+                        (["fit", "phone_toss", "--plot", "fit.png"], "plot")):
         done = _run([bin_dir / "kreisel", *args], base, check=False)
         assert done.returncode == 2, (args, done.stdout, done.stderr)
         assert done.stderr.count("\n") == 1 and f'pip install "kreisel[{extra}]"' in done.stderr, done.stderr
         assert "Traceback" not in done.stderr + done.stdout
+        assert done.stdout == "", (args, done.stdout)

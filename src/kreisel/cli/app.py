@@ -189,12 +189,14 @@ def simulate(
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="traj.nc | .csv | .parquet"),
 ):
     """Run a scenario file and report its first integrals."""
-    from ..io.results import SUFFIXES, save_result
+    from ..io.results import SUFFIXES, require_backends, save_result
     from ..io.run import run_scenario, summary
     from ..io.scenario import ScenarioError, load_scenario
 
-    if output is not None and output.suffix not in SUFFIXES:
-        usage_error(f"-o: unsupported output {output.name!r} (expected {', '.join(SUFFIXES)})")
+    if output is not None:
+        if output.suffix not in SUFFIXES:
+            usage_error(f"-o: unsupported output {output.name!r} (expected {', '.join(SUFFIXES)})")
+        require_backends(output.suffix, "writing results")  # before the run, not after it
     try:
         spec = load_scenario(scenario)
     except ScenarioError as exc:
@@ -387,8 +389,10 @@ def fit(
     from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
     from .fit import summary
 
-    if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
-        usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
+    if plot_file is not None:
+        if plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
+            usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
+        from .. import plot as plots  # without matplotlib, the one line naming the extra comes before the fit
     for option, target in (("--plot", plot_file), ("--json", json_file)):
         if target is not None and not target.parent.is_dir():
             usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
@@ -410,8 +414,6 @@ def fit(
     for line in summary(result):
         _console(stderr=not result.free_rotation).print(line, soft_wrap=True)
     if plot_file is not None:
-        from .. import plot as plots
-
         plots.save(plots.gyro_fit(result), plot_file)
         say(f"wrote {plot_file}")
     if json_file is not None:
