@@ -203,3 +203,26 @@ def test_refuses_bad_vertices():
         kr.inertia.from_mesh(np.where(CUBE_V == 0.5, np.nan, CUBE_V), CUBE_F)
     with pytest.raises(ValueError, match="vertices"):
         kr.inertia.from_mesh(CUBE_V[None], CUBE_F)
+
+
+@pytest.mark.parametrize("scale", [2.0**-150, 1e-60, 2.0**150, 1e40])
+def test_mesh_of_any_representable_size_scales_as_length_powers(scale):
+    # mass ~ L³ and inertia ~ L⁵: a 1e-108 m mesh once called 'enclosing no volume' (its volume underflowed)
+    # and a 1e62 m one overflowed in a sum, though the answers are representable
+    v = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]) + [0.3, -0.2, 0.1]
+    base, scaled = kr.inertia.from_mesh(v, TETRA_FACES), kr.inertia.from_mesh(v * scale, TETRA_FACES)
+    assert scaled.mass == pytest.approx(base.mass * scale**3, rel=1e-15)
+    np.testing.assert_allclose(scaled.com, base.com * scale, rtol=1e-15)
+    np.testing.assert_allclose(scaled.inertia / scale**2, base.inertia * scale**3, rtol=1e-15)
+
+
+def test_mesh_beyond_the_range_of_doubles_is_refused_naming_vertices():
+    v = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    with pytest.raises(ValueError, match="vertices and density are out of range: the mass or the moment of inertia"):
+        kr.inertia.from_mesh(v * 1e63, TETRA_FACES)
+    with pytest.raises(ValueError, match=r"vertices and density are out of range: the mass, about 1e-325 \(SI\)"):
+        kr.inertia.from_mesh(v * 1e-108, TETRA_FACES)
+    with pytest.raises(ValueError, match=r"out of range: the smallest moment of inertia, about 1e-453 \(SI\), is below"):
+        kr.inertia.from_mesh(v * 2.0**-300, TETRA_FACES)
+    with pytest.raises(ValueError, match="vertices: the mesh encloses no volume"):
+        kr.inertia.from_mesh(v * [1.0, 1.0, 0.0], TETRA_FACES)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validation import as_float_array
+from .._validation import as_float_array, out_of_range
 from .properties import MassProperties
 from .tensors import second_moment_to_inertia
 
@@ -146,11 +146,15 @@ def from_mesh(vertices: ArrayLike, faces: ArrayLike, density: float = 1.0) -> Ma
     f = _as_faces(faces, v.shape[0])
     check_closed_oriented(f, v.shape[0])
 
+    # vertices divided by a power of two (exact) near their largest coordinate: volume (~L³) and second
+    # moments (~L⁵) of a 1e-108 m or 1e62 m mesh neither underflow nor overflow; scaled back at the end
+    e = int(np.frexp(np.max(np.abs(v[f])))[1]) if f.size else 0
+    v = np.ldexp(v, -e)
     origin = v[f].mean(axis=(0, 1))
     volume, first, _ = _tetrahedron_moments(v, f, origin)
     extent = np.ptp(v[f].reshape(-1, 3), axis=0).max()
     if not abs(volume) > 1e-12 * extent**3:
-        raise ValueError("mesh encloses no volume (flat or degenerate)")
+        raise ValueError("vertices: the mesh encloses no volume (flat or degenerate)")
     if volume < 0:
         raise ValueError(
             "mesh is inside out: enclosed volume is negative, so its faces are ordered clockwise "
@@ -162,4 +166,15 @@ def from_mesh(vertices: ArrayLike, faces: ArrayLike, density: float = 1.0) -> Ma
     offset = first / volume
     second = second - volume * np.outer(offset, offset)
     rho = float(rho)
-    return MassProperties(float(rho * volume), com + offset, rho * second_moment_to_inertia(second))
+    with out_of_range("vertices and density", "the mass or the moment of inertia") as guard:
+        mass = guard.check(np.ldexp(rho * volume, 3 * e))
+        inertia = guard.check(np.ldexp(rho * second_moment_to_inertia(second), 5 * e))
+    # a body with volume has positive mass and diagonal moments: zeros are values below the smallest double
+    for value, scaled, power, what in ((mass, rho * volume, 3, "the mass"),
+                                       (np.diag(inertia).min(), rho * np.diag(second_moment_to_inertia(second)).min(),
+                                        5, "the smallest moment of inertia")):
+        if not value > 0.0:
+            decade = np.log10(scaled) + power * e * np.log10(2.0)
+            raise ValueError(f"vertices and density are out of range: {what}, about 1e{decade:.0f} (SI), is below the "
+                             "smallest double (4.9e-324)")
+    return MassProperties(float(mass), np.ldexp(com + offset, e), inertia)
