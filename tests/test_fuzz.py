@@ -461,3 +461,103 @@ INVARIANTS = {
     "enu_to_ecef_matrix": _rotation_matrix, "quat_to_rotvec": _rotvec_of(lambda kw: kw["q"]),
     "rotvec_to_axis_angle": _axis_angle,
 }
+
+
+# ---------------------------------------------------------------------------- computed angles
+# A rotation depends on its angle modulo 2π. Where that angle is computed (the length of a rotation
+# vector or twist, an exponent or interpolation parameter times an angle), its rounding error of
+# ~1e-16 of its size exceeds 2π by |ψ| ~ 6e16: beyond ROTVEC_RANGE (1e8 rad) every such entry point
+# refuses, below it the result is the exact rotation of the given doubles (mpmath) to the rounding of
+# the computed angle.
+
+mpmath = pytest.importorskip("mpmath")
+_DIRECTION = np.array([0.3123456789, -0.7765432198, 0.5469871234])   # general: its length is not exact
+_SCALES = [1e-300, 1e-160, 1e-20, 1e-4, 0.7, 3.0, 1e4, 9.9e7, 1.02e8, 1e12, 1e155, 1e300]
+
+
+def _mp_quat(psi):
+    """exp of the rotation vector ``psi`` (doubles taken exactly) as (cos(a/2), n sin(a/2)) in mpmath."""
+    x, y, z = (mpmath.mpf(float(c)) for c in psi)
+    a = mpmath.sqrt(x * x + y * y + z * z)
+    s = mpmath.sin(a / 2) / a if a else mpmath.mpf(0.5)
+    return [mpmath.cos(a / 2), s * x, s * y, s * z], a
+
+
+def _mp_angle_axis(q):
+    """Angle in [0, π] and unit axis of the quaternion ``q`` (doubles taken exactly)."""
+    q0, q1, q2, q3 = (mpmath.mpf(float(c)) for c in q)
+    if q0 < 0:
+        q0, q1, q2, q3 = -q0, -q1, -q2, -q3
+    v = mpmath.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+    return 2 * mpmath.atan2(v, q0), [q1 / v, q2 / v, q3 / v]
+
+
+def _mp_matrix(q):
+    q0, q1, q2, q3 = q
+    return [[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
+            [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
+            [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]]
+
+
+def _scaled_turn(q, factor):
+    """exp(factor log q) in mpmath, and |factor| times the angle of q."""
+    angle, (n1, n2, n3) = _mp_angle_axis(q)
+    half = mpmath.mpf(float(factor)) * angle / 2
+    return [mpmath.cos(half), n1 * mpmath.sin(half), n2 * mpmath.sin(half), n3 * mpmath.sin(half)], abs(2 * half)
+
+
+_Q = np.array([0.8, 0.1, -0.5, 0.3]) / np.linalg.norm([0.8, 0.1, -0.5, 0.3])
+_V = np.array([0.4, -1.1, 2.0])
+
+
+def _exp_coords_case(s):
+    import kreisel as kr
+    psi = s * _DIRECTION
+    T = kr.se3.RigidTransform.from_exp_coords(np.r_[psi, _V])
+    q, a = _mp_quat(psi)
+    x, y, z = (mpmath.mpf(float(c)) for c in psi)
+    v = [mpmath.mpf(float(c)) for c in _V]
+    A = (1 - mpmath.cos(a)) / a**2 if a else mpmath.mpf(0.5)
+    B = (a - mpmath.sin(a)) / a**3 if a else mpmath.mpf(1) / 6
+    c = [y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0]]
+    cc = [y * c[2] - z * c[1], z * c[0] - x * c[2], x * c[1] - y * c[0]]
+    r = [v[i] + A * c[i] + B * cc[i] for i in range(3)]
+    return np.r_[T.rotation.as_quat(), T.translation], q + r, a
+
+
+# name -> (argument scaled, case(scale) -> (result, mpmath reference, the angle computed))
+COMPUTED_ANGLES = {
+    "rotvec_to_quat": ("psi", lambda s: (__import__("kreisel").rotvec_to_quat(s * _DIRECTION),) + _mp_quat(s * _DIRECTION)),
+    "rotvec_to_matrix": ("psi", lambda s: (lambda q, a: (__import__("kreisel").rotvec_to_matrix(s * _DIRECTION),
+                                                          _mp_matrix(q), a))(*_mp_quat(s * _DIRECTION))),
+    "Rotation.from_rotvec": ("rotvec", lambda s: (__import__("kreisel").so3.Rotation.from_rotvec(s * _DIRECTION)
+                                                   .as_quat(),) + _mp_quat(s * _DIRECTION)),
+    "RigidTransform.from_exp_coords": ("exp_coords", _exp_coords_case),
+    "quat_power": ("p", lambda s: (__import__("kreisel").quat_power(_Q, 0.77 * s),) + _scaled_turn(_Q, 0.77 * s)),
+    "quat_slerp": ("t", lambda s: (__import__("kreisel").quat_slerp([1.0, 0, 0, 0], _Q, 0.77 * s),)
+                   + _scaled_turn(_Q, 0.77 * s)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(COMPUTED_ANGLES))
+def test_computed_angles_give_the_exact_rotation_or_are_refused_beyond_the_range(name):
+    from kreisel._validation import ROTVEC_RANGE
+    param, case = COMPUTED_ANGLES[name]
+    with mpmath.workdps(340):   # a^2 of 1e300 and its sine need ~330 digits
+        for scale in _SCALES:
+            where = f"{name}({param} ~ {scale:g})"
+            try:
+                result, reference, angle = call(case, {"s": scale})
+            except ValueError as exc:
+                assert_clear_refusal(exc, param, where)
+                assert "out of range" in str(exc) and "modulo 2*pi" in str(exc), where
+                assert scale > ROTVEC_RANGE / 3, f"{where} refused within the range: {exc}"
+                continue
+            assert scale < ROTVEC_RANGE * 3, f"{where} accepted beyond the range: {result}"
+            want = np.array(mpmath.matrix(reference).tolist(), dtype=float).reshape(np.shape(result))
+            # the rounding of the computed angle (~1.5 ulp of it) moves the result by as much
+            tol = 2e-16 * 4 * max(1.0, float(angle)) + 2e-16 * 4 * np.abs(want).max()
+            if name.startswith(("Rotation", "RigidTransform")) and np.dot(result[:4], want[:4]) < 0:
+                want[:4] = -want[:4]   # the classes may store -q for q (the same rotation)
+            error = np.abs(result - want).max()
+            assert error <= tol, f"{where}: error {error:.3g} > {tol:.3g}"

@@ -25,6 +25,30 @@ REAL_KINDS = "biufO"
 #: ~1e15 rad the rounding of the angle alone (1e-16 of it) is more than 0.1 rad.
 MAX_TURN = 1e15
 
+#: Longest rotation angle (rad) that kreisel computes a rotation of when the angle is itself the
+#: result of arithmetic: the length |ψ| of a rotation vector (or twist), a power ``p θ``, an
+#: interpolation parameter times an angle. Such an angle carries a rounding error of about
+#: 1.1e-16 of its size, and the rotation depends on it modulo 2π: beyond 1e8 rad the error
+#: exceeds 1e-8 rad (the rate maps' singularity tolerance), and by ~6e16 rad it exceeds 2π, so a
+#: finite answer would be noise. Every entry point refuses such angles (:func:`refuse_long_angle`)
+#: before work starts; an angle the user gives directly (Euler angles, ``from_screw``) is exact
+#: and is not limited.
+ROTVEC_RANGE = 1e8
+
+
+def refuse_long_angle(longest: float, name: str, what: str = "|psi|") -> None:
+    """ValueError naming ``name`` if the longest computed angle ``longest`` exceeds :data:`ROTVEC_RANGE`.
+
+    ``what`` says which angle (``"|psi|"``, ``"the rotation part |omega|"``, ``"|p| times the angle of q"``).
+    NaN is not caught here: callers check finiteness first.
+    """
+    if longest > ROTVEC_RANGE:
+        raise ValueError(
+            f"{name} is out of range: {what} = {longest:.3g} rad exceeds {ROTVEC_RANGE:g} rad, beyond which the "
+            "rotation depends on the angle modulo 2*pi, which the rounding of so large an angle does not "
+            "determine; reduce the angle modulo 2*pi first (a rotation vector to |psi| <= pi: the same rotation)"
+        )
+
 
 def as_float_array(x: ArrayLike, name: str, tail: tuple[int, ...] | None = None,
                    finite: bool = True) -> NDArray[np.float64]:

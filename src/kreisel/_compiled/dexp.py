@@ -18,6 +18,7 @@ import numpy as np
 from numba import prange
 from numpy.typing import NDArray
 
+from .._validation import ROTVEC_RANGE
 from . import cached, generic, kernels, parallel
 from .gufunc import gufunc
 from .series import (
@@ -153,18 +154,13 @@ def bortz_times_square(angle: float) -> float:
     return 1.0 - h * math.cos(h) / math.sin(h)
 
 
-#: Longest rotation vector (rad) whose dexp⁻¹ is computed. dexp⁻¹ depends on |ψ| mod 2π at full
-#: size (through (ψ/2) cot(ψ/2)), and rounding |ψ| moves it by about |ψ|·1.1e-16: beyond 1e8 rad
-#: that exceeds the 1e-8 singularity tolerance (:data:`kreisel.so3.jacobians.SINGULAR_TOL`), and
-#: by ~1e16 rad the result would be noise. The kernels return NaN there and the callers refuse it.
-ROTVEC_RATE_RANGE = 1e8
 
 
 @cached
 def rotvec_singular(angle: float, tol: float) -> bool:
     """True where dexp⁻¹ is not computed: its poles |ψ| = 2πk, k >= 1, within ``|sin(ψ/2)| <= tol``,
-    and beyond :data:`ROTVEC_RATE_RANGE`."""
-    return angle > math.pi and (angle > ROTVEC_RATE_RANGE or abs(math.sin(0.5 * angle)) <= tol)
+    and beyond :data:`ROTVEC_RANGE`."""
+    return angle > math.pi and (angle > ROTVEC_RANGE or abs(math.sin(0.5 * angle)) <= tol)
 
 
 @cached

@@ -24,8 +24,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from numba import guvectorize, prange
 
-from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices
-from .._validation import as_float_array
+from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices, norm
+from .._validation import ROTVEC_RANGE, as_float_array, refuse_long_angle
 from . import cached, parallel
 from . import outputs
 from .outputs import check_out, empty
@@ -339,6 +339,55 @@ def checked_in_one_pass(a: NDArray[np.float64], core_out: tuple[int, ...], loop:
 def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:
     """Validate finite vectors ``(..., length)``."""
     return finite_array(v, name, (length,))
+
+
+#: ``ROTVEC_RANGE²``: a rotation vector is accepted when its squared length is at most this (NaN,
+#: inf and squares that overflow are not), so one comparison per vector checks both.
+_ROTVEC_RANGE_SQUARED = ROTVEC_RANGE * ROTVEC_RANGE
+
+
+@cached
+def rotvec_in_range(x, y, z):
+    """Whether ``(x, y, z)`` is finite and at most :data:`~kreisel._validation.ROTVEC_RANGE` long."""
+    return x * x + y * y + z * z <= _ROTVEC_RANGE_SQUARED
+
+
+@cached
+def _rotvecs_in_range(flat, start, stop):
+    # no early exit: the loop vectorises, and a refused batch is rare
+    ok = True
+    for i in range(start, stop, 3):
+        ok &= rotvec_in_range(flat[i], flat[i + 1], flat[i + 2])
+    return ok
+
+
+@parallel
+def _rotvecs_in_range_parallel(flat, chunk):
+    pieces = (flat.size + chunk - 1) // chunk
+    ok = np.empty(pieces, dtype=np.bool_)
+    for c in prange(pieces):
+        ok[c] = _rotvecs_in_range(flat, c * chunk, min(flat.size, (c + 1) * chunk))
+    return ok.all()
+
+
+def rotvec_array(psi: ArrayLike, name: str, what: str = "|psi|") -> NDArray[np.float64]:
+    """Validate rotation vectors ``(..., 3)``: finite and at most ``ROTVEC_RANGE`` long (the one such check).
+
+    A rotation depends on its vector's length modulo 2π, which rounding no
+    longer determines beyond :data:`~kreisel._validation.ROTVEC_RANGE`.
+    """
+    a = as_float_array(psi, name, (3,), finite=False)
+    flat = _read_only_flat(a)
+    ok = _rotvecs_in_range_parallel(flat, _CHUNK) if _large(flat, 3) else _rotvecs_in_range(flat, 0, flat.size)
+    if not ok:
+        refuse_rotvecs(a, name, what)
+    return a
+
+
+def refuse_rotvecs(psi: NDArray[np.float64], name: str, what: str = "|psi|") -> None:
+    """The refusal of a batch of rotation vectors that failed :func:`rotvec_in_range` (ValueError naming ``name``)."""
+    refuse_nonfinite(bool(np.isfinite(psi).all()), name)
+    refuse_long_angle(float(np.max(norm(psi), initial=0.0)), name, what)
 
 
 @cached

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._norms import checked_rotation_matrices, norm, unit
-from .._validation import as_float_array, parse_sequence
+from .._validation import as_float_array, parse_sequence, refuse_long_angle
 
 __all__ = ["to_quat", "from_quat", "quat_unit", "matrix_quat", "quat_matrix", "rotvec_quat", "quat_rotvec",
            "euler_quat", "quat_euler"]
@@ -143,6 +143,12 @@ def matrix_quat(R):
     n = np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     n = np.where(q0 < 0.0, -n, n)
     return np.stack([q0 / n, q1 / n, q2 / n, q3 / n], axis=-1)
+
+
+def _in_range(psi, name):
+    """``psi``, refused naming ``name`` if longer than ``ROTVEC_RANGE`` (1e8 rad), as kreisel.so3 does."""
+    refuse_long_angle(float(np.max(norm(psi), initial=0.0)), name)
+    return psi
 
 
 def rotvec_quat(psi):
@@ -296,12 +302,13 @@ def to_quat(name, seq, values, degrees=False):
     if name == "euler":
         return euler_quat(seq, _radians(_finite(values, "angles", (3,)), degrees))
     if name == "rotvec":
-        return rotvec_quat(_finite(_radians(as_float_array(values, "rotvec", (3,), finite=False), degrees),
-                                   "psi", (3,)))
+        return rotvec_quat(_in_range(_finite(_radians(as_float_array(values, "rotvec", (3,), finite=False), degrees),
+                                             "psi", (3,)), "rotvec"))
     if name == "axis_angle":
         values = as_float_array(values, "axis_angle", (4,), finite=False)
         axis, angle = _finite(values[..., :3], "axis", (3,)), _finite(values[..., 3], "angle", ())
-        return rotvec_quat(_finite(unit(axis, "axis") * _radians(angle, degrees)[..., None], "psi", (3,)))
+        return rotvec_quat(_in_range(_finite(unit(axis, "axis") * _radians(angle, degrees)[..., None], "psi", (3,)),
+                                     "angle"))
     if name == "gibbs":
         g = _finite(values, "g", (3,))
         return unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g")

@@ -31,7 +31,8 @@ from .._compiled import dexp
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc
 from .._validation import as_float_array
-from ..so3 import hat, quat_to_rotvec, rotvec_to_quat, vee
+from ..so3 import hat, quat_to_rotvec, vee
+from ..so3.rotvec import exp_quat
 from .._norms import norm
 from ..so3.jacobians import SINGULAR_TOL, check_rotvec_range
 from ..so3.jacobians import left_jacobian as so3_left_jacobian
@@ -62,7 +63,7 @@ def _q_coefficients(theta: NDArray[np.float64]) -> tuple[NDArray[np.float64], ND
 
 
 # Q depends on |ω| mod 2π at its full size |v|/|ω| for long ω, like dexp⁻¹ at its full size: both
-# Jacobians and their inverses refuse rotation parts beyond so3's ROTVEC_RATE_RANGE.
+# Jacobians and their inverses refuse rotation parts beyond ROTVEC_RANGE (1e8 rad), as does exp.
 _ROTATION_PART = "the rotation part |omega|"
 
 
@@ -126,11 +127,15 @@ def se3_vee(matrix: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     return deliver(np.concatenate([vee(m[..., :3, :3]), m[..., :3, 3]], axis=-1), out)
 
 
-def exp(xi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``(q, r_C)`` of ``exp(ξ^)`` for validated twists ``(..., 6)``."""
+def exp(xi: NDArray[np.float64], name: str, what: str = _ROTATION_PART) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(q, r_C)`` of ``exp(ξ^)`` for finite twists ``(..., 6)`` named ``name``.
+
+    Rotation parts longer than ``ROTVEC_RANGE`` (1e8 rad) are refused, naming ``what`` their length is.
+    """
     omega, v = _split(xi)
+    quat = exp_quat(omega, name, what=what)
     # r_C = J_l(ω) v: the dexp map ψ̇ -> ω (space) of Theory §3.4, applied to v
-    return rotvec_to_quat(omega), dexp.apply_jacobian(omega, v, _LEFT)
+    return quat, dexp.apply_jacobian(omega, v, _LEFT)
 
 
 def log(quat: NDArray[np.float64], translation: NDArray[np.float64]) -> NDArray[np.float64]:

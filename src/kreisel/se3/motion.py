@@ -7,6 +7,7 @@ Trajectories of body points of a moving body are
 from __future__ import annotations
 
 from .._validation import as_float_array
+from . import lie
 from .transform import RigidTransform
 
 __all__ = ["sclerp"]
@@ -33,7 +34,8 @@ def sclerp(start, end, fraction):
         Poses at ``fraction = 0`` and ``1`` (batch shapes broadcast).
     fraction : array_like
         Interpolation parameter(s), broadcast against the batch shape;
-        values outside [0, 1] extrapolate along the same screw.
+        values outside [0, 1] extrapolate along the same screw, as far as
+        1e8 rad of turn (see :func:`~kreisel.so3.rotvec_to_quat`).
 
     Returns
     -------
@@ -53,4 +55,5 @@ def sclerp(start, end, fraction):
     end = _transform(end, "end")
     fraction = as_float_array(fraction, "fraction")
     twist = (start.inv() * end).as_exp_coords()
-    return start * RigidTransform.from_exp_coords(fraction[..., None] * twist)
+    relative = lie.exp(fraction[..., None] * twist, "fraction", "|fraction| times the rotation angle")
+    return start * RigidTransform._from_arrays(*relative)

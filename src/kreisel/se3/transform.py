@@ -265,7 +265,8 @@ class RigidTransform(QuaternionBatch):
 
         ``T = exp([[hat ω, v], [0, 0]])``: ``R = exp(hat ω)`` and
         ``r_C = J_l(ω) v`` with the SO(3) left Jacobian (see :mod:`kreisel.se3.lie`).
-        Agrees with scipy's ``RigidTransform.from_exp_coords``.
+        Agrees with scipy's ``RigidTransform.from_exp_coords``. Rotation parts
+        longer than 1e8 rad are refused (see :func:`~kreisel.so3.rotvec_to_quat`).
 
         Examples
         --------
@@ -275,7 +276,7 @@ class RigidTransform(QuaternionBatch):
         array([0.63662, 0.63662, 0.     ])
         """
         xi = finite_array(exp_coords, "exp_coords", (6,))
-        return cls._from_arrays(*lie.exp(xi))
+        return cls._from_arrays(*lie.exp(xi, "exp_coords"))
 
     @classmethod
     def from_screw(cls, axis: ArrayLike, point: ArrayLike, angle: ArrayLike, translation: ArrayLike = 0.0) -> RigidTransform:
@@ -492,7 +493,8 @@ class RigidTransform(QuaternionBatch):
 
         The logarithm has rotation angle in [0, π]; ``p = -1`` is the
         inverse and ``p = 0`` the identity, exactly. ``p`` may be an array
-        broadcast against the batch (scipy takes a scalar only).
+        broadcast against the batch (scipy takes a scalar only); ``|p|`` times
+        the rotation angle must be at most 1e8 rad (see :func:`~kreisel.so3.rotvec_to_quat`).
 
         Examples
         --------
@@ -516,7 +518,7 @@ class RigidTransform(QuaternionBatch):
                 return self.inv()
             return RigidTransform.identity(self.shape)
         xi = lie.log(self._q, self._translation)
-        return RigidTransform._from_arrays(*lie.exp(exponent[..., None] * xi))
+        return RigidTransform._from_arrays(*lie.exp(exponent[..., None] * xi, "p", "|p| times the rotation angle"))
 
     def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> RigidTransform:
         """Mean pose: chordal L2 mean of the rotations and weighted mean of the translations.

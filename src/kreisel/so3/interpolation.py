@@ -14,6 +14,7 @@ from .._compiled import kernels
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._norms import unit
+from .quaternion import check_angle_multiple, quat_conjugate, quat_multiply
 
 __all__ = ["quat_slerp", "quat_mean"]
 
@@ -38,7 +39,9 @@ def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.floa
     ----------
     p, q : array_like, shape (..., 4)
     t : array_like, shape (...)
-        Broadcast with the leading axes of ``p`` and ``q``.
+        Broadcast with the leading axes of ``p`` and ``q``; ``|t|`` times
+        the angle from ``p`` to ``q`` must be at most 1e8 rad (see
+        :func:`~kreisel.so3.rotvec_to_quat`).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -52,7 +55,9 @@ def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.floa
     p = quaternion_array(p, "p")
     q = quaternion_array(q, "q")
     t = finite_array(t, "t", ())
-    return _slerp(unit(p, "p"), unit(q, "q"), t, out=out)
+    p, q = unit(p, "p"), unit(q, "q")
+    check_angle_multiple(t, lambda: quat_multiply(quat_conjugate(p), q), "t", "|t| times the angle from p to q")
+    return _slerp(p, q, t, out=out)
 
 
 def quat_mean(q: ArrayLike, weights: ArrayLike | None = None, axis: int = -2, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:

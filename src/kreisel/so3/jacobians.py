@@ -13,9 +13,10 @@ With ``R = exp(ψ·X)`` (:func:`~kreisel.so3.rotvec_to_matrix`),
 ``f = (1 − (ψ/2) cot(ψ/2))/ψ²`` the Bortz coefficient, with poles at
 |ψ| = 2π, 4π, … where the entries are NaN and a
 :class:`~kreisel.kinematics.RotationVectorSingularityWarning` is issued.
-Rotation vectors longer than ``ROTVEC_RATE_RANGE`` (1e8 rad) are refused by
-the inverses: their entries depend on |ψ| mod 2π, which the rounding of
-so long a vector's length no longer determines. Every coefficient is
+Rotation vectors longer than ``ROTVEC_RANGE`` (1e8 rad, the limit of every
+rotation computed from a rotation vector's length) are refused by the
+inverses: their entries depend on |ψ| mod 2π, which the rounding of so long
+a vector's length no longer determines. Every coefficient is
 summed from its series at small ψ, so the matrices are accurate to a few ulp.
 The group, its exp/log and its Jacobians live together here, as in Sophus
 and manif; the SE(3) Jacobians of :mod:`kreisel.se3` are built on these.
@@ -27,9 +28,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
-from .._compiled.dexp import ROTVEC_RATE_RANGE
 from .._compiled.gufunc import vector_array
-from .._validation import check_tolerance, warn_if_any
+from .._validation import check_tolerance, refuse_long_angle, warn_if_any
 from .._norms import norm
 from .euler import KinematicSingularityWarning
 
@@ -48,19 +48,13 @@ class RotationVectorSingularityWarning(KinematicSingularityWarning):
 
 
 def check_rotvec_range(angle: ArrayLike, name: str, what: str = "|psi|") -> None:
-    """Refuse rotation vectors longer than :data:`ROTVEC_RATE_RANGE` (``angle`` their lengths), naming ``name``."""
-    longest = np.max(angle, initial=0.0)
-    if longest > ROTVEC_RATE_RANGE:
-        raise ValueError(
-            f"{name} is out of range: {what} = {longest:.3g} rad exceeds {ROTVEC_RATE_RANGE:g} rad, beyond which "
-            "the rate of a rotation vector (which depends on its length modulo 2*pi) is lost to the rounding "
-            "of its length; reduce it to |psi| <= pi (same rotation) first"
-        )
+    """Refuse rotation vectors longer than ``ROTVEC_RANGE`` (1e8 rad) (``angle`` their lengths), naming ``name``."""
+    refuse_long_angle(float(np.max(angle, initial=0.0)), name, what)
 
 
 def singular_or_out_of_range(psi: NDArray[np.float64], values: NDArray[np.float64], category: type[Warning],
                              message: str, name: str = "psi") -> None:
-    """Refuse the samples of ``psi`` beyond :data:`ROTVEC_RATE_RANGE`, else warn of the poles, where ``values`` is NaN."""
+    """Refuse the samples of ``psi`` beyond ``ROTVEC_RANGE`` (1e8 rad), else warn of the poles, where ``values`` is NaN."""
     undefined = np.isnan(values)
     if undefined.any():
         check_rotvec_range(norm(np.broadcast_to(psi, undefined.shape + (3,))[undefined]), name)

@@ -9,6 +9,7 @@ give the same rotation (double cover).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TypeGuard, cast
 
 import numpy as np
@@ -19,8 +20,9 @@ from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
 from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, gufunc, refuse_quaternions
 from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
-from .._validation import as_float_array, batch_shape
+from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, refuse_long_angle
 from .._norms import norm
+from .rotvec import quat_to_rotvec
 
 __all__ = [
     "quat_multiply",
@@ -393,7 +395,8 @@ def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = 
     q : array_like, shape (..., 4)
         Nonzero quaternions (normalised here).
     p : float or array_like, shape (...)
-        Exponents, broadcast against the batch.
+        Exponents, broadcast against the batch. ``|p|`` times the angle of
+        ``q`` must be at most 1e8 rad (see :func:`~kreisel.so3.rotvec_to_quat`).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -412,12 +415,31 @@ def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = 
     True
     """
     # type(), not isinstance: numpy scalars and bools take the general path
-    if _is_single(q) and type(p) in (int, float) and math.isfinite(cast(float, p)) and q.any() and np.isfinite(q).all():
+    if _is_single(q) and type(p) in (int, float) and abs(cast(float, p)) <= _SAFE_FACTOR and q.any() and np.isfinite(q).all():
         # One rotation: the compiled kernel without the gufunc dispatch.
         return deliver(np.array(_powered(q[0], q[1], q[2], q[3], float(cast(float, p)))), out)
     q = quaternion_array(q, "q")
     exponent = finite_array(p, "p", ())
+    check_angle_multiple(exponent, lambda: q, "p", "|p| times the angle of q")
     return _power(q, float(exponent) if exponent.ndim == 0 else exponent, out=out)
+
+
+#: Factors of a rotation angle in [0, π] that cannot take it beyond ``ROTVEC_RANGE``.
+_SAFE_FACTOR = ROTVEC_RANGE / math.pi
+
+
+def check_angle_multiple(factor: NDArray[np.float64], rotations: Callable[[], NDArray[np.float64]], name: str,
+                         what: str) -> None:
+    """Refuse ``factor`` (named ``name``) where ``|factor|`` times a rotation angle exceeds 1e8 rad.
+
+    ``rotations()`` gives the nonzero quaternions whose angles (in [0, π])
+    are multiplied, broadcast against ``factor``; it is called only when some
+    ``|factor|`` could reach the limit.
+    """
+    largest = float(np.max(np.abs(factor), initial=0.0))
+    if largest > _SAFE_FACTOR:
+        angle = norm(quat_to_rotvec(rotations()))
+        refuse_long_angle(float(np.max(np.abs(factor) * angle, initial=0.0)), name, what)
 
 
 def quat_identity(shape: int | tuple[int, ...] | None = (), *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:

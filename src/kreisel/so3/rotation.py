@@ -133,6 +133,9 @@ class Rotation(QuaternionBatch):
     def from_rotvec(cls, rotvec: ArrayLike, degrees: bool = False) -> Rotation:
         """From rotation vectors ψ = ψ n (exponential map).
 
+        Vectors longer than 1e8 rad are refused (:func:`~kreisel.so3.rotvec_to_quat`
+        says why): reduce them modulo 2π first.
+
         Examples
         --------
         The rotation vector's length is the angle, its direction the axis:
@@ -144,12 +147,12 @@ class Rotation(QuaternionBatch):
         >>> np.round(r.as_rotvec(degrees=True), 9).tolist()
         [0.0, 0.0, 90.0]
         """
-        psi = np.asarray(rotvec, dtype=np.float64)
-        return cls._wrap(_rotvec.rotvec_to_quat(np.deg2rad(psi) if degrees else psi))
+        psi = as_float_array(rotvec, "rotvec", (3,), finite=False)
+        return cls._wrap(_rotvec.exp_quat(np.deg2rad(psi) if degrees else psi, "rotvec"))
 
     @classmethod
     def from_axis_angle(cls, axis: ArrayLike, angle: ArrayLike, degrees: bool = False) -> Rotation:
-        """From an axis (any nonzero length) and an angle.
+        """From an axis (any nonzero length) and an angle, at most 1e8 rad (as :meth:`from_rotvec`).
 
         Examples
         --------
@@ -160,7 +163,8 @@ class Rotation(QuaternionBatch):
         >>> bool(r.approx_equal(Rotation.from_rotvec([0.0, 0.0, np.pi / 2])))
         True
         """
-        return cls.from_rotvec(_rotvec.axis_angle_to_rotvec(axis, angle, degrees=degrees))
+        return cls._wrap(_rotvec.exp_quat(_rotvec.axis_angle_to_rotvec(axis, angle, degrees=degrees), "angle",
+                                          what="|angle|"))
 
     @classmethod
     def from_euler(cls, seq: str, angles: ArrayLike, degrees: bool = False) -> Rotation:

@@ -18,8 +18,8 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver
 from .._compiled.gufunc import (
-    checked_in_one_pass, finite3, finite_array, gufunc, matrix_array, quaternion_array,
-    refuse_nonfinite, vector_array,
+    checked_in_one_pass, finite_array, gufunc, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
+    rotvec_in_range, vector_array,
 )
 from .._validation import as_float_array
 from .._norms import norm, unit
@@ -55,20 +55,20 @@ def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64])
 
 @parallel
 def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> np.bool_:
-    # exp of each psi and whether all were finite (the caller refuses the
-    # batch otherwise): one read of psi for the check and the result. The
-    # kernel turns NaN or inf into NaN without raising, so it runs unguarded.
+    # exp of each psi and whether all were finite and in range (the caller
+    # refuses the batch otherwise): one read of psi for the check and the
+    # result. The kernel turns NaN or inf into NaN without raising, so it runs unguarded.
     n = psi.shape[0]
     pieces = (n + chunk - 1) // chunk
-    finite = np.empty(pieces, dtype=np.bool_)
+    accepted = np.empty(pieces, dtype=np.bool_)
     for c in prange(pieces):
         ok = True
         for i in range(c * chunk, min(n, (c + 1) * chunk)):
             x, y, z = psi[i, 0], psi[i, 1], psi[i, 2]
-            ok &= finite3(x, y, z)
+            ok &= rotvec_in_range(x, y, z)
             out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(x, y, z)
-        finite[c] = ok
-    return finite.all()
+        accepted[c] = ok
+    return accepted.all()
 
 
 @parallel
@@ -206,7 +206,8 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     Parameters
     ----------
     psi : array_like, shape (..., 3)
-        Rotation vectors, any length.
+        Rotation vectors, at most ``ROTVEC_RANGE`` = 1e8 rad long (longer
+        ones are refused: see :func:`rotvec_to_quat`).
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -223,7 +224,7 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
            [ 0.,  0., -1.],
            [ 0.,  1.,  0.]])
     """
-    return _rotvec_to_matrix(vector_array(psi, "psi"), out=out)
+    return _rotvec_to_matrix(rotvec_array(psi, "psi"), out=out)
 
 
 def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -251,8 +252,16 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
 
     No sign flip: ψ = 2π n gives ``q = -1`` — the double cover SU(2) → SO(3).
 
+    The result depends on |ψ| modulo 4π, and |ψ| is computed with a rounding
+    error of about 1.1e-16 |ψ|: rotation vectors longer than ``ROTVEC_RANGE``
+    = 1e8 rad (error 1e-8 rad; beyond ~6e16 rad it would exceed 2π) are
+    refused with a ValueError. Reduce such an angle modulo 2π first (to
+    |ψ| <= π: the same rotation) — in the precision it is known in.
+
     Parameters
     ----------
+    psi : array_like, shape (..., 3)
+        Rotation vectors, at most 1e8 rad long.
     out : ndarray, optional
         Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
@@ -262,12 +271,18 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     >>> np.round(rotvec_to_quat([0.0, 0.0, 2 * np.pi]), 12) + 0.0
     array([-1.,  0.,  0.,  0.])
     """
-    a = as_float_array(psi, "psi", (3,), finite=False)
+    return exp_quat(psi, "psi", out)
+
+
+def exp_quat(psi: ArrayLike, name: str, out: NDArray[np.float64] | None = None, what: str = "|psi|") -> NDArray[np.float64]:
+    """:func:`rotvec_to_quat` of the argument ``name``, refused naming it and ``what`` its length is."""
+    a = as_float_array(psi, name, (3,), finite=False)
     fused = checked_in_one_pass(a, (4,), _rotvec_to_quat_checked) if out is None else None
     if fused is not None:
-        refuse_nonfinite(fused[1], "psi")
+        if not fused[1]:
+            refuse_rotvecs(a, name, what)
         return fused[0]
-    return _rotvec_to_quat(vector_array(a, "psi"), out=out)
+    return _rotvec_to_quat(rotvec_array(a, name, what), out=out)
 
 
 def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -340,6 +355,7 @@ def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | Non
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
     BCH series (:func:`bch`) approximates, computed through quaternions.
+    ``a`` and ``b`` longer than 1e8 rad are refused (see :func:`rotvec_to_quat`).
 
     Parameters
     ----------
@@ -352,8 +368,8 @@ def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | Non
     >>> np.round(compose_rotvec([np.pi / 2, 0, 0], [0, np.pi / 2, 0]), 4)
     array([1.2092, 1.2092, 1.2092])
     """
-    a = vector_array(a, "a")
-    b = vector_array(b, "b")
+    a = rotvec_array(a, "a")
+    b = rotvec_array(b, "b")
     return _compose_rotvec(a, b, out=out)
 
 

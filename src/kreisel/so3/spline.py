@@ -31,7 +31,8 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
 from .._compiled.outputs import check_out, empty
-from .._validation import check_frame
+from .._norms import norm
+from .._validation import check_frame, refuse_long_angle
 from .rotation import Rotation
 
 __all__ = ["RotationSpline", "Slerp"]
@@ -167,7 +168,8 @@ class RotationSpline:
     -----
     Same curve as scipy (same end conditions, ``MAX_ITER`` and ``TOL`` of the
     knot-rate iteration); see :mod:`kreisel.so3.spline` for the frames of the
-    derivatives. Times outside the knots extrapolate the end segments. For
+    derivatives. Times outside the knots extrapolate the end segments (as far
+as their rotation vector stays within 1e8 rad, else they are refused). For
     large turns between knots scipy's 10 iterations may stop short of
     convergence, leaving jumps of the angular acceleration at the knots
     (~1e-4 rad/s² for random attitudes a second apart); a subclass with a
@@ -263,6 +265,8 @@ class RotationSpline:
             check_out(out, shape)
         flat = np.ascontiguousarray(t.reshape(-1))
         index = np.clip(np.searchsorted(self.times, flat, side="right") - 1, 0, len(self.times) - 2)
+        if flat.size and (flat.min() < self.times[0] or flat.max() > self.times[-1]):
+            self._check_extrapolation(flat, index)
         # the loop writes each row after reading its time: out must not overlap the times it reads
         direct = out is not None and out.flags.c_contiguous and not np.may_share_memory(out, flat)
         result = out if out is not None and direct else empty(shape)
@@ -274,6 +278,15 @@ class RotationSpline:
             out[...] = result
             return out
         return result
+
+    def _check_extrapolation(self, t: NDArray[np.float64], index: NDArray[np.intp]) -> None:
+        """Refuse ``times`` whose extrapolated rotation vector ψ(τ) is longer than ``ROTVEC_RANGE`` (1e8 rad)."""
+        tau = (t - self.times[index])[:, None]
+        coeff = self._coeff[index]
+        with np.errstate(over="ignore", invalid="ignore"):
+            psi = ((coeff[:, 0] * tau + coeff[:, 1]) * tau + coeff[:, 2]) * tau
+            longest = float(np.max(norm(psi), initial=0.0)) if np.isfinite(psi).all() else np.inf
+        refuse_long_angle(longest, "times", "the extrapolated |psi|")
 
 
 class Slerp:
