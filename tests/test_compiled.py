@@ -1,11 +1,14 @@
-"""The compiled layer's own rules: one signature per shared kernel, a cache keyed by the sources."""
+"""The compiled layer's own rules (one signature per shared kernel, a cache keyed by the sources) and its sincos."""
 
 import os
+import platform
+import re
 
 import numba
 import numpy as np
+import pytest
 
-from kreisel._compiled import checkout_cache_root, signatures, source_state
+from kreisel._compiled import checkout_cache_root, kernels, signatures, source_state
 
 
 def test_a_kernel_compiled_for_two_layouts_is_reported():
@@ -31,3 +34,54 @@ def test_a_source_checkout_compiles_into_a_cache_of_its_source_state():
     assert root is not None and (root.parent / "pyproject.toml").is_file()
     expected = os.environ.get("NUMBA_CACHE_DIR") or str(root / source_state())  # a user's choice wins
     assert numba.config.CACHE_DIR.startswith(expected)
+
+
+# ---------------------------------------------------------------------------- sincos
+
+def _ulps(got, want):
+    """|got - want| in units of the last place of ``want`` rounded to a double (want: long double or mpmath)."""
+    w = np.asarray(want, dtype=np.float64)
+    ulp = np.where(w == 0.0, 5e-324, np.spacing(np.abs(w)))
+    return np.abs(np.asarray(got, dtype=np.longdouble) - np.asarray(want, dtype=np.longdouble)) / ulp
+
+
+def test_sincos_is_within_a_quarter_ulp_of_libm_and_below_0_8_ulp():
+    """The vectorisable sine and cosine against references, at random arguments over the whole range
+    (long double: 11 more bits than a double) and where they are hardest (mpmath): the doubles nearest
+    to multiples of π/2 (|r| down to 2^-60.5 at 45.553093477052), tiny arguments, the range's end.
+    Measured on 2·10^6 random arguments: at most 0.78 ulp (sin) and 0.75 ulp (cos); libm 0.52."""
+    mpmath = pytest.importorskip("mpmath")
+    if np.finfo(np.longdouble).nmant < 63:
+        pytest.skip("long double is not the x87 extended format here")
+    rng = np.random.default_rng(23)
+    n = 50_000
+    x = np.concatenate([
+        np.exp(rng.uniform(np.log(1e-300), np.log(kernels.SINCOS_RANGE), n)) * rng.choice([-1.0, 1.0], n),
+        rng.uniform(-8.0, 8.0, n),
+        rng.integers(-2**26, 2**26, n) * (np.pi / 2) * (1 + rng.uniform(-1e-15, 1e-15, n)),
+    ])
+    got = np.array([kernels.sincos(v) for v in x])
+    libm = np.stack([np.sin(x), np.cos(x)], axis=-1)
+    want = np.stack([np.sin(x.astype(np.longdouble)), np.cos(x.astype(np.longdouble))], axis=-1)
+    error, libm_error = _ulps(got, want).max(axis=0), _ulps(libm, want).max(axis=0)
+    assert np.all(error <= 0.8) and np.all(error <= libm_error + 0.3), (error, libm_error)
+    # hard cases in mpmath: nearest doubles to k π/2 (k = 29 is the closest approach below 1e8), tiny, the end
+    with mpmath.workdps(60):
+        hard = [float(k * mpmath.pi / 2) for k in [1, 2, 3, 29, 355, 2**20 + 7, 41_000_000, *rng.integers(1, 2**26, 40)]]
+        hard += [1e-300, 5e-324, 1e-8, 0.785398163397448, -0.785398163397449, kernels.SINCOS_RANGE, 0.0]
+        for v in hard:
+            s, c = kernels.sincos(v)
+            for got_value, exact in ((s, mpmath.sin(v)), (c, mpmath.cos(v))):
+                ulp = np.spacing(abs(float(exact))) if float(exact) else 5e-324
+                assert float(abs(mpmath.mpf(got_value) - exact)) / ulp <= 0.8, (v, got_value, exact)
+
+
+@pytest.mark.skipif(platform.machine().lower() not in ("x86_64", "amd64"), reason="x86 packed instructions")
+def test_the_half_angle_loop_vectorises():
+    # the reason sincos exists: LLVM's one libm sincos call per element kept the exp loops scalar
+    # an uncached copy: numba does not show the machine code of cached functions
+    half_angles = numba.njit(nogil=True)(kernels._half_angles.py_func)
+    scratch = np.empty(kernels.EXP_BLOCK)
+    half_angles(np.ones((8, 3)), 0, 8, scratch, scratch.copy(), scratch.copy())
+    assembly = "".join(half_angles.inspect_asm().values())
+    assert "mulpd" in assembly and not re.findall(r"\$\w*sin\w*", assembly)   # packed, no libm sin/sincos

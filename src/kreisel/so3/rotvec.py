@@ -47,10 +47,18 @@ def _matrix_rotvec(r00: float, r01: float, r02: float, r10: float, r11: float, r
     return kernels.quat_rotvec(q0, q1, q2, q3)
 
 
+#: Rotation vectors per piece of the multi-core exp loops (each piece runs the vectorised block
+#: kernels of :mod:`kreisel._compiled.kernels` over its range).
+_PIECE = 4096
+
+
 @parallel
 def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(psi.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
+    # psi checked (at most 1e8 rad long) by the caller
+    n = psi.shape[0]
+    for c in prange((n + _PIECE - 1) // _PIECE):
+        start = np.int64(c) * _PIECE
+        kernels.rotvec_quats(psi, out, start, min(n, start + _PIECE))
 
 
 @parallel
@@ -62,11 +70,12 @@ def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], 
     pieces = (n + chunk - 1) // chunk
     accepted = np.empty(pieces, dtype=np.bool_)
     for c in prange(pieces):
+        start = np.int64(c) * chunk
+        stop = min(n, start + chunk)
         ok = True
-        for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            x, y, z = psi[i, 0], psi[i, 1], psi[i, 2]
-            ok &= rotvec_in_range(x, y, z)
-            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.rotvec_quat(x, y, z)
+        for i in range(start, stop):
+            ok &= rotvec_in_range(psi[i, 0], psi[i, 1], psi[i, 2])
+        kernels.rotvec_quats(psi, out, start, stop)
         accepted[c] = ok
     return accepted.all()
 
@@ -79,9 +88,11 @@ def _quat_to_rotvec_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -
 
 @parallel
 def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(psi.shape[0]):
-        q0, q1, q2, q3 = kernels.rotvec_quat(psi[i, 0], psi[i, 1], psi[i, 2])
-        kernels.write_matrix_at(out, i, q0, q1, q2, q3)
+    # psi checked (at most 1e8 rad long) by the caller
+    n = psi.shape[0]
+    for c in prange((n + _PIECE - 1) // _PIECE):
+        start = np.int64(c) * _PIECE
+        kernels.rotvec_matrices(psi, out, start, min(n, start + _PIECE))
 
 
 @parallel
