@@ -159,11 +159,13 @@ def matrix_entries_quat(r00: float, r01: float, r02: float, r10: float, r11: flo
 # and P4 of 53 (the rest is below 2^-141). For |k| < 2^26 every k·P1, k·P2,
 # k·P3 is exact, x − k·P1 is exact (Sterbenz: for k >= 1 the two are within a
 # factor 2) and the other subtractions are exact two-sums, so r = r_hi + r_lo
-# is off by at most k·2^-139 (the rounding of k·P4 and the rest of π/2) plus
-# 2^-105 |r|. The double nearest a multiple of π/2 below SINCOS_RANGE has
-# |r| = 2^-60.5 (x = 45.553093477052, k = 29; found by scanning every k < 2^26),
-# where that is 2^-74 of r. Measured against mpmath and long double (Theory
-# §2.2, tests/so3/test_sincos.py): at most 0.78 ulp for sin and 0.75 ulp for cos
+# is off by at most k·2^-138 (the rounding of k·P4 and the rest of π/2) plus
+# 2^-105 |r|. Scanning the doubles nearest to k π/2 for every k < 2^26 (the
+# only arguments where |r| is small) puts that bound at most 2^-55.8 of |r|
+# (x = 14461176.67027838), below 0.15 ulp; the closest approach is
+# |r| = 2^-60.5 at x = 45.553093477052 (k = 29). Measured against mpmath and
+# long double (Theory §2.2, tests/test_compiled.py): at most 0.78 ulp for sin
+# and 0.75 ulp for cos
 # on 2·10^6 arguments across the range and on the 200 doubles nearest to
 # multiples of π/2, where libm has 0.52 and 0.56 ulp.
 
