@@ -17,11 +17,12 @@ and :mod:`kreisel.nav`. Conventions: scalar-first Hamilton quaternions,
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from . import cached, inlined
+from . import cached, generic, inlined
 
 
 # ---------------------------------------------------------------------------
@@ -277,25 +278,9 @@ def _half_angles(psi: NDArray[np.float64], start: int, stop: int, angle: NDArray
         sin_half[j], cos_half[j] = sincos(0.5 * angle[j])
 
 
-@cached
-def rotvec_quats(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
-    """``out[i] =`` :func:`rotvec_quat` ``(psi[i])`` for ``start <= i < stop``, for rotation vectors at most 1e8 rad long.
-
-    Bit-identical to :func:`rotvec_quat` in that range; longer (unchecked) vectors give meaningless numbers.
-    """
-    angle, sin_half, cos_half = np.empty(EXP_BLOCK), np.empty(EXP_BLOCK), np.empty(EXP_BLOCK)
-    for first in range(start, stop, EXP_BLOCK):
-        last = min(stop, first + EXP_BLOCK)
-        _half_angles(psi, first, last, angle, sin_half, cos_half)
-        for i in range(first, last):
-            j = i - first
-            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = rotvec_quat_from(
-                psi[i, 0], psi[i, 1], psi[i, 2], angle[j], sin_half[j], cos_half[j])
-
-
-@cached
-def rotvec_matrices(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
-    """``out[i] = R(ψ_i)`` for ``start <= i < stop``, as :func:`rotvec_quats` (rotation vectors at most 1e8 rad long)."""
+@generic
+def _exp_blocks(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int, write: Any) -> None:
+    """``write(out, i, q)`` with q = :func:`rotvec_quat` ``(psi[i])`` for ``start <= i < stop``, block by block."""
     angle, sin_half, cos_half = np.empty(EXP_BLOCK), np.empty(EXP_BLOCK), np.empty(EXP_BLOCK)
     for first in range(start, stop, EXP_BLOCK):
         last = min(stop, first + EXP_BLOCK)
@@ -303,7 +288,28 @@ def rotvec_matrices(psi: NDArray[np.float64], out: NDArray[np.float64], start: i
         for i in range(first, last):
             j = i - first
             q0, q1, q2, q3 = rotvec_quat_from(psi[i, 0], psi[i, 1], psi[i, 2], angle[j], sin_half[j], cos_half[j])
-            write_matrix_at(out, i, q0, q1, q2, q3)
+            write(out, i, q0, q1, q2, q3)
+
+
+@inlined
+def write_quat_at(out: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float) -> None:
+    """Write ``q`` into ``out[i]``."""
+    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = q0, q1, q2, q3
+
+
+@cached
+def rotvec_quats(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
+    """``out[i] =`` :func:`rotvec_quat` ``(psi[i])`` for ``start <= i < stop``, for rotation vectors at most 1e8 rad long.
+
+    Bit-identical to :func:`rotvec_quat` in that range; longer (unchecked) vectors give meaningless numbers.
+    """
+    _exp_blocks(psi, out, start, stop, write_quat_at)
+
+
+@cached
+def rotvec_matrices(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
+    """``out[i] = R(ψ_i)`` for ``start <= i < stop``, as :func:`rotvec_quats` (rotation vectors at most 1e8 rad long)."""
+    _exp_blocks(psi, out, start, stop, write_matrix_at)
 
 
 @cached
