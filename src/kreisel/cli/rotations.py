@@ -303,7 +303,7 @@ def to_quat(name, seq, values, degrees=False):
         return euler_quat(seq, _radians(_finite(values, "angles", (3,)), degrees))
     if name == "rotvec":
         return rotvec_quat(_in_range(_finite(_radians(as_float_array(values, "rotvec", (3,), finite=False), degrees),
-                                             "psi", (3,)), "rotvec"))
+                                             "rotvec", (3,)), "rotvec"))
     if name == "axis_angle":
         values = as_float_array(values, "axis_angle", (4,), finite=False)
         axis, angle = _finite(values[..., :3], "axis", (3,)), _finite(values[..., 3], "angle", ())
