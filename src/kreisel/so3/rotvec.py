@@ -57,7 +57,7 @@ def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64])
     # psi checked (at most 1e8 rad long) by the caller
     n = psi.shape[0]
     for c in prange((n + _PIECE - 1) // _PIECE):
-        start = np.int64(c) * _PIECE
+        start = int(c) * _PIECE
         kernels.rotvec_quats(psi, out, start, min(n, start + _PIECE))
 
 
@@ -70,7 +70,7 @@ def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], 
     pieces = (n + chunk - 1) // chunk
     accepted = np.empty(pieces, dtype=np.bool_)
     for c in prange(pieces):
-        start = np.int64(c) * chunk
+        start = int(c) * chunk
         stop = min(n, start + chunk)
         ok = True
         for i in range(start, stop):
@@ -91,7 +91,7 @@ def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64
     # psi checked (at most 1e8 rad long) by the caller
     n = psi.shape[0]
     for c in prange((n + _PIECE - 1) // _PIECE):
-        start = np.int64(c) * _PIECE
+        start = int(c) * _PIECE
         kernels.rotvec_matrices(psi, out, start, min(n, start + _PIECE))
 
 
