@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import cached, generic
 
@@ -48,10 +49,10 @@ _ERROR_EXPONENT = -1.0 / 8.0
 _EPS = 2.220446049250313e-16
 
 
-_TABLES = []
+_TABLES: list[tuple[NDArray[np.float64], ...]] = []
 
 
-def tableau():
+def tableau() -> tuple[NDArray[np.float64], ...]:
     """Hairer's DOP853 coefficients ``(A, B, C, E3, E5, D)`` as contiguous float arrays (scipy's numbers)."""
     if not _TABLES:
         from scipy.integrate._ivp import dop853_coefficients as scipy_tables

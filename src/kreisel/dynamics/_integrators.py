@@ -23,6 +23,7 @@ import math
 
 import numpy as np
 from numba import prange
+from numpy.typing import NDArray
 
 from .._compiled import cached, inlined, parallel
 from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
@@ -44,10 +45,15 @@ YOSHIDA_INNER = -_CBRT2 / (2.0 - _CBRT2)
 _EPS = 2.220446049250313e-16
 _MAX_ITER = 100
 
+# for type checkers: a model table (None: no model) and the DOP853 coefficient tables
+_Rows = NDArray[np.float64] | None
+_Tables = tuple[NDArray[np.float64], ...]
+
 
 # the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
 @inlined
-def rhs(t, y, ny, inertia, mass, rows, frows, dy, offset, scratch):
+def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, dy: NDArray[np.float64],
+        offset: int, scratch: NDArray[np.float64]) -> None:
     """dy[offset:offset+ny] = Euler's equations I ω̇′ = (Iω′) × ω′ + M′, q̇ = ½ q ⊗ (0, ω′), r̈ = F/m.
 
     Arrays are addressed by index (never sliced) so the hot loops create no
@@ -388,7 +394,7 @@ def _translation_kick(t, h, mass, frows, y, scratch):
         y[10 + k] += h * scratch[10 + k] / mass
 
 
-def new_state(method, y0):
+def new_state(method: int, y0: NDArray[np.float64]) -> NDArray[np.float64]:
     """The resumable state of :func:`run` for one body starting at ``y0``.
 
     DOP853 keeps the layout of :func:`kreisel._compiled.dop853.new_state`; a fixed-step
@@ -403,7 +409,7 @@ def new_state(method, y0):
     return state
 
 
-def reached(method, t_out, dt, state):
+def reached(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64]) -> float:
     """The earliest time reached by the paused bodies with states ``state (count, size)``."""
     if method == DOP853:
         return float(state[:, 0].min())
@@ -412,9 +418,10 @@ def reached(method, t_out, dt, state):
     return float(np.min(t_out[k] + state[:, 1] * span / substeps(span, dt)))
 
 
-def substeps(span, dt):
+def substeps(span: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
     """Steps of the fixed-step drivers over intervals ``span``: ``ceil(span/dt)``, as floats (they may not fit an int)."""
-    return np.maximum(1.0, np.ceil(span / dt * (1.0 - 1e-12)))
+    steps: NDArray[np.float64] = np.maximum(1.0, np.ceil(span / dt * (1.0 - 1e-12)))
+    return steps
 
 
 @cached
@@ -582,7 +589,8 @@ def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, ou
 
 
 @cached
-def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget, every):
+def run(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64], inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows,
+        rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], budget: int, every: int) -> int:
     """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
 
     ``out[k]`` receives the state at ``t_out[k·every]`` with its attitude as a
@@ -596,7 +604,9 @@ def run(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables
 
 
 @parallel
-def run_batch(method, t_out, dt, state, inertia, mass, rows, frows, rtol, atol, tables, out, status, budget, every):
+def run_batch(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64], inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
+              rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], status: NDArray[np.int64], budget: int,
+              every: int) -> None:
     """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
 
     Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.

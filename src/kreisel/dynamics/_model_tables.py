@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from numba import njit, objmode
 
 from .._compiled import generic
@@ -22,7 +24,7 @@ ROW_SIZE = 10
 CALLBACK = -1  # the kind of a row that calls a registered Python function (the same in every family)
 
 
-def row(kind, *vectors):
+def row(kind: int, *vectors: ArrayLike) -> NDArray[np.float64]:
     """One table row ``(1, ROW_SIZE)``: the kind, then the flattened parameter vectors."""
     r = np.zeros(ROW_SIZE)
     r[0] = kind
@@ -31,7 +33,8 @@ def row(kind, *vectors):
     return r[None, :]
 
 
-def in_principal_axes(rows, axes, vector_kinds, matrix_kinds=()):
+def in_principal_axes(rows: NDArray[np.float64], axes: NDArray[np.float64] | None, vector_kinds: tuple[int, ...],
+                      matrix_kinds: tuple[int, ...] = ()) -> NDArray[np.float64]:
     """``rows`` with their body parameters in principal axes, ``a_principal = axesᵀ a_body``.
 
     Rows of ``vector_kinds`` hold a body vector in ``row[1:4]``, rows of
@@ -55,7 +58,7 @@ class RowModel:
 
     _sum = None
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         """The model's table rows (body vectors in body coordinates), shape ``(k, ROW_SIZE)``."""
         raise NotImplementedError
 
@@ -80,7 +83,7 @@ class RowSum:
             flat.extend(m.models if isinstance(m, RowSum) else [m])
         self.models = tuple(flat)
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         if not self.models:
             return np.zeros((0, ROW_SIZE))
         return np.concatenate([m.rows() for m in self.models])
@@ -93,7 +96,7 @@ _CALLBACKS = {}
 _IDS = itertools.count(1)
 
 
-def register_callback(function, translation=False):
+def register_callback(function: Callable[..., ArrayLike], translation: bool = False) -> NDArray[np.float64]:
     """Store a model callable; return its :data:`CALLBACK` table row.
 
     ``function(t, q, omega_body)``, or with ``translation=True``
@@ -104,7 +107,7 @@ def register_callback(function, translation=False):
     return row(CALLBACK, [key])
 
 
-def release_callback(rows):
+def release_callback(rows: NDArray[np.float64] | None) -> None:
     """Forget the callables of a table's :data:`CALLBACK` rows."""
     if rows is None:
         return

@@ -14,7 +14,9 @@ extra arrays still load). Files are written atomically.
 from __future__ import annotations
 
 import json
+import os
 import pathlib
+from typing import Any, TypeVar
 
 from .._fileio import atomic_output, cf_labelled
 from .._optional import require
@@ -25,6 +27,9 @@ _CSV_MARK = "# kreisel-trajectory "
 _TABLES = {".csv": "CSV", ".parquet": "Parquet"}
 _AXES = ("x", "y", "z")
 
+# the Trajectory class itself (this module sits below it: naming it here would be an import cycle)
+_T = TypeVar("_T")
+
 
 def _suffix(path):
     path = pathlib.Path(path)
@@ -33,7 +38,7 @@ def _suffix(path):
     return path, path.suffix
 
 
-def save(trajectory, path):
+def save(trajectory: Any, path: str | os.PathLike[str]) -> None:
     """Write ``trajectory`` to ``path`` in the format its suffix names."""
     path, suffix = _suffix(path)
     if suffix in _TABLES and trajectory.batch_shape:
@@ -53,7 +58,7 @@ def save(trajectory, path):
             frame.to_parquet(tmp)
 
 
-def load(cls, path):
+def load(cls: type[_T], path: str | os.PathLike[str]) -> _T:
     """The trajectory (an instance of ``cls``) in the file ``path``."""
     path, suffix = _suffix(path)
     if suffix == ".nc":

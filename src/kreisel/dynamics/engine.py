@@ -89,6 +89,8 @@ METHODS = {
     "rk4": _integrators.RK4,
     "scipy": None,
 }
+# the compiled methods' ids (every method but "scipy")
+_CODES = {name: code for name, code in METHODS.items() if code is not None}
 ADAPTIVE = ("dop853", "scipy")
 DEFAULT_RTOL = 1e-12
 
@@ -269,7 +271,7 @@ def _checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., _Array
     return call
 
 
-def _run(code: int | None, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
+def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
          frows: _Array | None, rtol: float, atol: _Array, max_steps: int,
          progress: Callable[[float], object] | None = None, every: int = 1) -> tuple[_Array, NDArray[np.int64]]:
     """Integrate bodies ``y0 (count, ny)`` in compiled chunks (:func:`kreisel._compiled.chunks.run_chunked`).
@@ -378,10 +380,11 @@ def _integrate(method: str, t: _Array, dt: float, y0: _Array, moments: _Array, m
         y = _scipy(np.ascontiguousarray(t[::every]), y0, moments, mass, rows, frows, rtol, atol, max_steps, progress)
         y[:, 3:7] = _normalized(y[:, 3:7])  # as the compiled drivers write their samples
         return y
-    out, status = _run(METHODS[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
+    out, status = _run(_CODES[method], t, dt, y0[None, :], moments[None, :], np.array([mass]), rows, frows,
                        rtol, atol[None, :], max_steps, progress, every)
     _raise_status(status[0])
-    return out[0]
+    samples: _Array = out[0]
+    return samples
 
 
 def _scipy(t: _Array, y0: _Array, moments: _Array, mass: float, rows: _Array | None, frows: _Array | None, rtol: float,
@@ -428,7 +431,8 @@ def _to_body_frame(omega: _Array, q: _Array, axes: _Array | None) -> tuple[_Arra
 
 
 def _normalized(q: _Array) -> _Array:
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)
+    unit: _Array = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    return unit
 
 
 def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None, torque: _TorqueArg,
@@ -728,7 +732,7 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
     y0[:, 3:7] = _initial_quaternion(q_in, batch).reshape(count, 4) if q_in is not None else [1.0, 0, 0, 0]
     atol_v = _atol(atol, np.linalg.norm(y0[:, 0:3], axis=-1), 7, rtol)
     mass = np.ones(count)
-    code = METHODS[method]
+    code = _CODES[method]
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
             "torque": repr(torque) if torque is not None else "none"}
 

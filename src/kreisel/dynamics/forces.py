@@ -11,6 +11,7 @@ accepted too (called back from the compiled loop, slower).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._compiled import cached, inlined
 from .._compiled.kernels import rotated
@@ -46,7 +47,7 @@ class ForceModel(RowModel):
     True
     """
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         """The model's table rows (body vectors in body coordinates), shape ``(k, ROW_SIZE)``.
 
         Column 0 is the kind (space force, body force, drag), the rest its
@@ -92,7 +93,7 @@ class ConstantForce(ForceModel):
         self.force = f
         self.frame = frame
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(F_SPACE if self.frame == "space" else F_BODY, self.force)
 
 
@@ -111,7 +112,7 @@ class LinearDrag(ForceModel):
             raise ValueError(f"coefficient must be a finite number >= 0, got {coefficient!r}")
         self.coefficient = c
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(F_DRAG, [self.coefficient])
 
 
@@ -137,7 +138,7 @@ class ForceSum(RowSum, ForceModel):
 ForceModel._sum = ForceSum
 
 
-def to_principal(rows, axes):
+def to_principal(rows: NDArray[np.float64], axes: NDArray[np.float64] | None) -> NDArray[np.float64]:
     """Force rows in principal axes: the body forces turn, the space ones and drag do not."""
     return in_principal_axes(rows, axes, (F_BODY,))
 

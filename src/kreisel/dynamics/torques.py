@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, inlined
 from .._compiled.kernels import rotated
@@ -54,7 +55,7 @@ class TorqueModel(RowModel):
     [0.0, 0.0, -0.1]
     """
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         """The model's table rows in body coordinates, shape ``(k, ROW_SIZE)``.
 
         Column 0 is the kind, the rest its parameters; a sum stacks the rows of
@@ -115,14 +116,14 @@ class GravityTorque(TorqueModel):
     array([0.479426, 0.      , 0.      ])
     """
 
-    def __init__(self, weight, lever):
+    def __init__(self, weight: float, lever: ArrayLike) -> None:
         weight = float(weight)
         if not (math.isfinite(weight) and weight >= 0.0):
             raise ValueError(f"weight must be a finite number >= 0 (m g in newtons), got {weight}")
         self.weight = weight
         self.lever = _vector(lever, "lever")
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(CROSS, self.lever, np.array([0.0, 0.0, -self.weight]))
 
     def __repr__(self):
@@ -150,7 +151,7 @@ class MagneticTorque(TorqueModel):
         self.dipole = _vector(dipole, "dipole")
         self.field = _vector(field, "field")
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(CROSS, self.dipole, self.field)
 
     def __repr__(self):
@@ -180,7 +181,7 @@ class ConstantTorque(TorqueModel):
         self.torque = _vector(torque, "torque")
         self.frame = frame
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(BODY if self.frame == "body" else SPACE, self.torque)
 
     def __repr__(self):
@@ -213,7 +214,7 @@ class LinearDamping(TorqueModel):
             raise ValueError("coefficient must be positive semi-definite (damping cannot add energy)")
         self.coefficient = c
 
-    def rows(self):
+    def rows(self) -> NDArray[np.float64]:
         return row(DAMPING, self.coefficient)
 
     def __repr__(self):
@@ -240,7 +241,7 @@ class TorqueSum(RowSum, TorqueModel):
 TorqueModel._sum = TorqueSum
 
 
-def to_principal(rows, axes):
+def to_principal(rows: NDArray[np.float64], axes: NDArray[np.float64] | None) -> NDArray[np.float64]:
     """Torque rows in principal axes: body torques, the body arm of a cross torque and the damping matrix turn."""
     return in_principal_axes(rows, axes, (BODY, CROSS), (DAMPING,))
 

@@ -140,12 +140,14 @@ class Trajectory:
     @property
     def angular_momentum_body(self) -> NDArray[np.float64]:
         """J′ = I ω′ in body components (Theory §4.4)."""
-        return np.einsum("...ij,...j->...i", self._inertia_t(), self.omega)
+        momentum: NDArray[np.float64] = np.einsum("...ij,...j->...i", self._inertia_t(), self.omega)
+        return momentum
 
     @property
     def energy(self) -> NDArray[np.float64]:
         """Rotational kinetic energy T = ½ ω′·I ω′ (Theory §5.2)."""
-        return 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
+        energy: NDArray[np.float64] = 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
+        return energy
 
     @property
     def omega_space(self) -> NDArray[np.float64]:

@@ -289,6 +289,8 @@ def davenport_gimbal_lock(axes: ArrayLike, order: str, angles: ArrayLike, degree
     axes, _ = _parse(axes, order)
     _, lam, _ = _frame(axes)
     a = as_float_array(angles, "angles", (3,))
-    offset = np.abs(np.angle(np.exp(1j * ((np.deg2rad(a[..., 1]) if degrees else a[..., 1]) - lam))))
+    # the middle angle in its own statement: nested in the expression below, mypy spends a minute on the overloads
+    middle: NDArray[np.float64] = np.deg2rad(a[..., 1]) if degrees else a[..., 1]
+    offset = np.abs(np.angle(np.exp(1j * (middle - lam))))
     tol = np.deg2rad(tolerance) if degrees else tolerance
     return deliver(np.minimum(offset, np.pi - offset) <= tol, out)

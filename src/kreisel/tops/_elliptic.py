@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._compiled import cached
 from .._validation import as_float_array
@@ -155,7 +156,7 @@ def _t_function(nu, x):
 
 
 @cached
-def complete_k(m1, kc):
+def complete_k(m1: float, kc: float) -> float:
     """K(m) from m1 and k′ = √m1 (k′ also when m1 has underflowed)."""
     if m1 < _LOG_M1:
         return math.log(4.0 / kc)
@@ -163,7 +164,7 @@ def complete_k(m1, kc):
 
 
 @cached
-def complete_pi(nu, one_minus_nu, m1, kc):
+def complete_pi(nu: float, one_minus_nu: float, m1: float, kc: float) -> float:
     """Π(ν | m), ν < 1, with 1 − ν given separately (accurate when ν is near 1)."""
     k = complete_k(m1, kc)
     # R_J is exact to a few ulp however far apart m1 and 1 − ν are (down to 1e-300, checked
@@ -181,7 +182,7 @@ def complete_pi(nu, one_minus_nu, m1, kc):
 
 
 @cached
-def amplitude_integral(s, c, m1, nu, one_minus_nu):
+def amplitude_integral(s: float, c: float, m1: float, nu: float, one_minus_nu: float) -> float:
     """Π(φ, ν | m) for cos φ = c >= 0, sin φ = s (s² + c² = 1), with δ² = c² + m1 s²."""
     c2 = c * c
     # δ² = 1 − m s² is exact to rounding while m s² <= 1/2 (and 1 − m1 is exact there)
@@ -233,7 +234,7 @@ def _agm(r, m1, kc):
 
 
 @cached
-def jacobi_near(r, m1, kc):
+def jacobi_near(r: float, m1: float, kc: float) -> tuple[float, float, float]:
     """(sn, cn, dn)(r | m) for |r| <= K/2, each to a few ulp relative.
 
     m >= 1/2 goes up by ascending Landen transformations (DLMF 22.7.ii, written
@@ -262,7 +263,7 @@ def jacobi_near(r, m1, kc):
 
 
 @cached
-def quarter_shift(n, sn, cn, dn, kc):
+def quarter_shift(n: int, sn: float, cn: float, dn: float, kc: float) -> tuple[float, float, float]:
     """(sn, cn, dn) of u = nK + r from those of r (quarter-period shifts, DLMF 22.4.3)."""
     quadrant = n % 4
     if quadrant == 0:
@@ -274,7 +275,7 @@ def quarter_shift(n, sn, cn, dn, kc):
 
 
 @cached
-def amplitude_split(n, sr, cr, kc):
+def amplitude_split(n: int, sr: float, cr: float, kc: float) -> float:
     """am u for u = nK + r from sn, cn of r: (n/2)π + am r, or ((n − 1)/2)π + am(K + r)."""
     if n % 2 == 0:
         return 0.5 * n * math.pi + math.atan2(sr, cr)
@@ -282,14 +283,14 @@ def amplitude_split(n, sr, cr, kc):
 
 
 @cached
-def split_phase(x, k):
+def split_phase(x: float, k: float) -> tuple[int, float]:
     """(n, r) with x = nK + r, |r| <= K/2."""
     n = math.floor(x / k + 0.5)
     return int(n), x - n * k
 
 
 @cached
-def phase_from_sn_cn(sn0, cn0, m1, kc):
+def phase_from_sn_cn(sn0: float, cn0: float, m1: float, kc: float) -> tuple[int, float]:
     """Split phase (n, r) of the u with (sn u, cn u) ∝ (sn0, cn0), sn0² + cn0² > 0.
 
     The amplitude is folded into (−π/2, π/2] around the nearest multiple of K:
@@ -309,7 +310,8 @@ def phase_from_sn_cn(sn0, cn0, m1, kc):
 
 
 @cached
-def pi_split(n, r, sn, cn, m1, kc, nu, one_minus_nu, pi_complete):
+def pi_split(n: int, r: float, sn: float, cn: float, m1: float, kc: float, nu: float, one_minus_nu: float,
+             pi_complete: float) -> float:
     """Π(am u, ν | m) at u = nK + r, from (sn, cn) of r (not of u)."""
     if n % 2 == 0:
         if nu == 0.0:

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 from numba import prange
 
 from .._compiled import cached
@@ -79,7 +80,7 @@ def _binary_scale(x):
 
 
 @cached
-def _two_product(a, b):
+def _two_product(a: float, b: float) -> tuple[float, float]:
     """a·b = p + e exactly (Dekker, Veltkamp splitting; no fused multiply–add needed)."""
     p = a * b
     c = 134217729.0 * a
@@ -323,7 +324,8 @@ def _classify(moments, w):
 
 
 @cached
-def body_samples(moments, w, q, t, omega, quat):
+def body_samples(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64], omega: NDArray[np.float64],
+                 quat: NDArray[np.float64]) -> None:
     """Exact ω (n, 3) and q (n, 4) of one body at times t, written into ``omega``, ``quat``."""
     regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
     if regime == STEADY:
@@ -338,7 +340,7 @@ def body_samples(moments, w, q, t, omega, quat):
 
 
 @cached
-def body_omega(moments, w, t, omega):
+def body_omega(moments: NDArray[np.float64], w: NDArray[np.float64], t: NDArray[np.float64], omega: NDArray[np.float64]) -> None:
     """Exact ω (n, 3) of one body at times t (the attitude is not computed)."""
     regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
     if regime == STEADY or regime == SYMMETRIC:
@@ -354,14 +356,15 @@ def body_omega(moments, w, t, omega):
 
 
 @parallel
-def batch_samples(moments, w, q, t, omega, quat):
+def batch_samples(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64], omega: NDArray[np.float64],
+                  quat: NDArray[np.float64]) -> None:
     """:func:`body_samples` for bodies (B, 3), ω0 (B, 3), q0 (B, 4) -> (B, n, 3), (B, n, 4)."""
     for b in prange(moments.shape[0]):
         body_samples(moments[b], w[b], q[b], t, omega[b], quat[b])
 
 
 @cached
-def setup_info(moments, w, info):
+def setup_info(moments: NDArray[np.float64], w: NDArray[np.float64], info: NDArray[np.float64]) -> None:
     """Per body (B rows): the :data:`INFO_FIELDS` of its motion."""
     for b in range(moments.shape[0]):
         regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments[b], w[b])

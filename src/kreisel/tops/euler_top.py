@@ -234,7 +234,8 @@ class EulerTop:
         (1.585, True)
         """
         omega = as_float_array(omega, "omega", tail=(3,))
-        return 0.5 * np.sum(self.moments * omega**2, axis=-1)
+        energy: NDArray[np.float64] = 0.5 * np.sum(self.moments * omega**2, axis=-1)
+        return energy
 
     def angular_momentum(self, omega: ArrayLike) -> NDArray[np.float64]:
         """|J| = √(Σ I_i² ω_i²) for body ω (Theory §5.2).
@@ -255,7 +256,8 @@ class EulerTop:
         (True, True, 'about_largest_axis')
         """
         omega = as_float_array(omega, "omega", tail=(3,))
-        return np.sqrt(np.sum((self.moments * omega) ** 2, axis=-1))
+        magnitude: NDArray[np.float64] = np.sqrt(np.sum((self.moments * omega) ** 2, axis=-1))
+        return magnitude
 
     # ---- classification -------------------------------------------------------------
     def _info(self, omega0: ArrayLike) -> dict[str, Any]:
@@ -287,7 +289,8 @@ class EulerTop:
         >>> EulerTop(1.0, 2.0, 3.0).regime([1e-300, 1.0, 0.0])   # next to the middle axis
         'about_smallest_axis'
         """
-        return self._info(omega0)["regime"].label
+        regime: Regime = self._info(omega0)["regime"]
+        return regime.label
 
     def omega_period(self, omega0: ArrayLike) -> float:
         """Period of ω(t) in the body, seconds: 4K(m)/λ (asymmetric), 2π/|Ω| (symmetric).
@@ -303,7 +306,7 @@ class EulerTop:
         info = self._info(omega0)
         if info["regime"] == Regime.SEPARATRIX:
             return float("inf")
-        return info["period"]
+        return float(info["period"])
 
     def dzhanibekov_flip_time(self, omega0: ArrayLike) -> float:
         """Time between two successive flips of a body spun near its middle axis, seconds.
@@ -324,7 +327,7 @@ class EulerTop:
             raise ValueError("omega0 must start a tumbling motion of an asymmetric body (no flips otherwise)")
         if info["regime"] == Regime.SEPARATRIX:
             return float("inf")
-        return 2.0 * info["quarter_period"] / info["rate"]
+        return float(2.0 * info["quarter_period"] / info["rate"])
 
     def separatrix_distance(self, omega0: ArrayLike) -> float:
         """(J² − 2T I_mid)/(2T I_mid) of body ω0, without cancellation (Theory §5.3).
@@ -341,7 +344,7 @@ class EulerTop:
         info = self._info(omega0)
         if info["regime"] in (Regime.STEADY, Regime.SYMMETRIC):
             return float("nan")
-        return info["separatrix_distance"]
+        return float(info["separatrix_distance"])
 
     def accuracy(self, omega0: ArrayLike, duration: float = 20.0) -> SolutionAccuracy:
         """Distance from the separatrix and the error bound of :meth:`solve` over |t| <= ``duration``.

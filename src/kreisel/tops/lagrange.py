@@ -525,7 +525,9 @@ class LagrangeTop:
         if np.any((theta <= 0.0) | (theta >= np.pi)):
             raise ValueError("theta must lie in (0, pi): V_eff is infinite on the vertical")
         c, s = np.cos(theta), np.sin(theta)
-        return (Jz - J3 * c) ** 2 / (2 * self.I1 * s * s) + self.mgl * c + J3**2 / (2 * self.I3)
+        potential: NDArray[np.float64] = ((Jz - J3 * c) ** 2 / (2 * self.I1 * s * s) + self.mgl * c
+                                          + J3**2 / (2 * self.I3))
+        return potential
 
     def _quadrature(self, euler0: ArrayLike,
                     rates0: ArrayLike) -> tuple[_Quadrature | _PlanarPendulum, NDArray[np.float64], NDArray[np.float64]]:
@@ -676,7 +678,7 @@ class LagrangeTop:
         """
         return float(2.0 * np.sqrt(self.I1 * self.mgl) / self.I3)
 
-    def sleeping_top_stable(self, omega3: float) -> bool:
+    def sleeping_top_stable(self, omega3: ArrayLike) -> np.bool_ | NDArray[np.bool_]:
         """Whether the upright (sleeping) top spinning at ω3 is stable: J3² > 4 I1 mgl (Theory §6.6).
 
         Examples
@@ -688,7 +690,8 @@ class LagrangeTop:
         [True, True, False, True]
         """
         J3 = self.I3 * as_float_array(omega3, "omega3")
-        return J3 * J3 > 4.0 * self.I1 * self.mgl
+        stable: np.bool_ | NDArray[np.bool_] = J3 * J3 > 4.0 * self.I1 * self.mgl
+        return stable
 
     def fast_top(self, theta0: float, omega3: float) -> FastTop:
         """Fast top released from rest at θ0 with spin ω3: Theory §6.7 estimates against the exact motion.
