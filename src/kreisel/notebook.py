@@ -12,12 +12,17 @@ Install it with ``pip install "kreisel[notebook]"``.
 from __future__ import annotations
 
 import importlib.resources
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._optional import require
 from .dynamics import Trajectory
 from .web.session import analysis, samples
+
+if TYPE_CHECKING:
+    from anywidget import AnyWidget
 
 __all__ = ["show", "widget_data"]
 
@@ -25,7 +30,7 @@ __all__ = ["show", "widget_data"]
 MAX_SAMPLES = 2000
 
 
-def _gravity(gravity):
+def _gravity(gravity: tuple[float, ArrayLike] | None) -> tuple[float, NDArray[np.float64]] | None:
     """``(weight, lever)`` checked: weight > 0 in N, lever a non-zero (3,) vector in body axes, m."""
     if gravity is None:
         return None
@@ -41,7 +46,8 @@ def _gravity(gravity):
     return weight, lever
 
 
-def widget_data(trajectory, max_samples=MAX_SAMPLES, gravity=None):
+def widget_data(trajectory: Trajectory, max_samples: int = MAX_SAMPLES,
+                gravity: tuple[float, ArrayLike] | None = None) -> dict[str, Any]:
     """The JSON-ready arrays the widget draws: the viewer's samples and analysis of ``trajectory``.
 
     Parameters
@@ -86,9 +92,12 @@ def widget_data(trajectory, max_samples=MAX_SAMPLES, gravity=None):
             **{key: np.asarray(value).tolist() for key, value in arrays.items()}}
 
 
-def _widget_class():
-    anywidget = require("anywidget", extra="notebook", feature="kreisel.show")
-    traitlets = require("traitlets", extra="notebook", feature="kreisel.show")
+def _widget_class() -> type[AnyWidget]:
+    require("anywidget", extra="notebook", feature="kreisel.show")
+    require("traitlets", extra="notebook", feature="kreisel.show")
+    # imported by name once require has vouched for them: type checkers then see the classes
+    import anywidget
+    import traitlets
 
     class TrajectoryWidget(anywidget.AnyWidget):
         """The 3D player of :func:`show`; ``index`` is the sample on screen."""
@@ -100,7 +109,8 @@ def _widget_class():
     return TrajectoryWidget
 
 
-def show(trajectory, max_samples=MAX_SAMPLES, gravity=None):
+def show(trajectory: Trajectory, max_samples: int = MAX_SAMPLES,
+         gravity: tuple[float, ArrayLike] | None = None) -> AnyWidget:
     """Play ``trajectory`` in 3D in a notebook: body, principal axes, ω, J, Poinsot construction, time slider.
 
     Parameters

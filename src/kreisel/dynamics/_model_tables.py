@@ -13,6 +13,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,6 +23,12 @@ from .._compiled import generic
 
 ROW_SIZE = 10
 CALLBACK = -1  # the kind of a row that calls a registered Python function (the same in every family)
+
+# a family's sum class: to type checkers a model plus a model of its family is that family's sum
+_Sum = TypeVar("_Sum", bound="RowSum")
+_Function = TypeVar("_Function", bound=Callable[..., Any])
+# a family's compiled term: (rows, i, q0, q1, q2, q3, y) -> the row's contribution, three scalars
+_Term = Callable[[NDArray[np.float64], int, float, float, float, float, NDArray[np.float64]], tuple[float, float, float]]
 
 
 def row(kind: int, *vectors: ArrayLike) -> NDArray[np.float64]:
@@ -53,16 +60,16 @@ def in_principal_axes(rows: NDArray[np.float64], axes: NDArray[np.float64] | Non
     return out
 
 
-class RowModel:
+class RowModel(Generic[_Sum]):
     """Base of a model family; subclasses set ``_sum`` to the family's sum class."""
 
-    _sum = None
+    _sum: type[_Sum]
 
     def rows(self) -> NDArray[np.float64]:
         """The model's table rows (body vectors in body coordinates), shape ``(k, ROW_SIZE)``."""
         raise NotImplementedError
 
-    def __add__(self, other):
+    def __add__(self, other: RowModel[_Sum]) -> _Sum:
         family = self._sum.family
         if not (isinstance(self, family) and isinstance(other, family)):
             return NotImplemented
@@ -72,11 +79,12 @@ class RowModel:
 class RowSum:
     """Flat sum of models of the family ``family`` (named ``noun`` in messages)."""
 
-    family = None
+    family: type[RowModel[Any]]
     noun = ""
+    models: tuple[RowModel[Any], ...]
 
-    def __init__(self, *models):
-        flat = []
+    def __init__(self, *models: RowModel[Any]) -> None:
+        flat: list[RowModel[Any]] = []
         for m in models:
             if not isinstance(m, self.family):
                 raise TypeError(f"{type(self).__name__} takes {self.noun} models, got {type(m).__name__}")
@@ -92,7 +100,7 @@ class RowSum:
 # Python callables are looked up by id from the compiled loop: a table row
 # carries only numbers, so the registry maps that number back to the function
 # and to whether it also takes the centre of mass position and velocity.
-_CALLBACKS = {}
+_CALLBACKS: dict[int, tuple[Callable[..., ArrayLike], bool]] = {}
 _IDS = itertools.count(1)
 
 
@@ -116,17 +124,20 @@ def release_callback(rows: NDArray[np.float64] | None) -> None:
             _CALLBACKS.pop(int(r[1]), None)
 
 
-def _call_registered(key, t, y):
+def _call_registered(key: float, t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
     function, translation = _CALLBACKS[int(key)]
-    args = (t, y[3:7] / np.linalg.norm(y[3:7]), y[0:3].copy())
+    args: tuple[Any, ...] = (t, y[3:7] / np.linalg.norm(y[3:7]), y[0:3].copy())
     if translation:
         args += (y[7:10].copy(), y[10:13].copy())
     return np.ascontiguousarray(function(*args), dtype=np.float64)
 
 
-# object mode holds the GIL, so not the nogil flavour
-@njit(cache=True)
-def _callback_into(key, t, y, scratch, at):
+# object mode holds the GIL, so not the nogil flavour (typed as kreisel._compiled types its flavours)
+_with_gil: Callable[[_Function], _Function] = njit(cache=True)
+
+
+@_with_gil
+def _callback_into(key: float, t: float, y: NDArray[np.float64], scratch: NDArray[np.float64], at: int) -> None:
     with objmode(r="float64[:]"):
         r = _call_registered(key, t, y)
     scratch[at] += r[0]
@@ -137,7 +148,8 @@ def _callback_into(key, t, y, scratch, at):
 # takes the family's ``term`` as an argument: inlined into a cached kernel of each family,
 # for the reason given in kreisel._compiled.dop853 (a compiled function argument cannot be cached)
 @generic
-def sum_rows(term, rows, t, y, scratch, at):
+def sum_rows(term: _Term, rows: NDArray[np.float64], t: float, y: NDArray[np.float64], scratch: NDArray[np.float64],
+             at: int) -> None:
     """``scratch[at:at+3]`` = Σ ``term(rows, i, q, y)`` over the rows, then the callables' values.
 
     ``y = (ω′, q, ...)``; ``term`` gets the unit attitude as four scalars

@@ -11,7 +11,7 @@ accepted too (called back from the compiled loop, slower).
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, inlined
 from .._compiled.kernels import rotated
@@ -23,7 +23,7 @@ __all__ = ["ForceModel", "ConstantForce", "LinearDrag", "ForceSum"]
 F_SPACE, F_BODY, F_DRAG = 0, 1, 2
 
 
-class ForceModel(RowModel):
+class ForceModel(RowModel["ForceSum"]):
     """Base class of the compiled force models; models add with ``+``.
 
     Examples
@@ -46,6 +46,8 @@ class ForceModel(RowModel):
     >>> bool(np.allclose(tr.velocity, closed_form, rtol=0.0, atol=1e-10))
     True
     """
+
+    _sum: type[ForceSum]  # set once ForceSum exists, below
 
     def rows(self) -> NDArray[np.float64]:
         """The model's table rows (body vectors in body coordinates), shape ``(k, ROW_SIZE)``.
@@ -84,7 +86,7 @@ class ConstantForce(ForceModel):
     array([ 0.  ,  0.  , -9.81])
     """
 
-    def __init__(self, force, frame="space"):
+    def __init__(self, force: ArrayLike, frame: str = "space") -> None:
         if frame not in ("body", "space"):
             raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
         f = as_float_array(force, "force", tail=(3,))
@@ -106,7 +108,7 @@ class LinearDrag(ForceModel):
     0.1
     """
 
-    def __init__(self, coefficient):
+    def __init__(self, coefficient: float) -> None:
         c = float(coefficient)
         if not (np.isfinite(c) and c >= 0.0):
             raise ValueError(f"coefficient must be a finite number >= 0, got {coefficient!r}")
@@ -144,7 +146,7 @@ def to_principal(rows: NDArray[np.float64], axes: NDArray[np.float64] | None) ->
 
 
 @inlined
-def _force_term(rows, i, q0, q1, q2, q3, y):
+def _force_term(rows: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float, y: NDArray[np.float64]) -> tuple[float, float, float]:
     """Space force of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, r, v)``."""
     kind = int(rows[i, 0])
     if kind == F_SPACE:
@@ -157,7 +159,7 @@ def _force_term(rows, i, q0, q1, q2, q3, y):
 
 
 @cached
-def evaluate_force(rows, t, y, scratch):
+def evaluate_force(rows: NDArray[np.float64] | None, t: float, y: NDArray[np.float64], scratch: NDArray[np.float64]) -> None:
     """Space force on the centre of mass (None: no force) for ``y = (ω′, q, r, v)`` into ``scratch[10:13]``."""
     if rows is None:
         scratch[10] = scratch[11] = scratch[12] = 0.0

@@ -36,7 +36,7 @@ __all__ = [
 BODY, SPACE, CROSS, DAMPING = 0, 1, 2, 3
 
 
-class TorqueModel(RowModel):
+class TorqueModel(RowModel["TorqueSum"]):
     """Base class of the compiled torque models; models add with ``+``.
 
     A model is also callable, ``model(t, q, omega_body)`` returning the body
@@ -54,6 +54,8 @@ class TorqueModel(RowModel):
     >>> model(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 10.0]).tolist()
     [0.0, 0.0, -0.1]
     """
+
+    _sum: type[TorqueSum]  # set once TorqueSum exists, below
 
     def rows(self) -> NDArray[np.float64]:
         """The model's table rows in body coordinates, shape ``(k, ROW_SIZE)``.
@@ -77,7 +79,7 @@ class TorqueModel(RowModel):
         """
         raise NotImplementedError
 
-    def __call__(self, t, q, omega_body):
+    def __call__(self, t: float, q: ArrayLike, omega_body: ArrayLike) -> NDArray[np.float64]:
         q = as_float_array(q, "q", tail=(4,))
         w = as_float_array(omega_body, "omega_body", tail=(3,))
         if q.ndim != 1 or w.ndim != 1:
@@ -87,7 +89,7 @@ class TorqueModel(RowModel):
         return scratch[7:10].copy()
 
 
-def _vector(x, name):
+def _vector(x: ArrayLike, name: str) -> NDArray[np.float64]:
     a = as_float_array(x, name, tail=(3,))
     if a.ndim != 1:
         raise ValueError(f"{name} must have shape (3,), got {a.shape}")
@@ -126,7 +128,7 @@ class GravityTorque(TorqueModel):
     def rows(self) -> NDArray[np.float64]:
         return row(CROSS, self.lever, np.array([0.0, 0.0, -self.weight]))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"GravityTorque(weight={self.weight!r}, lever={self.lever.tolist()!r})"
 
 
@@ -147,14 +149,14 @@ class MagneticTorque(TorqueModel):
     array([0., 0., 2.])
     """
 
-    def __init__(self, dipole, field):
+    def __init__(self, dipole: ArrayLike, field: ArrayLike) -> None:
         self.dipole = _vector(dipole, "dipole")
         self.field = _vector(field, "field")
 
     def rows(self) -> NDArray[np.float64]:
         return row(CROSS, self.dipole, self.field)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"MagneticTorque(dipole={self.dipole.tolist()!r}, field={self.field.tolist()!r})"
 
 
@@ -175,7 +177,7 @@ class ConstantTorque(TorqueModel):
     array([0., 1., 0.])
     """
 
-    def __init__(self, torque, frame="body"):
+    def __init__(self, torque: ArrayLike, frame: str = "body") -> None:
         if frame not in ("body", "space"):
             raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
         self.torque = _vector(torque, "torque")
@@ -184,7 +186,7 @@ class ConstantTorque(TorqueModel):
     def rows(self) -> NDArray[np.float64]:
         return row(BODY if self.frame == "body" else SPACE, self.torque)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"ConstantTorque({self.torque.tolist()!r}, frame={self.frame!r})"
 
 
@@ -202,7 +204,7 @@ class LinearDamping(TorqueModel):
     array([-1.,  0.,  2.])
     """
 
-    def __init__(self, coefficient):
+    def __init__(self, coefficient: ArrayLike) -> None:
         c = as_float_array(coefficient, "coefficient")
         if c.ndim == 0:
             c = c * np.eye(3)
@@ -217,7 +219,7 @@ class LinearDamping(TorqueModel):
     def rows(self) -> NDArray[np.float64]:
         return row(DAMPING, self.coefficient)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"LinearDamping({self.coefficient.tolist()!r})"
 
 
@@ -234,7 +236,7 @@ class TorqueSum(RowSum, TorqueModel):
     family = TorqueModel
     noun = "torque"
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return " + ".join(repr(m) for m in self.models) or "TorqueSum()"
 
 
@@ -247,7 +249,7 @@ def to_principal(rows: NDArray[np.float64], axes: NDArray[np.float64] | None) ->
 
 
 @inlined
-def _torque_term(rows, i, q0, q1, q2, q3, y):
+def _torque_term(rows: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float, y: NDArray[np.float64]) -> tuple[float, float, float]:
     """Body torque of row ``i`` at the unit attitude ``q`` and the state ``y = (ω′, q, ...)``."""
     kind = int(rows[i, 0])
     if kind == SPACE:
@@ -267,7 +269,7 @@ def _torque_term(rows, i, q0, q1, q2, q3, y):
 
 
 @cached
-def evaluate_torque(rows, t, y, scratch):
+def evaluate_torque(rows: NDArray[np.float64] | None, t: float, y: NDArray[np.float64], scratch: NDArray[np.float64]) -> None:
     """Body torque of the model table (None: no torque) at ``y = (ω′, q, ...)`` into ``scratch[7:10]``.
 
     A separate (not inlined) function, so that numba compiles the None case

@@ -7,6 +7,7 @@ vanishes because hat(ω)ᵀω = 0), so ``ε′ = dω′/dt`` as well.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
 from .._compiled.outputs import deliver
@@ -27,7 +28,8 @@ __all__ = [
 ]
 
 
-def angular_acceleration(R, Rdot, Rddot, frame="space", *, out=None):
+def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame: str = "space", *,
+                         out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a rotation matrix and its first two derivatives.
 
     ``hat(ε) = skew(R̈ Rᵀ)`` (space) and ``hat(ε′) = skew(Rᵀ R̈)`` (body): the
@@ -67,7 +69,8 @@ def angular_acceleration(R, Rdot, Rddot, frame="space", *, out=None):
     return deliver(_skew_part_vee(Rt @ Rddot if body else Rddot @ Rt), out)
 
 
-def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
+def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLike, frame: str = "space", *,
+                                   out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a quaternion and its first two derivatives.
 
     With ``ω = 2 vec(q̇ q⁻¹)``: ``ε = 2 vec(q̈ q⁻¹ − (q̇ q⁻¹)²)`` (space) and
@@ -116,7 +119,8 @@ def angular_acceleration_from_quat(q, qdot, qddot, frame="space", *, out=None):
     return deliver(eps, out)
 
 
-def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out=None):
+def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot: ArrayLike, frame: str = "space", *,
+                                     out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a rotation vector and its first two derivatives.
 
     Differentiates the dexp map of Theory §3.4, ``ω = J(ψ) ψ̇``; the
@@ -148,7 +152,8 @@ def angular_acceleration_from_rotvec(psi, psidot, psiddot, frame="space", *, out
     return dexp.apply_jacobian_rate(psi, psidot, psiddot, sign, out=out)
 
 
-def angular_acceleration_from_euler(seq, angles, rates, accelerations, frame="space", degrees=False, *, out=None):
+def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLike, accelerations: ArrayLike,
+                                    frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from Euler angles and their first two derivatives (Theory §3.6, §3.9).
 
     With the rate-matrix columns c₀, c₁, c₂ in the order of the equivalent

@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from .._compiled.outputs import deliver
 from .._validation import out_of_range
 
@@ -25,7 +26,8 @@ __all__ = [
 ]
 
 
-def point_velocity(omega, r, reference_velocity=0.0, *, out=None):
+def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike = 0.0, *,
+                   out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (Theory §3.7).
 
     Parameters
@@ -52,7 +54,8 @@ def point_velocity(omega, r, reference_velocity=0.0, *, out=None):
     return deliver(three_term_velocity(omega, r, 0.0, reference_velocity).total, out)
 
 
-def point_acceleration(omega, epsilon, r, reference_acceleration=0.0, *, out=None):
+def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, reference_acceleration: ArrayLike = 0.0, *,
+                       out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Acceleration of a body-fixed point (Theory §3.9).
 
     ``a_P = a_C + ε × r_CP + ω × (ω × r_CP)``: translational, rotational
@@ -82,7 +85,8 @@ def point_acceleration(omega, epsilon, r, reference_acceleration=0.0, *, out=Non
     return deliver(five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total, out)
 
 
-def relative_derivative(omega, vector, relative_rate, *, out=None):
+def relative_derivative(omega: ArrayLike, vector: ArrayLike, relative_rate: ArrayLike, *,
+                        out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rate of change of a vector from its rate relative to the body (Theory §4.6).
 
     ``B′ = dA′/dt + ω′ × A′``: the components of B = dA/dt on the body axes
@@ -129,12 +133,12 @@ class VelocityTerms(NamedTuple):
     ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0])
     """
 
-    translational: np.ndarray  #: v_C, transport velocity of the reference point (平动牵连速度)
-    relative: np.ndarray  #: v_CP = R d r′_CP/dt, velocity relative to the body (相对速度)
-    rotational: np.ndarray  #: ω × r_CP, rotational transport velocity (转动牵连速度)
+    translational: NDArray[np.float64]  #: v_C, transport velocity of the reference point (平动牵连速度)
+    relative: NDArray[np.float64]  #: v_CP = R d r′_CP/dt, velocity relative to the body (相对速度)
+    rotational: NDArray[np.float64]  #: ω × r_CP, rotational transport velocity (转动牵连速度)
 
     @property
-    def total(self):
+    def total(self) -> NDArray[np.float64]:
         """The absolute velocity, the sum of the three terms."""
         return self.translational + self.relative + self.rotational
 
@@ -155,23 +159,24 @@ class AccelerationTerms(NamedTuple):
     [-0.5, 1.2, 0.0]
     """
 
-    translational: np.ndarray  #: a_C (平动牵连加速度)
-    tangential: np.ndarray  #: ε × r_CP, rotational transport acceleration (转动牵连加速度)
-    centripetal: np.ndarray  #: ω × (ω × r_CP), axipetal acceleration (向轴加速度)
-    relative: np.ndarray  #: a_CP = R d² r′_CP/dt², acceleration relative to the body (相对加速度)
-    coriolis: np.ndarray  #: 2 ω × v_CP (Coriolis 加速度)
+    translational: NDArray[np.float64]  #: a_C (平动牵连加速度)
+    tangential: NDArray[np.float64]  #: ε × r_CP, rotational transport acceleration (转动牵连加速度)
+    centripetal: NDArray[np.float64]  #: ω × (ω × r_CP), axipetal acceleration (向轴加速度)
+    relative: NDArray[np.float64]  #: a_CP = R d² r′_CP/dt², acceleration relative to the body (相对加速度)
+    coriolis: NDArray[np.float64]  #: 2 ω × v_CP (Coriolis 加速度)
 
     @property
-    def total(self):
+    def total(self) -> NDArray[np.float64]:
         """The absolute acceleration, the sum of the five terms."""
         return self.translational + self.tangential + self.centripetal + self.relative + self.coriolis
 
 
-def _as_vector(value):
+def _as_vector(value: ArrayLike) -> ArrayLike:
     return np.broadcast_to(np.asarray(value, dtype=float), (3,)) if np.ndim(value) == 0 else value
 
 
-def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
+def three_term_velocity(omega: ArrayLike, r: ArrayLike, relative_velocity: ArrayLike,
+                        reference_velocity: ArrayLike = 0.0) -> VelocityTerms:
     """Velocity of a point moving relative to a body: ``v_P = v_C + v_CP + ω × r_CP`` (Theory §4.7).
 
     Parameters
@@ -206,7 +211,8 @@ def three_term_velocity(omega, r, relative_velocity, reference_velocity=0.0):
     return VelocityTerms(*(np.array(np.broadcast_to(x, shape)) for x in (v_c, v_rel, rotational)))
 
 
-def five_term_acceleration(omega, epsilon, r, relative_velocity, relative_acceleration, reference_acceleration=0.0):
+def five_term_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, relative_velocity: ArrayLike,
+                           relative_acceleration: ArrayLike, reference_acceleration: ArrayLike = 0.0) -> AccelerationTerms:
     """Acceleration of a point moving relative to a body, as five named terms (Theory §4.7).
 
     ``a_P = a_C + ε × r_CP + ω × (ω × r_CP) + a_CP + 2 ω × v_CP``:

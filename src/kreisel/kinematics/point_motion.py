@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 from math import factorial
-from typing import NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import finite_array
 from .._validation import as_float_array
 from ..so3 import quat_apply
-from ..so3._coercion import as_quaternion
+from ..so3._coercion import RotationLike, as_quaternion
 from .acceleration import angular_acceleration_from_quat
 from .motion import point_acceleration, point_velocity
 from .rates import angular_velocity_from_quat_rate
@@ -38,12 +39,25 @@ class PointMotion(NamedTuple):
     True
     """
 
-    position: np.ndarray
-    velocity: np.ndarray
-    acceleration: np.ndarray
+    position: NDArray[np.float64]
+    velocity: NDArray[np.float64]
+    acceleration: NDArray[np.float64]
 
 
-def _difference_weights(t, order, width=5):
+class _Samples(Protocol):
+    """What :func:`point_trajectory` reads from a Trajectory (a higher layer: not imported here)."""
+
+    @property
+    def t(self) -> NDArray[np.float64]: ...
+
+    @property
+    def q(self) -> NDArray[np.float64]: ...
+
+    @property
+    def omega(self) -> NDArray[np.float64]: ...
+
+
+def _difference_weights(t: NDArray[np.float64], order: int, width: int = 5) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
     """Finite-difference stencils on a (possibly non-uniform) grid.
 
     Each sample uses the ``width`` nearest samples (centred inside, shifted
@@ -62,19 +76,22 @@ def _difference_weights(t, order, width=5):
     return index, np.linalg.solve(vandermonde, rhs[..., None])[..., 0] / h**order
 
 
-def _time_derivative(x, t, order=1):
+def _time_derivative(x: NDArray[np.float64], t: NDArray[np.float64], order: int = 1) -> NDArray[np.float64]:
     index, weights = _difference_weights(t, order)
-    return np.einsum("...nkc,nk->...nc", x[..., index, :], weights)
+    derivative: NDArray[np.float64] = np.einsum("...nkc,nk->...nc", x[..., index, :], weights)
+    return derivative
 
 
-def _continuous(q):
+def _continuous(q: NDArray[np.float64]) -> NDArray[np.float64]:
     # q and -q are the same attitude; differentiate a sign-continuous sequence.
     flips = np.cumsum(np.sum(q[..., 1:, :] * q[..., :-1, :], axis=-1) < 0.0, axis=-1) % 2
     sign = np.concatenate([np.ones(q.shape[:-2] + (1,)), np.where(flips == 1, -1.0, 1.0)], axis=-1)
-    return q * sign[..., None]
+    continuous: NDArray[np.float64] = q * sign[..., None]
+    return continuous
 
 
-def point_trajectory(body_point, t=None, rotation=None, translation=None, trajectory=None):
+def point_trajectory(body_point: ArrayLike, t: ArrayLike | None = None, rotation: RotationLike | None = None,
+                     translation: ArrayLike | None = None, trajectory: _Samples | None = None) -> PointMotion:
     """Path, velocity and acceleration of a body point of a moving rigid body (Theory §3.7, §3.9).
 
     ``r_P = R r′_CP + r_C``, ``v_P = ω × r_CP + v_C`` and

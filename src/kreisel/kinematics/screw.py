@@ -9,9 +9,11 @@ through ``r_A = r_C + ω × v_C / |ω|²`` along ω, and the pitch is
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array, out_of_range
 from .._compiled.outputs import deliver
@@ -19,6 +21,9 @@ from ._checks import batch_shape, vectors
 from .._norms import norm
 
 __all__ = ["ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "centrodes"]
+
+#: a quantity given as a function of the sample times (vectorised over t)
+_TimeFunction = Callable[[NDArray[np.float64]], ArrayLike]
 
 
 class ScrewAxis(NamedTuple):
@@ -37,14 +42,15 @@ class ScrewAxis(NamedTuple):
     ([0.0, 0.0, 1.0], [0.0, 0.0, 0.02])
     """
 
-    kind: np.ndarray  #: "translation", "rotation" or "screw" (str for a single twist)
-    point: np.ndarray  #: point of the axis nearest the reference point (NaN for a translation)
-    direction: np.ndarray  #: unit vector along ω (along v for a translation; NaN at rest)
-    pitch: np.ndarray  #: h = ω·v/|ω|², metres per radian (0 for a rotation, inf for a translation)
-    axial_velocity: np.ndarray  #: velocity of the points on the axis, h ω (v itself for a translation)
+    kind: NDArray[np.str_] | str  #: "translation", "rotation" or "screw" (str for a single twist)
+    point: NDArray[np.float64]  #: point of the axis nearest the reference point (NaN for a translation)
+    direction: NDArray[np.float64]  #: unit vector along ω (along v for a translation; NaN at rest)
+    pitch: NDArray[np.float64]  #: h = ω·v/|ω|², metres per radian (0 for a rotation, inf for a translation)
+    axial_velocity: NDArray[np.float64]  #: velocity of the points on the axis, h ω (v itself for a translation)
 
 
-def screw_axis(omega, velocity, point=0.0, rtol=1e-12, omega_atol=0.0):
+def screw_axis(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, rtol: float = 1e-12,
+               omega_atol: float = 0.0) -> ScrewAxis:
     """Classify the instantaneous motion and find its screw axis (Theory §3.8, Chasles/Mozzi).
 
     Parameters
@@ -103,17 +109,17 @@ def screw_axis(omega, velocity, point=0.0, rtol=1e-12, omega_atol=0.0):
     rotation = rotating & (np.abs(wv) <= rtol * vn)
     pitch = np.where(rotation, 0.0, pitch)
     axial = np.where(rotation[..., None], 0.0, axial)
-    kind = np.where(translation, "translation", np.where(rotation, "rotation", "screw"))
-    if kind.ndim == 0:
-        kind = str(kind)
+    kinds = np.where(translation, "translation", np.where(rotation, "rotation", "screw"))
+    kind = str(kinds) if kinds.ndim == 0 else kinds
     return ScrewAxis(kind, axis_point, direction, pitch, axial)
 
 
-def _planar(x, name, shape_tail):
+def _planar(x: ArrayLike, name: str, shape_tail: tuple[int, ...]) -> NDArray[np.float64]:
     return as_float_array(x, name, shape_tail)
 
 
-def instantaneous_centre(omega, velocity, point=0.0, *, out=None):
+def instantaneous_centre(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, *,
+                         out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Instantaneous centre of a planar motion (Theory §3.8).
 
     For ω ≠ 0 the point with zero velocity is unique:
@@ -168,34 +174,36 @@ class Centrodes(NamedTuple):
     True
     """
 
-    t: np.ndarray  #: sample times, (n,)
-    space: np.ndarray  #: instantaneous centre in the fixed plane, (..., n, 2)
-    body: np.ndarray  #: the same points in body coordinates (origin C, axes turned by the angle), (..., n, 2)
+    t: NDArray[np.float64]  #: sample times, (n,)
+    space: NDArray[np.float64]  #: instantaneous centre in the fixed plane, (..., n, 2)
+    body: NDArray[np.float64]  #: the same points in body coordinates (origin C, axes turned by the angle), (..., n, 2)
 
 
-def _richardson_derivative(f, t, h):
+def _richardson_derivative(f: _TimeFunction, t: NDArray[np.float64], h: float) -> NDArray[np.float64]:
     # central differences at h, h/2, h/4 combined to cancel the h² and h⁴ terms
-    def central(step):
-        return (np.asarray(f(t + step), dtype=float) - np.asarray(f(t - step), dtype=float)) / (2.0 * step)
+    def central(step: float) -> NDArray[np.float64]:
+        difference: NDArray[np.float64] = np.asarray(f(t + step), dtype=float) - np.asarray(f(t - step), dtype=float)
+        return difference / (2.0 * step)
 
     d1, d2, d4 = central(h), central(h / 2), central(h / 4)
     e2 = (4.0 * d2 - d1) / 3.0
     e4 = (4.0 * d4 - d2) / 3.0
-    return (16.0 * e4 - e2) / 15.0
+    derivative: NDArray[np.float64] = (16.0 * e4 - e2) / 15.0
+    return derivative
 
 
-def _sampled(value, rate, t, name, time_axis):
+def _sampled(value: ArrayLike | _TimeFunction, rate: ArrayLike | _TimeFunction | None, t: NDArray[np.float64], name: str,
+             time_axis: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Values and rates at t from arrays (rates by np.gradient) or callables (Richardson)."""
+    v: ArrayLike
     if callable(value):
         v = np.asarray(value(t), dtype=float)
         if rate is None:
             h = 1e-3 * max(1.0, float(np.ptp(t)))
-            r = _richardson_derivative(value, t, h)
-        else:
-            r = rate(t) if callable(rate) else rate
+            rate = _richardson_derivative(value, t, h)
     else:
         v = value
-        r = rate
+    r: ArrayLike | None = rate(t) if callable(rate) else rate
     v = as_float_array(v, name)
     if v.ndim <= time_axis or v.shape[time_axis if time_axis < 0 else time_axis] != t.size:
         raise ValueError(f"{name} must have {t.size} samples along its time axis, got shape {v.shape}")
@@ -213,7 +221,9 @@ def _sampled(value, rate, t, name, time_axis):
     return v, r
 
 
-def centrodes(t, angle, position, angle_rate=None, velocity=None):
+def centrodes(t: ArrayLike, angle: ArrayLike | _TimeFunction, position: ArrayLike | _TimeFunction,
+              angle_rate: ArrayLike | _TimeFunction | None = None,
+              velocity: ArrayLike | _TimeFunction | None = None) -> Centrodes:
     """Space and body centrodes (polodes) of a planar motion (Theory §3.8).
 
     The body pose at time t is its angle θ(t) (counter-clockwise) and the

@@ -6,6 +6,8 @@ Trajectories of body points of a moving body are
 
 from __future__ import annotations
 
+from numpy.typing import ArrayLike
+
 from .._validation import as_float_array
 from . import lie
 from .transform import RigidTransform
@@ -13,13 +15,13 @@ from .transform import RigidTransform
 __all__ = ["sclerp"]
 
 
-def _transform(x, name):
+def _transform(x: object, name: str) -> RigidTransform:
     if not isinstance(x, RigidTransform):
         raise TypeError(f"{name} must be a RigidTransform, got {type(x).__name__}")
     return x
 
 
-def sclerp(start, end, fraction):
+def sclerp(start: RigidTransform, end: RigidTransform, fraction: ArrayLike) -> RigidTransform:
     """Screw linear interpolation ``T(s) = T₀ exp(s log(T₀⁻¹ T₁))`` between poses.
 
     The body moves from ``start`` to ``end`` along the single screw motion

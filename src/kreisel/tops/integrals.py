@@ -21,10 +21,17 @@ kreisel knows of: :func:`first_integrals` then returns none.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..so3 import quat_apply
+
+if TYPE_CHECKING:
+    from ..dynamics.torques import TorqueModel
+    from ..dynamics.trajectory import Trajectory
 
 __all__ = ["FirstIntegral", "FirstIntegrals", "first_integrals"]
 
@@ -61,10 +68,10 @@ class FirstIntegral:
     symbol: str
     name: str
     unit: str
-    values: np.ndarray
-    scale: np.ndarray
+    values: NDArray[np.float64]
+    scale: NDArray[np.float64]
 
-    def relative_change(self):
+    def relative_change(self) -> NDArray[np.float64]:
         """Largest |value(t) − value(t0)| over the trajectory, divided by ``scale`` (batch shape).
 
         Examples
@@ -78,15 +85,16 @@ class FirstIntegral:
         """
         change = self.values - self.values[..., :1, :] if self.is_vector else self.values - self.values[..., :1]
         size = np.linalg.norm(change, axis=-1) if self.is_vector else np.abs(change)
-        return np.max(size, axis=-1) / self.scale
+        relative: NDArray[np.float64] = np.max(size, axis=-1) / self.scale
+        return relative
 
     @property
-    def is_vector(self):
+    def is_vector(self) -> bool:
         """True for a vector integral (the space J of a free body)."""
         return self.symbol == "J"
 
     @property
-    def initial(self):
+    def initial(self) -> NDArray[np.float64]:
         """The value at the first sample."""
         return self.values[..., 0, :] if self.is_vector else self.values[..., 0]
 
@@ -114,16 +122,16 @@ class FirstIntegrals:
     """
 
     model: str
-    integrals: tuple
+    integrals: tuple[FirstIntegral, ...]
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[FirstIntegral]:
         return iter(self.integrals)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.integrals)
 
 
-def first_integrals(traj, torque=None):
+def first_integrals(traj: Trajectory, torque: TorqueModel | Callable[..., ArrayLike] | None = None) -> FirstIntegrals:
     """The first integrals of the model that produced ``traj``, sampled along it.
 
     Parameters
@@ -198,23 +206,25 @@ def first_integrals(traj, torque=None):
     return FirstIntegrals(model, tuple(found))
 
 
-def _positive(scale):
+def _positive(scale: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.where(scale > 0, scale, 1.0)
 
 
-def _gravity(torque):
+def _gravity(torque: object) -> tuple[float, NDArray[np.float64]] | None:
     """``(weight, lever)`` of a gravity torque (or a sum of them), None if ``torque`` is not one."""
     from ..dynamics.torques import GravityTorque, TorqueSum
 
-    parts = torque.models if isinstance(torque, TorqueSum) else [torque]
-    if not all(isinstance(part, GravityTorque) for part in parts):
+    parts = torque.models if isinstance(torque, TorqueSum) else (torque,)
+    gravity = [part for part in parts if isinstance(part, GravityTorque)]
+    if len(gravity) != len(parts):
         return None
-    weight = sum(part.weight for part in parts)
-    moment = sum(part.weight * part.lever for part in parts)   # Σ m_i g l_i = (Σ m_i g) l_centre
+    weight = sum((part.weight for part in gravity), 0.0)
+    moment = sum((part.weight * part.lever for part in gravity), np.zeros(3))   # Σ m_i g l_i = (Σ m_i g) l_centre
     return weight, moment / weight if weight > 0.0 else moment
 
 
-def _kovalevskaya(moments, axes, lever, weight, omega, up):
+def _kovalevskaya(moments: NDArray[np.float64], axes: NDArray[np.float64], lever: NDArray[np.float64], weight: float, omega: NDArray[np.float64],
+                  up: NDArray[np.float64]) -> FirstIntegral | None:
     """Kovalevskaya's K (Theory §7) if the body and lever are Kovalevskaya's case, else None."""
     short = int(np.argmin(moments))
     others = [m for i, m in enumerate(moments) if i != short]

@@ -11,8 +11,10 @@ the area integral J·γ, the geometric |γ|² = 1 and Kovalevskaya's
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
 from ..dynamics import GravityTorque, simulate
@@ -48,10 +50,10 @@ class KovalevskayaIntegrals:
     (0.79, 1.0, 1.0)
     """
 
-    energy: np.ndarray
-    area: np.ndarray
-    geometric: np.ndarray
-    kovalevskaya: np.ndarray
+    energy: NDArray[np.float64]
+    area: NDArray[np.float64]
+    geometric: NDArray[np.float64]
+    kovalevskaya: NDArray[np.float64]
 
 
 class KovalevskayaTop:
@@ -73,15 +75,18 @@ class KovalevskayaTop:
     0.0841
     """
 
-    def __init__(self, I3, mgl):
+    I3: float
+    mgl: float
+
+    def __init__(self, I3: float, mgl: float) -> None:
         self.I3, self.mgl = _check_moments((I3, mgl), ("I3", "mgl"))
         self.moments = np.array([2.0 * self.I3, 2.0 * self.I3, self.I3])
         self.c = self.mgl / self.I3
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"KovalevskayaTop(I3={self.I3:g}, mgl={self.mgl:g})"
 
-    def integrals(self, omega, gamma):
+    def integrals(self, omega: ArrayLike, gamma: ArrayLike) -> KovalevskayaIntegrals:
         """The four integrals for body ω = (p, q, r) and upward vertical γ, broadcast.
 
         Parameters
@@ -120,7 +125,8 @@ class KovalevskayaTop:
             kovalevskaya=(p * p - q * q - c * g1) ** 2 + (2.0 * p * q - c * g2) ** 2,
         )
 
-    def simulate(self, t, omega0, q0=None, method=None, **options):
+    def simulate(self, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None, method: str | None = None,
+                 **options: Any) -> Trajectory:
         """Integrate with :func:`kreisel.simulate` and :class:`kreisel.dynamics.GravityTorque`.
 
         Weight ``mgl`` at the body lever (1, 0, 0): only m g l enters. ``options``

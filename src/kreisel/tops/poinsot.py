@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
 from .._norms import norm, unit
@@ -58,16 +59,16 @@ class PoinsotGeometry:
     (0.585408150526, 0.585408150526)
     """
 
-    t: np.ndarray
-    polhode: np.ndarray
-    herpolhode: np.ndarray
-    herpolhode_space: np.ndarray
-    plane_normal: np.ndarray
+    t: NDArray[np.float64]
+    polhode: NDArray[np.float64]
+    herpolhode: NDArray[np.float64]
+    herpolhode_space: NDArray[np.float64]
+    plane_normal: NDArray[np.float64]
     plane_distance: float
-    inertia_ellipsoid_axes: np.ndarray
+    inertia_ellipsoid_axes: NDArray[np.float64]
 
 
-def poinsot(top, t, omega0, q0=None):
+def poinsot(top: EulerTop, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None) -> PoinsotGeometry:
     """Polhode and herpolhode of the free top started with body ω0 (and attitude q0).
 
     Parameters

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float, as_float_array, check_frame
 from ..dynamics.trajectory import Trajectory
@@ -89,14 +90,17 @@ class SymmetricTop:
     [[0.0, 1.047198, 0.0], [1.0, 1.047198, -0.25]]
     """
 
-    def __init__(self, I1, I3):
+    I1: float
+    I3: float
+
+    def __init__(self, I1: float, I3: float) -> None:
         self.I1, self.I3 = _check_moments((I1, I3), ("I1", "I3"))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"SymmetricTop(I1={self.I1:g}, I3={self.I3:g})"
 
     @staticmethod
-    def _check_state(J, theta0):
+    def _check_state(J: float, theta0: float) -> tuple[float, float]:
         J = as_float(J, "J")
         if J < 0.0:
             raise ValueError(f"J must be the magnitude |J| >= 0, got {J}")
@@ -105,7 +109,7 @@ class SymmetricTop:
             raise ValueError(f"theta0 must lie in [0, pi], got {theta0}")
         return J, theta0
 
-    def precession_rate(self, J):
+    def precession_rate(self, J: float) -> float:
         """φ̇ = J/I1: rate of the symmetry axis (and of ω) about J in space, rad/s.
 
         Independent of I3 and of the tilt θ0 (Theory §5.7).
@@ -117,7 +121,7 @@ class SymmetricTop:
         """
         return as_float(J, "J") / self.I1
 
-    def body_precession_rate(self, J, theta0):
+    def body_precession_rate(self, J: float, theta0: float) -> float:
         """Ω = (I3 − I1) J cos θ0/(I1 I3): rate of ω about the symmetry axis in the body (= −ψ̇).
 
         Examples
@@ -135,9 +139,9 @@ class SymmetricTop:
         305.0
         """
         J, theta0 = self._check_state(J, theta0)
-        return (self.I3 - self.I1) * J * np.cos(theta0) / (self.I1 * self.I3)
+        return float((self.I3 - self.I1) * J * np.cos(theta0) / (self.I1 * self.I3))
 
-    def euler_angles(self, t, J, theta0, phi0=0.0, psi0=0.0):
+    def euler_angles(self, t: ArrayLike, J: float, theta0: float, phi0: float = 0.0, psi0: float = 0.0) -> NDArray[np.float64]:
         """ZXZ angles (φ, θ, ψ) at times ``t``, shape (n, 3) (Theory §5.7 (3)).
 
         Examples
@@ -155,7 +159,8 @@ class SymmetricTop:
         psi = -self.body_precession_rate(J, theta0) * t + as_float(psi0, "psi0")
         return np.stack([phi, np.full_like(t, theta0), psi], axis=-1)
 
-    def angular_velocity(self, t, J, theta0, phi0=0.0, psi0=0.0, frame="body"):
+    def angular_velocity(self, t: ArrayLike, J: float, theta0: float, phi0: float = 0.0, psi0: float = 0.0,
+                         frame: str = "body") -> NDArray[np.float64]:
         """ω at times ``t`` from the chapter's closed forms (Theory §5.7 (4) body, (5) space).
 
         Body: ω1 = (J sin θ0/I1) sin ψ, ω2 = (J sin θ0/I1) cos ψ, ω3 = J cos θ0/I3;
@@ -186,9 +191,10 @@ class SymmetricTop:
             return np.stack([transverse * np.sin(psi), transverse * np.cos(psi), J * np.cos(theta) / self.I3], axis=-1)
         axial = (1.0 / self.I3 - 1.0 / self.I1) * J * np.cos(theta)
         e3 = np.stack([np.sin(theta) * np.sin(phi), -np.sin(theta) * np.cos(phi), np.cos(theta)], axis=-1)
-        return axial[..., None] * e3 + np.array([0.0, 0.0, J / self.I1])
+        space: NDArray[np.float64] = axial[..., None] * e3 + np.array([0.0, 0.0, J / self.I1])
+        return space
 
-    def solve(self, t, J, theta0, phi0=0.0, psi0=0.0):
+    def solve(self, t: ArrayLike, J: float, theta0: float, phi0: float = 0.0, psi0: float = 0.0) -> Trajectory:
         """Trajectory of the regular precession, J along space z.
 
         Examples
@@ -203,7 +209,7 @@ class SymmetricTop:
         meta = {"method": "closed form", "body": "SymmetricTop", "J": J, "theta0": theta0}
         return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=angles)
 
-    def cones(self, J, theta0):
+    def cones(self, J: float, theta0: float) -> Cones:
         """Half-angles, relative position and senses of the body and space cones.
 
         Examples

@@ -9,13 +9,15 @@ from __future__ import annotations
 import json
 import math
 import pathlib
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .._compiled.chunks import StepBudgetExceeded
 from ..dynamics.engine import METHODS as DYNAMICS_METHODS
 from ..dynamics.engine import ADAPTIVE
-from ..dynamics import simulate
+from ..dynamics import Trajectory, simulate
 from ..io import ScenarioError, parse_scenario
 from ..io.run import build_body, initial_attitude, torque_model
 from ..kinematics import euler_rates
@@ -307,7 +309,7 @@ class IntegralChanges:
                 for symbol, f in self.first.items()]
 
 
-def samples(traj, gravity):
+def samples(traj: Trajectory, gravity: tuple[float, NDArray[np.float64]] | None) -> dict[str, NDArray[np.float64]]:
     """The arrays the viewer shows at each sample: t, q, ω′, ω space, J space, |J|, energy and kinetic energy."""
     kinetic = traj.energy
     potential = np.zeros_like(kinetic)
@@ -342,7 +344,7 @@ def rigid_body_result(scenario, traj):
     return {**rigid_body_header(scenario, traj), **_lists(arrays), "integrals": integrals.summary()}
 
 
-def analysis(traj, gravity):
+def analysis(traj: Trajectory, gravity: tuple[float, NDArray[np.float64]] | None) -> dict[str, Any]:
     """T, J, stability of the principal axes and, for a Lagrange top, the nutation range (Theory §5, §6)."""
     from ..inertia import principal_axes
 
