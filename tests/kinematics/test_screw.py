@@ -103,6 +103,11 @@ def test_ladder_centrodes():
     end_a = np.array([-L / 2, 0.0])  # the ladder lies along the body x axis, ends at ±L/2
     end_b = np.array([L / 2, 0.0])
     np.testing.assert_allclose(np.einsum("ij,ij->i", c.body - end_a, c.body - end_b), 0.0, atol=1e-9)
+    # sampled values with their rates given as functions of t: the same centrodes
+    sampled = centrodes(t, -t, midpoint(t), angle_rate=lambda s: -np.ones_like(s),
+                        velocity=lambda s: np.stack([-L * np.sin(s) / 2, L * np.cos(s) / 2], -1))
+    np.testing.assert_allclose(sampled.space, c.space, atol=1e-10)
+    np.testing.assert_allclose(sampled.body, c.body, atol=1e-10)
 
 
 def test_centrode_batches_and_bad_input():
