@@ -133,7 +133,7 @@ def larmor_precession_rate(magnetic_field: ArrayLike, charge: ArrayLike = ELEMEN
     # instead of passing through a subnormal or an overflowing product
     (mq, eq), (mb, eb), (mm, em) = np.frexp(np.abs(q)), np.frexp(b), np.frexp(m)
     with np.errstate(over="ignore"):
-        rate = np.ldexp(mq * mb / mm, eq + eb - em - 1)
+        rate: NDArray[np.float64] = np.ldexp(mq * mb / mm, eq + eb - em - 1)
     if not np.all(np.isfinite(rate)):
         raise ValueError("magnetic_field, charge and mass are out of range: the Larmor rate |charge| magnetic_field"
                          "/(2 mass) exceeds 1.8e308 rad/s, the largest double")
