@@ -347,7 +347,7 @@ _ROTVEC_RANGE_SQUARED = ROTVEC_RANGE * ROTVEC_RANGE
 
 
 @cached
-def rotvec_in_range(x, y, z):
+def rotvec_in_range(x: float, y: float, z: float) -> bool:
     """Whether ``(x, y, z)`` is finite and at most :data:`~kreisel._validation.ROTVEC_RANGE` long."""
     return x * x + y * y + z * z <= _ROTVEC_RANGE_SQUARED
 
