@@ -188,7 +188,8 @@ CHILD = textwrap.dedent("""
         "simulate_particle_callable_force": [
             lambda t: kr.frames.simulate_particle(t, [1, 0, 0], [0, -1, 0], [0, 0, 1], force=lambda tt, r, v: -r),
         ],
-        "foucault_pendulum": [lambda t: kr.earth.foucault_pendulum(1.0, 45.0, 1e-2 * t[-1], 0.1)],
+        # at least 2 s: a run shorter than half a swing (1 s) measures no swing plane and is refused
+        "foucault_pendulum": [lambda t: kr.earth.foucault_pendulum(1.0, 45.0, max(1e-2 * t[-1], 2.0), 0.1)],
     }[sys.argv[1]]
     for run in runs:
         # compile (or load) first, over a span that compiles every kernel the long run uses; the 1e12

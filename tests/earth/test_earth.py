@@ -210,3 +210,15 @@ def test_deflection_formulas_scale_without_overflow_or_refuse():
     assert np.isfinite(east) and np.isfinite(north)
     with pytest.raises(ValueError, match="speed, g and omega are out of range: the deviation exceeds"):
         E.shell_deviation_estimate(1e200, 45.0, 30.0, 40.0)
+    # the integrated deviation grows as speed² far out (a landing-time estimate squared vz from 1e154 m/s)
+    near, far = np.array(E.shell_deviation(1e140, 30.0, 20.0, 40.0)), np.array(E.shell_deviation(1e150, 30.0, 20.0, 40.0))
+    np.testing.assert_allclose(far / 1e300, near / 1e280, rtol=1e-8)
+    with pytest.raises(ValueError, match="speed, g and omega are out of range: the range of the shell exceeds"):
+        E.shell_deviation(1e202, 30.0, 20.0, 40.0)
+
+
+def test_drop_from_far_out_is_scale_free():
+    # far above g/ω² the drop is the inertial straight line seen from the turning Earth frame, so the
+    # deviations grow as the height; from 5e149 m the integrator's error norm once overflowed its squares
+    base = np.array(E.simulate_drop(5e100, 40.0)) / 5e100
+    np.testing.assert_allclose(np.array(E.simulate_drop(5e149, 40.0)) / 5e149, base, rtol=1e-8)

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 from scipy.integrate import solve_ivp
+from scipy.spatial.transform import Rotation
 
 import kreisel as kr
 
@@ -181,3 +182,17 @@ def test_inertial_forces_beyond_the_largest_double_are_refused():
     # the centrifugal force m ω × (ω × r) at |ω| = 1e155 rad/s: a refusal naming the inputs, not numpy's overflow
     with pytest.raises(ValueError, match=r"r, v, omega, omega_dot, a0 and mass are out of range: an inertial force"):
         F.inertial_forces([1.0, 0.5, 0.0], [0.0, 0.0, 0.0], [1e155, 0.0, 2e155])
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e148, 1e200])
+def test_free_particle_far_out_in_a_rotating_frame_is_the_rotated_straight_line(scale):
+    # |r0| = 1e148 m: accelerations ~1e148 against a velocity tolerance of 1e-12 once overflowed the squares
+    # of the integrator's error norm ('step fell below round-off'); the exact motion is the inertial straight
+    # line seen from the turning frame, R(−ω t)(r0 + (v0 + ω × r0) t)
+    r0, v0, w = np.array([0.359, 1.511, -1.786]) * scale, np.array([1.687, -0.047, -0.8]), np.array([-0.8, -1.1, -0.2])
+    t = np.linspace(0.0, 1.0, 5)
+    traj = F.simulate_particle(t, r0, v0, w)
+    inertial = r0 + np.outer(t, v0 + np.cross(w, r0))
+    exact = np.array([Rotation.from_rotvec(-w * s).apply(x) for s, x in zip(t, inertial)])
+    np.testing.assert_allclose(traj.r, exact, rtol=0, atol=2e-11 * np.abs(exact).max())
+    assert np.all(traj.potential == 0.0)  # no field, no spring (r² of 1e200 m once made it NaN)

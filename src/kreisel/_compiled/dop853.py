@@ -72,17 +72,34 @@ def check_status(status, messages=MESSAGES):
 
 
 @generic
+def _scaled_rms(u, v, c, y, rtol, atol):
+    """RMS of (u − c v)/(atol + rtol |y|), without overflowing its squares where the RMS is representable."""
+    ny = y.size
+    total = 0.0
+    for i in range(ny):
+        total += ((u[i] - c * v[i]) / (atol[i] + abs(y[i]) * rtol)) ** 2
+    if math.isfinite(total):
+        return math.sqrt(total / ny)
+    # a derivative ~1e154 times the scale of a component (a body or particle far out): ratios divided by
+    # the largest before squaring
+    big = 0.0
+    for i in range(ny):
+        big = max(big, abs((u[i] - c * v[i]) / (atol[i] + abs(y[i]) * rtol)))
+    total = 0.0
+    for i in range(ny):
+        total += ((u[i] - c * v[i]) / (atol[i] + abs(y[i]) * rtol) / big) ** 2
+    return big * math.sqrt(total / ny)
+
+
+@generic
 def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     """Starting step of Hairer's algorithm (scipy's ``select_initial_step``), at most ``span``."""
     ny = y.size
     d0 = 0.0
-    d1 = 0.0
     for i in range(ny):
-        scale = atol[i] + abs(y[i]) * rtol
-        d0 += (y[i] / scale) ** 2
-        d1 += (f[i] / scale) ** 2
+        d0 += (y[i] / (atol[i] + abs(y[i]) * rtol)) ** 2
     d0 = math.sqrt(d0 / ny)
-    d1 = math.sqrt(d1 / ny)
+    d1 = _scaled_rms(f, f, 0.0, y, rtol, atol)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     h0 = min(h0, span)
     if not h0 > 0.0:
@@ -92,11 +109,7 @@ def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     for i in range(ny):
         tmp[i] = y[i] + h0 * f[i]
     rhs(t + h0, tmp, args, probe, 0)
-    d2 = 0.0
-    for i in range(ny):
-        scale = atol[i] + abs(y[i]) * rtol
-        d2 += ((probe[i] - f[i]) / scale) ** 2
-    d2 = math.sqrt(d2 / ny) / h0
+    d2 = _scaled_rms(probe, f, 1.0, y, rtol, atol) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
@@ -136,20 +149,29 @@ def attempt(rhs, args, t, y, h, tables, k, tmp, y_new):
 def error_norm(y, y_new, h, k, E3, E5, rtol, atol):
     """Hairer's combined 5th/3rd-order error estimate, scaled RMS; ``inf`` when not finite."""
     ny = y.size
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(ny):
-        scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-        a5 = 0.0
-        a3 = 0.0
-        for r in range(N_STAGES + 1):
-            a5 += E5[r] * k[r * ny + i]
-            a3 += E3[r] * k[r * ny + i]
-        e5 += (a5 / scale) ** 2
-        e3 += (a3 / scale) ** 2
-    if e5 == 0.0 and e3 == 0.0:
-        return 0.0
-    err = abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * ny)
+    # first with big = 1; if the squares overflow (derivatives ~1e154 times the scale of a component),
+    # again with every ratio divided by the largest: the same norm, big e5/√(e5 + 0.01 e3) of the ratios
+    big = 1.0
+    for attempt in range(2):
+        e5 = 0.0
+        e3 = 0.0
+        largest = 0.0
+        for i in range(ny):
+            scale = (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol) * big
+            a5 = 0.0
+            a3 = 0.0
+            for r in range(N_STAGES + 1):
+                a5 += E5[r] * k[r * ny + i]
+                a3 += E3[r] * k[r * ny + i]
+            e5 += (a5 / scale) ** 2
+            e3 += (a3 / scale) ** 2
+            largest = max(largest, abs(a5 / scale), abs(a3 / scale))
+        if e5 == 0.0 and e3 == 0.0:
+            return 0.0
+        err = abs(h) * big * e5 / math.sqrt((e5 + 0.01 * e3) * ny)
+        if math.isfinite(err) or not 0.0 < largest < np.inf:
+            break
+        big = largest
     return err if math.isfinite(err) else np.inf
 
 

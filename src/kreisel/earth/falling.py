@@ -138,7 +138,7 @@ def _land(position, velocity, latitude_deg, g, omega):
     y0 = np.concatenate([position, velocity]).astype(np.float64)
     # flight time without rotation; steps of an eighth of it keep the landing search well posed
     vz = velocity[2]
-    flight = (vz + np.sqrt(vz * vz + 2.0 * g * position[2])) / g
+    flight = (vz + np.hypot(vz, np.sqrt(2.0 * g * position[2]))) / g  # hypot: vz² overflows from 1e154 m/s
     status, t, y = _land_kernel(p, y0, 1e-13, np.full(6, 1e-13), flight / 8.0, _dop853.tableau())
     _dop853.check_status(status)
     return t, y
@@ -250,13 +250,14 @@ def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, 
     v0 = _muzzle_velocity(speed, el, az)
     east = np.empty(speed.shape)
     north = np.empty(speed.shape)
-    for idx in np.ndindex(speed.shape):
-        _, y = _land(np.zeros(3), v0[idx], lat[idx], g[idx], w[idx])
-        reach = speed[idx] ** 2 * np.sin(2.0 * np.deg2rad(el[idx])) / g[idx]
-        direction = np.deg2rad(az[idx])
-        east[idx] = y[0] - reach * np.cos(direction)
-        north[idx] = y[1] - reach * np.sin(direction)
-    return east, north
+    with out_of_range("speed, g and omega", "the range of the shell") as guard:
+        for idx in np.ndindex(speed.shape):
+            _, y = _land(np.zeros(3), v0[idx], lat[idx], g[idx], w[idx])
+            reach = speed[idx] * (speed[idx] * np.sin(2.0 * np.deg2rad(el[idx])) / g[idx])
+            direction = np.deg2rad(az[idx])
+            east[idx] = y[0] - reach * np.cos(direction)
+            north[idx] = y[1] - reach * np.sin(direction)
+        return guard.check(east, north)
 
 
 def shell_deviation_estimate(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, omega=OMEGA_EARTH):

@@ -354,7 +354,8 @@ def simulate_particle(
     _dop853.check_status(status)
     r, v = y[:, :3], y[:, 3:]
     if force is None:
-        potential = mass * (-(r @ gravity) + 0.5 * spring * np.sum(r * r, axis=-1))
+        # without a spring no r² term: r² overflows from 1e154 m, and 0 times it is NaN
+        potential = mass * (-(r @ gravity) + (0.5 * spring * np.sum(r * r, axis=-1) if spring else 0.0))
     else:
         potential = None
     return ParticleTrajectory(t, r, v, omega_t, a0_t, potential, mass)
