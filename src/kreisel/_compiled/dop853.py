@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import cached, generic
+from .kernels import quat_unit
 
 OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
 PAUSED = 4
@@ -244,14 +245,22 @@ def dense_coefficients(rhs, args, t, y, y_new, h, tables, k, tmp, dense):
 
 
 @cached
+def interpolated(x, y, d0, d1, d2, d3, d4, d5, d6):
+    """One component at the fraction ``x`` ∈ [0, 1] of the last step: ``y`` at its start, ``d`` its column of ``dense``.
+
+    Takes numbers, not arrays: the sample loop of :func:`integrate_steps`
+    then hands no array over per sample (a reference count update each).
+    """
+    u = 1.0 - x
+    return ((((((d6 * x + d5) * u + d4) * x + d3) * u + d2) * x + d1) * u + d0) * x + y
+
+
+@cached
 def interpolate(dense, y, x, out):
     """``out`` = the state at the fraction ``x`` ∈ [0, 1] of the step that starts at ``y``."""
     for i in range(y.size):
-        v = 0.0
-        for p in range(7):
-            v += dense[6 - p, i]
-            v *= x if p % 2 == 0 else 1.0 - x
-        out[i] = v + y[i]
+        out[i] = interpolated(x, y[i], dense[0, i], dense[1, i], dense[2, i], dense[3, i], dense[4, i], dense[5, i],
+                              dense[6, i])
 
 
 def new_state(y0):
@@ -281,7 +290,8 @@ def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_o
 
 
 @generic
-def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs, budget):
+def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs, budget,
+                    unit=-1):
     """Integrate from ``state`` (see :func:`new_state`) for at most ``budget`` accepted steps.
 
     Writes the state at every sorted time ``t_out`` (``t_out[0]`` the initial
@@ -290,7 +300,11 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
     ``land_on_outputs``, every step is shortened to end on the next output
     time (more steps on a fine output grid, no interpolation error). Returns a
     status code: :data:`PAUSED` when the budget ran out before ``t_out[-1]``
-    (``state`` then holds where to continue).
+    (``state`` then holds where to continue). With ``unit >= 0``, the four
+    components from ``unit`` of every sample are a quaternion, stored
+    normalised (:func:`kreisel._compiled.kernels.quat_unit`; the state itself
+    is left as it is): each sample is normalised where it is written, while
+    in the cache, not by a second pass over the output.
 
     The step (:func:`attempt`, as :func:`advance` takes it) and the dense
     output (:func:`dense_coefficients`) are written out in this one loop, a
@@ -316,6 +330,10 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
     if j == 0:
         for i in range(ny):
             out[0, i] = y[i]
+        if unit >= 0:  # written out here and below: a helper handed ``out`` would count references per sample
+            q = quat_unit(out[0, unit], out[0, unit + 1], out[0, unit + 2], out[0, unit + 3])
+            for c in range(4):
+                out[0, unit + c] = q[c]
         if n_out == 1:
             return OK
         t = t_out[0]
@@ -393,7 +411,15 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
                     for i in range(ny):
                         out[j, i] = y_new[i]
                 else:
-                    interpolate(dense, y, (t_out[j] - t) / h_taken, out[j])
+                    # element by element: a row view per sample costs as much as interpolating it
+                    x = (t_out[j] - t) / h_taken
+                    for i in range(ny):
+                        out[j, i] = interpolated(x, y[i], dense[0, i], dense[1, i], dense[2, i], dense[3, i],
+                                                 dense[4, i], dense[5, i], dense[6, i])
+                if unit >= 0:
+                    q = quat_unit(out[j, unit], out[j, unit + 1], out[j, unit + 2], out[j, unit + 3])
+                    for c in range(4):
+                        out[j, unit + c] = q[c]
                 j += 1
         for i in range(ny):
             y[i] = y_new[i]

@@ -110,19 +110,20 @@ def _axis_rotation(half, mi, mj, q0, qk, qi, qj):
 
 
 @cached
-def _axis_flow(k, h, inertia, m0, m1, m2, q0, q1, q2, q3):
+def _axis_flow(k, h, i0, i1, i2, m0, m1, m2, q0, q1, q2, q3):
     """Exact flow of H_k = m_k²/(2 I_k) for a time h: m turns about body axis k by −h ω_k, q by +h ω_k.
 
-    The state travels as scalars (m = I ω′ and q), so a run of flows keeps it
-    in registers; ``k`` is a constant at every call, which selects the branch
-    at compile time.
+    The state and the principal moments (i0, i1, i2) travel as scalars (m = I ω′
+    and q), so a run of flows keeps them in registers and hands no array over
+    (whose reference count every flow would update); ``k`` is a constant at
+    every call, which selects the branch at compile time.
     """
     if k == 0:
-        m1, m2, q0, q1, q2, q3 = _axis_rotation(0.5 * h / inertia[0] * m0, m1, m2, q0, q1, q2, q3)
+        m1, m2, q0, q1, q2, q3 = _axis_rotation(0.5 * h / i0 * m0, m1, m2, q0, q1, q2, q3)
     elif k == 1:
-        m2, m0, q0, q2, q3, q1 = _axis_rotation(0.5 * h / inertia[1] * m1, m2, m0, q0, q2, q3, q1)
+        m2, m0, q0, q2, q3, q1 = _axis_rotation(0.5 * h / i1 * m1, m2, m0, q0, q2, q3, q1)
     else:
-        m0, m1, q0, q3, q1, q2 = _axis_rotation(0.5 * h / inertia[2] * m2, m0, m1, q0, q3, q1, q2)
+        m0, m1, q0, q3, q1, q2 = _axis_rotation(0.5 * h / i2 * m2, m0, m1, q0, q3, q1, q2)
     return m0, m1, m2, q0, q1, q2, q3
 
 
@@ -130,12 +131,13 @@ def _axis_flow(k, h, inertia, m0, m1, m2, q0, q1, q2, q3):
 def _strang_free(h, inertia, y):
     # symmetric, hence second order; each flow keeps |m| and the space J exactly.
     # The flows act on m = I ω′ so that ω′ <-> m round trips happen once per step.
-    s = (inertia[0] * y[0], inertia[1] * y[1], inertia[2] * y[2], y[3], y[4], y[5], y[6])
-    s = _axis_flow(0, 0.5 * h, inertia, *s)
-    s = _axis_flow(1, 0.5 * h, inertia, *s)
-    s = _axis_flow(2, h, inertia, *s)
-    s = _axis_flow(1, 0.5 * h, inertia, *s)
-    s = _axis_flow(0, 0.5 * h, inertia, *s)
+    i = (inertia[0], inertia[1], inertia[2])
+    s = (i[0] * y[0], i[1] * y[1], i[2] * y[2], y[3], y[4], y[5], y[6])
+    s = _axis_flow(0, 0.5 * h, *i, *s)
+    s = _axis_flow(1, 0.5 * h, *i, *s)
+    s = _axis_flow(2, h, *i, *s)
+    s = _axis_flow(1, 0.5 * h, *i, *s)
+    s = _axis_flow(0, 0.5 * h, *i, *s)
     for a in range(3):
         y[a] = s[a] / inertia[a]
     y[3], y[4], y[5], y[6] = s[3], s[4], s[5], s[6]
@@ -425,31 +427,35 @@ def substeps(span: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
 
 
 @cached
-def _interval_steps(t_out, k, dt, s0, left):
-    """Output interval ``k`` in ceil(Δt/dt) equal steps: (step, steps, how many to take now from step ``s0``)."""
-    span = t_out[k + 1] - t_out[k]
+def _interval_steps(span, dt, s0, left):
+    """An output interval of length ``span`` in ceil(span/dt) equal steps: (step, steps, how many to take now from step ``s0``)."""
     n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
     return span / n_sub, n_sub, min(n_sub - s0, left)
 
 
 @cached
-def _store(out, j, w0, w1, w2, q0, q1, q2, q3):
-    """out[j, 0:7] ← (ω′, q/|q|): an output sample, its attitude as a unit quaternion.
+def _sample(w0, w1, w2, q0, q1, q2, q3):
+    """(ω′, q/|q|): an output sample, its attitude as a unit quaternion.
 
     The squares are summed in numpy's order (``np.linalg.norm`` over the last
     axis), so the samples carry the same bits as normalising the whole output
-    afterwards would give, without a second pass over it. The state arrives
-    as numbers: no array view per sample.
+    afterwards would give, without a second pass over it. Numbers in and
+    out: the drivers store the sample themselves, since a helper handed
+    ``out`` would update its reference count per sample, a count that every
+    body of a parallel batch shares.
     """
-    n = math.sqrt(((q0 * q0 + q1 * q1) + q2 * q2) + q3 * q3)
-    out[j, 0], out[j, 1], out[j, 2] = w0, w1, w2
-    out[j, 3], out[j, 4], out[j, 5], out[j, 6] = q0 / n, q1 / n, q2 / n, q3 / n
+    q0, q1, q2, q3 = quat_unit(q0, q1, q2, q3)
+    return w0, w1, w2, q0, q1, q2, q3
 
 
 @cached
-def _unit_attitude(out, k):
-    """out[k, 3:7] ← q/|q| in place (:func:`_store`)."""
-    _store(out, k, out[k, 0], out[k, 1], out[k, 2], out[k, 3], out[k, 4], out[k, 5], out[k, 6])
+def _next_sample(k, every):
+    """(j, wait) at output time ``k``: the last sample stored is ``out[j]``, the next one ``wait`` intervals on.
+
+    The drivers count down to the next sample instead of dividing by ``every``
+    at each interval (an integer division costs as much as a step's arithmetic).
+    """
+    return k // every, every - k % every
 
 
 @cached
@@ -474,8 +480,11 @@ def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
     w0, w1, w2 = state[6], state[7], state[8]
     s = (state[3], state[4], state[5], state[9], state[10], state[11], state[12])
     if k < 0:
-        _store(out, 0, w0, w1, w2, s[3], s[4], s[5], s[6])
+        v = _sample(w0, w1, w2, s[3], s[4], s[5], s[6])
+        for c in range(7):
+            out[0, c] = v[c]
         k = 0
+    j, wait = _next_sample(k, every)
     taken = 0
     while k < t_out.size - 1:
         if taken >= budget:
@@ -484,7 +493,7 @@ def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
             state[6], state[7], state[8] = w0, w1, w2
             state[9], state[10], state[11], state[12] = s[3], s[4], s[5], s[6]
             return PAUSED
-        h, n_sub, n = _interval_steps(t_out, k, dt, s0, budget - taken)
+        h, n_sub, n = _interval_steps(t_out[k + 1] - t_out[k], dt, s0, budget - taken)
         taken += n
         if s0 == 0:
             s = (i0 * w0, i1 * w1, i2 * w2, s[3], s[4], s[5], s[6])
@@ -492,15 +501,15 @@ def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
         for _ in range(n):
             for g in weights:
                 pending += 0.5 * g * h
-                s = _axis_flow(0, pending, inertia, *s)
-                s = _axis_flow(1, 0.5 * g * h, inertia, *s)
-                s = _axis_flow(2, g * h, inertia, *s)
-                s = _axis_flow(1, 0.5 * g * h, inertia, *s)
+                s = _axis_flow(0, pending, i0, i1, i2, *s)
+                s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
+                s = _axis_flow(2, g * h, i0, i1, i2, *s)
+                s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
                 pending = 0.5 * g * h
         s0 += n
         if s0 < n_sub:
             continue
-        s = _axis_flow(0, pending, inertia, *s)
+        s = _axis_flow(0, pending, i0, i1, i2, *s)
         pending = 0.0
         w0, w1, w2 = s[0] / i0, s[1] / i1, s[2] / i2
         if not (math.isfinite(w0) and math.isfinite(w1) and math.isfinite(w2) and math.isfinite(s[3])
@@ -508,8 +517,12 @@ def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
             return NOT_FINITE
         k += 1
         s0 = 0
-        if k % every == 0:
-            _store(out, k // every, w0, w1, w2, s[3], s[4], s[5], s[6])
+        wait -= 1
+        if wait == 0:
+            j, wait = j + 1, every
+            v = _sample(w0, w1, w2, s[3], s[4], s[5], s[6])
+            for c in range(7):
+                out[j, c] = v[c]
     return OK
 
 
@@ -537,8 +550,11 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
     if k < 0:
         for i in range(7, ny):
             out[0, i] = y[i]
-        _store(out, 0, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+        v = _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+        for c in range(7):
+            out[0, c] = v[c]
         k = 0
+    j, wait = _next_sample(k, every)
     taken = 0
     while k < t_out.size - 1:
         if taken >= budget:
@@ -547,7 +563,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
             for i in range(ny):
                 state[6 + i] = y[i]
             return PAUSED
-        h, n_sub, n = _interval_steps(t_out, k, dt, s0, budget - taken)
+        h, n_sub, n = _interval_steps(t_out[k + 1] - t_out[k], dt, s0, budget - taken)
         taken += n
         if ny == 7:
             if _advance(method, t_out[k], h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
@@ -569,10 +585,14 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
                 return NOT_FINITE
         k += 1
         s0 = 0
-        if k % every == 0:
+        wait -= 1
+        if wait == 0:
+            j, wait = j + 1, every
             for i in range(7, ny):
-                out[k // every, i] = y[i]
-            _store(out, k // every, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+                out[j, i] = y[i]
+            v = _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+            for c in range(7):
+                out[j, c] = v[c]
     return OK
 
 
@@ -580,12 +600,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
 def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
     # its own function, not inlined into run: LLVM optimises the stage loop better alone
     model = (inertia, mass, rows, frows, np.empty(13))
-    first = int(state[2])
-    status = integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget)
-    written = t_out.size if status == OK else (int(state[2]) if status == PAUSED else first)
-    for k in range(first, written):
-        _unit_attitude(out, k)
-    return status
+    return integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget, 3)
 
 
 @cached
