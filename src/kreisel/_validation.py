@@ -242,3 +242,91 @@ def parse_sequence(seq: str) -> tuple[tuple[int, ...], bool]:
     if lower[0] == lower[1] or lower[1] == lower[2]:
         raise ValueError(f"seq must not repeat an axis in adjacent positions, got {seq!r}")
     return tuple(AXES[c] for c in lower), seq.isupper()
+
+
+#: Relative tolerance of every check on inertia input, at every entry point (``RigidBody``, the
+#: ``inertia`` functions, ``simulate``/``simulate_batch``/``simulate_6dof``, the tops, the viewer):
+#: a tensor is symmetric when max |I_jk - I_kj| <= INERTIA_TOLERANCE * max |I_jk|; principal moments
+#: obey the triangle inequality when I_max - (I_j + I_k) <= INERTIA_TOLERANCE * (I_1 + I_2 + I_3),
+#: and a moment counts as zero (a rod) when it is <= INERTIA_TOLERANCE * (I_1 + I_2 + I_3). Tensors
+#: that went through a few floating-point operations (R I Rᵀ, mesh integration, sums of parts) carry
+#: relative errors of order 1e-15, and printed tables nine significant digits; 1e-9 accepts both
+#: while refusing any genuinely unphysical input. Documented for users in the user guide, section
+#: "Which inertia input is accepted" (docs/user_guide/04_fixed_point.rst).
+INERTIA_TOLERANCE = 1e-9
+
+
+def _relative_to_largest(a: NDArray[np.float64], axes: tuple[int, ...]) -> NDArray[np.float64]:
+    """``a`` divided by its largest absolute entry over ``axes`` (zero blocks stay zero): no overflow later."""
+    scale = np.max(np.abs(a), axis=axes, keepdims=True)
+    return a / np.where(scale > 0.0, scale, 1.0)
+
+
+def check_inertia_tensor(tensor: ArrayLike, name: str) -> NDArray[np.float64]:
+    """Validate ``(..., 3, 3)`` inertia tensors as symmetric and return their symmetric part.
+
+    Symmetric means to within :data:`INERTIA_TOLERANCE` of the largest entry; the
+    ``ValueError`` names ``name`` and gives the asymmetry. Definiteness and the
+    triangle inequalities are properties of the principal moments:
+    :func:`check_principal_moments`.
+
+    Examples
+    --------
+    >>> check_inertia_tensor([[2.0, 1e-12, 0], [0, 2, 0], [0, 0, 3]], "I")[0, 1]
+    np.float64(5e-13)
+    """
+    a = as_float_array(tensor, name, tail=(3, 3))
+    unit = _relative_to_largest(a, (-2, -1))
+    asymmetry = np.max(np.abs(unit - np.swapaxes(unit, -1, -2)), axis=(-2, -1), initial=0.0)
+    if np.any(asymmetry > INERTIA_TOLERANCE):
+        raise ValueError(f"{name} must be symmetric (I_jk = I_kj to within {INERTIA_TOLERANCE:g} of the largest "
+                         f"entry); largest |I_jk - I_kj| is {float(np.max(asymmetry)):.3g} of the largest entry")
+    return 0.5 * (a + np.swapaxes(a, -1, -2))
+
+
+def check_principal_moments(moments: ArrayLike, name: str, definite: bool = True,
+                            allow_unphysical: bool = False) -> NDArray[np.float64]:
+    """Validate principal moments ``(..., 3)`` (any order) and return them as floats.
+
+    The one rule for inertia input, to within :data:`INERTIA_TOLERANCE` of the
+    sum of the moments: no moment is negative (``definite=True``: none is zero
+    either, as Euler's equations need I⁻¹; an ideal thin rod has a zero moment),
+    and the triangle inequalities I_i <= I_j + I_k hold (equality for a thin
+    plate, Theory §4.1). ``allow_unphysical=True`` skips the triangle
+    inequalities, for textbook test problems such as Hairer, Lubich and
+    Wanner's free body with I = (2, 1, 2/3).
+
+    Examples
+    --------
+    >>> check_principal_moments([1.0, 1.0, 2.0], "body")  # a thin plate
+    array([1., 1., 2.])
+    >>> check_principal_moments([1.0, 1.0, 5.0], "body")
+    Traceback (most recent call last):
+    ...
+    ValueError: body: principal moments [1. 1. 5.] violate the triangle inequality I_i <= I_j + I_k ...
+    """
+    m = as_float_array(moments, name, tail=(3,))
+    if m.size == 0:
+        raise ValueError(f"{name}: an empty batch of bodies (shape {m.shape}); give at least one")
+    unit = _relative_to_largest(m, (-1,))
+    trace = np.sum(unit, axis=-1)
+    smallest = np.min(unit, axis=-1)
+    if definite:
+        bad = smallest <= INERTIA_TOLERANCE * trace
+        if np.any(bad):
+            raise ValueError(f"{name}: principal moments {m[bad][0]} must all be positive (more than "
+                             f"{INERTIA_TOLERANCE:g} of their sum: positive definite); a body whose mass lies "
+                             "on a line (ideal thin rod) has a zero moment and no Euler equations")
+    bad = smallest < -INERTIA_TOLERANCE * np.abs(trace)
+    if np.any(bad):
+        raise ValueError(f"{name}: principal moments {m[bad][0]} must not be negative (positive semi-definite, "
+                         f"to within {INERTIA_TOLERANCE:g} of their sum)")
+    if allow_unphysical:
+        return m
+    excess = (2.0 * np.max(unit, axis=-1) - trace) / np.where(trace > 0.0, trace, 1.0)
+    bad = excess > INERTIA_TOLERANCE
+    if np.any(bad):
+        raise ValueError(f"{name}: principal moments {m[bad][0]} violate the triangle inequality I_i <= I_j + I_k "
+                         f"(the largest exceeds the sum of the other two by {float(excess[bad][0]):.3g} of the sum of "
+                         f"all three, more than the tolerance {INERTIA_TOLERANCE:g}); no physical body has them")
+    return m

@@ -59,7 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
 from .._compiled.outputs import empty
-from .._validation import as_float_array, check_allocation
+from .._validation import as_float_array, check_allocation, check_inertia_tensor, check_principal_moments
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
 from . import _integrators
@@ -111,29 +111,6 @@ _STATUS = {
 # ---------------------------------------------------------------------------- input checks
 
 
-def check_principal_moments(moments: ArrayLike, name: str = "body", allow_unphysical: bool = False) -> _Array:
-    """Validate principal moments ``(..., 3)``: positive, finite, triangle inequalities.
-
-    ``allow_unphysical=True`` skips the triangle inequalities (only I_i > 0 is
-    needed by Euler's equations), for textbook test problems such as Hairer,
-    Lubich and Wanner's free body with I = (2, 1, 2/3).
-    """
-    m = as_float_array(moments, name, tail=(3,))
-    if m.size == 0:
-        raise ValueError(f"{name}: an empty batch of bodies (shape {m.shape}); give at least one")
-    if np.any(m <= 0.0):
-        raise ValueError(f"{name}: principal moments must be positive, got {m[np.any(m <= 0, axis=-1)][0]}")
-    if allow_unphysical:
-        return m
-    total = m.sum(axis=-1, keepdims=True)
-    # I_i <= I_j + I_k, equality (a thin plate) accepted to within rounding
-    if np.any(2.0 * m > total * (1.0 + 1e-12)):
-        bad = m[np.any(2.0 * m > total * (1.0 + 1e-12), axis=-1)][0]
-        raise ValueError(f"{name}: principal moments {bad} violate the triangle inequality "
-                         "I_i <= I_j + I_k (no physical body has them)")
-    return m
-
-
 def resolve_body(body: RigidBody | ArrayLike,
                  allow_unphysical: bool = False) -> tuple[_Array, _Array, _Array | None, float]:
     """Return (tensor (3, 3), principal moments (3,), axes or None, mass) for one body.
@@ -147,18 +124,17 @@ def resolve_body(body: RigidBody | ArrayLike,
         body = body.inertia
     a = as_float_array(body, "body")
     if a.shape == (3,):
-        moments = check_principal_moments(a, allow_unphysical=allow_unphysical)
+        moments = check_principal_moments(a, "body", allow_unphysical=allow_unphysical)
         return np.diag(moments), moments, None, mass
     if a.shape != (3, 3):
         raise ValueError(f"body must be a RigidBody, 3 principal moments or a (3, 3) tensor, got shape {a.shape}")
-    if not np.allclose(a, a.T, rtol=1e-12, atol=1e-12 * np.abs(a).max()):
-        raise ValueError("body: the inertia tensor must be symmetric")
+    a = check_inertia_tensor(a, "body")
     if not np.any(a - np.diag(np.diag(a))):
-        return a, check_principal_moments(np.diag(a), allow_unphysical=allow_unphysical), None, mass
+        return a, check_principal_moments(np.diag(a), "body", allow_unphysical=allow_unphysical), None, mass
     moments, axes = np.linalg.eigh(a)
     if np.linalg.det(axes) < 0.0:
         axes[:, 2] = -axes[:, 2]
-    return a, check_principal_moments(moments, allow_unphysical=allow_unphysical), axes, mass
+    return a, check_principal_moments(moments, "body", allow_unphysical=allow_unphysical), axes, mass
 
 
 def _check_every(every: object, n_times: int) -> int:
@@ -515,7 +491,9 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
         does not depend on units.
     allow_unphysical : bool
         Accept positive moments that violate the triangle inequality
-        I_i <= I_j + I_k (textbook test problems); refused by default.
+        I_i <= I_j + I_k (textbook test problems); refused by default. The
+        rule and its tolerance are those of every entry point: user guide,
+        "Which inertia input is accepted".
     max_steps : int, optional
         Step budget (default 10¹⁰): a fixed-step run needing
         more steps is refused before it starts, an adaptive run is stopped
@@ -698,7 +676,7 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
     >>> kr.simulate_batch(bodies, np.linspace(0, 1, 101), [0.1, 1.0, 0.1], every=25).t
     array([0.  , 0.25, 0.5 , 0.75, 1.  ])
     """
-    moments = check_principal_moments(bodies, "bodies", allow_unphysical)
+    moments = check_principal_moments(bodies, "bodies", allow_unphysical=allow_unphysical)
     t = _check_times(t)
     every = _check_every(every, t.size)
     method, dt = _check_method(method, dt, t)

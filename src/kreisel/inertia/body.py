@@ -9,11 +9,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import as_float, as_float_array
+from .._validation import as_float, as_float_array, check_inertia_tensor, check_principal_moments
 from . import solids
 from .mesh_properties import from_mesh
 from .properties import MassProperties, combine, from_points
-from .tensors import as_symmetric_tensor, check_moments, principal_axes
+from .tensors import principal_axes
 
 __all__ = ["RigidBody"]
 
@@ -85,13 +85,13 @@ class RigidBody:
         if a.shape == (3,):
             tensor = np.diag(a)
         elif a.shape == (3, 3):
-            tensor = as_symmetric_tensor(a, "inertia")
+            tensor = check_inertia_tensor(a, "inertia")
         else:
             raise ValueError(
                 f"inertia must be 3 principal moments (3,) or a tensor (3, 3), got shape {a.shape}"
             )
         moments, axes = principal_axes(tensor)
-        check_moments(moments, "inertia", definite=True)
+        check_principal_moments(moments, "inertia")
         self._inertia = _read_only(tensor)
         self._mass = m
         self._moments = _read_only(moments)

@@ -8,14 +8,12 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validation import as_float, as_float_array
+from .._validation import as_float, as_float_array, check_inertia_tensor, check_principal_moments
 from ..so3._coercion import RotationLike
 from .tensors import (
     _positive,
     _outer_term,
     as_rotation_matrix,
-    as_symmetric_tensor,
-    check_moments,
     point_inertia,
 )
 
@@ -166,7 +164,7 @@ def _as_part(entry: object, index: int) -> MassProperties:
     if mass == 0.0:
         raise ValueError(f"parts[{index}].mass must be nonzero")
     com = as_float_array(item.com, f"parts[{index}].com", tail=(3,)).reshape(3)
-    inertia = as_symmetric_tensor(item.inertia, f"parts[{index}].inertia")
+    inertia = check_inertia_tensor(item.inertia, f"parts[{index}].inertia")
     if inertia.shape != (3, 3):
         raise ValueError(f"parts[{index}].inertia must be a single (3, 3) tensor")
     return MassProperties(mass, com, inertia).transformed(position, rotation)
@@ -215,5 +213,5 @@ def combine(parts: Iterable[object]) -> MassProperties:
         raise ValueError(f"parts must have a positive total mass, got {total!r}")
     com = masses @ coms / total
     inertia = np.sum([p.inertia for p in items], axis=0) + np.sum(_outer_term(masses, coms - com), axis=0)
-    check_moments(np.linalg.eigvalsh(inertia), "combined inertia")
+    check_principal_moments(np.linalg.eigvalsh(inertia), "combined inertia", definite=False)
     return MassProperties(total, com, inertia)

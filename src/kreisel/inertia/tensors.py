@@ -12,7 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, check_inertia_tensor, check_principal_moments
 from ..so3._coercion import as_rotation_matrix
 from .._norms import unit
 
@@ -27,74 +27,6 @@ __all__ = [
     "inertia_ellipsoid",
     "InertiaEllipsoid",
 ]
-
-# Relative tolerance for accepting a tensor as symmetric and as satisfying the
-# triangle inequalities / semi-definiteness. Tensors that went through a few
-# floating-point operations (R I Rᵀ, mesh integration, sums of parts) carry
-# relative errors of order 1e-15; 1e-9 accepts those and printed tables with
-# nine significant digits while still refusing genuinely unphysical input.
-TOLERANCE = 1e-9
-
-
-def _scale(tensor):
-    """Size of a tensor for relative tolerances: its largest absolute entry."""
-    return np.max(np.abs(tensor), axis=(-2, -1))
-
-
-def as_symmetric_tensor(tensor: ArrayLike, name: str = "I") -> NDArray[np.float64]:
-    """Validate a ``(..., 3, 3)`` symmetric matrix and return its symmetric part.
-
-    Raises ``ValueError`` naming ``name`` when the matrix is not symmetric to
-    within :data:`TOLERANCE` relative to its largest entry.
-    """
-    a = as_float_array(tensor, name, tail=(3, 3))
-    asymmetry = np.max(np.abs(a - np.swapaxes(a, -1, -2)), axis=(-2, -1))
-    if np.any(asymmetry > TOLERANCE * _scale(a)):
-        worst = float(np.max(asymmetry))
-        raise ValueError(
-            f"{name} must be symmetric (I_jk = I_kj); largest |I_jk - I_kj| is {worst:.3g}"
-        )
-    return 0.5 * (a + np.swapaxes(a, -1, -2))
-
-
-def check_moments(moments: NDArray[np.float64], name: str = "I", definite: bool = False) -> None:
-    """Refuse principal moments ``(..., 3)`` that no mass distribution has.
-
-    A physical inertia tensor is positive semi-definite (definite unless all
-    mass lies on a line, Theory §4.1) and its principal moments obey the triangle
-    inequalities I_i <= I_j + I_k (equality for a thin plate). Both are
-    checked to within :data:`TOLERANCE` relative to the trace.
-
-    Parameters
-    ----------
-    moments : (..., 3) ndarray
-        Principal moments, any order.
-    name : str
-        Argument name for the error message.
-    definite : bool
-        Require strictly positive moments (Euler's equations need I⁻¹).
-    """
-    trace = np.sum(moments, axis=-1)
-    slack = TOLERANCE * np.abs(trace)
-    smallest = np.min(moments, axis=-1)
-    if definite and np.any(smallest <= slack):
-        raise ValueError(
-            f"{name} must be positive definite (all principal moments > 0), smallest principal "
-            f"moment is {float(np.min(smallest)):.6g}; a body whose mass lies on a line (ideal "
-            "thin rod) has a zero moment and no Euler equations"
-        )
-    if np.any(smallest < -slack):
-        raise ValueError(
-            f"{name} must be positive semi-definite (all principal moments >= 0), smallest "
-            f"principal moment is {float(np.min(smallest)):.6g}"
-        )
-    excess = 2.0 * np.max(moments, axis=-1) - trace  # I_max - (I_j + I_k)
-    if np.any(excess > slack):
-        raise ValueError(
-            f"{name} violates the triangle inequality I_i <= I_j + I_k of principal moments "
-            f"(largest moment exceeds the sum of the other two by {float(np.max(excess)):.6g})"
-        )
-
 
 def _positive(x, name, allow_zero=False):
     """Float array of a quantity that must be > 0 (or >= 0), or ValueError naming it."""
@@ -219,7 +151,7 @@ def parallel_axis(I_cm, mass, r_c):
     >>> I.diagonal()
     array([4., 4., 0.])
     """
-    I_c = as_symmetric_tensor(I_cm, "I_cm")
+    I_c = check_inertia_tensor(I_cm, "I_cm")
     m = _positive(mass, "mass")
     r = as_float_array(r_c, "r_c", tail=(3,))
     return I_c + _outer_term(m, r)
@@ -251,7 +183,7 @@ def parallel_axis_to_center_of_mass(I_point, mass, r_c):
            [0., 1., 0.],
            [0., 0., 0.]])
     """
-    I_o = as_symmetric_tensor(I_point, "I_point")
+    I_o = check_inertia_tensor(I_point, "I_point")
     m = _positive(mass, "mass")
     r = as_float_array(r_c, "r_c", tail=(3,))
     return I_o - _outer_term(m, r)
@@ -285,7 +217,7 @@ def rotate(I, rotation):
     >>> np.round(kr.inertia.rotate(np.diag([1.0, 2.0, 3.0]), q), 12).diagonal()
     array([2., 1., 3.])
     """
-    tensor = as_symmetric_tensor(I, "I")
+    tensor = check_inertia_tensor(I, "I")
     R = as_rotation_matrix(rotation)
     out = R @ tensor @ np.swapaxes(R, -1, -2)
     return 0.5 * (out + np.swapaxes(out, -1, -2))
@@ -323,7 +255,7 @@ def principal_axes(I: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float6
            [1., 0., 0.],
            [0., 1., 0.]])
     """
-    tensor = as_symmetric_tensor(I, "I")
+    tensor = check_inertia_tensor(I, "I")
     moments, vectors = np.linalg.eigh(tensor)
     first_two = vectors[..., :, :2]
     index = np.argmax(np.abs(first_two), axis=-2)[..., None, :]
@@ -358,7 +290,7 @@ def moment_about_axis(I, axis):
     >>> round(float(kr.inertia.moment_about_axis(np.diag([1.0, 2.0, 3.0]), [1.0, 1.0, 0.0])), 12)
     1.5
     """
-    tensor = as_symmetric_tensor(I, "I")
+    tensor = check_inertia_tensor(I, "I")
     n = _unit(axis)
     return np.einsum("...i,...ij,...j->...", n, tensor, n)
 
@@ -459,11 +391,8 @@ def inertia_ellipsoid(I, n_polar=25, n_azimuth=49):
         if not isinstance(value, (int, np.integer)) or value < 2:
             raise ValueError(f"{label} must be an integer >= 2, got {value!r}")
     moments, R = principal_axes(I)
-    if np.any(moments <= 0.0):
-        raise ValueError(
-            "I must be positive definite for a bounded inertia ellipsoid, smallest principal "
-            f"moment is {float(np.min(moments)):.6g}"
-        )
+    # the surface needs only I > 0; drawing it for a textbook body that breaks the triangle inequality is fine
+    check_principal_moments(moments, "I", allow_unphysical=True)
     semi = 1.0 / np.sqrt(moments)
     polar = np.linspace(0.0, np.pi, n_polar)[:, None]
     azimuth = np.linspace(0.0, 2.0 * np.pi, n_azimuth)[None, :]

@@ -17,8 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import MAX_TURN, as_float, as_float_array
-from ..dynamics.engine import check_principal_moments
+from .._validation import MAX_TURN, as_float, as_float_array, check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
 from .._norms import norm
@@ -97,7 +96,11 @@ class SolutionAccuracy:
 
 
 def _check_moments(values: tuple[ArrayLike, ...], names: tuple[str, ...]) -> NDArray[np.float64]:
-    """Positive finite scalar moments of inertia, as a float array."""
+    """Positive finite scalars (moments of inertia, mgl), as a float array, naming the one that is not.
+
+    Whether the moments together form a body is :func:`check_principal_moments`'s
+    rule, applied by each top to its three principal moments.
+    """
     moments = []
     for given, name in zip(values, names):
         value = as_float_array(given, name)
@@ -184,8 +187,9 @@ class EulerTop:
         Principal moments of inertia about the fixed point, kg m².
     allow_unphysical : bool
         Accept positive moments that violate a triangle inequality
-        I_i <= I_j + I_k (refused otherwise, as by :func:`kreisel.simulate`),
-        e.g. the textbook body I = (2, 1, 2/3).
+        I_i <= I_j + I_k (refused otherwise, by the rule of every entry point:
+        user guide, "Which inertia input is accepted"), e.g. the textbook
+        body I = (2, 1, 2/3).
 
     Examples
     --------

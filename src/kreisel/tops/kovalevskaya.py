@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validation import as_float_array
+from .._validation import as_float_array, check_principal_moments
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..so3 import quat_apply
@@ -80,7 +80,7 @@ class KovalevskayaTop:
 
     def __init__(self, I3: float, mgl: float) -> None:
         self.I3, self.mgl = _check_moments((I3, mgl), ("I3", "mgl"))
-        self.moments = np.array([2.0 * self.I3, 2.0 * self.I3, self.I3])
+        self.moments = check_principal_moments([2.0 * self.I3, 2.0 * self.I3, self.I3], "KovalevskayaTop moments")
         self.c = self.mgl / self.I3
 
     def __repr__(self) -> str:

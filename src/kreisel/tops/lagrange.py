@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
 from .._html import html_table, number
-from .._validation import as_float, as_float_array
+from .._validation import as_float, as_float_array, check_principal_moments
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
@@ -468,6 +468,7 @@ class LagrangeTop:
 
     def __init__(self, I1: float, I3: float, mgl: float) -> None:
         self.I1, self.I3, self.mgl = _check_moments((I1, I3, mgl), ("I1", "I3", "mgl"))
+        check_principal_moments([self.I1, self.I1, self.I3], "LagrangeTop moments (I1, I1, I3)")
 
     def __repr__(self) -> str:
         return f"LagrangeTop(I1={self.I1:g}, I3={self.I3:g}, mgl={self.mgl:g})"

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validation import as_float, as_float_array, check_frame
+from .._validation import as_float, as_float_array, check_frame, check_principal_moments
 from ..dynamics.trajectory import Trajectory
 from ..so3 import euler_to_quat
 from .euler_top import _check_moments
@@ -95,6 +95,7 @@ class SymmetricTop:
 
     def __init__(self, I1: float, I3: float) -> None:
         self.I1, self.I3 = _check_moments((I1, I3), ("I1", "I3"))
+        check_principal_moments([self.I1, self.I1, self.I3], "SymmetricTop moments (I1, I1, I3)")
 
     def __repr__(self) -> str:
         return f"SymmetricTop(I1={self.I1:g}, I3={self.I3:g})"

@@ -1,0 +1,123 @@
+"""The one rule for inertia input (``kreisel._validation.INERTIA_TOLERANCE``): the same borderline
+tensors and principal moments get the same verdict at every entry point that takes them."""
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+from kreisel._validation import INERTIA_TOLERANCE
+from kreisel.web import session
+
+TOL = INERTIA_TOLERANCE
+T = [0.0, 1e-3]
+OMEGA = [0.1, 0.2, 0.3]
+
+
+def _viewer(body):
+    data = {"title": "probe", "body": body, "initial": {"omega": OMEGA, "frame": "body"},
+            "integration": {"t_end": 1e-3, "n_samples": 2}}
+    session.load(session.toml_text(data))
+
+
+#: entry points taking three principal moments (the tops only where they have that form)
+MOMENT_ENTRIES = {
+    "RigidBody": lambda m: kr.RigidBody(m),
+    "RigidBody(diag)": lambda m: kr.RigidBody(np.diag(m)),
+    "simulate": lambda m: kr.simulate(m, T, OMEGA, method="rk4", dt=1e-3),
+    "simulate(tensor)": lambda m: kr.simulate(np.diag(m), T, OMEGA, method="rk4", dt=1e-3),
+    "simulate_batch": lambda m: kr.simulate_batch([m, [1.0, 2.0, 3.0]], T, OMEGA, method="rk4", dt=1e-3),
+    "simulate_6dof": lambda m: kr.simulate_6dof(m, T, OMEGA, method="rk4", dt=1e-3),
+    "EulerTop": lambda m: kr.EulerTop(*m),
+    "solve_free_batch": lambda m: kr.tops.solve_free_batch([m], T, OMEGA),
+    "LagrangeTop": lambda m: kr.LagrangeTop(m[0], m[2], 1.0),
+    "SymmetricTop": lambda m: kr.tops.SymmetricTop(m[0], m[2]),
+    "viewer(moments)": lambda m: _viewer({"moments": m.tolist()}),
+    "viewer(tensor)": lambda m: _viewer({"tensor": np.diag(m).tolist()}),
+}
+_SYMMETRIC_ONLY = {"LagrangeTop", "SymmetricTop"}
+
+#: (moments, accepted): the triangle excess I_3 - (I_1 + I_2) and the smallest moment relative to the sum
+MOMENT_CASES = {
+    "plate equality": ([1.0, 1.0, 2.0], True),
+    "triangle just inside": ([1.0, 1.0, 2.0 + 0.95 * TOL * 4.0], True),   # excess 0.95 TOL of the sum
+    "triangle just outside": ([1.0, 1.0, 2.0 + 1.05 * TOL * 4.0], False),  # excess 1.05 TOL of the sum
+    "rod, a zero moment": ([0.0, 1.0, 1.0], False),
+    "rod, moment 0.5 TOL of the sum": ([1e-9, 1.0, 1.0], False),
+    "thin but not a rod, 5 TOL": ([1e-8, 1.0, 1.0], True),
+    "negative moment": ([-1e-3, 1.0, 1.0], False),
+    "far outside": ([1.0, 1.0, 5.0], False),
+}
+
+
+def _verdict(call, value):
+    try:
+        call(value)
+    except ValueError:
+        return False
+    return True
+
+
+@pytest.mark.parametrize("case", MOMENT_CASES)
+@pytest.mark.parametrize("entry", MOMENT_ENTRIES)
+def test_principal_moments_get_one_verdict_everywhere(entry, case):
+    moments, accepted = MOMENT_CASES[case]
+    if entry in _SYMMETRIC_ONLY and moments[0] != moments[1]:
+        pytest.skip("a symmetric top has moments (I1, I1, I3)")
+    assert _verdict(MOMENT_ENTRIES[entry], np.array(moments)) is accepted
+
+
+def test_refusals_name_the_argument_and_give_the_numbers():
+    with pytest.raises(ValueError, match=r"^body: principal moments \[1\. 1\. 5\.\] violate the triangle inequality"):
+        kr.simulate([1.0, 1.0, 5.0], T, OMEGA)
+    with pytest.raises(ValueError, match=r"^inertia: principal moments \[0\. 1\. 1\.\] must all be positive"):
+        kr.RigidBody([0.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match=r"^LagrangeTop moments \(I1, I1, I3\): .* triangle inequality"):
+        kr.LagrangeTop(1.0, 2.5, 1.0)
+    with pytest.raises(ValueError, match=r"^I must be symmetric .* 1e-08 of the largest entry"):
+        kr.inertia.principal_axes(_asymmetric(1e-8))
+
+
+def test_allow_unphysical_skips_only_the_triangle_inequality_and_everywhere_alike():
+    for call in (lambda m: kr.simulate(m, T, OMEGA, method="rk4", dt=1e-3, allow_unphysical=True),
+                 lambda m: kr.simulate_batch([m], T, OMEGA, method="rk4", dt=1e-3, allow_unphysical=True),
+                 lambda m: kr.simulate_6dof(m, T, OMEGA, method="rk4", dt=1e-3, allow_unphysical=True),
+                 lambda m: kr.EulerTop(*m, allow_unphysical=True)):
+        assert _verdict(call, [1.0, 1.0, 5.0]) and not _verdict(call, [1e-10, 1.0, 5.0])
+
+
+def _asymmetric(relative):
+    """A symmetric tensor with largest entry 3 and I_01 - I_10 = ``relative`` times 3."""
+    tensor = np.array([[2.0, 0.5, 0.0], [0.5, 2.0, 0.0], [0.0, 0.0, 3.0]])
+    tensor[1, 0] += 3.0 * relative
+    return tensor
+
+
+#: entry points taking an inertia tensor
+TENSOR_ENTRIES = {
+    **{key: MOMENT_ENTRIES[key] for key in ("RigidBody", "simulate", "simulate_6dof")},
+    "viewer(tensor)": lambda a: _viewer({"tensor": a.tolist()}),
+    "principal_axes": kr.inertia.principal_axes,
+    "rotate": lambda a: kr.inertia.rotate(a, [1.0, 0.0, 0.0, 0.0]),
+    "parallel_axis": lambda a: kr.inertia.parallel_axis(a, 1.0, [1.0, 0.0, 0.0]),
+    "moment_about_axis": lambda a: kr.inertia.moment_about_axis(a, [0.0, 0.0, 1.0]),
+    "inertia_ellipsoid": kr.inertia.inertia_ellipsoid,
+    "combine": lambda a: kr.inertia.combine([kr.inertia.MassProperties(1.0, np.zeros(3), a)]),
+}
+TENSOR_CASES = {"asymmetric by 1e-10": (1e-10, True), "asymmetric by 0.9 TOL": (0.9 * TOL, True),
+                "asymmetric by 1.1 TOL": (1.1 * TOL, False), "asymmetric by 1e-8": (1e-8, False)}
+
+
+@pytest.mark.parametrize("case", TENSOR_CASES)
+@pytest.mark.parametrize("entry", TENSOR_ENTRIES)
+def test_symmetry_gets_one_verdict_everywhere(entry, case):
+    relative, accepted = TENSOR_CASES[case]
+    assert _verdict(TENSOR_ENTRIES[entry], _asymmetric(relative)) is accepted
+
+
+def test_the_tolerance_scales_with_the_body():
+    """Relative to the largest entry and the sum: the verdicts hold at 1e-300 and 1e300 kg m² alike."""
+    for scale in (1e-300, 1e300):
+        assert _verdict(MOMENT_ENTRIES["RigidBody"], scale * np.array([1.0, 1.0, 2.0 + 0.95 * TOL * 4.0]))
+        assert not _verdict(MOMENT_ENTRIES["RigidBody"], scale * np.array([1.0, 1.0, 2.0 + 1.05 * TOL * 4.0]))
+        assert _verdict(MOMENT_ENTRIES["RigidBody"], scale * _asymmetric(0.9 * TOL))
+        assert not _verdict(MOMENT_ENTRIES["RigidBody"], scale * _asymmetric(1.1 * TOL))
