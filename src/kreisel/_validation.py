@@ -9,7 +9,7 @@ from __future__ import annotations
 import numbers
 import os
 import warnings
-from typing import Any
+from typing import Any, NoReturn
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -174,8 +174,12 @@ class out_of_range:
         """The values (one, or a tuple of several), refused when any entry is not finite."""
         for value in values:
             if not np.all(np.isfinite(value)):
-                raise ValueError(f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)")
+                self.refuse()
         return values[0] if len(values) == 1 else values
+
+    def refuse(self) -> NoReturn:
+        """Raise the refusal, for a result found out of range some other way (a lower layer's own refusal)."""
+        raise ValueError(f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)")
 
 
 def memory_budget() -> int:

@@ -28,6 +28,7 @@ import numpy as np
 
 from .._validation import as_float_array, out_of_range
 from .._norms import norm
+from ..kinematics import five_term_acceleration
 
 __all__ = [
     "InertialForces",
@@ -151,10 +152,13 @@ def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), 
     r, v, omega, omega_dot, a0 = _vectors(r=r, v=v, omega=omega, omega_dot=omega_dot, a0=a0)
     m = _scalar(mass, "mass", positive=True)[..., None]
     with out_of_range("r, v, omega, omega_dot, a0 and mass", "an inertial force") as guard:
-        translational = -m * a0
-        coriolis = -2.0 * m * np.cross(omega, v)
-        centrifugal = -m * np.cross(omega, np.cross(omega, r))
-        euler = -m * np.cross(omega_dot, r)
+        try:
+            # each inertial force is -m times a transport or Coriolis term of the five-term acceleration
+            a = five_term_acceleration(omega, omega_dot, r, v, 0.0, a0)
+        except ValueError:  # the arguments are checked above: only a term beyond the largest double is left
+            guard.refuse()
+        translational, euler, centrifugal, coriolis = (-m * x for x in (a.translational, a.tangential,
+                                                                       a.centripetal, a.coriolis))
         total = guard.check(translational + coriolis + centrifugal + euler)
         guard.check(translational, coriolis, centrifugal, euler)
     shape = total.shape
