@@ -191,6 +191,11 @@ def test_foucault_period_broadcasts_and_validates():
     # a 1670 m pendulum (period 82 s) over 20 s reaches no excursion: it once returned a NaN precession rate
     with pytest.raises(ValueError, match=r"duration and length: in 20 s .* \(period 82 s\) reached no excursion"):
         E.foucault_pendulum(1670.0, 40.0, 20.0, 0.1)
+    # 1e-158 rad ended in a ZeroDivisionError (squared excursions underflow), 1e-164 rad in a misleading refusal
+    with pytest.raises(ValueError, match=r"amplitude = 1e-158 rad is out of range: below 1e-150 rad"):
+        E.foucault_pendulum(1.0, 40.0, 20.0, 1e-158)
+    assert E.foucault_pendulum(1.0, 40.0, 20.0, 1e-140).precession_rate == pytest.approx(
+        E.foucault_pendulum(1.0, 40.0, 20.0, 1e-3).precession_rate, rel=1e-3)
     # 1e-143 m swings 1.5e73 rad in 20 s: refused before work, not a 'step fell below round-off' failure
     with pytest.raises(ValueError, match=r"length and duration are out of range: .* phase of 1.53e\+73 rad"):
         E.foucault_pendulum(1.67e-143, 40.0, 20.0, 0.1)

@@ -292,7 +292,8 @@ def foucault_pendulum(
     Raises
     ------
     ValueError
-        Bad arguments; a pendulum that swings through more than 1e15 rad of
+        Bad arguments; an amplitude below 1e-150 rad (its squared excursions
+        underflow); a pendulum that swings through more than 1e15 rad of
         phase in ``duration`` (its steps would be lost in the rounding of t);
         a run that ends before the first excursion after the release (less
         than about half a period), which leaves no swing plane to measure.
@@ -314,6 +315,10 @@ def foucault_pendulum(
     amplitude = as_float(amplitude, "amplitude")
     if not 0 < amplitude < np.pi / 2:
         raise ValueError(f"amplitude must be an angle in (0, pi/2) rad, got {amplitude}")
+    if amplitude < 1e-150:
+        # the swing is found from squared excursions, ~amplitude², which leave the normal doubles below 1e-154
+        raise ValueError(f"amplitude = {amplitude:g} rad is out of range: below 1e-150 rad the squared excursions "
+                         "that locate the swing plane underflow double precision")
     g = as_float(g, "g")
     if not g > 0:
         raise ValueError(f"g must be positive, got {g}")
