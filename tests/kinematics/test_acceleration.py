@@ -126,6 +126,22 @@ def test_from_rotvec_at_extreme_magnitudes_against_mpmath(exponent, frame):
         assert np.linalg.norm(got - want) <= 1e-13 * np.linalg.norm(want)
 
 
+@pytest.mark.parametrize("frame", ["space", "body"])
+def test_from_rotvec_refuses_an_acceleration_beyond_the_float_range(frame):
+    """ε is quadratic in ψ̇: at |ψ̇| ~ 1e155 it exceeds 1.8e308 and is refused, naming psidot and psiddot.
+
+    Just below, at 1e150, it is ψ̇'s square times the same coefficients (ψ̈ = 0), so still exact.
+    """
+    psi = np.array([0.3, -0.4, 0.2])
+    psidot = np.array([0.3, 0.7, -0.4])
+    base = angular_acceleration_from_rotvec(psi, psidot, np.zeros(3), frame=frame)
+    np.testing.assert_allclose(angular_acceleration_from_rotvec(psi, 1e150 * psidot, np.zeros(3), frame=frame),
+                               1e300 * base, rtol=1e-13)
+    out = np.zeros(3)
+    with pytest.raises(ValueError, match="psidot and psiddot are out of range: the angular acceleration exceeds"):
+        angular_acceleration_from_rotvec(psi, 1e155 * psidot, np.zeros(3), frame=frame, out=out)
+
+
 @pytest.mark.parametrize("scale", [1e-200, 1e200])
 @pytest.mark.parametrize("frame", ["space", "body"])
 def test_from_quaternion_of_any_size(scale, frame):

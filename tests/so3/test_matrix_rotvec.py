@@ -194,6 +194,21 @@ def test_bch_low_orders_are_chapter_formula(rng):
         kr.bch(a, b, order=0)
 
 
+@pytest.mark.parametrize("name", ["a", "b"])
+def test_bch_refuses_rotation_vectors_beyond_rotvec_range(name):
+    """Like every rotation-vector entry point, bch refuses |ψ| > 1e8 rad, naming the argument, before work.
+
+    At 1e155 the series' cubic terms would overflow; just past 1e8 the terms are finite but noise.
+    """
+    ok = np.array([0.1, -0.2, 0.3])
+    for length in (1.01e8, 1e155):
+        long = length * np.array([0.6, 0.0, 0.8])
+        args = {"a": ok, "b": ok, name: long}
+        with pytest.raises(ValueError, match=rf"^{name} is out of range: \|psi\| = .* exceeds 1e\+08 rad"):
+            kr.bch(args["a"], args["b"])
+    np.testing.assert_allclose(kr.bch(1e8 * np.array([0.6, 0.0, 0.8]), np.zeros(3)), [6e7, 0.0, 8e7])
+
+
 def test_axis_angle(rng):
     psi = rng.normal(size=(10, 3))
     axis, angle = kr.rotvec_to_axis_angle(psi)

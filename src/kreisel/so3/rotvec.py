@@ -406,6 +406,8 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     Parameters
     ----------
     a, b : array_like, shape (..., 3)
+        Rotation vectors, at most ``ROTVEC_RANGE`` = 1e8 rad long (longer
+        ones are refused, as by :func:`rotvec_to_quat`).
     order : int >= 1
         Highest total degree in a and b kept in the series.
     out : ndarray, optional
@@ -418,8 +420,8 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     """
     if not isinstance(order, (int, np.integer)) or order < 1:
         raise ValueError(f"order must be an integer >= 1, got {order!r}")
-    a = vector_array(a, "a")
-    b = vector_array(b, "b")
+    a = rotvec_array(a, "a")
+    b = rotvec_array(b, "b")
     a, b = np.broadcast_arrays(a, b)
     B = _bernoulli_even(order)
     s = a + b
