@@ -227,3 +227,18 @@ def test_drop_from_far_out_is_scale_free():
     # deviations grow as the height; from 5e149 m the integrator's error norm once overflowed its squares
     base = np.array(E.simulate_drop(5e100, 40.0)) / 5e100
     np.testing.assert_allclose(np.array(E.simulate_drop(5e149, 40.0)) / 5e149, base, rtol=1e-8)
+
+
+def test_shell_deviation_refuses_a_flight_too_short_to_resolve():
+    """Below a 1e-10 rad turn of the Earth the deviation drowns in the range's round-off: refused before work.
+
+    A 1.6e-161 m/s shell flew a subnormal 1e-323 m and failed inside the integrator; just above the
+    limit the integrated deviation still agrees with the first-order estimate.
+    """
+    for speed in (1.6e-161, 1e-8):
+        with pytest.raises(ValueError, match=r"speed, elevation_deg, g and omega are out of range: the Earth turns .* rad, less "
+                                             r"than 1e-10 rad, during the flight of a speed = .* m/s shell"):
+            E.shell_deviation(speed, 45.0, 90.0, 45.0)
+    east, north = E.shell_deviation(1e-5, 45.0, 90.0, 45.0)
+    assert east == pytest.approx(E.shell_deviation_estimate(1e-5, 45.0, 90.0, 45.0)[0], rel=1e-6)
+    assert E.shell_deviation(100.0, 45.0, 90.0, 45.0, omega=0.0)[0] == pytest.approx(0.0, abs=1e-11)

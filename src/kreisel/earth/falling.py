@@ -210,6 +210,27 @@ def _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega):
     return np.broadcast_arrays(speed, el, az, lat, g, w)
 
 
+#: Smallest turn ω T (rad) of the Earth during a shell's flight T = 2 v sin(e)/g that
+#: :func:`shell_deviation` integrates: the deviation is about ω T times the range, and it is the
+#: difference of two ranges that carry a round-off of ~1e-16 of the range, so below 1e-10 rad it
+#: would keep fewer than six digits (and a 1e-161 m/s shell flies a subnormal 1e-323 m).
+SHORTEST_TURN = 1e-10
+
+
+def _refuse_short_flight(speed, el, g, w):
+    """ValueError naming ``speed`` (and g, omega) when the Earth turns less than :data:`SHORTEST_TURN` during a flight."""
+    with np.errstate(under="ignore"):
+        turn = w * (2.0 * speed * np.sin(np.deg2rad(el)) / g)
+    short = (w > 0) & (turn < SHORTEST_TURN)
+    if np.any(short):
+        first = np.argmax(short)
+        raise ValueError(
+            f"speed, elevation_deg, g and omega are out of range: the Earth turns {turn.flat[first]:.3g} rad, less than "
+            f"{SHORTEST_TURN:g} rad, during the flight of a speed = {speed.flat[first]:.3g} m/s shell, so the deviation is below the round-off of the integrated range; "
+            "use shell_deviation_estimate (exact to relative order omega*T) for so short a flight"
+        )
+
+
 def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     """Deviation of a shell's impact point caused by the Earth's rotation (Theory §8.3 exercise), simulated.
 
@@ -222,7 +243,9 @@ def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, 
     Parameters
     ----------
     speed : array_like
-        Muzzle speed relative to the ground, m/s.
+        Muzzle speed relative to the ground, m/s. Flights during which the
+        Earth turns less than ``SHORTEST_TURN`` = 1e-10 rad (below ~7e-6 m/s
+        on Earth) are refused: use :func:`shell_deviation_estimate` there.
     elevation_deg : array_like
         Elevation above the horizon, degrees, in (0, 90].
     azimuth_deg : array_like
@@ -247,6 +270,7 @@ def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, 
     True
     """
     speed, el, az, lat, g, w = _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega)
+    _refuse_short_flight(speed, el, g, w)
     v0 = _muzzle_velocity(speed, el, az)
     east = np.empty(speed.shape)
     north = np.empty(speed.shape)
