@@ -151,7 +151,8 @@ def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot:
     psi, psidot, psiddot = vector_batch(psi=psi, psidot=psidot, psiddot=psiddot)
     with out_of_range("psidot and psiddot", "the angular acceleration") as guard:
         # quadratic in ψ̇: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
-        return guard.check(dexp.apply_jacobian_rate(psi, psidot, psiddot, sign, out=out))
+        epsilon: NDArray[np.float64] = guard.check(dexp.apply_jacobian_rate(psi, psidot, psiddot, sign, out=out))
+    return epsilon
 
 
 def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLike, accelerations: ArrayLike,

@@ -169,7 +169,7 @@ class RotationSpline:
     Same curve as scipy (same end conditions, ``MAX_ITER`` and ``TOL`` of the
     knot-rate iteration); see :mod:`kreisel.so3.spline` for the frames of the
     derivatives. Times outside the knots extrapolate the end segments (as far
-as their rotation vector stays within 1e8 rad, else they are refused). For
+    as their rotation vector stays within 1e8 rad, else they are refused). For
     large turns between knots scipy's 10 iterations may stop short of
     convergence, leaving jumps of the angular acceleration at the knots
     (~1e-4 rad/s² for random attitudes a second apart); a subclass with a
