@@ -9,6 +9,7 @@ from __future__ import annotations
 import numbers
 import os
 import warnings
+from types import TracebackType
 from typing import Any, NoReturn
 
 import numpy as np
@@ -164,11 +165,14 @@ class out_of_range:
         self.names, self.what = names, what
 
     def __enter__(self) -> "out_of_range":
-        self._state = np.seterr(over="ignore", invalid="ignore")
+        # errstate, not seterr: numpy keeps it per thread and per context, so other threads keep their warnings
+        self._errstate = np.errstate(over="ignore", invalid="ignore")
+        self._errstate.__enter__()
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        np.seterr(**self._state)
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
+        self._errstate.__exit__(kind, error, trace)
 
     def check(self, *values: Any) -> Any:
         """The values (one, or a tuple of several), refused when any entry is not finite."""
