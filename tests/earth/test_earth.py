@@ -3,6 +3,7 @@
 import warnings
 
 import numpy as np
+import mpmath as mp
 import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
@@ -229,16 +230,72 @@ def test_drop_from_far_out_is_scale_free():
     np.testing.assert_allclose(np.array(E.simulate_drop(5e149, 40.0)) / 5e149, base, rtol=1e-8)
 
 
-def test_shell_deviation_refuses_a_flight_too_short_to_resolve():
-    """Below a 1e-10 rad turn of the Earth the deviation drowns in the range's round-off: refused before work.
+def _closed_form_deviation(speed, elev, az, lat, g, omega):
+    """The shell's deviation from the exact solution of the linear equations, at 50+ digits (mpmath).
 
-    A 1.6e-161 m/s shell flew a subnormal 1e-323 m and failed inside the integrator; just above the
-    limit the integrated deviation still agrees with the first-order estimate.
+    In the inertial frame that coincides with ENU at t = 0, ρ̈ = R(ω t) g: the part of g along the
+    axis n stays, the perpendicular part turns, so ρ = v0 t + g∥ t²/2 + g⊥ (1 - cos θ)/ω²
+    + n×g⊥ (θ - sin θ)/ω² with θ = ω t, and r = R(-θ) ρ. The landing is a root of r_z.
     """
-    for speed in (1.6e-161, 1e-8):
-        with pytest.raises(ValueError, match=r"speed, elevation_deg, g and omega are out of range: the Earth turns .* rad, less "
-                                             r"than 1e-10 rad, during the flight of a speed = .* m/s shell"):
-            E.shell_deviation(speed, 45.0, 90.0, 45.0)
-    east, north = E.shell_deviation(1e-5, 45.0, 90.0, 45.0)
-    assert east == pytest.approx(E.shell_deviation_estimate(1e-5, 45.0, 90.0, 45.0)[0], rel=1e-6)
-    assert E.shell_deviation(100.0, 45.0, 90.0, 45.0, omega=0.0)[0] == pytest.approx(0.0, abs=1e-11)
+    mp.mp.dps = 50 + int(-3 * mp.log10(omega * speed / g))  # (θ - sin θ) keeps its digits
+    speed, elev, az, lat, g, omega = (mp.mpf(x) for x in (speed, elev, az, lat, g, omega))
+    e, a, lam = mp.radians(elev), mp.radians(az), mp.radians(lat)
+    n = mp.matrix([0, mp.cos(lam), mp.sin(lam)])
+    v0 = speed * mp.matrix([mp.cos(e) * mp.cos(a), mp.cos(e) * mp.sin(a), mp.sin(e)])
+    grav = mp.matrix([0, 0, -g])
+    g_par = (grav.T * n)[0] * n
+    g_perp = grav - g_par
+
+    def cross(p, q):
+        return mp.matrix([p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]])
+
+    def position(t):
+        th = omega * t
+        rho = v0 * t + g_par * t**2 / 2 + g_perp * (1 - mp.cos(th)) / omega**2 + cross(n, g_perp) * (th - mp.sin(th)) / omega**2
+        # Rodrigues, angle -θ about n
+        return rho * mp.cos(th) - cross(n, rho) * mp.sin(th) + n * (n.T * rho)[0] * (1 - mp.cos(th))
+
+    land = mp.findroot(lambda t: position(t)[2], 2 * v0[2] / g)
+    r = position(land)
+    reach = speed**2 * mp.sin(2 * e) / g
+    return float(r[0] - reach * mp.cos(a)), float(r[1] - reach * mp.sin(a))
+
+
+@pytest.mark.parametrize("speed,elev,az,lat,omega,rel_north", [
+    (500.0, 45.0, 90.0, 45.0, E.OMEGA_EARTH, 1e-9),    # north is of third order in ω here: 1e-13 of the east
+    (300.0, 30.0, 200.0, -30.0, E.OMEGA_EARTH, 1e-12),
+    (100.0, 90.0, 0.0, 40.0, E.OMEGA_EARTH, 1e-12),
+    (600.0, 10.0, 45.0, 60.0, 1e-9, 1e-12),         # the Earth turns 1e-10 rad: was refused
+    (50.0, 60.0, 135.0, -20.0, 2e-3, 1e-12),         # a fast planet: turns 0.35 rad, O(1) corrections
+])
+def test_shell_deviation_against_high_precision_closed_form(speed, elev, az, lat, omega, rel_north):
+    """Each component to near the integrator's tolerance of itself, however small against the range.
+
+    The difference of two integrated ranges left 1e-16 of the range, 3e-12 m for the first case:
+    1e-5 of its north deviation (-3.0e-7 m) and 1e5 times the deviations of the fourth.
+    """
+    east, north = E.shell_deviation(speed, elev, az, lat, omega=omega)
+    ref_east, ref_north = _closed_form_deviation(speed, elev, az, lat, 9.80665, omega)
+    assert east == pytest.approx(ref_east, rel=1e-12)
+    assert north == pytest.approx(ref_north, rel=rel_north)
+
+
+def test_shell_deviation_first_order_in_omega_and_exact_zero():
+    """Against the first-order closed form as ω → 0: the remainder is of relative order ω T, down to 1e-300 rad."""
+    case = (400.0, 35.0, 160.0, 50.0)
+    rates = np.array([1e-4, 1e-6, 1e-8, 1e-100, 1e-290])
+    east, north = E.shell_deviation(*case, omega=rates)
+    e1, n1 = E.shell_deviation_estimate(*case, omega=rates)
+    remainder = np.hypot(east - e1, north - n1) / np.hypot(e1, n1)
+    flight = 2 * 400.0 * np.sin(np.deg2rad(35.0)) / 9.80665
+    ratio = remainder / (rates * flight)
+    # O(ωT) with a steady coefficient (not round-off: the old subtraction gave 1e-16 of the range / ω T)
+    # and the coefficient itself converges at rate ω T
+    assert 0.05 < ratio[1] < 2 and ratio[0] == pytest.approx(ratio[1], rel=1e-2) and ratio[2] == pytest.approx(ratio[1], rel=1e-4)
+    assert np.all(remainder[3:] < 1e-15)
+    assert E.shell_deviation(*case, omega=0.0) == (0.0, 0.0)
+    with pytest.raises(ValueError, match=r"speed, elevation_deg, g and omega are out of range: the Earth turns .* rad, less "
+                                         r"than 1e-300 rad, during the flight of a speed = 400 m/s shell"):
+        E.shell_deviation(*case, omega=1e-305)
+    # 1.6e-161 m/s once failed inside the integrator (a subnormal range): the deviation underflows to 0
+    assert E.shell_deviation(1.6e-161, 45.0, 90.0, 45.0) == (0.0, 0.0)

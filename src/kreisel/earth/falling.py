@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled import cached, dop853 as _dop853
+from .._compiled import cached, dop853 as _dop853, generic
 from .._validation import as_float_array, out_of_range
 from ..frames.particle import builtin_parameters, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
@@ -78,6 +78,45 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
         return guard.check((2.0 / 3.0) * w * c * (h * np.sqrt(2.0 * h / g)))
 
 
+@generic
+def _to_ground(rhs, height, p, y, k, tmp, y_new, t_end, rtol, atol, max_step, tables, peak):
+    """Adaptive DOP853 steps from t = 0 until ``height(t, y, p)`` comes down through zero.
+
+    Returns ``(status, t, t_new, h_taken)``: the crossing step goes from ``(t, y)``, its slope in
+    ``k[:n]``, to ``(t_new, y_new)``, its slope in stage 12 of ``k``. The steps stop exactly at
+    ``t_end`` on the way (``inf``: nowhere); ``peak`` receives the largest magnitude of each
+    component over the accepted steps.
+    """
+    n = y.size
+    t = 0.0
+    rhs(t, y, p, k, 0)
+    h = _dop853.initial_step(rhs, p, t, y, k, max_step, rtol, atol, tmp, y_new)
+    while True:
+        status, t_new, h_taken, h_next = _dop853.advance(rhs, p, t, y, h, t_end, max_step, rtol, atol, tables, k,
+                                                         tmp, y_new)
+        if status != _dop853.OK:
+            return status, t, t, 0.0
+        if height(t_new, y_new, p) <= 0.0:
+            if height(t, y, p) > 0.0:
+                return status, t, t_new, h_taken
+            # a launch from the ground that is back below it after one step: shorten
+            h = 0.5 * h_taken
+            continue
+        t = t_new
+        h = h_next
+        for i in range(n):
+            y[i] = y_new[i]
+            k[i] = k[_dop853.N_STAGES * n + i]
+            peak[i] = max(peak[i], abs(y[i]))
+        if t == t_end:
+            t_end = np.inf
+
+
+@cached
+def _particle_height(t, y, p):
+    return y[2]
+
+
 @cached
 def _land_kernel(p, y0, rtol, atol, max_step, tables):
     """Integrate :func:`builtin_rhs` from t = 0 until the height ``y[2]`` comes down through zero.
@@ -91,26 +130,10 @@ def _land_kernel(p, y0, rtol, atol, max_step, tables):
     y = y0.copy()
     y_new = np.empty(n)
     tmp = np.empty(n)
-    t = 0.0
-    builtin_rhs(t, y, p, k, 0)
-    h = _dop853.initial_step(builtin_rhs, p, t, y, k, max_step, rtol, atol, tmp, y_new)
-    while True:
-        status, t_new, h_taken, h_next = _dop853.advance(
-            builtin_rhs, p, t, y, h, np.inf, max_step, rtol, atol, tables, k, tmp, y_new
-        )
-        if status != _dop853.OK:
-            return status, t, y
-        if y_new[2] <= 0.0 and y_new[5] < 0.0:
-            if y[2] > 0.0:
-                break
-            # a launch from the ground that is back below it after one step: shorten
-            h = 0.5 * h_taken
-            continue
-        t = t_new
-        h = h_next
-        for i in range(n):
-            y[i] = y_new[i]
-            k[i] = k[_dop853.N_STAGES * n + i]
+    status, t, _, h_taken = _to_ground(builtin_rhs, _particle_height, p, y, k, tmp, y_new, np.inf, rtol, atol, max_step,
+                                       tables, np.zeros(n))
+    if status != _dop853.OK:
+        return status, t, y
     # safeguarded Newton (bisection fallback) on the length of the last step
     lo, hi = 0.0, h_taken
     tau = h_taken * y[2] / (y[2] - y_new[2])
@@ -192,9 +215,10 @@ def simulate_drop(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
 
 
 def _muzzle_velocity(speed, elevation_deg, azimuth_deg):
-    e = np.deg2rad(elevation_deg)
+    # cos e as sin(90° - e): exactly 0 for a vertical shot, not 6e-17
+    cos_e, sin_e = np.sin(np.deg2rad(90.0 - elevation_deg)), np.sin(np.deg2rad(elevation_deg))
     a = np.deg2rad(azimuth_deg)
-    return np.stack([speed * np.cos(e) * np.cos(a), speed * np.cos(e) * np.sin(a), speed * np.sin(e)], axis=-1)
+    return np.stack([speed * cos_e * np.cos(a), speed * cos_e * np.sin(a), speed * sin_e], axis=-1)
 
 
 def _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega):
@@ -210,11 +234,117 @@ def _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega):
     return np.broadcast_arrays(speed, el, az, lat, g, w)
 
 
+@cached
+def _deviation_rhs(t, y, p, out, offset):
+    """Scaled deviation from the shell's path without rotation: u = (r - r0)/(L W), y = (u, u').
+
+    Lengths in L = v²/g, times in v/g; r0 = d t - ẑ t²/2 is the path without rotation
+    (unit muzzle direction d = ``p[0:3]``), n = ``p[3:6]`` = (0, cos λ, sin λ) and W = ``p[6]``
+    = ω v/g. Subtracting r0'' = -ẑ from the equation of the module note and dividing by W:
+    u'' = -2 n×(r0' + W u') - W n×(n×(r0 + W u)), whose terms are all of order one, so u
+    keeps its relative accuracy however small W is, and W = 0 is exactly no deviation.
+    """
+    c, s, w = p[4], p[5], p[6]
+    ax = p[0] + w * y[3]
+    ay = p[1] + w * y[4]
+    az = p[2] - t + w * y[5]
+    bx = p[0] * t + w * y[0]
+    by = p[1] * t + w * y[1]
+    bz = t * (p[2] - 0.5 * t) + w * y[2]
+    # n×b with n = (0, c, s), then n×(n×b)
+    mx, my, mz = c * bz - s * by, s * bx, -c * bx
+    for i in range(3):
+        out[offset + i] = y[3 + i]
+    out[offset + 3] = -2.0 * (c * az - s * ay) - w * (c * mz - s * my)
+    out[offset + 4] = -2.0 * (s * ax) - w * (s * mx)
+    out[offset + 5] = 2.0 * (c * ax) + w * (c * mx)
+
+
+@cached
+def _scaled_height(t, uz, s, w):
+    """Height z/L of the shell at scaled time t: z0(t) + W u_z, z0 = t (sin e - t/2) to relative round-off.
+
+    Past half the flight T0 = 2 sin e, z0 = -(t - T0)(sin e + (t - T0)/2): t - T0 is exact there
+    (Sterbenz), so z0 does not carry the round-off of the maximum height near the landing.
+    """
+    if t >= s:
+        late = t - 2.0 * s
+        return -late * (s + 0.5 * late) + w * uz
+    return t * (s - 0.5 * t) + w * uz
+
+
+@cached
+def _deviation_height(t, y, p):
+    return _scaled_height(t, y[2], p[2], p[6])
+
+
+@cached
+def _deviation_kernel(p, rtol, atol, max_step, tables, peak):
+    """Integrate :func:`_deviation_rhs` to the landing; returns ``(status, sigma, u_x, u_y)`` there.
+
+    ``peak`` receives the largest magnitude of each state component over the accepted steps.
+
+    The landing time is T0 + W σ (scaled units), and the deviation is L W (d_h σ + u_h). The
+    adaptive loop stops exactly at T0 on the way, so T0 is a step boundary; the landing is then
+    solved for (safeguarded Newton on σ, one DOP853 step from an anchor) from the end of the
+    crossing step nearest T0: σ = (anchor - T0)/W + τ/W with τ of the same sign, so σ keeps its
+    relative accuracy when the landing is within round-off of T0 (τ and W σ may even underflow).
+    """
+    n = 6
+    s, w = p[2], p[6]
+    flight = 2.0 * s
+    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
+    y = np.zeros(n)
+    y_new = np.empty(n)
+    tmp = np.empty(n)
+    anchor = np.empty(n)
+    slope = np.empty(n)
+    status, t, t_new, _ = _to_ground(_deviation_rhs, _deviation_height, p, y, k, tmp, y_new, flight, rtol, atol,
+                                     max_step, tables, peak)
+    if status != _dop853.OK:
+        return status, 0.0, 0.0, 0.0
+    # anchor at the end of the crossing step nearest T0 (T0 is one of its ends or outside it)
+    t_anchor = t_new if t_new <= flight else t
+    for i in range(n):
+        anchor[i] = y_new[i] if t_new <= flight else y[i]
+        slope[i] = k[_dop853.N_STAGES * n + i] if t_new <= flight else k[i]
+    lo, hi = t - flight, t_new - flight
+    offset = t_anchor - flight
+    sigma = offset / w
+    uz, vz = anchor[2], anchor[5]
+    for i in range(n):
+        y_new[i] = anchor[i]
+    for _ in range(100):
+        late = w * sigma
+        g = uz - sigma * (s + 0.5 * late)
+        if g > 0.0:
+            lo = max(lo, late)
+        else:
+            hi = min(hi, late)
+        slope_g = w * vz - (s + late)
+        new_sigma = sigma - g / slope_g if slope_g != 0.0 else np.nan
+        if not (lo <= w * new_sigma <= hi):
+            new_sigma = 0.5 * (lo + hi) / w
+        converged = g == 0.0 or abs(new_sigma - sigma) <= 1e-15 * abs(new_sigma)
+        sigma = new_sigma
+        tau = w * sigma - offset
+        if tau == 0.0:
+            for i in range(n):
+                y_new[i] = anchor[i]
+        else:
+            for i in range(n):
+                k[i] = slope[i]
+            _dop853.attempt(_deviation_rhs, p, t_anchor, anchor, tau, tables, k, tmp, y_new)
+        uz, vz = y_new[2], y_new[5]
+        if converged:
+            break
+    return _dop853.OK, sigma, y_new[0], y_new[1]
+
+
 #: Smallest turn ω T (rad) of the Earth during a shell's flight T = 2 v sin(e)/g that
-#: :func:`shell_deviation` integrates: the deviation is about ω T times the range, and it is the
-#: difference of two ranges that carry a round-off of ~1e-16 of the range, so below 1e-10 rad it
-#: would keep fewer than six digits (and a 1e-161 m/s shell flies a subnormal 1e-323 m).
-SHORTEST_TURN = 1e-10
+#: :func:`shell_deviation` integrates: below it the scaled rotation rate of ``_deviation_rhs``
+#: nears the subnormal doubles and the deviation's parts of second order in ω T underflow.
+SHORTEST_TURN = 1e-300
 
 
 def _refuse_short_flight(speed, el, g, w):
@@ -226,26 +356,62 @@ def _refuse_short_flight(speed, el, g, w):
         first = np.argmax(short)
         raise ValueError(
             f"speed, elevation_deg, g and omega are out of range: the Earth turns {turn.flat[first]:.3g} rad, less than "
-            f"{SHORTEST_TURN:g} rad, during the flight of a speed = {speed.flat[first]:.3g} m/s shell, so the deviation is below the round-off of the integrated range; "
+            f"{SHORTEST_TURN:g} rad, during the flight of a speed = {speed.flat[first]:.3g} m/s shell, so the "
+            "deviation's terms of second order in that turn fall below the smallest double; "
             "use shell_deviation_estimate (exact to relative order omega*T) for so short a flight"
         )
+
+
+def _small_turn_deviation(d, cos_lat, sin_lat, rate, tables):
+    """The deviation over L W (L = v²/g, W = ω v/g) when the Earth turns less than a radian, from :func:`_deviation_kernel`."""
+    p = np.array([d[0], d[1], d[2], 0.0, cos_lat, sin_lat, rate])
+    # Components of u differ in size by powers of W (some vanish at first order) and cross zero:
+    # a first run with a tolerance on the size of the first-order ones (about sin² e) measures
+    # each component's largest size, and the second holds every component to 1e-16 of its own
+    # (not to below the smallest normal double: the state starts at exactly 0).
+    peak = np.zeros(6)
+    atol = np.full(6, 1e-16 * d[2] * d[2])
+    for _ in range(2):
+        status, sigma, ux, uy = _deviation_kernel(p, 1e-13, atol, 0.25 * d[2], tables, peak)
+        _dop853.check_status(status)
+        atol = np.maximum(1e-16 * peak, np.finfo(float).tiny)
+    return d[0] * sigma + ux, d[1] * sigma + uy
+
+
+def _large_turn_deviation(speed, d, lat, g, w):
+    """The deviation by integrating the whole path: the Earth turns a radian or more, the deviation is of the range's size."""
+    _, y = _land(np.zeros(3), speed * d, lat, g, w)
+    reach = speed * (speed * 2.0 * d[2] / g)
+    return y[0] - reach * d[0], y[1] - reach * d[1]
 
 
 def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     """Deviation of a shell's impact point caused by the Earth's rotation (Theory §8.3 exercise), simulated.
 
     The shell leaves the ground at the origin with the given muzzle speed,
-    elevation and azimuth (no air drag), and is integrated under the full
-    rotating-frame equations of the module note until it returns to z = 0.
-    The deviation is the impact point minus the impact point without rotation,
-    (v² sin 2e / g) along the azimuth.
+    elevation and azimuth (no air drag) and follows the full rotating-frame
+    equations of the module note until it returns to z = 0. The deviation is
+    the impact point minus the impact point without rotation, (v² sin 2e / g)
+    along the azimuth.
+
+    While the Earth turns less than half a radian during the flight, the
+    deviation is integrated directly, as the departure from the parabola
+    without rotation, in units of the first-order deviation ω v³/g² (see
+    ``_deviation_rhs``): it is accurate to about 1e-13 of its own size however
+    small it is against the range (the difference of two integrated ranges
+    would keep only 1e-16 of the range), and ``omega = 0`` gives exactly 0.
+    A component that is much smaller than the deviation (the north one of a
+    shot due north, of third order in ω at λ = e = 45°) is accurate to 1e-13
+    of the deviation, not of itself. For longer flights the whole path is
+    integrated and the deviation is of the range's own size.
 
     Parameters
     ----------
     speed : array_like
         Muzzle speed relative to the ground, m/s. Flights during which the
-        Earth turns less than ``SHORTEST_TURN`` = 1e-10 rad (below ~7e-6 m/s
-        on Earth) are refused: use :func:`shell_deviation_estimate` there.
+        Earth turns less than ``SHORTEST_TURN`` = 1e-300 rad are refused:
+        the deviation's terms of second order in the turn would fall below
+        the smallest double.
     elevation_deg : array_like
         Elevation above the horizon, degrees, in (0, 90].
     azimuth_deg : array_like
@@ -266,21 +432,29 @@ def shell_deviation(speed, elevation_deg, azimuth_deg, latitude_deg, g=9.80665, 
     A shell fired north at 45° in the northern hemisphere lands to the east:
 
     >>> east, north = shell_deviation(500.0, 45.0, 90.0, 45.0)
-    >>> bool(east > 0)
-    True
+    >>> round(float(east), 6)
+    63.18795
+    >>> shell_deviation(500.0, 45.0, 90.0, 45.0, omega=0.0)
+    (array(0.), array(0.))
     """
     speed, el, az, lat, g, w = _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega)
     _refuse_short_flight(speed, el, g, w)
-    v0 = _muzzle_velocity(speed, el, az)
-    east = np.empty(speed.shape)
-    north = np.empty(speed.shape)
+    d = _muzzle_velocity(1.0, el, az)
+    cos_lat, sin_lat = latitude_cos_sin(lat)
+    east = np.zeros(speed.shape)
+    north = np.zeros(speed.shape)
+    tables = _dop853.tableau()
     with out_of_range("speed, g and omega", "the range of the shell") as guard:
         for idx in np.ndindex(speed.shape):
-            _, y = _land(np.zeros(3), v0[idx], lat[idx], g[idx], w[idx])
-            reach = speed[idx] * (speed[idx] * np.sin(2.0 * np.deg2rad(el[idx])) / g[idx])
-            direction = np.deg2rad(az[idx])
-            east[idx] = y[0] - reach * np.cos(direction)
-            north[idx] = y[1] - reach * np.sin(direction)
+            if w[idx] == 0.0:
+                continue  # no rotation, no deviation: exactly zero
+            rate = w[idx] * (speed[idx] / g[idx])  # W = ω v/g, the turn per unit of scaled time
+            if rate * d[idx][2] < 0.5:
+                east[idx], north[idx] = _small_turn_deviation(d[idx], cos_lat[idx], sin_lat[idx], rate, tables)
+                east[idx] *= speed[idx] * (speed[idx] / g[idx]) * rate
+                north[idx] *= speed[idx] * (speed[idx] / g[idx]) * rate
+            else:
+                east[idx], north[idx] = _large_turn_deviation(speed[idx], d[idx], lat[idx], g[idx], w[idx])
         return guard.check(east, north)
 
 
