@@ -109,3 +109,39 @@ def test_results_checked_as_computed_match_those_checked_first(data, parallel):
     for function, x in ((kr.quat_normalize, q), (kr.quat_inverse, q), (kr.rotvec_to_quat, psi)):
         first_checked = function(x, out=np.empty((N, 4)))  # out=: checked before the loop
         assert function(x).tobytes() == first_checked.tobytes()
+
+
+def test_products_checked_as_computed_match_those_checked_first(parallel):
+    # quat_multiply and quat_apply check p, q and v inside the loop: non-unit,
+    # tiny and huge inputs (products that overflow included) give the same bits.
+    rng = np.random.default_rng(3)
+    scale = lambda width: rng.normal(size=(N, width)) * 10.0 ** rng.integers(-320, 306, size=(N, 1))  # noqa: E731
+    p, q, v = scale(4), scale(4), scale(3)
+    with np.errstate(all="ignore"):
+        for inverse in (False, True):
+            first_checked = kr.quat_apply(q, v, inverse, out=np.empty((N, 3)))
+            assert kr.quat_apply(q, v, inverse).tobytes() == first_checked.tobytes()
+        assert kr.quat_multiply(p, q).tobytes() == kr.quat_multiply(p, q, out=np.empty((N, 4))).tobytes()
+
+
+@pytest.mark.parametrize("position", [0, N // 2, N - 1])
+def test_products_refuse_as_when_checked_first(data, parallel, position):
+    q, p, _, _, v = data
+    nan_p, inf_q, zero_q, nan_v = p.copy(), q.copy(), q.copy(), v.copy()
+    nan_p[position, 3] = np.nan
+    inf_q[N - 1 - position, 0] = -np.inf
+    zero_q[position] = 0.0
+    nan_v[position, 1] = np.nan
+    refusals = [
+        (lambda: kr.quat_multiply(nan_p, inf_q), "p must be finite"),
+        (lambda: kr.quat_multiply(p, inf_q), "q must be finite"),
+        (lambda: kr.quat_multiply(nan_p, np.zeros((N, 3))), "p must be finite"),  # p's refusal before q's shape
+        (lambda: kr.quat_apply(inf_q, nan_v), "q must be finite"),
+        (lambda: kr.quat_apply(zero_q, nan_v), "q must be nonzero"),
+        (lambda: kr.quat_apply(q, nan_v, inverse=True), "v must be finite"),
+        (lambda: kr.quat_apply(zero_q, np.zeros((N, 2))), "q must be nonzero"),
+    ]
+    for call, message in refusals:
+        with pytest.raises(ValueError, match=message):
+            call()
+    assert np.array_equal(kr.quat_multiply(p, zero_q), kr.quat_multiply(p, zero_q, out=np.empty((N, 4))))

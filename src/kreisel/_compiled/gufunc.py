@@ -315,25 +315,27 @@ def refuse_nonfinite(finite: bool, name: str) -> None:
 CHECKED_CHUNK = 2**14
 
 
-def checked_in_one_pass(a: NDArray[np.float64], core_out: tuple[int, ...], loop: Callable[..., Any],
-                        *extra: Any) -> tuple[NDArray[np.float64], Any] | None:
-    """``(result, statistic)`` of a loop that checks its input as it computes a large new result; None if small.
+def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], core_out: tuple[int, ...],
+                        loop: Callable[..., Any], *extra: Any) -> tuple[NDArray[np.float64], Any] | None:
+    """``(result, statistic)`` of a loop that checks its inputs as it computes a large new result; None if small.
 
-    ``loop(flat_a, flat_out, CHECKED_CHUNK, *extra)`` runs on all cores over
-    ``(n, core)`` views, computes every element that passes its check
-    (leaving the others unwritten) and returns the batch's check statistic.
-    The input is read once instead of once to check and once to compute,
-    and one multi-core loop starts instead of two: the check is still done
-    before any work the caller sees, since the caller refuses the batch from
-    the statistic and the new result is then dropped. With ``out=`` (which
-    may be the input) the callers check first instead.
+    ``loop(*flat_inputs, flat_out, CHECKED_CHUNK, *extra)`` runs on all
+    cores over ``(n, core)`` views, computes every element (what it writes
+    for one that fails its check is never seen) and returns the batch's
+    check statistic. The inputs are read once instead of once to check and once to
+    compute, and one multi-core loop starts instead of one per input plus
+    one: the check is still done before any work the caller sees, since the
+    caller refuses the batch from the statistic and the new result is then
+    dropped. With ``out=`` (which may be an input) the callers check first
+    instead. None also when the inputs' batch shapes differ (broadcasting).
     """
-    n = math.prod(a.shape[:-1])
-    if n < PARALLEL_THRESHOLD:
+    batch = inputs[0].shape[:-1]
+    n = math.prod(batch)
+    if n < PARALLEL_THRESHOLD or any(a.shape[:-1] != batch for a in inputs):
         return None
-    out = empty((*a.shape[:-1], *core_out))
-    flat = _writable(np.ascontiguousarray(a)).reshape(n, a.shape[-1])
-    return out, loop(flat, out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
+    out = empty((*batch, *core_out))
+    flat = [_writable(np.ascontiguousarray(a)).reshape(n, a.shape[-1]) for a in inputs]
+    return out, loop(*flat, out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
 
 
 def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import check_out, deliver
-from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, gufunc, refuse_quaternions
+from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, finite3, gufunc, refuse_nonfinite, refuse_quaternions
 from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
 from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, refuse_long_angle
 from .._norms import norm
@@ -153,7 +153,7 @@ def _map_checked(q: NDArray[np.float64], out: NDArray[np.float64], chunk: int, o
 def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tuple[NDArray[np.float64], float]:
     """``(normalised or inverse q, smallest size)``; a large new result is checked in the same pass."""
     a = as_float_array(q, "q", (4,), finite=False)
-    fused = checked_in_one_pass(a, (4,), _map_checked, operation) if out is None else None
+    fused = checked_in_one_pass((a,), (4,), _map_checked, operation) if out is None else None
     if fused is not None:
         refuse_quaternions(fused[1], "q")
         return fused
@@ -168,6 +168,78 @@ def _apply_parallel(q: NDArray[np.float64], v: NDArray[np.float64], sign: float,
         out[i, 0], out[i, 1], out[i, 2] = _applied(
             q[i, 0], sign * q[i, 1], sign * q[i, 2], sign * q[i, 3], v[i, 0], v[i, 1], v[i, 2]
         )
+
+
+@parallel
+def _multiply_checked(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> int:
+    # p q of each element and the refusal flags of the batch (1: p holds a
+    # non-finite quaternion, 2: q does) from one read of p and q. A non-finite
+    # component of p or q makes its product non-finite (inf times anything is
+    # inf or NaN), so only a non-finite product sends the loop back to its inputs.
+    n = p.shape[0]
+    pieces = (n + chunk - 1) // chunk
+    flags = np.empty(pieces, dtype=np.int64)
+    for c in prange(pieces):
+        bad = 0
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            p0, p1, p2, p3 = p[i, 0], p[i, 1], p[i, 2], p[i, 3]
+            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+            r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = r0, r1, r2, r3
+            if checked_quat_size(r0, r1, r2, r3) < 0.0:
+                bad |= int(checked_quat_size(p0, p1, p2, p3) < 0.0) | 2 * int(checked_quat_size(q0, q1, q2, q3) < 0.0)
+        flags[c] = bad
+    return _union(flags)
+
+
+@parallel
+def _apply_checked(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64], chunk: int,
+                   sign: float) -> int:
+    # R(q) v (sign = -1: R(q)ᵀ v) of each element whose q is finite and
+    # nonzero, and the refusal flags of the batch (1: q holds a non-finite
+    # quaternion, 2: a zero one, 4: v holds a non-finite vector) from one read
+    # of q and v. A non-finite component of v makes the result non-finite, so
+    # only a non-finite result sends the loop back to v.
+    n = q.shape[0]
+    pieces = (n + chunk - 1) // chunk
+    flags = np.empty(pieces, dtype=np.int64)
+    for c in prange(pieces):
+        bad = 0
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+            size = checked_quat_size(q0, q1, q2, q3)
+            if size > 0.0:
+                x, y, z = v[i, 0], v[i, 1], v[i, 2]
+                r0, r1, r2 = _applied(q0, sign * q1, sign * q2, sign * q3, x, y, z)
+                out[i, 0], out[i, 1], out[i, 2] = r0, r1, r2
+                if not finite3(r0, r1, r2):
+                    bad |= 4 * int(not finite3(x, y, z))
+            else:
+                bad |= 1 if size < 0.0 else 2
+        flags[c] = bad
+    return _union(flags)
+
+
+@cached
+def _union(flags: NDArray[np.int64]) -> int:
+    union = 0
+    for flag in flags:
+        union |= flag
+    return union
+
+
+def _then(x: ArrayLike, name: str, tail: tuple[int, ...], previous_checks: Callable[[], object]) -> NDArray[np.float64]:
+    """``x`` as a float64 array of trailing shape ``tail``, the second argument of a fused check.
+
+    If ``x`` is refused, ``previous_checks()`` (the checks of the argument
+    before it) runs first, so that the refusal is the one of checking each
+    argument in turn.
+    """
+    try:
+        return as_float_array(x, name, tail, finite=False)
+    except (TypeError, ValueError):
+        previous_checks()
+        raise
 
 
 @gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(4)->(4)", parallel=_multiply_parallel)
@@ -265,9 +337,19 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
         product = np.empty(4) if out is None else out
         if _multiply_one(p, q, product):
             return product
-    p = quaternion_array(p, "p", nonzero=False)
-    q = quaternion_array(q, "q", nonzero=False)
-    return _multiply(p, q, out=out)
+    a = as_float_array(p, "p", (4,), finite=False)
+    b = _then(q, "q", (4,), lambda: quaternion_array(a, "p", nonzero=False))
+    fused = checked_in_one_pass((a, b), (4,), _multiply_checked) if out is None else None
+    if fused is not None:
+        product, bad = fused
+        if bad & 1:
+            refuse_quaternions(-1.0, "p")
+        if bad & 2:
+            refuse_quaternions(-1.0, "q")
+        return product
+    a = quaternion_array(a, "p", nonzero=False)
+    b = quaternion_array(b, "q", nonzero=False)
+    return _multiply(a, b, out=out)
 
 
 def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -377,9 +459,17 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
     >>> np.round(quat_apply(q, [1.0, 0.0, 0.0]), 12) + 0.0
     array([0., 1., 0.])
     """
-    q = quaternion_array(q, "q")
-    v = vector_array(v, "v")
-    return _apply(q, v, -1.0 if inverse else 1.0, out=out)
+    sign = -1.0 if inverse else 1.0
+    a = as_float_array(q, "q", (4,), finite=False)
+    b = _then(v, "v", (3,), lambda: quaternion_array(a, "q"))
+    fused = checked_in_one_pass((a, b), (3,), _apply_checked, sign) if out is None else None
+    if fused is not None:
+        rotated, bad = fused
+        if bad & 3:
+            refuse_quaternions(-1.0 if bad & 1 else 0.0, "q")
+        refuse_nonfinite(not (bad & 4), "v")
+        return rotated
+    return _apply(quaternion_array(a, "q"), vector_array(b, "v"), sign, out=out)
 
 
 def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:

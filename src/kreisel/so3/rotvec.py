@@ -288,7 +288,7 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
 def exp_quat(psi: ArrayLike, name: str, out: NDArray[np.float64] | None = None, what: str = "|psi|") -> NDArray[np.float64]:
     """:func:`rotvec_to_quat` of the argument ``name``, refused naming it and ``what`` its length is."""
     a = as_float_array(psi, name, (3,), finite=False)
-    fused = checked_in_one_pass(a, (4,), _rotvec_to_quat_checked) if out is None else None
+    fused = checked_in_one_pass((a,), (4,), _rotvec_to_quat_checked) if out is None else None
     if fused is not None:
         if not fused[1]:
             refuse_rotvecs(a, name, what)
