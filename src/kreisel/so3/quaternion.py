@@ -170,58 +170,65 @@ def _apply_parallel(q: NDArray[np.float64], v: NDArray[np.float64], sign: float,
         )
 
 
-@parallel
-def _multiply_checked(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> int:
-    # p q of each element and the refusal flags of the batch (1: p holds a
-    # non-finite quaternion, 2: q does) from one read of p and q. A non-finite
-    # component of p or q makes its product non-finite (inf times anything is
-    # inf or NaN), so only a non-finite product sends the loop back to its inputs.
-    n = p.shape[0]
-    pieces = (n + chunk - 1) // chunk
-    flags = np.empty(pieces, dtype=np.int64)
-    for c in prange(pieces):
-        bad = 0
-        for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            p0, p1, p2, p3 = p[i, 0], p[i, 1], p[i, 2], p[i, 3]
-            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
-            r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
-            out[i, 0], out[i, 1], out[i, 2], out[i, 3] = r0, r1, r2, r3
-            if checked_quat_size(r0, r1, r2, r3) < 0.0:
-                bad |= int(checked_quat_size(p0, p1, p2, p3) < 0.0) | 2 * int(checked_quat_size(q0, q1, q2, q3) < 0.0)
-        flags[c] = bad
-    return _union(flags)
-
-
-@parallel
-def _apply_checked(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64], chunk: int,
-                   sign: float) -> int:
-    # R(q) v (sign = -1: R(q)ᵀ v) of each element whose q is finite and
-    # nonzero, and the refusal flags of the batch (1: q holds a non-finite
-    # quaternion, 2: a zero one, 4: v holds a non-finite vector) from one read
-    # of q and v. A non-finite component of v makes the result non-finite, so
-    # only a non-finite result sends the loop back to v.
-    n = q.shape[0]
-    pieces = (n + chunk - 1) // chunk
-    flags = np.empty(pieces, dtype=np.int64)
-    for c in prange(pieces):
-        bad = 0
-        for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
-            size = checked_quat_size(q0, q1, q2, q3)
-            if size > 0.0:
-                x, y, z = v[i, 0], v[i, 1], v[i, 2]
-                r0, r1, r2 = _applied(q0, sign * q1, sign * q2, sign * q3, x, y, z)
-                out[i, 0], out[i, 1], out[i, 2] = r0, r1, r2
-                if not finite3(r0, r1, r2):
-                    bad |= 4 * int(not finite3(x, y, z))
-            else:
-                bad |= 1 if size < 0.0 else 2
-        flags[c] = bad
-    return _union(flags)
+@cached
+def _multiplied(p: NDArray[np.float64], q: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> int:
+    # p q of elements start..stop-1 and their refusal flags (1: p holds a
+    # non-finite quaternion, 2: q does). A non-finite component of p or q makes
+    # its product non-finite (inf times anything is inf or NaN), so only a
+    # non-finite product sends the loop back to its inputs.
+    bad = 0
+    for i in range(start, stop):
+        p0, p1, p2, p3 = p[i, 0], p[i, 1], p[i, 2], p[i, 3]
+        q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = r0, r1, r2, r3
+        if checked_quat_size(r0, r1, r2, r3) < 0.0:
+            bad |= int(checked_quat_size(p0, p1, p2, p3) < 0.0) | 2 * int(checked_quat_size(q0, q1, q2, q3) < 0.0)
+    return bad
 
 
 @cached
-def _union(flags: NDArray[np.int64]) -> int:
+def _rotated(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int,
+             sign: float) -> int:
+    # R(q) v (sign = -1: R(q)ᵀ v) of elements start..stop-1 whose q is finite
+    # and nonzero, and their refusal flags (1: q holds a non-finite quaternion,
+    # 2: a zero one, 4: v holds a non-finite vector). A non-finite component of
+    # v makes the result non-finite, so only a non-finite result sends the loop
+    # back to v.
+    bad = 0
+    for i in range(start, stop):
+        q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        size = checked_quat_size(q0, q1, q2, q3)
+        if size > 0.0:
+            x, y, z = v[i, 0], v[i, 1], v[i, 2]
+            r0, r1, r2 = _applied(q0, sign * q1, sign * q2, sign * q3, x, y, z)
+            out[i, 0], out[i, 1], out[i, 2] = r0, r1, r2
+            if not finite3(r0, r1, r2):
+                bad |= 4 * int(not finite3(x, y, z))
+        else:
+            bad |= 1 if size < 0.0 else 2
+    return bad
+
+
+#: Operations of :func:`_product_checked`.
+_MULTIPLY, _APPLY = 0, 1
+
+
+@parallel
+def _product_checked(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray[np.float64], chunk: int,
+                     operation: int, sign: float) -> int:
+    # p q (a = p, b = q) or R(q) v (a = q, b = v) of a batch and the union of
+    # the refusal flags of its elements: one read of both inputs for the check
+    # and the result.
+    n = a.shape[0]
+    pieces = (n + chunk - 1) // chunk
+    flags = np.empty(pieces, dtype=np.int64)
+    for c in prange(pieces):
+        start, stop = c * chunk, min(n, (c + 1) * chunk)
+        if operation == _MULTIPLY:
+            flags[c] = _multiplied(a, b, out, start, stop)
+        else:
+            flags[c] = _rotated(a, b, out, start, stop, sign)
     union = 0
     for flag in flags:
         union |= flag
@@ -339,7 +346,7 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
             return product
     a = as_float_array(p, "p", (4,), finite=False)
     b = _then(q, "q", (4,), lambda: quaternion_array(a, "p", nonzero=False))
-    fused = checked_in_one_pass((a, b), (4,), _multiply_checked) if out is None else None
+    fused = checked_in_one_pass((a, b), (4,), _product_checked, _MULTIPLY, 1.0) if out is None else None
     if fused is not None:
         product, bad = fused
         if bad & 1:
@@ -462,7 +469,7 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
     sign = -1.0 if inverse else 1.0
     a = as_float_array(q, "q", (4,), finite=False)
     b = _then(v, "v", (3,), lambda: quaternion_array(a, "q"))
-    fused = checked_in_one_pass((a, b), (3,), _apply_checked, sign) if out is None else None
+    fused = checked_in_one_pass((a, b), (3,), _product_checked, _APPLY, sign) if out is None else None
     if fused is not None:
         rotated, bad = fused
         if bad & 3:
