@@ -1,5 +1,7 @@
 """Matrices, rotation vectors and the exponential map against the chapter's explicit formulas."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -207,6 +209,40 @@ def test_bch_refuses_rotation_vectors_beyond_rotvec_range(name):
         with pytest.raises(ValueError, match=rf"^{name} is out of range: \|psi\| = .* exceeds 1e\+08 rad"):
             kr.bch(args["a"], args["b"])
     np.testing.assert_allclose(kr.bch(1e8 * np.array([0.6, 0.0, 0.8]), np.zeros(3)), [6e7, 0.0, 8e7])
+
+
+
+def test_bch_fourth_order_and_high_orders_converge(rng):
+    """Degree 4 is the known -[b, [a, [a, b]]]/24; at order 30 the series is the exact composition."""
+    a, b = 0.3 * rng.normal(size=(2, 3))
+    ab = np.cross(a, b)
+    fourth = a + b + ab / 2 + (np.cross(a, ab) + np.cross(b, -ab)) / 12 - np.cross(b, np.cross(a, ab)) / 24
+    np.testing.assert_allclose(kr.bch(a, b, order=4), fourth, atol=1e-16)
+    u, v = rng.normal(size=(2, 20, 3))
+    u *= 0.4 / np.linalg.norm(u, axis=-1, keepdims=True)
+    v *= 0.4 / np.linalg.norm(v, axis=-1, keepdims=True)
+    np.testing.assert_allclose(kr.bch(u, v, order=30), kr.compose_rotvec(u, v), atol=1e-15)
+
+
+def test_bch_high_orders_finite_or_refused_before_work(rng):
+    """From 1e-300 to 5e7 rad, every order gives finite numbers without warnings or is refused, naming order.
+
+    Order 40 at 1e8 rad once overflowed (terms of (2e8)^40) and order 30 took minutes (2^29 splittings).
+    """
+    u, v = rng.normal(size=(2, 4, 3))
+    u /= np.linalg.norm(u, axis=-1, keepdims=True)
+    v /= np.linalg.norm(v, axis=-1, keepdims=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for length in (1e-300, 1e-100, 1e-8, 1.0, 1e4, 5e7):
+            for order in (1, 2, 7, 20) + ((36,) if length in (1e-300, 5e7) else ()):
+                assert np.all(np.isfinite(kr.bch(length * u, length * v, order=order)))
+        with pytest.raises(ValueError, match=r"^a, b and order are out of range: with \|a\| \+ \|b\| = 1e\+08 rad .* "
+                                             r"lower the order to 36 or less"):
+            kr.bch(5e7 * u, 5e7 * v, order=37)
+    for order in (0, 41, True, 3.0):
+        with pytest.raises(ValueError, match=r"order must be an integer in \[1, 40\]"):
+            kr.bch(u, v, order=order)
 
 
 def test_axis_angle(rng):

@@ -7,9 +7,8 @@ displacement) parametrises ``R(ψ) = exp(ψ_j X_j)`` with the generators
 
 from __future__ import annotations
 
-import itertools
 import math
-from collections.abc import Iterator
+from fractions import Fraction
 
 import numpy as np
 from numba import prange
@@ -385,11 +384,22 @@ def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | Non
 
 
 def _bernoulli_even(n_max: int) -> list[float]:
-    # B_2, B_4, ... by the recurrence Σ_{j<m} C(m+1, j) B_j = -(m+1) B_m; exact enough in floats.
-    B = [1.0]
+    # B_0 … B_n_max by the recurrence Σ_{j<m} C(m+1, j) B_j = -(m+1) B_m, in exact fractions: in
+    # floats its cancellations grow the error to 1e-14 by B_28 and on with the order
+    B = [Fraction(1)]
     for m in range(1, n_max + 1):
         B.append(-sum(math.comb(m + 1, j) * B[j] for j in range(m)) / (m + 1))
-    return B
+    return [float(x) for x in B]
+
+
+# Highest ``order`` that :func:`bch` accepts. Its terms of degree n shrink like (|a| + |b|)^n/π^n
+# where the series converges, so degree 40 is below the double rounding for |a| + |b| < 1.2
+# rad, and beyond it the series diverges; the work grows as order³.
+_BCH_MAX_ORDER = 40
+
+# bch refuses ``order`` with order·log10(2(|a| + |b|)) above this: the nested brackets of degree
+# n reach (2(|a| + |b|))^n, which must stay well inside the double range (1.8e308).
+_BCH_EXPONENT_LIMIT = 300.0
 
 
 def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -418,32 +428,37 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     >>> bch([1e-3, 0, 0], [0, 1e-3, 0], order=2)
     array([1.e-03, 1.e-03, 5.e-07])
     """
-    if not isinstance(order, (int, np.integer)) or order < 1:
-        raise ValueError(f"order must be an integer >= 1, got {order!r}")
+    if isinstance(order, bool) or not isinstance(order, (int, np.integer)) or not 1 <= order <= _BCH_MAX_ORDER:
+        raise ValueError(f"order must be an integer in [1, {_BCH_MAX_ORDER}], got {order!r}")
     a = rotvec_array(a, "a")
     b = rotvec_array(b, "b")
     a, b = np.broadcast_arrays(a, b)
+    span = float(np.max(norm(a) + norm(b), initial=0.0))
+    if order > 1 and span > 0.0 and order * math.log10(2.0 * span) > _BCH_EXPONENT_LIMIT:
+        raise ValueError(
+            f"a, b and order are out of range: with |a| + |b| = {span:.3g} rad the series' terms of degree "
+            f"{order} reach about (2 (|a| + |b|))^{order} = 1e{order * math.log10(2.0 * span):.0f}, beyond the "
+            f"largest double; lower the order to {int(_BCH_EXPONENT_LIMIT / math.log10(2.0 * span))} or less (the "
+            "series converges only for |a| + |b| below about pi: compose_rotvec composes exactly)"
+        )
     B = _bernoulli_even(order)
     s = a + b
     d = a - b
-    Z = [None, s]
+    Z = [np.zeros_like(s), s]
+    # nested[j][m]: the sum over the ordered splittings m = k_1 + … + k_j of [Z_k1, […[Z_kj, a + b]…]],
+    # built as nested[j][m] = Σ_k [Z_k, nested[j-1][m-k]] (the brackets are linear), so degree n costs
+    # n² cross products instead of one per splitting (2^(n-1))
+    nested = [[s]]
     for n in range(1, order):
+        nested[0].append(np.zeros_like(s))
+        nested.append([np.zeros_like(s)] * n)
+        for j in range(1, n + 1):
+            nested[j].append(sum(np.cross(Z[k], nested[j - 1][n - k]) for k in range(1, n - j + 2)))
         term = 0.5 * np.cross(d, Z[n])
         for p in range(1, n // 2 + 1):
-            coeff = B[2 * p] / math.factorial(2 * p)
-            for ks in _compositions(n, 2 * p):
-                nested = s
-                for kk in reversed(ks):
-                    nested = np.cross(Z[kk], nested)
-                term = term + coeff * nested
+            term = term + B[2 * p] / math.factorial(2 * p) * nested[2 * p][n]
         Z.append(term / (n + 1))
     return deliver(np.sum(Z[1:], axis=0), out)
-
-
-def _compositions(n: int, parts: int) -> Iterator[tuple[int, ...]]:
-    """Ordered tuples of ``parts`` positive integers summing to ``n``."""
-    for cuts in itertools.combinations(range(1, n), parts - 1):
-        yield tuple(j - i for i, j in zip((0, *cuts), (*cuts, n)))
 
 
 def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
