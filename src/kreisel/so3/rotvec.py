@@ -388,7 +388,7 @@ def _bernoulli_even(n_max: int) -> list[float]:
     # floats its cancellations grow the error to 1e-14 by B_28 and on with the order
     B = [Fraction(1)]
     for m in range(1, n_max + 1):
-        B.append(-sum(math.comb(m + 1, j) * B[j] for j in range(m)) / (m + 1))
+        B.append(-sum((math.comb(m + 1, j) * B[j] for j in range(m)), Fraction(0)) / Fraction(m + 1))
     return [float(x) for x in B]
 
 
