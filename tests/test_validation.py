@@ -120,3 +120,23 @@ def test_the_tolerance_scales_with_the_body():
         assert not _verdict(MOMENT_ENTRIES["RigidBody"], scale * np.array([1.0, 1.0, 2.0 + 1.05 * TOL * 4.0]))
         assert _verdict(MOMENT_ENTRIES["RigidBody"], scale * _asymmetric(0.9 * TOL))
         assert not _verdict(MOMENT_ENTRIES["RigidBody"], scale * _asymmetric(1.1 * TOL))
+
+
+def test_checked_callable_refuses_bad_returns_naming_the_callable():
+    """One check (``kreisel._validation.checked_callable``) for the torque, force and particle-force callables."""
+    from kreisel._validation import checked_callable
+
+    good = checked_callable(lambda t, y: [1, 2, 3], "force")
+    out = good(0.5, np.zeros(6))
+    assert out.dtype == np.float64 and out.tolist() == [1.0, 2.0, 3.0]
+    with pytest.raises(TypeError, match=r"torque callable must return a real array of shape \(3,\), got str"):
+        checked_callable(lambda t, y: "abc", "torque")(0.0, None)
+    with pytest.raises(ValueError, match=r"force callable must return shape \(3,\), got \(2,\) at t = 0.25"):
+        checked_callable(lambda t, y: [1.0, 2.0], "force")(0.25, None)
+    with pytest.raises(ValueError, match=r"force callable returned a non-finite value .* at t = 1.0"):
+        checked_callable(lambda t, y: [np.nan, 0.0, 0.0], "force")(1.0, None)
+    # the particle simulator uses the shared check, not a private name of kreisel.dynamics
+    import kreisel.frames.particle as particle
+    import kreisel.dynamics.engine as engine
+    assert particle.checked_callable is checked_callable is engine.checked_callable
+    assert not hasattr(engine, "_checked_callable")

@@ -10,6 +10,7 @@ import numbers
 import os
 import warnings
 from types import TracebackType
+from collections.abc import Callable
 from typing import Any, NoReturn
 
 import numpy as np
@@ -184,6 +185,32 @@ class out_of_range:
     def refuse(self) -> NoReturn:
         """Raise the refusal, for a result found out of range some other way (a lower layer's own refusal)."""
         raise ValueError(f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)")
+
+
+def checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., NDArray[np.float64]]:
+    """``fn`` with its output checked at every call: a real, finite array of shape (3,).
+
+    The compiled loop reads exactly three numbers from what a callable returns,
+    so a wrong shape must never reach it; a non-finite value stops the run at
+    once (instead of the step size collapsing towards it). Shared by the
+    torque and force callables of :mod:`kreisel.dynamics` and the particle
+    forces of :mod:`kreisel.frames`.
+    """
+
+    def call(t: float, *state: NDArray[np.float64]) -> NDArray[np.float64]:
+        value = fn(t, *state)
+        out = np.asarray(value)
+        if out.dtype.kind not in "biuf":
+            raise TypeError(f"{name} callable must return a real array of shape (3,), got "
+                            f"{type(value).__name__} of dtype {out.dtype} at t = {float(t)!r}")
+        if out.shape != (3,):
+            raise ValueError(f"{name} callable must return shape (3,), got {out.shape} at t = {float(t)!r}")
+        out = out.astype(np.float64)
+        if not np.isfinite(out).all():
+            raise ValueError(f"{name} callable returned a non-finite value {out} at t = {float(t)!r}")
+        return out
+
+    return call
 
 
 def memory_budget() -> int:

@@ -59,7 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
 from .._compiled.outputs import empty
-from .._validation import as_float_array, check_allocation, check_inertia_tensor, check_principal_moments
+from .._validation import as_float_array, check_allocation, check_inertia_tensor, check_principal_moments, checked_callable
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
 from . import _integrators
@@ -205,7 +205,7 @@ def _torque_rows(torque: _TorqueArg, axes: _Array | None, t0: float, q0_body: _A
     if not callable(torque):
         raise TypeError(f"torque must be None, a torque model or a callable torque(t, q, omega_body), "
                         f"got {type(torque).__name__}")
-    checked = _checked_callable(torque, "torque")
+    checked = checked_callable(torque, "torque")
     checked(t0, q0_body.copy(), omega0_body.copy())
     if axes is None:
         fn = checked
@@ -221,30 +221,6 @@ def _torque_rows(torque: _TorqueArg, axes: _Array | None, t0: float, q0_body: _A
 def _table(rows: _Array) -> _Array | None:
     """A model table for the kernels; None when empty (the kernels then skip the evaluation)."""
     return np.ascontiguousarray(rows) if rows.shape[0] else None
-
-
-def _checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., _Array]:
-    """``fn`` with its output checked at every call: a real, finite array of shape (3,).
-
-    The compiled loop reads exactly three numbers from what a callable returns,
-    so a wrong shape must never reach it; a non-finite value stops the run at
-    once (instead of the step size collapsing towards it).
-    """
-
-    def call(t: float, *state: _Array) -> _Array:
-        value = fn(t, *state)
-        out = np.asarray(value)
-        if out.dtype.kind not in "biuf":
-            raise TypeError(f"{name} callable must return a real array of shape (3,), got "
-                            f"{type(value).__name__} of dtype {out.dtype} at t = {float(t)!r}")
-        if out.shape != (3,):
-            raise ValueError(f"{name} callable must return shape (3,), got {out.shape} at t = {float(t)!r}")
-        out = out.astype(np.float64)
-        if not np.isfinite(out).all():
-            raise ValueError(f"{name} callable returned a non-finite value {out} at t = {float(t)!r}")
-        return out
-
-    return call
 
 
 def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Array, rows: _Array | None,
@@ -551,7 +527,7 @@ def _force_rows(force: _ForceArg, axes: _Array | None, t0: float, q_body: _Array
         raise TypeError(f"force must be None, a force model or a callable "
                         f"force(t, q, omega_body, position, velocity), got {type(force).__name__}")
     r0, v0 = translation
-    checked = _checked_callable(force, "force")
+    checked = checked_callable(force, "force")
     checked(t0, q_body.copy(), w_body.copy(), r0.copy(), v0.copy())
     if axes is None:
         fn = checked

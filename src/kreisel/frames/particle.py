@@ -14,8 +14,7 @@ from numba import njit, objmode
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._norms import norm
-from .._validation import MAX_TURN, as_float, as_float_array
-from ..dynamics.engine import _checked_callable
+from .._validation import MAX_TURN, as_float, as_float_array, checked_callable
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -142,12 +141,12 @@ def _model(omega, omega_dot, a0, force, mass, field, spring):
     """The Python model of :func:`callback_rhs`, each callable's output checked at every call."""
     def of_time(value, name):
         if callable(value):
-            return _checked_callable(value, name)
+            return checked_callable(value, name)
         const = _vector(value, name).copy()
         return lambda t: const
 
     w, wdot, acc = of_time(omega, "omega"), of_time(omega_dot, "omega_dot"), of_time(a0, "a0")
-    user = _checked_callable(force, "force") if force is not None else None
+    user = checked_callable(force, "force") if force is not None else None
 
     def evaluate(t, y):
         r, v = y[:3].copy(), y[3:].copy()
