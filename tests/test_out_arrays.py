@@ -15,6 +15,7 @@ properties (which take no arguments) and the named tuples that carry results.
 from __future__ import annotations
 
 import inspect
+import pathlib
 import sys
 import tracemalloc
 import weakref
@@ -125,10 +126,27 @@ def _arguments(name):
     return arguments
 
 
+def _documented_out(doc):
+    """Whether ``doc`` has exactly one ``out`` entry, the last of its Parameters section, as outputs.takes_out writes it."""
+    lines = inspect.cleandoc(doc).split("\n")
+    entries = [index for index, line in enumerate(lines) if line.startswith("out :")]
+    if len(entries) != 1 or lines[entries[0]] != outputs.OUT_HEADER:
+        return False
+    first = entries[0]
+    last = first + 1
+    while last < len(lines) and lines[last].startswith("    "):
+        last += 1
+    entry = " ".join(line.strip() for line in lines[first + 1:last])
+    titles = [index - 1 for index in range(1, len(lines)) if set(lines[index]) == {"-"}]
+    section = max((index for index in titles if index < first), default=None)
+    return (entry.endswith(outputs.OUT_REFERENCE) and section is not None and lines[section] == "Parameters"
+            and (last == len(lines) or not lines[last].strip()) and all(index < first or index > last for index in titles))
+
+
 def _takes_out(function):
     parameter = inspect.signature(function).parameters.get("out")
     return (parameter is not None and parameter.kind is parameter.KEYWORD_ONLY and parameter.default is None
-            and "out : ndarray, optional" in function.__doc__)
+            and _documented_out(function.__doc__))
 
 
 def test_every_array_function_takes_out():
@@ -136,6 +154,77 @@ def test_every_array_function_takes_out():
             "instantaneous_centre", "se3_hat", "se3_left_jacobian"} <= set(FUNCTIONS)
     missing = sorted(name for name, function in FUNCTIONS.items() if not _takes_out(function))
     assert not missing, f"array functions without a documented keyword-only out=None: {missing}"
+
+
+def test_the_out_entry_has_one_source():
+    """No docstring in the sources types the out entry: outputs.takes_out writes it into each."""
+    sources = pathlib.Path(so3.__file__).parents[1]
+    typed = [f"{path.relative_to(sources)}:{number}" for path in sorted(sources.rglob("*.py"))
+             if path != pathlib.Path(outputs.__file__) for number, line in enumerate(path.read_text(encoding="utf-8").split("\n"), 1)
+             if line.strip().startswith("out : ") or outputs.OUT_REFERENCE in line]
+    assert typed == [], "write @takes_out instead"
+    standard = outputs.out_entry()
+    for name, function in [*FUNCTIONS.items(), *METHODS.items()]:
+        assert inspect.cleandoc(function.__doc__).count(standard) == 1 or function in (
+            so3.create_group, so3.generators, so3.RotationSpline.__call__), name
+
+
+DOCSTRING = """Summary.
+
+    Longer text.
+
+    {parameters}Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> 1
+    1
+    """
+
+
+@pytest.mark.parametrize("dedent", [False, True], ids=["as written", "python 3.13"])
+@pytest.mark.parametrize("parameters", ["", "Parameters\n    ----------\n    x : float\n        Input.\n\n    "],
+                         ids=["no Parameters section", "with parameters"])
+def test_the_out_entry_goes_last_into_parameters(parameters, dedent):
+    doc = DOCSTRING.format(parameters=parameters)
+    doc = inspect.cleandoc(doc) + "\n" if dedent else doc
+    documented = outputs.with_out_entry(doc)
+    assert _documented_out(documented)
+    indent = "" if dedent else "    "
+    x = f"{indent}x : float\n{indent}    Input.\n" if parameters else ""
+    assert f"\n\n{indent}Parameters\n{indent}----------\n{x}{outputs.out_entry(indent=indent)}\n\n{indent}Returns\n" in documented
+    assert documented.replace(outputs.out_entry(indent=indent) + "\n", "").replace(
+        f"{indent}Parameters\n{indent}----------\n\n", "") == doc
+
+
+def test_takes_out_refuses_what_it_cannot_document():
+    def typed(x, *, out=None):
+        """Typed by hand.
+
+        Parameters
+        ----------
+        out : ndarray, optional
+            Result.
+        """
+
+    def positional(x, out=None):
+        """No keyword-only out.
+
+        Examples
+        --------
+        """
+
+    def no_sections(x, *, out=None):
+        """No numpydoc sections."""
+
+    with pytest.raises(ValueError, match="remove the one typed"):
+        outputs.takes_out(typed)
+    with pytest.raises(TypeError, match="no keyword-only out=None"):
+        outputs.takes_out(positional)
+    with pytest.raises(ValueError, match="numpydoc sections"):
+        outputs.takes_out(no_sections)
 
 
 @pytest.mark.parametrize("name", sorted(NOT_ARRAY_FUNCTIONS))

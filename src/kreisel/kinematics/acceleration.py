@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import quaternion_array
 from .._validation import check_frame, out_of_range
 from ..so3 import quat_conjugate, quat_multiply
@@ -28,6 +28,7 @@ __all__ = [
 ]
 
 
+@takes_out
 def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame: str = "space", *,
                          out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a rotation matrix and its first two derivatives.
@@ -42,8 +43,6 @@ def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame:
         derivatives; batch shapes broadcast.
     frame : {"space", "body"}
         Components of the result: ε from R̈ Rᵀ, or ε′ from Rᵀ R̈.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -69,6 +68,7 @@ def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame:
     return deliver(_skew_part_vee(Rt @ Rddot if body else Rddot @ Rt), out)
 
 
+@takes_out
 def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLike, frame: str = "space", *,
                                    out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a quaternion and its first two derivatives.
@@ -84,8 +84,6 @@ def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLi
         time derivatives.
     frame : {"space", "body"}
         Components of the result: ε from q̈ q⁻¹, or ε′ from q⁻¹ q̈.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -119,6 +117,7 @@ def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLi
     return deliver(eps, out)
 
 
+@takes_out
 def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot: ArrayLike, frame: str = "space", *,
                                      out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from a rotation vector and its first two derivatives.
@@ -134,8 +133,6 @@ def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot:
         Rotation vector (any length) and its first and second time derivatives.
     frame : {"space", "body"}
         Components of the result: ε through J_l(ψ), or ε′ through J_r(ψ).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -155,6 +152,7 @@ def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot:
     return epsilon
 
 
+@takes_out
 def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLike, accelerations: ArrayLike,
                                     frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular acceleration from Euler angles and their first two derivatives (Theory §3.6, §3.9).
@@ -174,8 +172,6 @@ def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLik
         that frame).
     degrees : bool
         Angles and their derivatives in degrees (ε is in rad/s² either way).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

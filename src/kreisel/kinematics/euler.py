@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, dexp, parallel
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import gufunc
 from .._validation import check_frame, check_tolerance, warn_if_any
 from ..so3.euler import parse_sequence
@@ -160,6 +160,7 @@ def _angles(angles: ArrayLike, degrees: bool, name: str = "angles") -> NDArray[n
     return np.deg2rad(a) if degrees else a
 
 
+@takes_out
 def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (Theory §3.6).
 
@@ -176,8 +177,6 @@ def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees
     frame : {"space", "body"}
     degrees : bool
         Angles in degrees (M is dimensionless either way).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -196,6 +195,7 @@ def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees
     return _matrix(_angles(angles, degrees), code, out=out)
 
 
+@takes_out
 def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False,
                               tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`euler_rate_matrix`: ``(α̇, β̇, γ̇) = M⁻¹ ω`` (Theory §3.6).
@@ -214,8 +214,6 @@ def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space",
         Angles in degrees; the matrix then maps rad/s to deg/s.
     tol : float
         Singularity threshold on |det M| = |sin β| (proper Euler) or |cos β| (Tait–Bryan).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -235,6 +233,7 @@ def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space",
     return np.rad2deg(out, out=out) if degrees else out
 
 
+@takes_out
 def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayLike, frame: str = "space",
                                       degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from Euler angles and their rates (Theory §3.6, Euler kinematic equations).
@@ -250,8 +249,6 @@ def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayL
         Components of the returned angular velocity (always rad/s).
     degrees : bool
         Angles in degrees and rates in deg/s.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -271,6 +268,7 @@ def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayL
     return _omega_from_rates(angles, rates, code, out=out)
 
 
+@takes_out
 def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "space", degrees: bool = False,
                 tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler-angle rates from the angular velocity (Theory §3.6, inverted Euler kinematic equations).
@@ -293,8 +291,6 @@ def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "spa
         Angles in degrees; rates are then returned in deg/s.
     tol : float
         Gimbal-lock threshold on |sin β| (proper Euler) or |cos β| (Tait–Bryan).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -320,6 +316,7 @@ def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "spa
     return np.rad2deg(out, out=out) if degrees else out
 
 
+@takes_out
 def euler_rates_singular(seq: str, angles: ArrayLike, degrees: bool = False, tol: float = SINGULAR_TOL, *,
                          out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Mask of the Euler angles at which :func:`euler_rates` is singular (no warning).
@@ -331,8 +328,6 @@ def euler_rates_singular(seq: str, angles: ArrayLike, degrees: bool = False, tol
     degrees : bool
     tol : float
         Threshold on |sin β| or |cos β|, as in :func:`euler_rates`.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

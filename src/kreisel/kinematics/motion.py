@@ -10,7 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._validation import out_of_range
 
 from ._checks import vector_batch
@@ -26,6 +26,7 @@ __all__ = [
 ]
 
 
+@takes_out
 def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike = 0.0, *,
                    out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Velocity of a body-fixed point, ``v_P = v_C + ω × r_CP`` (Theory §3.7).
@@ -38,8 +39,6 @@ def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike
         Position r_CP of the point relative to the reference point C.
     reference_velocity : array_like, shape (..., 3)
         Velocity v_C of the reference point (default at rest).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -54,6 +53,7 @@ def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike
     return deliver(three_term_velocity(omega, r, 0.0, reference_velocity).total, out)
 
 
+@takes_out
 def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, reference_acceleration: ArrayLike = 0.0, *,
                        out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Acceleration of a body-fixed point (Theory §3.9).
@@ -69,8 +69,6 @@ def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, refer
         Position r_CP relative to the reference point C.
     reference_acceleration : array_like, shape (..., 3)
         Acceleration a_C of the reference point (default 0).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -85,6 +83,7 @@ def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, refer
     return deliver(five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total, out)
 
 
+@takes_out
 def relative_derivative(omega: ArrayLike, vector: ArrayLike, relative_rate: ArrayLike, *,
                         out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rate of change of a vector from its rate relative to the body (Theory §4.6).
@@ -101,8 +100,6 @@ def relative_derivative(omega: ArrayLike, vector: ArrayLike, relative_rate: Arra
         The vector A.
     relative_rate : array_like, shape (..., 3)
         dA′/dt, the rate seen from the body.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

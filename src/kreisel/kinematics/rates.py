@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels
 from .._compiled.gufunc import gufunc, quaternion_array
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._validation import check_frame
 from ._checks import frame_sign, rotation_batch, same_batch, vectors
 
@@ -28,6 +28,7 @@ def _skew_part_vee(A: NDArray[Any]) -> NDArray[np.float64]:
     )
 
 
+@takes_out
 def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
                      out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from the rotation matrix and its time derivative (Theory §3.1).
@@ -43,8 +44,6 @@ def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
         time derivatives; batch shapes broadcast.
     frame : {"space", "body"}
         Components of the returned angular velocity.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -99,6 +98,7 @@ def _quat_angular_velocity(q: NDArray[np.float64], qd: NDArray[np.float64], sign
     out[2] = s * (q0 * pz - p0 * vz - sign * cz) / m
 
 
+@takes_out
 def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion rate from the angular velocity (Theory §3.3).
 
@@ -114,8 +114,6 @@ def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDAr
         Angular velocity in the components given by ``frame``.
     frame : {"space", "body"}
         ``"space"``: ω is ω and q̇ = ½ ω q; ``"body"``: ω is ω′ and q̇ = ½ q ω′.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -132,6 +130,7 @@ def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDAr
     return _quat_rate(q, omega, sign, out=out)
 
 
+@takes_out
 def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = "space", *,
                                     out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from a quaternion and its rate (Theory §3.3).
@@ -146,8 +145,6 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
         Scalar-first quaternions (need not be unit) and their time derivatives.
     frame : {"space", "body"}
         Components of the result: ω from q̇ q⁻¹, or ω′ from q⁻¹ q̇.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import gufunc
 from .._validation import as_float_array, check_tolerance
 from .._norms import norm
@@ -50,6 +50,7 @@ def _bortz(angle: float, out: NDArray[np.float64]) -> None:
     out[0] = dexp.bortz_coefficient(angle)
 
 
+@takes_out
 def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64] | float:
     """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (Theory §3.5).
 
@@ -63,8 +64,6 @@ def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = Non
     ----------
     angle : array_like
         Rotation angle(s) ψ = |ψ| in radians (the function is even).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -85,6 +84,7 @@ def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = Non
     return value if value.ndim else float(value)
 
 
+@takes_out
 def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from a rotation vector and its rate, the dexp map (Theory §3.4).
 
@@ -98,8 +98,6 @@ def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: 
         Rotation vector ψ (any length, not only |ψ| ≤ π) and its time derivative.
     frame : {"space", "body"}
         Components of the result: ω = J_l(ψ) ψ̇, or ω′ = J_r(ψ) ψ̇.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -116,6 +114,7 @@ def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: 
     return dexp.apply_jacobian(psi, psidot, sign, out=out)
 
 
+@takes_out
 def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation-vector rate from the angular velocity: dexp⁻¹ (Theory §3.5).
 
@@ -134,8 +133,6 @@ def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: flo
         Samples with |ψ| > π and |sin(|ψ|/2)| ≤ tol (the poles |ψ| = 2πk)
         are singular: their rates are NaN and a
         :class:`RotationVectorSingularityWarning` is issued.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -156,6 +153,7 @@ def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: flo
     return out
 
 
+@takes_out
 def rotvec_rate_singular(psi: ArrayLike, tol: float = SINGULAR_TOL, *, out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Mask of rotation vectors where :func:`rotvec_rate` is singular (no warning).
 
@@ -165,8 +163,6 @@ def rotvec_rate_singular(psi: ArrayLike, tol: float = SINGULAR_TOL, *, out: NDAr
         Rotation vectors.
     tol : float
         Threshold on |sin(|ψ|/2)|, as in :func:`rotvec_rate`.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

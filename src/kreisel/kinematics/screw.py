@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array, out_of_range
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from ._checks import batch_shape, vectors
 from .._norms import norm
 
@@ -118,6 +118,7 @@ def _planar(x: ArrayLike, name: str, shape_tail: tuple[int, ...]) -> NDArray[np.
     return as_float_array(x, name, shape_tail)
 
 
+@takes_out
 def instantaneous_centre(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, *,
                          out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Instantaneous centre of a planar motion (Theory §3.8).
@@ -133,8 +134,6 @@ def instantaneous_centre(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike
         Velocity of the reference point C.
     point : array_like, shape (..., 2)
         Position of C (default origin).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import finite_array, gufunc
 from .._validation import as_float_array
 from ..so3 import hat, quat_to_rotvec, vee
@@ -71,6 +71,7 @@ def _split(xi: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.flo
     return xi[..., :3], xi[..., 3:]
 
 
+@takes_out
 def se3_hat(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """4×4 twist matrices ``[[hat ω, v], [0, 0]]`` of twists ``ξ = (ω, v)``.
 
@@ -78,8 +79,6 @@ def se3_hat(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray
     ----------
     xi : array_like, shape (..., 6)
         Twists ``(ω, v)``, angular part first.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -102,6 +101,7 @@ def se3_hat(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray
     return deliver(m, out)
 
 
+@takes_out
 def se3_vee(matrix: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Twists ``(ω, v)`` of 4×4 twist matrices (inverse of :func:`se3_hat`).
 
@@ -110,8 +110,6 @@ def se3_vee(matrix: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     matrix : array_like, shape (..., 4, 4)
         Twist matrices; the skew part of the upper-left block and the last
         column are read.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -180,6 +178,7 @@ def _blocks(diagonal: NDArray[np.float64], lower: NDArray[np.float64]) -> NDArra
     return j
 
 
+@takes_out
 def se3_left_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Left Jacobian of SE(3), ``(..., 6, 6)``: ``exp(ξ + δ) ≈ exp(J_l δ) exp(ξ)``.
 
@@ -191,8 +190,6 @@ def se3_left_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     ----------
     xi : array_like, shape (..., 6)
         Twists ``(ω, v)``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -212,6 +209,7 @@ def se3_left_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     return deliver(_blocks(so3_left_jacobian(omega), _coupling(omega, v, theta)), out)
 
 
+@takes_out
 def se3_right_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Right Jacobian of SE(3): ``exp(ξ + δ) ≈ exp(ξ) exp(J_r δ)``; ``J_r(ξ) = J_l(-ξ)``.
 
@@ -219,8 +217,6 @@ def se3_right_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None)
     ----------
     xi : array_like, shape (..., 6)
         Twists; ``J_r(ξ) = J_l(−ξ)``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -236,6 +232,7 @@ def se3_right_jacobian(xi: ArrayLike, *, out: NDArray[np.float64] | None = None)
     return deliver(se3_left_jacobian(-finite_array(xi, "xi", (6,))), out)
 
 
+@takes_out
 def se3_left_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`se3_left_jacobian`, ``[[J⁻¹, 0], [-J⁻¹ Q J⁻¹, J⁻¹]]``, without a matrix solve.
 
@@ -246,8 +243,6 @@ def se3_left_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None 
     ----------
     xi : array_like, shape (..., 6)
         Twists ``(ω, v)`` with ``|ω| < 2π``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -274,6 +269,7 @@ def se3_left_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None 
     return deliver(_blocks(inverse, lower), out)
 
 
+@takes_out
 def se3_right_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`se3_right_jacobian`; ``J_r⁻¹(ξ) = J_l⁻¹(-ξ)``.
 
@@ -281,8 +277,6 @@ def se3_right_jacobian_inverse(xi: ArrayLike, *, out: NDArray[np.float64] | None
     ----------
     xi : array_like, shape (..., 6)
         Twists, as in :func:`se3_left_jacobian_inverse`.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

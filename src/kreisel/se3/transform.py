@@ -28,7 +28,7 @@ from ..so3._batch import QuaternionBatch
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
 from .._compiled.gufunc import finite_array
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .screw import Screw, screw_parameters, screw_pose
 
 if TYPE_CHECKING:
@@ -329,13 +329,9 @@ class RigidTransform(QuaternionBatch):
         """The translation ``r_C``, ``(..., 3)``."""
         return np.array(self._translation)
 
+    @takes_out
     def as_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit quaternions of the rotation part, scalar first, ``(..., 4)``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -363,13 +359,9 @@ class RigidTransform(QuaternionBatch):
         """
         return self.rotation, self.translation
 
+    @takes_out
     def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -386,16 +378,12 @@ class RigidTransform(QuaternionBatch):
         """
         return _kernels.as_matrix(self._q, self._translation, out=out)
 
+    @takes_out
     def as_dual_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
 
         Both parts scalar first; ``q_r`` is the stored rotation quaternion
         (either sign of the double cover may appear).
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -406,15 +394,11 @@ class RigidTransform(QuaternionBatch):
         pure[..., 1:] = self._translation
         return deliver(np.concatenate([self._q, 0.5 * quat_multiply(pure, self._q)], axis=-1), out)
 
+    @takes_out
     def as_exp_coords(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
 
         Accurate to a few ulp at all angles, including tiny ones and near π.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -440,13 +424,9 @@ class RigidTransform(QuaternionBatch):
         """
         return screw_parameters(self._q, self._translation)
 
+    @takes_out
     def adjoint(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -564,6 +544,7 @@ class RigidTransform(QuaternionBatch):
         """
         return RigidTransform._from_arrays(*_kernels.invert(self._q, self._translation))
 
+    @takes_out
     def apply(self, points: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
 
@@ -573,8 +554,6 @@ class RigidTransform(QuaternionBatch):
             Broadcast against the batch shape.
         inverse : bool
             Apply the inverse displacement.
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Returns
         -------
@@ -592,6 +571,7 @@ class RigidTransform(QuaternionBatch):
         kernel = _kernels.apply_inverse if inverse else _kernels.apply
         return kernel(self._q, self._translation, points, out=out)
 
+    @takes_out
     def apply_vector(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
 
@@ -601,8 +581,6 @@ class RigidTransform(QuaternionBatch):
             Free vectors (directions, velocities, forces): turned, never shifted.
         inverse : bool
             Turn by ``Rᵀ`` instead.
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------

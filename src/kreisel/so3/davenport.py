@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, parallel
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled import kernels
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._validation import as_float_array
@@ -181,6 +181,7 @@ def _conjugate(q: NDArray[np.float64]) -> NDArray[np.float64]:
     return cast("NDArray[np.float64]", q * np.array([1.0, -1.0, -1.0, -1.0]))
 
 
+@takes_out
 def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternions of Davenport angles about ``axes`` (scipy's ``Rotation.from_davenport``).
 
@@ -192,8 +193,6 @@ def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: b
     order : {"i", "intrinsic", "e", "extrinsic"}
     angles : array_like, shape (..., k)
         Radians unless ``degrees=True`` (a scalar for one axis).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -225,6 +224,7 @@ def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: b
     return deliver(quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after), out)
 
 
+@takes_out
 def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Davenport angles about ``axes`` of rotations ``q`` (scipy's ``Rotation.as_davenport``).
 
@@ -234,11 +234,6 @@ def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool =
     agree with scipy's away from gimbal lock. At gimbal lock (middle angle λ
     or λ + π) they are exact without a warning, the third intrinsic angle
     being 0. One- and two-axis sets refuse rotations they cannot represent.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -269,17 +264,13 @@ def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool =
     return deliver(np.rad2deg(angles) if degrees else angles, out)
 
 
+@takes_out
 def davenport_gimbal_lock(axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False, tolerance: float = 1e-7,
                           *, out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Which Davenport angle triples have the middle angle within ``tolerance`` of λ or λ + π.
 
     There the first and third axes line up and only the sum or difference of
     the outer angles is determined.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

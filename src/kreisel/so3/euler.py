@@ -33,7 +33,7 @@ from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from .._validation import AXES as _AXES, parse_sequence
 from . import matrix as _matrix
@@ -303,6 +303,7 @@ def _angles_array(seq: str, angles: ArrayLike, degrees: bool) -> tuple[str, NDAr
     return seq, (np.deg2rad(a) if degrees else a)
 
 
+@takes_out
 def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of Euler angles in any of the 24 conventions (Theory §2.3).
 
@@ -312,8 +313,6 @@ def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: ND
         Axis sequence, e.g. ``"ZXZ"`` (the mechanics angles φ, θ, ψ of Theory §2.3).
     angles : array_like, shape (..., 3)
         Angles in the order of ``seq``; radians unless ``degrees=True``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -335,13 +334,9 @@ def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: ND
     return _euler_to_quat(angles, axes, reverse, out=out)
 
 
+@takes_out
 def euler_to_matrix(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix of Euler angles, e.g. the chapter's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -360,6 +355,7 @@ def _finish(angles: NDArray[np.float64], degrees: bool) -> NDArray[np.float64]:
     return np.rad2deg(angles, out=angles) if degrees else angles
 
 
+@takes_out
 def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of nonzero quaternions (direct half-angle method).
 
@@ -380,8 +376,6 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
         Scalar-first quaternions, need not be unit.
     degrees : bool
         Return degrees instead of radians.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -405,6 +399,7 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
     return _finish(_quat_to_euler(q, axes, reverse, out=out), degrees)
 
 
+@takes_out
 def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of rotation matrices, exact through gimbal lock.
 
@@ -420,8 +415,6 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
         Rotation matrices.
     degrees : bool
         Return degrees.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -443,6 +436,7 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
     return _finish(_matrix_to_euler(R, axes, reverse, out=out), degrees)
 
 
+@takes_out
 def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: float = 1e-7, *,
                 out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
     """Which Euler-angle triples are within ``tolerance`` of gimbal lock.
@@ -459,8 +453,6 @@ def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: f
     tolerance : float
         Distance of the middle angle from the singular value, in radians
         (in degrees when ``degrees=True``).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

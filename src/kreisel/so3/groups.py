@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .quaternion import quat_multiply, quat_normalize
 from .rotvec import rotvec_to_quat
 
@@ -58,6 +58,7 @@ def _turn(axis: ArrayLike, angle: float) -> NDArray[np.float64]:
     return rotvec_to_quat(angle * axis / np.linalg.norm(axis))
 
 
+@takes_out(result="Result array of shape (order, 4)")
 def create_group(group: str, axis: str = "Z", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternions of a rotation group: ``"I"``, ``"O"``, ``"T"``, ``"Dn"`` or ``"Cn"`` (n >= 1).
 
@@ -66,8 +67,6 @@ def create_group(group: str, axis: str = "Z", *, out: NDArray[np.float64] | None
     group : str
     axis : {"X", "Y", "Z"} (either case)
         Main axis of ``Cn`` and ``Dn`` (ignored for the others).
-    out : ndarray, optional
-        Result array of shape (order, 4) (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

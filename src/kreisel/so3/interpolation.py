@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._norms import unit
 from .quaternion import check_angle_multiple, quat_conjugate, quat_multiply
@@ -29,6 +29,7 @@ def _slerp(p: NDArray[np.float64], q: NDArray[np.float64], t: float, out: NDArra
     out[0], out[1], out[2], out[3] = kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
 
 
+@takes_out
 def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Spherical linear interpolation from rotation ``p`` (t = 0) to ``q`` (t = 1).
 
@@ -42,8 +43,6 @@ def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.floa
         Broadcast with the leading axes of ``p`` and ``q``; ``|t|`` times
         the angle from ``p`` to ``q`` must be at most 1e8 rad (see
         :func:`~kreisel.so3.rotvec_to_quat`).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -60,6 +59,7 @@ def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.floa
     return _slerp(p, q, t, out=out)
 
 
+@takes_out
 def quat_mean(q: ArrayLike, weights: ArrayLike | None = None, axis: int = -2, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Chordal L2 mean of rotations (Markley et al. 2007), sign-independent.
 
@@ -74,8 +74,6 @@ def quat_mean(q: ArrayLike, weights: ArrayLike | None = None, axis: int = -2, *,
         Non-negative weights, not all zero.
     axis : int
         Axis of ``q`` holding the samples (not the last one).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

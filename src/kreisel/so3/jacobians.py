@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
 from .._compiled.gufunc import vector_array
+from .._compiled.outputs import takes_out
 from .._validation import check_tolerance, refuse_long_angle, warn_if_any
 from .._norms import norm
 from .euler import KinematicSingularityWarning
@@ -69,6 +70,7 @@ def _inverse(psi: ArrayLike, sign: float, tol: float, out: NDArray[np.float64] |
     return out
 
 
+@takes_out
 def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
 
@@ -79,8 +81,6 @@ def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> 
     ----------
     psi : array_like, shape (..., 3)
         Rotation vectors ψ of any length.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -97,6 +97,7 @@ def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> 
     return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT, out=out)
 
 
+@takes_out
 def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
 
@@ -106,8 +107,6 @@ def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     ----------
     psi : array_like, shape (..., 3)
         Rotation vectors; ``J_r(ψ) = J_l(−ψ)``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -122,6 +121,7 @@ def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT, out=out)
 
 
+@takes_out
 def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
                           out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse left Jacobian, ``J_l⁻¹ = 1 − ½ hat(ψ) + f hat(ψ)²``.
@@ -135,8 +135,6 @@ def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
     psi : array_like, shape (..., 3)
     tol : float
         Samples with |ψ| > π and |sin(|ψ|/2)| <= tol are singular.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -152,6 +150,7 @@ def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
     return _inverse(psi, _LEFT, tol, out)
 
 
+@takes_out
 def right_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
                            out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse right Jacobian, ``J_r⁻¹ = 1 + ½ hat(ψ) + f hat(ψ)²`` — the Bortz matrix (Theory §3.5).
@@ -163,8 +162,6 @@ def right_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
     psi : array_like, shape (..., 3)
     tol : float
         As in :func:`left_jacobian_inverse`.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

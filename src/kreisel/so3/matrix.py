@@ -11,7 +11,7 @@ from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels, parallel
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from .._norms import nearest_rotation
 
@@ -42,6 +42,7 @@ def _matrix_to_quat(R: NDArray[np.float64], carrier4: NDArray[np.float64], out: 
     out[0], out[1], out[2], out[3] = kernels.matrix_quat(R)
 
 
+@takes_out
 def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
@@ -52,8 +53,6 @@ def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     ----------
     q : array_like, shape (..., 4)
         Scalar-first quaternions.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -72,6 +71,7 @@ def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     return _quat_to_matrix(quaternion_array(q, "q"), out=out)
 
 
+@takes_out
 def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
 
@@ -84,8 +84,6 @@ def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     ----------
     R : array_like, shape (..., 3, 3)
         Rotation matrices (nearly orthogonal ones are projected first).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -100,6 +98,7 @@ def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     return _matrix_to_quat(matrix_array(R, "R"), out=out)
 
 
+@takes_out
 def orthonormalize(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Nearest rotation matrix (in the Frobenius norm) to each 3×3 matrix.
 
@@ -111,8 +110,6 @@ def orthonormalize(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     ----------
     R : array_like, shape (..., 3, 3)
         Finite matrices of full rank.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

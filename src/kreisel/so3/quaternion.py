@@ -17,7 +17,7 @@ from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
-from .._compiled.outputs import check_out, deliver
+from .._compiled.outputs import check_out, deliver, takes_out
 from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, finite3, gufunc, refuse_nonfinite, refuse_quaternions
 from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
 from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, refuse_long_angle
@@ -313,6 +313,7 @@ def _is_single(x: object) -> TypeGuard[NDArray[np.float64]]:
     return type(x) is np.ndarray and x.shape == (4,) and x.dtype == np.float64 and x.flags.writeable
 
 
+@takes_out
 def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Hamilton product ``p q`` (Theory §2.4), broadcasting over leading axes.
 
@@ -322,8 +323,6 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
     ----------
     p, q : array_like, shape (..., 4)
         Scalar-first quaternions (any finite values; not necessarily unit).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -359,13 +358,9 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
     return _multiply(a, b, out=out)
 
 
+@takes_out
 def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Conjugate ``q* = q0 - q·i`` (Theory §2.4); the inverse rotation for unit ``q``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -382,13 +377,9 @@ def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     return out
 
 
+@takes_out
 def quat_norm(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Norm ``|q| = sqrt(q* q)``, shape ``(...)``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -398,13 +389,9 @@ def quat_norm(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArra
     return deliver(norm(quaternion_array(q, "q", nonzero=False)), out)
 
 
+@takes_out
 def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse ``q⁻¹ = q* / |q|²`` (Theory §2.4) of nonzero quaternions.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -419,15 +406,11 @@ def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDA
     return inverse
 
 
+@takes_out
 def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Scale nonzero quaternions to unit norm (the renormalisation of Theory §2.4 (2) ②).
 
     Raises ``ValueError`` for zero or non-finite input rather than returning NaN.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -437,6 +420,7 @@ def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     return _mapped(q, _NORMALIZE, out)[0]
 
 
+@takes_out
 def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotate vectors: ``R(q) v`` (or ``R(q)ᵀ v`` with ``inverse=True``).
 
@@ -451,8 +435,6 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
         Broadcast against ``q`` over the leading axes.
     inverse : bool
         Rotate by ``R(q)ᵀ`` instead (space → body components).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -479,6 +461,7 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
     return _apply(quaternion_array(a, "q"), vector_array(b, "v"), sign, out=out)
 
 
+@takes_out
 def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Powers ``q^p = exp(p log q)`` of rotations: the same axis, ``p`` times the angle.
 
@@ -494,8 +477,6 @@ def quat_power(q: ArrayLike, p: ArrayLike, *, out: NDArray[np.float64] | None = 
     p : float or array_like, shape (...)
         Exponents, broadcast against the batch. ``|p|`` times the angle of
         ``q`` must be at most 1e8 rad (see :func:`~kreisel.so3.rotvec_to_quat`).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -539,13 +520,9 @@ def check_angle_multiple(factor: NDArray[np.float64], rotations: Callable[[], ND
         refuse_long_angle(float(np.max(np.abs(factor) * angle, initial=0.0)), name, what)
 
 
+@takes_out
 def quat_identity(shape: int | tuple[int, ...] | None = (), *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Identity quaternions ``[1, 0, 0, 0]`` of batch shape ``shape``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

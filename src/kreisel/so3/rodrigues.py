@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array, vector_array
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._norms import norm, unit
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
@@ -25,13 +25,9 @@ def _canonical_unit(q: ArrayLike) -> NDArray[np.float64]:
     return np.where(q[..., :1] < 0.0, -q, q)
 
 
+@takes_out
 def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -45,6 +41,7 @@ def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
     return deliver(q[..., 1:] / q[..., :1], out)
 
 
+@takes_out
 def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
 
@@ -52,8 +49,6 @@ def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
     ----------
     g : array_like, shape (..., 3)
         Gibbs vectors ``n tan(ψ/2)``, any length.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -69,13 +64,9 @@ def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
     return deliver(unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g"), out)
 
 
+@takes_out
 def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -87,6 +78,7 @@ def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     return deliver(q[..., 1:] / (1.0 + q[..., :1]), out)
 
 
+@takes_out
 def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
 
@@ -94,8 +86,6 @@ def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     ----------
     p : array_like, shape (..., 3)
         Modified Rodrigues parameters ``n tan(ψ/4)``.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------

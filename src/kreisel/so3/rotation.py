@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from . import alignment as _alignment
@@ -204,6 +204,7 @@ class Rotation(QuaternionBatch):
         """
         return cls._wrap(_davenport.davenport_to_quat(axes, order, angles, degrees=degrees))
 
+    @takes_out
     def as_davenport(self, axes: ArrayLike, order: str, degrees: bool = False, *,
                      suppress_warnings: bool = True, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Davenport angles about ``axes`` (scipy's ``as_davenport``), exact through gimbal lock.
@@ -218,8 +219,6 @@ class Rotation(QuaternionBatch):
         order : {"e", "extrinsic", "i", "intrinsic"}
         degrees : bool
         suppress_warnings : bool
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -489,6 +488,7 @@ class Rotation(QuaternionBatch):
         return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
 
     # -- representations ----------------------------------------------------
+    @takes_out
     def as_quat(self, canonical: bool = False, scalar_first: bool = True, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit quaternions; ``canonical=True`` picks the unique sign (q0 > 0, else first nonzero > 0).
 
@@ -497,8 +497,6 @@ class Rotation(QuaternionBatch):
         canonical : bool
         scalar_first : bool
             ``False`` gives scipy's default order ``(x, y, z, w)``.
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -519,13 +517,9 @@ class Rotation(QuaternionBatch):
         q = q if scalar_first else q[..., [1, 2, 3, 0]]
         return np.array(q) if out is None else deliver(q, out)
 
+    @takes_out
     def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation matrices ``R`` (body → space), shape ``(..., 3, 3)``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -538,14 +532,13 @@ class Rotation(QuaternionBatch):
         """
         return _matrix.quat_to_matrix(self._q, out=out)
 
+    @takes_out
     def as_rotvec(self, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation vectors with |ψ| <= π.
 
         Parameters
         ----------
         degrees : bool
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -572,6 +565,7 @@ class Rotation(QuaternionBatch):
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
+    @takes_out
     def as_euler(self, seq: str, degrees: bool = False, *, suppress_warnings: bool = True,
                  out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Euler angles, exact through gimbal lock (any 1-, 2- or 3-axis sequence).
@@ -590,8 +584,6 @@ class Rotation(QuaternionBatch):
             Uppercase intrinsic, lowercase extrinsic axes, e.g. ``"ZXZ"``.
         degrees : bool
         suppress_warnings : bool
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -614,13 +606,9 @@ class Rotation(QuaternionBatch):
             _warn_gimbal_lock(_euler.gimbal_lock(seq, angles, degrees=degrees, tolerance=_GIMBAL_TOLERANCE))
         return angles
 
+    @takes_out
     def as_su2(self, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
         """SU(2) matrices ``exp(-i σ·ψ/2)`` (keeps the quaternion's sign).
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -636,13 +624,9 @@ class Rotation(QuaternionBatch):
         """
         return _su2.quat_to_su2(self._q, out=out)
 
+    @takes_out
     def as_cayley_klein(self, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
         """Cayley–Klein parameters ``(α, β, γ, δ)``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -655,13 +639,9 @@ class Rotation(QuaternionBatch):
         """
         return _su2.quat_to_cayley_klein(self._q, out=out)
 
+    @takes_out
     def as_euler_parameters(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Euler parameters of the Theory §A (2), ``e = q*``.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -674,13 +654,9 @@ class Rotation(QuaternionBatch):
         """
         return _su2.quat_to_euler_parameters(self._q, out=out)
 
+    @takes_out
     def as_gibbs(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Gibbs vectors ``n tan(ψ/2)`` (refused for half-turns).
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -691,13 +667,9 @@ class Rotation(QuaternionBatch):
         """
         return _rodrigues.quat_to_gibbs(self._q, out=out)
 
+    @takes_out
     def as_mrp(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Modified Rodrigues parameters with |p| <= 1.
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -743,6 +715,7 @@ class Rotation(QuaternionBatch):
         """
         return Rotation._wrap(_quat.quat_conjugate(self._q))
 
+    @takes_out
     def apply(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate vectors ``(..., 3)``: ``R v`` (``Rᵀ v`` with ``inverse=True``), broadcasting.
 
@@ -751,8 +724,6 @@ class Rotation(QuaternionBatch):
         vectors : array_like, shape (..., 3)
             Body components (space components with ``inverse=True``).
         inverse : bool
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -767,13 +738,9 @@ class Rotation(QuaternionBatch):
         """
         return _quat.quat_apply(self._q, vectors, inverse=inverse, out=out)
 
+    @takes_out
     def magnitude(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotation angles in [0, π].
-
-        Parameters
-        ----------
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------
@@ -841,6 +808,7 @@ class Rotation(QuaternionBatch):
         """
         return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
 
+    @takes_out
     def approx_equal(self, other: Rotation, atol: float = 1e-12, *,
                      out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         """Whether the rotations agree to ``atol`` in angle (sign of q ignored).
@@ -851,8 +819,6 @@ class Rotation(QuaternionBatch):
             Broadcast against ``self``.
         atol : float
             Largest angle between equal rotations, radians.
-        out : ndarray, optional
-            Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
         Examples
         --------

@@ -15,7 +15,7 @@ from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import (
     checked_in_one_pass, finite_array, gufunc, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
     rotvec_in_range, vector_array,
@@ -132,15 +132,11 @@ def _compose_rotvec(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray
     out[0], out[1], out[2] = kernels.quat_rotvec(r0, r1, r2, r3)
 
 
+@takes_out(result="Result array of shape (3, 3, 3)")
 def generators(*, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The generators ``X_1, X_2, X_3`` of Theory §2.2 (2), shape (3, 3, 3).
 
     ``(X_j)_kl = -ε_jkl``; ``[X_j, X_k] = ε_jkl X_l`` and ``R(ψ) = exp(ψ_j X_j)``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array of shape (3, 3, 3) (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -152,6 +148,7 @@ def generators(*, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]
     return hat(np.eye(3), out=out)
 
 
+@takes_out
 def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
@@ -159,8 +156,6 @@ def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     ----------
     v : array_like, shape (..., 3)
         Vectors.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -183,6 +178,7 @@ def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     return deliver(A, out)
 
 
+@takes_out
 def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`hat`: the vector of the skew part of ``A``.
 
@@ -193,8 +189,6 @@ def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     ----------
     A : array_like, shape (..., 3, 3)
         Skew (or nearly skew) matrices.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -206,6 +200,7 @@ def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     return deliver(v, out)
 
 
+@takes_out
 def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
@@ -218,8 +213,6 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     psi : array_like, shape (..., 3)
         Rotation vectors, at most ``ROTVEC_RANGE`` = 1e8 rad long (longer
         ones are refused: see :func:`rotvec_to_quat`).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -237,17 +230,13 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
     return _rotvec_to_matrix(rotvec_array(psi, "psi"), out=out)
 
 
+@takes_out
 def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm ``ψ = log R`` with |ψ| <= π.
 
     Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
     digits at ψ → 0 or ψ → π (unlike arccos((tr R - 1)/2)). At exactly
     ψ = π both ±ψ are logarithms; the sign follows the extracted quaternion.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -257,6 +246,7 @@ def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     return _matrix_to_rotvec(matrix_array(R, "R"), out=out)
 
 
+@takes_out
 def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (Theory §A (4)).
 
@@ -272,8 +262,6 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     ----------
     psi : array_like, shape (..., 3)
         Rotation vectors, at most 1e8 rad long.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -295,6 +283,7 @@ def exp_quat(psi: ArrayLike, name: str, out: NDArray[np.float64] | None = None, 
     return _rotvec_to_quat(rotvec_array(a, name, what), out=out)
 
 
+@takes_out
 def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
 
@@ -305,8 +294,6 @@ def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     ----------
     q : array_like, shape (..., 4)
         Scalar-first quaternions, need not be unit.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -340,13 +327,9 @@ def rotvec_to_axis_angle(psi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[n
     return axis, angle
 
 
+@takes_out
 def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation vector ψ n from an axis (any nonzero length) and an angle.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -360,17 +343,13 @@ def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = Fals
     return deliver(unit(axis, "axis") * angle[..., None], out)
 
 
+@takes_out
 def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
     BCH series (:func:`bch`) approximates, computed through quaternions.
     ``a`` and ``b`` longer than 1e8 rad are refused (see :func:`rotvec_to_quat`).
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -402,6 +381,7 @@ _BCH_MAX_ORDER = 40
 _BCH_EXPONENT_LIMIT = 300.0
 
 
+@takes_out
 def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Baker–Campbell–Hausdorff series for ``log(exp(a·X) exp(b·X))`` (Theory §2.2 (4)).
 
@@ -420,8 +400,6 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
         ones are refused, as by :func:`rotvec_to_quat`).
     order : int >= 1
         Highest total degree in a and b kept in the series.
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -461,6 +439,7 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     return deliver(np.sum(Z[1:], axis=0), out)
 
 
+@takes_out
 def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
@@ -474,8 +453,6 @@ def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | N
         Rotation matrices.
     psi : array_like, shape (..., 3)
         Rotation vectors (or any vectors: the action is linear).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------

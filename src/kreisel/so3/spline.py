@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
-from .._compiled.outputs import check_out, empty
+from .._compiled.outputs import check_out, empty, takes_out
 from .._norms import norm
 from .._validation import check_frame, refuse_long_angle
 from .rotation import Rotation
@@ -217,6 +217,9 @@ class RotationSpline:
     def __call__(self, times: ArrayLike, order: int, frame: str | None = None, *,
                  out: NDArray[np.float64] | None = None) -> Rotation | NDArray[np.float64]: ...
 
+    @takes_out(result="Result array for ``order`` 1 and 2, shape ``times.shape + (3,)``, may\n"
+                      "share memory with ``times``; ``order=0`` returns a new :class:`Rotation`\n"
+                      "and refuses it")
     def __call__(self, times: ArrayLike, order: int = 0, frame: str | None = None, *,
                  out: NDArray[np.float64] | None = None) -> Rotation | NDArray[np.float64]:
         """Attitudes (``order=0``), angular velocities (1) or angular accelerations (2) at ``times``.
@@ -229,10 +232,6 @@ class RotationSpline:
         frame : {"body", "space"}
             Required for ``order`` 1 and 2. ``"body"`` (``hat ω' = Rᵀ Ṙ``) is
             what scipy's ``RotationSpline`` returns; ``"space"`` is ``R ω'``.
-        out : ndarray, optional
-            Result array for ``order`` 1 and 2, shape ``times.shape + (3,)``
-            (keyword only; :ref:`out-arrays`); it may share memory with
-            ``times``. ``order=0`` returns a new :class:`Rotation` and refuses it.
 
         Returns
         -------

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.gufunc import quaternion_array
-from .._compiled.outputs import deliver
+from .._compiled.outputs import deliver, takes_out
 from .._validation import as_float_array
 from .._norms import unit
 
@@ -59,6 +59,7 @@ def _quat_from_ab(a: NDArray[np.complex128], b: NDArray[np.complex128], name: st
     return cast("NDArray[np.float64]", q / norm)
 
 
+@takes_out
 def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (Theory §A (1), (4)).
 
@@ -66,8 +67,6 @@ def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> N
     ----------
     q : array_like, shape (..., 4)
         Nonzero quaternions (normalised here).
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -86,16 +85,12 @@ def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> N
     return deliver(np.stack([np.stack([a, b], axis=-1), np.stack([-b.conj(), a.conj()], axis=-1)], axis=-2), out)
 
 
+@takes_out
 def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of each SU(2) matrix (inverse of :func:`quat_to_su2`, sign kept).
 
     ``u`` must be ``[[a, b], [-b*, a*]]`` with ``|a|² + |b|² = 1`` up to 1e-6;
     the two copies of ``a`` and ``b`` are averaged and the result normalised.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -111,15 +106,11 @@ def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     return deliver(_quat_from_ab(a, b, "u"), out)
 
 
+@takes_out
 def quat_to_cayley_klein(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """Cayley–Klein parameters ``(α, β, γ, δ)`` = the entries of ``u`` (Theory §A (3)).
 
     ``u = [[α, β], [γ, δ]]`` with ``δ = α*``, ``γ = -β*``, ``αδ - βγ = 1``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Returns
     -------
@@ -134,13 +125,9 @@ def quat_to_cayley_klein(q: ArrayLike, *, out: NDArray[np.complex128] | None = N
     return deliver(u.reshape(u.shape[:-2] + (4,)), out)
 
 
+@takes_out
 def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion from Cayley–Klein parameters ``(α, β, γ, δ)`` (inverse of :func:`quat_to_cayley_klein`).
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -151,6 +138,7 @@ def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = Non
     return deliver(su2_to_quat(ck.reshape(ck.shape[:-1] + (2, 2))), out)
 
 
+@takes_out
 def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler parameters ``(e0, e1, e2, e3)`` as defined in the Theory §A (2).
 
@@ -164,11 +152,6 @@ def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = 
     ``e = q``. The two readings agree because ``A(q) = R(q)ᵀ = R(q*)``; pass
     ``q`` itself to :func:`euler_parameters_to_matrix` to get Goldstein's ``A``.
 
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
-
     Examples
     --------
     >>> quat_to_euler_parameters([0.0, 0.0, 0.0, 1.0])
@@ -178,13 +161,9 @@ def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = 
     return deliver(e, out)
 
 
+@takes_out
 def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`quat_to_euler_parameters`: ``q = e*``.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
@@ -194,17 +173,13 @@ def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = 
     return deliver(_unit(e, "e") * np.array([1.0, -1.0, -1.0, -1.0]), out)
 
 
+@takes_out
 def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
     ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
     ``e = q*`` it is the active ``R(q)``; with Goldstein's ``e = q`` it is the
     passive ``A = R(q)ᵀ``. ``e`` is normalised first.
-
-    Parameters
-    ----------
-    out : ndarray, optional
-        Result array, may share memory with an input (keyword only; :ref:`out-arrays`).
 
     Examples
     --------
