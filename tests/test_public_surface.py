@@ -28,6 +28,28 @@ def test_public_module_declares_all(path):
     assert hasattr(importlib.import_module(_module_name(path)), "__all__"), f"{_module_name(path)} has no __all__"
 
 
+def _all_assignments(tree):
+    return [node for node in tree.body
+            if any(getattr(target, "id", None) == "__all__" for target in
+                   (node.targets if isinstance(node, ast.Assign) else [getattr(node, "target", None)]))
+            or isinstance(node, ast.Expr) and isinstance(node.value, ast.Call)
+            and getattr(node.value.func, "value", None) is not None and getattr(node.value.func.value, "id", None) == "__all__"]
+
+
+@pytest.mark.parametrize("path", PUBLIC, ids=_module_name)
+def test_all_is_one_literal_list(path):
+    """The one form of ``__all__`` every type checker reads: mypy ignores ``+=``/``extend`` of another module's
+    list and ``*`` unpacking, and would then see a package export nothing but its literal names."""
+    assignments = _all_assignments(ast.parse(path.read_text(encoding="utf-8")))
+    if not assignments:
+        return  # lazy: computed on access (test_public_module_declares_all)
+    assert len(assignments) == 1, f"{_module_name(path)} builds __all__ in {len(assignments)} statements"
+    value = getattr(assignments[0], "value", None)
+    assert isinstance(assignments[0], (ast.Assign, ast.AnnAssign)) and isinstance(value, (ast.List, ast.Tuple))
+    assert all(isinstance(item, ast.Constant) and isinstance(item.value, str) for item in value.elts), (
+        f"{_module_name(path)}: write the names of __all__ out")
+
+
 @pytest.mark.parametrize("name", ["kreisel.so3", "kreisel.kinematics", "kreisel.inertia", "kreisel.dynamics",
                                   "kreisel.tops", "kreisel.se3", "kreisel.frames", "kreisel.earth", "kreisel.nav"])
 def test_every_listed_name_exists(name):
@@ -52,7 +74,8 @@ def reexports(path):
             base = package.split(".")[: len(package.split(".")) - node.level + 1]
             module = ".".join(base + ([node.module] if node.module else []))
             for alias in node.names:
-                if alias.name == "*":
+                if alias.name == "*":  # the names the module lists
+                    yield from ((name, module) for name in importlib.import_module(module).__all__)
                     continue
                 is_module = (PACKAGE.parent / module.replace(".", "/") / alias.name).is_dir() or (
                     PACKAGE.parent / module.replace(".", "/") / f"{alias.name}.py").is_file()
@@ -98,9 +121,10 @@ def test_reexport_breaches_are_found(tmp_path, monkeypatch):
     (root / "__init__.py").write_text("")
     (root / "other" / "__init__.py").write_text("__all__ = ['k', 'm']\ndef k(): pass\ndef m(): pass\n")
     (root / "pkg" / "__init__.py").write_text(
-        "from .a import f, g, CONSTANT\nfrom .a import h as public_h\nfrom ..other import k, m\n"
-        "__all__ = ['f', 'g', 'k']\n")
+        "from .a import f, g, CONSTANT\nfrom .a import h as public_h\nfrom ..other import k, m\nfrom .b import *\n"
+        "__all__ = ['f', 'g', 'k', 'b1']\n")
     (root / "pkg" / "a.py").write_text("__all__ = ['f']\ndef f(): pass\ndef g(): pass\ndef h(): pass\nCONSTANT = 1\n")
+    (root / "pkg" / "b.py").write_text("__all__ = ['b1', 'b2']\nb1 = b2 = 1\n")
     monkeypatch.syspath_prepend(str(tmp_path))
     monkeypatch.setattr(sys.modules[__name__], "PACKAGE", root)
     assert convention_breaches(root / "pkg" / "__init__.py") == [
@@ -108,4 +132,5 @@ def test_reexport_breaches_are_found(tmp_path, monkeypatch):
         "CONSTANT (from probe.pkg.a) is bound but not in __all__",
         "public_h (from probe.pkg.a) is bound but not in __all__",
         "k (from probe.other) is another package's name but listed in __all__",
+        "b2 (from probe.pkg.b) is bound but not in __all__",
     ]

@@ -7,13 +7,18 @@ callable; :func:`simulate_batch` runs many bodies in parallel;
 :class:`Trajectory`.
 """
 
-from . import forces, torques
 from .engine import simulate, simulate_6dof, simulate_batch
 from .forces import *  # noqa: F403
 from .torques import *  # noqa: F403
 from .trajectory import Trajectory
 
-# built with += so that type checkers read it (they do not read a list with * unpacking)
-__all__: list[str] = ["simulate", "simulate_batch", "simulate_6dof", "Trajectory"]
-__all__ += torques.__all__
-__all__ += forces.__all__
+# Literal, so that every type checker reads it (mypy reads neither `+=` nor `*` of another module's list);
+# tests/test_public_surface.py checks that it holds exactly the names of the modules imported above.
+__all__ = [
+    # engine, trajectory
+    "simulate", "simulate_batch", "simulate_6dof", "Trajectory",
+    # torques
+    "TorqueModel", "GravityTorque", "ConstantTorque", "MagneticTorque", "LinearDamping", "TorqueSum",
+    # forces
+    "ForceModel", "ConstantForce", "LinearDrag", "ForceSum",
+]

@@ -6,7 +6,14 @@ and Hamiltonian, and a compiled simulator for a particle in a frame with known
 """
 
 from .relative import *  # noqa: F401,F403
-from .relative import __all__ as _relative_all
 from .particle import ParticleTrajectory, simulate_particle
 
-__all__ = [*_relative_all, "ParticleTrajectory", "simulate_particle"]
+# Literal, so that every type checker reads it (mypy reads neither `+=` nor `*` of another module's list);
+# tests/test_public_surface.py checks that it holds exactly the names of the modules imported above.
+__all__ = [
+    # relative
+    "InertialForces", "LagrangianTerms", "HamiltonianTerms", "inertial_forces", "canonical_momentum",
+    "velocity_from_momentum", "lagrangian_terms", "lagrangian", "hamiltonian_terms", "hamiltonian",
+    # particle
+    "ParticleTrajectory", "simulate_particle",
+]

@@ -11,7 +11,6 @@ velocity and acceleration of body points and of points moving on the body
 centre and centrodes.
 """
 
-from . import acceleration, euler, motion, point_motion, rates, rotvec, screw
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
 from ._singularity import (
     GimbalLockWarning,
@@ -26,13 +25,26 @@ from .point_motion import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
 from .screw import *  # noqa: F401,F403
 
-# built with += so that type checkers read it (they do not read a list with * unpacking)
-__all__: list[str] = []
-__all__ += rates.__all__
-__all__ += rotvec.__all__
-__all__ += euler.__all__
-__all__ += acceleration.__all__
-__all__ += motion.__all__
-__all__ += point_motion.__all__
-__all__ += screw.__all__
-__all__ += ["KinematicSingularityWarning", "GimbalLockWarning", "RotationVectorSingularityWarning"]
+# Literal, so that every type checker reads it (mypy reads neither `+=` nor `*` of another module's list);
+# tests/test_public_surface.py checks that it holds exactly the names of the modules imported above.
+__all__ = [
+    # rates
+    "angular_velocity", "quat_rate", "angular_velocity_from_quat_rate",
+    # rotvec
+    "bortz_coefficient", "angular_velocity_from_rotvec_rate", "rotvec_rate", "rotvec_rate_singular",
+    # euler
+    "euler_rate_matrix", "euler_rate_matrix_inverse", "angular_velocity_from_euler_rates", "euler_rates",
+    "euler_rates_singular",
+    # acceleration
+    "angular_acceleration", "angular_acceleration_from_quat", "angular_acceleration_from_rotvec",
+    "angular_acceleration_from_euler",
+    # motion
+    "point_velocity", "point_acceleration", "relative_derivative", "VelocityTerms", "AccelerationTerms",
+    "three_term_velocity", "five_term_acceleration",
+    # point_motion
+    "PointMotion", "point_trajectory",
+    # screw
+    "ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "centrodes",
+    # _singularity
+    "KinematicSingularityWarning", "GimbalLockWarning", "RotationVectorSingularityWarning",
+]

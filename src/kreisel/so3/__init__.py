@@ -18,9 +18,6 @@ appendix), ``rodrigues`` (Gibbs vector, MRPs), ``interpolation``
 (``RotationSpline``, ``Slerp``).
 """
 
-from . import (
-    alignment, davenport, euler, groups, interpolation, jacobians, matrix, quaternion, rodrigues, rotation, rotvec, spline, su2,
-)
 from .alignment import *  # noqa: F401,F403
 from .davenport import *  # noqa: F401,F403
 from .euler import *  # noqa: F401,F403
@@ -36,19 +33,38 @@ from .spline import *  # noqa: F401,F403
 from .su2 import *  # noqa: F401,F403
 from .._compiled.outputs import release_memory
 
-# built with += so that type checkers read it (they do not read a list with * unpacking)
-__all__: list[str] = []
-__all__ += quaternion.__all__
-__all__ += matrix.__all__
-__all__ += rotvec.__all__
-__all__ += jacobians.__all__
-__all__ += euler.__all__
-__all__ += su2.__all__
-__all__ += rodrigues.__all__
-__all__ += interpolation.__all__
-__all__ += alignment.__all__
-__all__ += davenport.__all__
-__all__ += groups.__all__
-__all__ += rotation.__all__
-__all__ += spline.__all__
-__all__ += ["release_memory"]  # the memory kept for large results of so3, kinematics and se3
+# Literal, so that every type checker reads it (mypy reads neither `+=` nor `*` of another module's list);
+# tests/test_public_surface.py checks that it holds exactly the names of the modules imported above.
+__all__ = [
+    # quaternion
+    "quat_multiply", "quat_conjugate", "quat_inverse", "quat_norm", "quat_normalize", "quat_apply", "quat_identity",
+    "quat_power",
+    # matrix
+    "quat_to_matrix", "matrix_to_quat", "orthonormalize",
+    # rotvec
+    "generators", "hat", "vee", "rotvec_to_matrix", "matrix_to_rotvec", "rotvec_to_quat", "quat_to_rotvec",
+    "rotvec_to_axis_angle", "axis_angle_to_rotvec", "compose_rotvec", "bch", "adjoint_action",
+    # jacobians
+    "left_jacobian", "right_jacobian", "left_jacobian_inverse", "right_jacobian_inverse",
+    # euler
+    "parse_sequence", "euler_to_quat", "quat_to_euler", "euler_to_matrix", "matrix_to_euler", "gimbal_lock",
+    # su2
+    "quat_to_su2", "su2_to_quat", "quat_to_cayley_klein", "cayley_klein_to_quat", "quat_to_euler_parameters",
+    "euler_parameters_to_quat", "euler_parameters_to_matrix",
+    # rodrigues
+    "quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat",
+    # interpolation
+    "quat_slerp", "quat_mean",
+    # alignment
+    "align_vectors",
+    # davenport
+    "davenport_to_quat", "quat_to_davenport", "davenport_gimbal_lock",
+    # groups
+    "create_group", "reduce_quat",
+    # rotation
+    "Rotation",
+    # spline
+    "RotationSpline", "Slerp",
+    # the memory kept for large results of so3, kinematics and se3
+    "release_memory",
+]
