@@ -103,6 +103,15 @@ def as_float(x: ArrayLike, name: str, finite: bool = True) -> float:
     return float(a)
 
 
+def positive_array(x: ArrayLike, name: str, allow_zero: bool = False) -> NDArray[np.float64]:
+    """:func:`as_float_array` of a quantity that must be > 0 (or >= 0: ``allow_zero``), else ValueError naming it."""
+    a = as_float_array(x, name)
+    bad = a < 0 if allow_zero else a <= 0
+    if np.any(bad):
+        raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {float(a[bad].flat[0])!r}")
+    return a
+
+
 def check_frame(frame: object) -> bool:
     """Return True for ``frame="body"``, False for ``"space"``; refuse anything else."""
     if frame not in FRAMES:

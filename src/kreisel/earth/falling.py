@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._compiled import cached, dop853 as _dop853, generic
-from .._validation import as_float_array, out_of_range
+from .._validation import as_float_array, out_of_range, positive_array
 from ..frames.particle import builtin_parameters, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
@@ -33,11 +33,6 @@ __all__ = [
 ]
 
 
-def _positive(x, name, strict=True):
-    a = as_float_array(x, name)
-    if np.any(a <= 0) if strict else np.any(a < 0):
-        raise ValueError(f"{name} must be {'positive' if strict else 'non-negative'}")
-    return a
 
 
 def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
@@ -69,9 +64,9 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     >>> round(float(eastward_deflection(100.0, 31.8584, g=9.7947, omega=7.27221e-5)), 4)
     0.0186
     """
-    h = _positive(height, "height", strict=False)
+    h = positive_array(height, "height", allow_zero=True)
     c, _ = latitude_cos_sin(latitude_deg)
-    g = _positive(g, "g")
+    g = positive_array(g, "g")
     w = check_omega(omega)
     with out_of_range("height, g and omega", "the deflection") as guard:
         # h √(2h/g), not √(2h³/g): h³ overflows from 1e103 m where the deflection is still representable
@@ -199,10 +194,10 @@ def simulate_drop(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
     >>> round(float(east), 4), bool(north < 0)
     (0.0186, True)
     """
-    h = _positive(height, "height")
+    h = positive_array(height, "height")
     lat = as_float_array(latitude_deg, "latitude_deg")
     latitude_cos_sin(lat)
-    g = _positive(g, "g")
+    g = positive_array(g, "g")
     w = check_omega(omega)
     h, lat, g, w = np.broadcast_arrays(h, lat, g, w)
     east = np.empty(h.shape)
@@ -222,14 +217,14 @@ def _muzzle_velocity(speed, elevation_deg, azimuth_deg):
 
 
 def _shell_inputs(speed, elevation_deg, azimuth_deg, latitude_deg, g, omega):
-    speed = _positive(speed, "speed")
+    speed = positive_array(speed, "speed")
     el = as_float_array(elevation_deg, "elevation_deg")
     if np.any((el <= 0) | (el > 90)):
         raise ValueError("elevation_deg must lie in (0, 90] degrees")
     az = as_float_array(azimuth_deg, "azimuth_deg")
     lat = as_float_array(latitude_deg, "latitude_deg")
     latitude_cos_sin(lat)
-    g = _positive(g, "g")
+    g = positive_array(g, "g")
     w = check_omega(omega)
     return np.broadcast_arrays(speed, el, az, lat, g, w)
 

@@ -8,10 +8,9 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validation import as_float, as_float_array, check_inertia_tensor, check_principal_moments
+from .._validation import as_float, as_float_array, check_inertia_tensor, check_principal_moments, positive_array
 from ..so3._coercion import RotationLike
 from .tensors import (
-    _positive,
     _outer_term,
     as_rotation_matrix,
     point_inertia,
@@ -120,7 +119,7 @@ def from_points(masses: ArrayLike, positions: ArrayLike) -> MassProperties:
     >>> p.inertia.diagonal()
     array([ 0., 12., 12.])
     """
-    m = _positive(masses, "masses", allow_zero=True)
+    m = positive_array(masses, "masses", allow_zero=True)
     r = as_float_array(positions, "positions", tail=(3,))
     if m.ndim != 1 or r.shape != (m.size, 3):
         raise ValueError(f"masses must be (N,) and positions (N, 3), got {m.shape} and {r.shape}")

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validation import as_float_array
-from .tensors import _binary_exponent, _out_of_range, _positive
+from .._validation import as_float_array, positive_array
+from .tensors import _binary_exponent, _out_of_range
 
 __all__ = [
     "box",
@@ -32,8 +32,8 @@ __all__ = [
 
 def _radii(outer, outer_name, inner, inner_name, allow_zero=True, reason=""):
     """An outer length and an inner one that must not exceed it (``inner=None``: equal to it)."""
-    big = _positive(outer, outer_name)
-    small = big if inner is None else _positive(inner, inner_name, allow_zero=allow_zero)
+    big = positive_array(outer, outer_name)
+    small = big if inner is None else positive_array(inner, inner_name, allow_zero=allow_zero)
     if np.any(small > big):
         raise ValueError(f"{inner_name} must not exceed {outer_name}{reason}")
     return big, small
@@ -74,15 +74,15 @@ def _moment(mass, terms, names):
 
 def _from_extents(mass, lengths, weight, names):
     """m w diag(b² + c², a² + c², a² + b²) for per-axis lengths (a, b, c) = ``lengths``."""
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     a, b, c = np.moveaxis(lengths, -1, 0)
     return _diagonal(*(_moment(m, [(weight, x), (weight, y)], names) for x, y in ((b, c), (a, c), (a, b))))
 
 
 def _round(mass, radius, transverse, axial):
     """m r² diag(transverse, transverse, axial): a body of revolution whose moments scale with r² alone."""
-    m = _positive(mass, "mass")
-    r = _positive(radius, "radius")
+    m = positive_array(mass, "mass")
+    r = positive_array(radius, "radius")
     names = "mass and radius are"
     return _axisymmetric(_moment(m, [(transverse, r)], names), _moment(m, [(axial, r)], names))
 
@@ -109,7 +109,7 @@ def box(mass: ArrayLike, size: ArrayLike) -> NDArray[np.float64]:
            [ 0.,  0.,  5.]])
     """
     edges = as_float_array(size, "size", tail=(3,))
-    _positive(edges, "size", allow_zero=True)
+    positive_array(edges, "size", allow_zero=True)
     return _from_extents(mass, edges, 1.0 / 12.0, "mass and size are")
 
 
@@ -132,7 +132,7 @@ def solid_ellipsoid(mass: ArrayLike, semi_axes: ArrayLike) -> NDArray[np.float64
     array([13., 10.,  5.])
     """
     semi = as_float_array(semi_axes, "semi_axes", tail=(3,))
-    _positive(semi, "semi_axes")
+    positive_array(semi, "semi_axes")
     return _from_extents(mass, semi, 0.2, "mass and semi_axes are")
 
 
@@ -172,7 +172,7 @@ def hollow_sphere(mass: ArrayLike, radius: ArrayLike, inner_radius: ArrayLike | 
     >>> kr.inertia.hollow_sphere(5.0, 1.0, 0.0).diagonal()   # the solid ball
     array([2., 2., 2.])
     """
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     R, r = _radii(radius, "radius", inner_radius, "inner_radius")
     x = r / R  # in [0, 1]: the ratio of polynomials in R and r is R² times one in x, free of overflow
     ratio = (1.0 + x * (1.0 + x * (1.0 + x * (1.0 + x)))) / (1.0 + x * (1.0 + x))
@@ -219,9 +219,9 @@ def hollow_cylinder(mass: ArrayLike, radius: ArrayLike, height: ArrayLike,
     >>> kr.inertia.hollow_cylinder(12.0, 1.0, 2.0).diagonal()
     array([10., 10., 12.])
     """
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     R, r = _radii(radius, "radius", inner_radius, "inner_radius")
-    h = _positive(height, "height")
+    h = positive_array(height, "height")
     names = "mass, radius and height are"
     return _axisymmetric(_moment(m, [(0.25, R), (0.25, r), (1.0 / 12.0, h)], names),
                          _moment(m, [(0.5, R), (0.5, r)], names))
@@ -261,9 +261,9 @@ def solid_cone(mass: ArrayLike, radius: ArrayLike, height: ArrayLike, about: str
     """
     if about not in _CONE_REFERENCE:
         raise ValueError(f"about must be one of {sorted(_CONE_REFERENCE)}, got {about!r}")
-    m = _positive(mass, "mass")
-    r = _positive(radius, "radius")
-    h = _positive(height, "height")
+    m = positive_array(mass, "mass")
+    r = positive_array(radius, "radius")
+    h = positive_array(height, "height")
     # distance from the reference point to the centre of mass along z, in units of h
     offset = _CONE_REFERENCE[about]
     names = "mass, radius and height are"
@@ -283,8 +283,8 @@ def thin_rod(mass: ArrayLike, length: ArrayLike) -> NDArray[np.float64]:
     >>> kr.inertia.thin_rod(3.0, 2.0).diagonal()
     array([1., 1., 0.])
     """
-    m = _positive(mass, "mass")
-    L = _positive(length, "length")
+    m = positive_array(mass, "mass")
+    L = positive_array(length, "length")
     transverse = _moment(m, [(1.0 / 12.0, L)], "mass and length are")
     return _axisymmetric(transverse, np.zeros_like(transverse))
 
@@ -329,7 +329,7 @@ def torus(mass: ArrayLike, major_radius: ArrayLike, minor_radius: ArrayLike) -> 
     >>> kr.inertia.torus(8.0, 1.0, 1.0).diagonal()
     array([ 9.,  9., 14.])
     """
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     R, a = _radii(
         major_radius, "major_radius", minor_radius, "minor_radius", allow_zero=False, reason=" (a self-intersecting torus)"
     )

@@ -12,7 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validation import as_float_array, check_inertia_tensor, check_principal_moments
+from .._validation import as_float_array, check_inertia_tensor, check_principal_moments, positive_array
 from ..so3._coercion import as_rotation_matrix
 from .._norms import unit
 
@@ -28,14 +28,6 @@ __all__ = [
     "InertiaEllipsoid",
 ]
 
-def _positive(x, name, allow_zero=False):
-    """Float array of a quantity that must be > 0 (or >= 0), or ValueError naming it."""
-    a = as_float_array(x, name)
-    bad = a < 0 if allow_zero else a <= 0
-    if np.any(bad):
-        relation = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} must be {relation}, got {float(a[bad].flat[0])!r}")
-    return a
 
 
 def _outer_term(mass, r):
@@ -105,7 +97,7 @@ def points(masses, positions):
            [0., 2., 0.],
            [0., 0., 2.]])
     """
-    m = _positive(masses, "masses", allow_zero=True)
+    m = positive_array(masses, "masses", allow_zero=True)
     r = as_float_array(positions, "positions", tail=(3,))
     if r.ndim < 2:
         raise ValueError(f"positions must have shape (..., N, 3), got {r.shape}")
@@ -152,7 +144,7 @@ def parallel_axis(I_cm, mass, r_c):
     array([4., 4., 0.])
     """
     I_c = check_inertia_tensor(I_cm, "I_cm")
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     r = as_float_array(r_c, "r_c", tail=(3,))
     return I_c + _outer_term(m, r)
 
@@ -184,7 +176,7 @@ def parallel_axis_to_center_of_mass(I_point, mass, r_c):
            [0., 0., 0.]])
     """
     I_o = check_inertia_tensor(I_point, "I_point")
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     r = as_float_array(r_c, "r_c", tail=(3,))
     return I_o - _outer_term(m, r)
 
@@ -320,7 +312,7 @@ def radius_of_gyration(I, mass, axis):
     >>> float(kr.inertia.radius_of_gyration(kr.inertia.thin_ring(2.0, 0.5), 2.0, [0, 0, 1]))
     0.5
     """
-    m = _positive(mass, "mass")
+    m = positive_array(mass, "mass")
     moment = moment_about_axis(I, axis)
     # rounding can leave a zero moment slightly negative
     return np.sqrt(np.maximum(moment, 0.0) / m)
