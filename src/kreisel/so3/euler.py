@@ -27,6 +27,7 @@ inputs are within a tolerance of it.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 from numba import prange
@@ -34,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
+from .._compiled.gufunc import LazyGufunc, finite_array, gufunc, matrix_array, quaternion_array
 from .._validation import AXES as _AXES, parse_sequence
 from . import matrix as _matrix
 from .._norms import unit
@@ -355,6 +356,18 @@ def _finish(angles: NDArray[np.float64], degrees: bool) -> NDArray[np.float64]:
     return np.rad2deg(angles, out=angles) if degrees else angles
 
 
+def _angles_of(seq: str, x: NDArray[np.float64], angles: LazyGufunc,
+               quaternions: Callable[[NDArray[np.float64]], NDArray[np.float64]], degrees: bool,
+               out: NDArray[np.float64] | None) -> NDArray[np.float64]:
+    """The angles of ``seq`` of quaternions or matrices ``x``: the compiled ``angles`` for three axes, the
+    quaternions of ``x`` for one or two."""
+    short = _short_sequence(seq)
+    if short is not None:
+        return deliver(_finish(_short_sequence_angles(seq, *short, quaternions(x)), degrees), out)
+    axes, reverse = _intrinsic_axes(seq)
+    return _finish(angles(x, axes, reverse, out=out), degrees)
+
+
 @takes_out
 def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of nonzero quaternions (direct half-angle method).
@@ -391,12 +404,7 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
     >>> np.round(quat_to_euler("ZX", euler_to_quat("ZX", [0.3, -2.0])), 12)
     array([ 0.3, -2. ])
     """
-    q = quaternion_array(q, "q")
-    short = _short_sequence(seq)
-    if short is not None:
-        return deliver(_finish(_short_sequence_angles(seq, *short, q), degrees), out)
-    axes, reverse = _intrinsic_axes(seq)
-    return _finish(_quat_to_euler(q, axes, reverse, out=out), degrees)
+    return _angles_of(seq, quaternion_array(q, "q"), _quat_to_euler, lambda q: q, degrees, out)
 
 
 @takes_out
@@ -428,12 +436,7 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
     >>> np.round(matrix_to_euler("ZXZ", R), 12)
     array([0.3, 0.2, 0.1])
     """
-    R = matrix_array(R, "R")
-    short = _short_sequence(seq)
-    if short is not None:
-        return deliver(_finish(_short_sequence_angles(seq, *short, _matrix._matrix_to_quat(R)), degrees), out)
-    axes, reverse = _intrinsic_axes(seq)
-    return _finish(_matrix_to_euler(R, axes, reverse, out=out), degrees)
+    return _angles_of(seq, matrix_array(R, "R"), _matrix_to_euler, _matrix._matrix_to_quat, degrees, out)
 
 
 @takes_out
