@@ -1,14 +1,19 @@
 """The compiled layer's own rules (one signature per shared kernel, a cache keyed by the sources) and its sincos."""
 
 import os
+import pathlib
 import platform
 import re
+import subprocess
+import sys
 
 import numba
 import numpy as np
 import pytest
 
+import kreisel
 from kreisel._compiled import checkout_cache_root, kernels, signatures, source_state
+from kreisel.so3 import quat_normalize, rotvec_to_matrix
 
 
 def test_a_kernel_compiled_for_two_layouts_is_reported():
@@ -27,6 +32,29 @@ def test_the_shared_kernels_are_the_cached_ones():
     assert "kreisel._compiled.kernels.qmul" in kernels and "kreisel._compiled.gufunc._all_finite" in kernels
     # routines taking a compiled right-hand side are compiled for each and never cached
     assert not any(name.endswith(".integrate") for name in kernels)
+
+
+def test_the_loops_over_pieces_load_from_the_cache_in_a_new_process():
+    # in_pieces and piece_results take the per-piece kernel as an argument: each parallel caller
+    # inlines them with its own kernel and must still be cached (numba would recompile the ones it cannot)
+    psi = np.random.default_rng(3).normal(size=(2**15, 3))
+    rotvec_to_matrix(psi)
+    quat_normalize(np.ones((2**15, 4)), out=np.empty((2**15, 4)))
+    script = """
+import numpy as np
+from kreisel._compiled import gufunc
+from kreisel.so3 import quat_normalize, rotvec, rotvec_to_matrix
+psi = np.random.default_rng(3).normal(size=(2**15, 3))
+rotvec_to_matrix(psi)
+quat_normalize(np.ones((2**15, 4)), out=np.empty((2**15, 4)))
+loops = (rotvec._rotvec_to_matrix_parallel, gufunc._rotvecs_in_range_parallel, gufunc._smallest_quat_size_parallel)
+print([(sum(f.stats.cache_hits.values()), sum(f.stats.cache_misses.values())) for f in loops])
+"""
+    source = str(pathlib.Path(kreisel.__file__).parents[1])
+    environment = {**os.environ, "NUMBA_CACHE_DIR": numba.config.CACHE_DIR,
+                   "PYTHONPATH": os.pathsep.join([source, os.environ.get("PYTHONPATH", "")])}
+    found = subprocess.run([sys.executable, "-c", script], env=environment, capture_output=True, text=True, check=True)
+    assert found.stdout.strip() == "[(1, 0), (1, 0), (1, 0)]", found.stdout + found.stderr
 
 
 def test_a_source_checkout_compiles_into_a_cache_of_its_source_state():

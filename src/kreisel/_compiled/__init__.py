@@ -6,7 +6,9 @@ holds
 
 - :mod:`.gufunc`: :class:`~.gufunc.LazyGufunc` (per-element kernels broadcast
   by ``numba.guvectorize``, compiled on first call, with an optional multi-core
-  ``prange`` loop for large batches) and the batch input checks;
+  ``prange`` loop for large batches), the batch input checks and the
+  multi-core loops over the pieces of a batch (:func:`~.gufunc.in_pieces`,
+  :func:`~.gufunc.piece_results`);
 - :mod:`.outputs`: the ``out=`` checks and the recycled pages of large
   results (fresh 10^6-element outputs would otherwise fault their pages in
   on every call);
@@ -42,7 +44,9 @@ Cache rules
     :data:`inlined`, :data:`parallel`) except what takes another compiled
     function as an argument (:data:`generic`): numba would add a new, never
     reused cache entry per process. Such routines are inlined into a cached
-    caller with a fixed module-level right-hand side. ``guvectorize`` with
+    caller with a fixed module-level right-hand side; the loops over pieces
+    of a batch are such routines, each inlined into a :data:`parallel`
+    caller that names its per-piece kernel. ``guvectorize`` with
     ``target="parallel"`` cannot be cached, hence the ``prange`` loops.
 Inlining and stale caches
     numba keys a cache entry on the file of the compiled function, not on the

@@ -26,7 +26,7 @@ from numba import guvectorize, prange
 
 from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices, norm
 from .._validation import ROTVEC_RANGE, as_float_array, refuse_long_angle
-from . import cached, parallel
+from . import cached, generic, inlined, parallel
 from . import outputs
 from .outputs import check_out, empty
 
@@ -231,22 +231,48 @@ def _all_finite(flat, start, stop):
 _CHUNK = 36 * 4096
 
 
+@generic
+def in_pieces(kernel: Callable[..., None], a: NDArray[np.float64], out: NDArray[np.float64], piece: int) -> None:
+    """``kernel(a, out, start, stop)`` over the pieces of ``piece`` rows of ``a``, on all cores.
+
+    Inlined into a :data:`~kreisel._compiled.parallel` caller that names a
+    module-level ``kernel`` (a routine taking a compiled function cannot be
+    cached itself). ``kernel`` writes rows ``start:stop`` of ``out`` and
+    reads nothing that another piece writes.
+    """
+    n = a.shape[0]
+    for c in prange(pieces(n, piece)):
+        start = c * piece
+        kernel(a, out, start, min(n, start + piece))
+
+
+@generic
+def piece_results(kernel: Callable[..., Any], flat: NDArray[np.float64], chunk: int,
+                  results: NDArray[Any]) -> NDArray[Any]:
+    """``results[c] = kernel(flat, start, stop)`` for the pieces of ``chunk`` entries of ``flat``, on all cores.
+
+    ``results`` holds one entry per piece (:func:`pieces`); inlined like
+    :func:`in_pieces`. The caller reduces ``results`` to the batch's statistic.
+    """
+    for c in prange(results.size):
+        results[c] = kernel(flat, c * chunk, min(flat.size, (c + 1) * chunk))
+    return results
+
+
+@inlined
+def pieces(size: int, chunk: int) -> int:
+    """The number of pieces of ``chunk`` entries ``size`` entries split into."""
+    return (size + chunk - 1) // chunk
+
+
 @parallel
 def _smallest_quat_size_parallel(flat, chunk):
-    pieces = (flat.size + chunk - 1) // chunk
-    smallest = np.empty(pieces)
-    for c in prange(pieces):
-        smallest[c] = _smallest_quat_size(flat, c * chunk, min(flat.size, (c + 1) * chunk))
-    return smallest.min()
+    return piece_results(_smallest_quat_size, flat, chunk, np.empty(pieces(flat.size, chunk))).min()
 
 
 @parallel
 def _all_finite_parallel(flat, chunk):
-    pieces = (flat.size + chunk - 1) // chunk
-    finite = np.empty(pieces, dtype=np.bool_)
-    for c in prange(pieces):
-        finite[c] = _all_finite(flat, c * chunk, min(flat.size, (c + 1) * chunk))
-    return finite.all()
+    return piece_results(_all_finite, flat, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
 
 
 def _read_only_flat(a):
@@ -365,11 +391,7 @@ def _rotvecs_in_range(flat, start, stop):
 
 @parallel
 def _rotvecs_in_range_parallel(flat, chunk):
-    pieces = (flat.size + chunk - 1) // chunk
-    ok = np.empty(pieces, dtype=np.bool_)
-    for c in prange(pieces):
-        ok[c] = _rotvecs_in_range(flat, c * chunk, min(flat.size, (c + 1) * chunk))
-    return ok.all()
+    return piece_results(_rotvecs_in_range, flat, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
 
 
 def rotvec_array(psi: ArrayLike, name: str, what: str = "|psi|") -> NDArray[np.float64]:
@@ -421,10 +443,9 @@ def _orthogonality_defect(flat, start, stop):
 
 @parallel
 def _orthogonality_defect_parallel(flat, chunk):
-    pieces = (flat.size + chunk - 1) // chunk
-    worst = np.empty(pieces)
-    smallest_det = np.empty(pieces)
-    for c in prange(pieces):
+    worst = np.empty(pieces(flat.size, chunk))
+    smallest_det = np.empty(worst.size)
+    for c in prange(worst.size):
         worst[c], smallest_det[c] = _orthogonality_defect(flat, c * chunk, min(flat.size, (c + 1) * chunk))
     return worst.max(), smallest_det.min()
 

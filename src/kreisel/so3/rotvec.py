@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import (
-    checked_in_one_pass, finite_array, gufunc, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
+    checked_in_one_pass, finite_array, gufunc, in_pieces, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
     rotvec_in_range, vector_array,
 )
 from .._validation import as_float_array
@@ -53,11 +53,7 @@ _PIECE = 4096
 
 @parallel
 def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    # psi checked (at most 1e8 rad long) by the caller
-    n = psi.shape[0]
-    for c in prange((n + _PIECE - 1) // _PIECE):
-        start = int(c) * _PIECE
-        kernels.rotvec_quats(psi, out, start, min(n, start + _PIECE))
+    in_pieces(kernels.rotvec_quats, psi, out, _PIECE)  # psi checked (at most 1e8 rad long) by the caller
 
 
 @parallel
@@ -87,11 +83,7 @@ def _quat_to_rotvec_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -
 
 @parallel
 def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    # psi checked (at most 1e8 rad long) by the caller
-    n = psi.shape[0]
-    for c in prange((n + _PIECE - 1) // _PIECE):
-        start = int(c) * _PIECE
-        kernels.rotvec_matrices(psi, out, start, min(n, start + _PIECE))
+    in_pieces(kernels.rotvec_matrices, psi, out, _PIECE)  # psi checked (at most 1e8 rad long) by the caller
 
 
 @parallel
