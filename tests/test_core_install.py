@@ -167,7 +167,9 @@ def test_the_command_runs_on_the_core_and_names_a_missing_extra(core):
     for args, extra in ((["tour", "--out", "tour"], "plot"), (["serve", "--no-browser"], "viewer"),
                         (["sweep", "tennis_racket"], "sweep"), (["simulate", "tennis_racket", "-o", "t.nc"], "io"),
                         (["simulate", "tennis_racket", "-o", "t.parquet"], "io"),
-                        (["fit", "phone_toss", "--plot", "fit.png"], "plot")):
+                        (["fit", "phone_toss", "--plot", "fit.png"], "plot"),
+                        # two extras in the one line, not one and after installing it the other
+                        (["plot", "t.nc", "-o", "fig.png"], "plot,io"), (["animate", "t.nc", "-o", "a.gif"], "plot,io")):
         done = _run([bin_dir / "kreisel", *args], base, check=False)
         assert done.returncode == 2, (args, done.stdout, done.stderr)
         assert done.stderr.count("\n") == 1 and f'pip install "kreisel[{extra}]"' in done.stderr, done.stderr

@@ -10,7 +10,9 @@ scenarios, IMU logs), ``plot`` (matplotlib: ``kreisel.plot``, the tour),
 
 :func:`require` imports such a package; when it is missing, the error is
 :class:`MissingExtraError`, an ``ImportError`` whose message is one line
-naming the extra to install. The command line prints that line and exits with
+naming the extra to install. A feature that needs packages of several extras
+asks for them all at once with :func:`require_all`, so that its one line names
+every extra (not one, then after installing it the next). The command line prints that line and exits with
 status 2.
 """
 
@@ -19,7 +21,7 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-__all__ = ["MissingExtraError", "require"]
+__all__ = ["MissingExtraError", "require", "require_all"]
 
 
 class MissingExtraError(ImportError):
@@ -78,3 +80,46 @@ def require(module: str, extra: str, feature: str) -> ModuleType:
         # a package the optional one needs may be the missing one: name what is really absent
         missing = (exc.name or module).partition(".")[0]
         raise MissingExtraError(f"{feature} needs {missing}", extra=extra, name=missing) from None
+
+
+def require_all(needs: list[tuple[str, str]], feature: str) -> list[ModuleType]:
+    """Import every ``(module, extra)`` of ``needs`` for ``feature``; all that are missing in one error.
+
+    Parameters
+    ----------
+    needs : list of (str, str)
+        The modules and the extras that install them, as for :func:`require`.
+    feature : str
+        What needs them, as the user knows it (``"kreisel plot"``).
+
+    Returns
+    -------
+    list of module
+        The imported modules, in the order of ``needs``.
+
+    Raises
+    ------
+    MissingExtraError
+        If any is missing: one line naming every missing package and every extra to install,
+        e.g. ``kreisel plot needs matplotlib and xarray: pip install "kreisel[plot,io]"``.
+
+    Examples
+    --------
+    >>> [m.__name__ for m in require_all([("json", "io"), ("math", "plot")], feature="a feature")]
+    ['json', 'math']
+    >>> require_all([("no_such_one", "plot"), ("json", "io"), ("no_such_two", "io")], feature="kreisel plot")
+    Traceback (most recent call last):
+    ...
+    kreisel._optional.MissingExtraError: kreisel plot needs no_such_one and no_such_two: pip install "kreisel[plot,io]"
+    """
+    modules, missing, extras = [], [], []
+    for module, extra in needs:
+        try:
+            modules.append(require(module, extra=extra, feature=feature))
+        except MissingExtraError as exc:
+            missing.append(exc.name)
+            extras.append(extra)
+    if missing:
+        raise MissingExtraError(f"{feature} needs {' and '.join(dict.fromkeys(missing))}",
+                                extra=",".join(dict.fromkeys(extras)), name=missing[0])
+    return modules

@@ -230,9 +230,13 @@ def plot(
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="fig.png | .svg | .pdf"),
 ):
     """Plot a saved result: a trajectory, or what a Foucault or coning run holds."""
+    from .._optional import require_all
+    from ..io.results import ResultError, backend_needs, load_result
+
+    # matplotlib and the file's readers, named together in one line before any work
+    require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel plot")
     from .. import plot as plots
     from ..dynamics import Trajectory
-    from ..io.results import ResultError, load_result
     from ..io.run import trajectory_integrals
 
     known = set(plots.KINDS).union(*plots.DATASET_KINDS.values())
@@ -263,7 +267,10 @@ def animate(
     fps: int = typer.Option(24, "--fps", min=1, max=120),
 ):
     """Animate a saved trajectory: the body with its axes, ω and J."""
-    from ..io.results import ResultError, load_trajectory
+    from .._optional import require_all
+    from ..io.results import ResultError, backend_needs, load_trajectory
+
+    require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel animate")
     from ..plot.animation import animate as run
 
     try:

@@ -6,7 +6,7 @@ import json
 import pathlib
 
 from .._fileio import atomic_output, cf_labelled
-from .._optional import require
+from .._optional import require, require_all
 from ..dynamics import _trajectory_files
 from ..dynamics.trajectory import Trajectory
 
@@ -96,10 +96,14 @@ def load_trajectory(path):
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {reason})") from None
 
 
+def backend_needs(suffix):
+    """The ``(module, extra)`` pairs that read and write ``suffix`` files, for :func:`kreisel._optional.require_all`."""
+    return [(module, "io") for module in (("xarray", "pyarrow") if suffix == ".parquet" else ("xarray",))]
+
+
 def require_backends(suffix, feature):
     """Import what reads and writes ``suffix`` files (the ``io`` extra), or fail with the one line naming it."""
-    for module in ("xarray", "pyarrow") if suffix == ".parquet" else ("xarray",):
-        require(module, extra="io", feature=f"{feature} as {suffix}")
+    require_all(backend_needs(suffix), feature=f"{feature} as {suffix}")
 
 
 def _dataset_kind(path):
