@@ -112,12 +112,14 @@ def require_all(needs: list[tuple[str, str]], feature: str) -> list[ModuleType]:
     ...
     kreisel._optional.MissingExtraError: kreisel plot needs no_such_one and no_such_two: pip install "kreisel[plot,io]"
     """
-    modules, missing, extras = [], [], []
+    modules: list[ModuleType] = []
+    missing: list[str] = []
+    extras: list[str] = []
     for module, extra in needs:
         try:
             modules.append(require(module, extra=extra, feature=feature))
         except MissingExtraError as exc:
-            missing.append(exc.name)
+            missing.append(exc.name or module)
             extras.append(extra)
     if missing:
         raise MissingExtraError(f"{feature} needs {' and '.join(dict.fromkeys(missing))}",
