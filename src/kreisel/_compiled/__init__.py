@@ -9,7 +9,8 @@ holds
   ``prange`` loop for large batches), the batch input checks and the
   multi-core loops over the pieces of a batch (:func:`~.gufunc.in_pieces`,
   :func:`~.gufunc.piece_results`);
-- :mod:`.outputs`: the ``out=`` checks and the recycled pages of large
+- :mod:`.outputs`: the ``out=`` checks, the ``out`` entry of every docstring
+  (:func:`~.outputs.takes_out`) and the recycled pages of large
   results (fresh 10^6-element outputs would otherwise fault their pages in
   on every call);
 - :mod:`.kernels`: the scalar quaternion kernels (product, rotation, matrix,
