@@ -86,10 +86,10 @@ def main(count=20000, repeats=3):
          f"every={EVERY} / end", "copy, kept output (s)", "excess / copy bound", "excess / copy bound (CPU)",
          "excess / copy, kept output", "excess ns per sample"],
         rows, "lrrrrrrrrrrr")
-    lines += ["", "Splitting methods end every output interval with the pending flow about the first axis (a "
-              "sine and a cosine; the end-state run merges it into the next step's), so storing every step "
-              "adds arithmetic as well as bytes; DOP853 adds three stages per step that holds an output and "
-              "the interpolant per sample."]
+    lines += ["", "Splitting methods take the sample's half flow about the first axis from the sine and cosine "
+              "of the merged flow that the end-state run takes too (double-angle formulas), so a stored step "
+              "adds no flow, only the sample's ω′ = m/I, its unit quaternion and the bytes; DOP853 adds three "
+              "stages per step that holds an output and the interpolant per sample."]
     write_results("batch", "\n".join(lines))
 
 

@@ -93,6 +93,16 @@ def _model_rhs(t, y, model, dy, offset):
 
 
 @cached
+def _axis_turn(c2, s2, mi, mj, q0, qk, qi, qj):
+    """:func:`_axis_rotation` by the half angle whose cosine and sine are ``c2``, ``s2``."""
+    # double angle from the half-angle pair: the momentum turns by twice the quaternion's half angle
+    c = (c2 - s2) * (c2 + s2)
+    s = 2.0 * s2 * c2
+    return (c * mi + s * mj, c * mj - s * mi,
+            c2 * q0 - s2 * qk, c2 * qk + s2 * q0, c2 * qi + s2 * qj, c2 * qj - s2 * qi)
+
+
+@cached
 def _axis_rotation(half, mi, mj, q0, qk, qi, qj):
     """One exact sub-flow about body axis k, on the components that change.
 
@@ -100,13 +110,7 @@ def _axis_rotation(half, mi, mj, q0, qk, qi, qj):
     −2·``half``; q ← q ⊗ (cos half, sin half e_k), a body-axis rotation
     applied on the right. Returns the new (mi, mj, q0, qk, qi, qj).
     """
-    s2 = math.sin(half)
-    c2 = math.cos(half)
-    # double angle from the half-angle pair: the momentum turns by twice the quaternion's half angle
-    c = (c2 - s2) * (c2 + s2)
-    s = 2.0 * s2 * c2
-    return (c * mi + s * mj, c * mj - s * mi,
-            c2 * q0 - s2 * qk, c2 * qk + s2 * q0, c2 * qi + s2 * qj, c2 * qj - s2 * qi)
+    return _axis_turn(math.cos(half), math.sin(half), mi, mj, q0, qk, qi, qj)
 
 
 @cached
@@ -426,26 +430,30 @@ def substeps(span: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
     return steps
 
 
-@cached
-def _interval_steps(span, dt, s0, left):
-    """An output interval of length ``span`` in ceil(span/dt) equal steps: (step, steps, how many to take now from step ``s0``)."""
-    n_sub = max(1, int(math.ceil(span / dt * (1.0 - 1e-12))))
-    return span / n_sub, n_sub, min(n_sub - s0, left)
+def step_grid(t_out: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
+    """The steps of the fixed-step drivers, per output interval: their size (row 0) and count (row 1, :func:`substeps`).
+
+    Computed once per run, not per body and interval: a division and a
+    rounding per interval cost as much as storing a sample.
+    """
+    span = np.diff(t_out)
+    counts = substeps(span, dt)
+    return np.stack([span / counts, counts])
 
 
-@cached
-def _sample(w0, w1, w2, q0, q1, q2, q3):
-    """(ω′, q/|q|): an output sample, its attitude as a unit quaternion.
+@inlined
+def _store(out, j, w0, w1, w2, q0, q1, q2, q3):
+    """``out[j, 0:7] = (ω′, q/|q|)``: an output sample, its attitude as a unit quaternion.
 
     The squares are summed in numpy's order (``np.linalg.norm`` over the last
     axis), so the samples carry the same bits as normalising the whole output
-    afterwards would give, without a second pass over it. Numbers in and
-    out: the drivers store the sample themselves, since a helper handed
-    ``out`` would update its reference count per sample, a count that every
-    body of a parallel batch shares.
+    afterwards would give, without a second pass over it. Inlined: a call
+    handed ``out`` would update its reference count per sample, a count that
+    every body of a parallel batch shares.
     """
     q0, q1, q2, q3 = quat_unit(q0, q1, q2, q3)
-    return w0, w1, w2, q0, q1, q2, q3
+    out[j, 0], out[j, 1], out[j, 2] = w0, w1, w2
+    out[j, 3], out[j, 4], out[j, 5], out[j, 6] = q0, q1, q2, q3
 
 
 @cached
@@ -459,49 +467,61 @@ def _next_sample(k, every):
 
 
 @cached
-def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
+def _finite(a, b, c, d, e, f, g):
+    return (math.isfinite(a) and math.isfinite(b) and math.isfinite(c) and math.isfinite(d) and math.isfinite(e)
+            and math.isfinite(f) and math.isfinite(g))
+
+
+@cached
+def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
     """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
 
     Each step is a composition of Strang steps of sizes ``weights·h``.
     Consecutive half-flows about axis 0 are merged into one (they commute and
-    add: m_0 is their invariant), saving one flow in five; the flow still
-    pending at the end of an output interval is applied there, where ω′ is
-    stored. The flows act on m = I ω′, so that ω′ ↔ m round trips happen
-    once per interval. A pause inside an interval keeps the momentum and the
-    pending flow in ``state[2:6]``.
+    add: m_0 is their invariant), saving one flow in five; ``pending`` is
+    the time of the half flow not yet applied. The flows act on m = I ω′, and
+    the state stays m across output times (ω′ = m/I is formed for the
+    samples only). A pause keeps the momentum and ``pending`` in
+    ``state[2:6]``.
+
+    At an output time between two intervals of equal steps the pending half
+    flow and the next interval's first one are equal: the sample is the state
+    advanced by the first and the state is advanced by both at once, both
+    from one sine and cosine (:func:`_flows_at_output`); ``pending`` then
+    turns negative (the state is ahead by the next half flow) and the next
+    step skips its own. So storing every step costs no flow that the
+    end-state run does not take. Elsewhere (uneven steps, the last time) the
+    pending flow is applied before the sample, as at the end of a run.
 
     The whole run over the output intervals is one loop over numbers: no
     array is handed to a helper per interval (each costs reference counting,
-    which two threads contend for on the shared output), so storing every
-    step costs little more than the flow that ends the interval.
+    which two threads contend for on the shared output).
     """
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     k, s0, pending = int(state[0]), int(state[1]), state[2]
-    w0, w1, w2 = state[6], state[7], state[8]
     s = (state[3], state[4], state[5], state[9], state[10], state[11], state[12])
     if k < 0:
-        v = _sample(w0, w1, w2, s[3], s[4], s[5], s[6])
-        for c in range(7):
-            out[0, c] = v[c]
-        k = 0
+        w0, w1, w2 = state[6], state[7], state[8]
+        _store(out, 0, w0, w1, w2, s[3], s[4], s[5], s[6])
+        s = (i0 * w0, i1 * w1, i2 * w2, s[3], s[4], s[5], s[6])
+        k, pending = 0, 0.0
     j, wait = _next_sample(k, every)
+    last = t_out.size - 1
     taken = 0
-    while k < t_out.size - 1:
+    while k < last:
         if taken >= budget:
             state[0], state[1], state[2] = k, s0, pending
             state[3], state[4], state[5] = s[0], s[1], s[2]
-            state[6], state[7], state[8] = w0, w1, w2
             state[9], state[10], state[11], state[12] = s[3], s[4], s[5], s[6]
             return PAUSED
-        h, n_sub, n = _interval_steps(t_out[k + 1] - t_out[k], dt, s0, budget - taken)
+        h, n_sub = grid[0, k], int(grid[1, k])
+        n = min(n_sub - s0, budget - taken)
         taken += n
-        if s0 == 0:
-            s = (i0 * w0, i1 * w1, i2 * w2, s[3], s[4], s[5], s[6])
-            pending = 0.0
         for _ in range(n):
             for g in weights:
                 pending += 0.5 * g * h
-                s = _axis_flow(0, pending, i0, i1, i2, *s)
+                if pending != 0.0:  # zero: the state is ahead by this half flow already
+                    s = _axis_flow(0, pending, i0, i1, i2, *s)
                 s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
                 s = _axis_flow(2, g * h, i0, i1, i2, *s)
                 s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
@@ -509,37 +529,58 @@ def _splitting_free(weights, t_out, dt, state, inertia, out, budget, every):
         s0 += n
         if s0 < n_sub:
             continue
-        s = _axis_flow(0, pending, i0, i1, i2, *s)
-        pending = 0.0
-        w0, w1, w2 = s[0] / i0, s[1] / i1, s[2] / i2
-        if not (math.isfinite(w0) and math.isfinite(w1) and math.isfinite(w2) and math.isfinite(s[3])
-                and math.isfinite(s[4]) and math.isfinite(s[5]) and math.isfinite(s[6])):
-            return NOT_FINITE
         k += 1
         s0 = 0
         wait -= 1
-        if wait == 0:
+        keep = wait == 0
+        ahead = 0.5 * weights[0] * grid[0, k] if k < last else -1.0
+        if ahead == pending:
+            v, s = _flows_at_output(pending, i0, *s)
+            pending = -ahead
+        else:
+            s = _axis_flow(0, pending, i0, i1, i2, *s)
+            v = s
+            pending = 0.0
+        w0, w1, w2 = v[0] / i0, v[1] / i1, v[2] / i2
+        if not (_finite(*s) and _finite(w0, w1, w2, v[3], v[4], v[5], v[6])):
+            return NOT_FINITE
+        if keep:
             j, wait = j + 1, every
-            v = _sample(w0, w1, w2, s[3], s[4], s[5], s[6])
-            for c in range(7):
-                out[j, c] = v[c]
+            _store(out, j, w0, w1, w2, v[3], v[4], v[5], v[6])
     return OK
 
 
 @cached
-def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget, every):
-    """Fixed-step integration; each output interval is split into ceil(Δt/dt) equal steps.
+def _flows_at_output(p, i0, m0, m1, m2, q0, q1, q2, q3):
+    """(the state after the flow of time ``p`` about axis 0, the state after twice that flow), from one sine and cosine.
 
-    At most ``budget`` steps per call (see the module note). The caller has
-    checked with :func:`substeps` that every step count fits an int. The
-    state at ``t_out[k]`` is stored in ``out[k // every]`` when ``every``
-    divides ``k`` (decimated output: the same steps, fewer samples kept).
+    The flow of 2p turns the quaternion by twice the half angle of the flow
+    of p: its cosine and sine follow by the double-angle formulas, as the
+    momentum's do inside :func:`_axis_turn` (round-off as that of sin and cos).
+    """
+    half = 0.5 * p / i0 * m0
+    c2, s2 = math.cos(half), math.sin(half)
+    once = _axis_turn(c2, s2, m1, m2, q0, q1, q2, q3)
+    twice = _axis_turn((c2 - s2) * (c2 + s2), 2.0 * s2 * c2, m1, m2, q0, q1, q2, q3)
+    return (m0, once[0], once[1], once[2], once[3], once[4], once[5]), \
+        (m0, twice[0], twice[1], twice[2], twice[3], twice[4], twice[5])
+
+
+@cached
+def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every):
+    """Fixed-step integration; output interval k is split into the ``grid[1, k]`` steps of size ``grid[0, k]``.
+
+    At most ``budget`` steps per call (see the module note). The grid comes
+    from :func:`step_grid`, and the caller has checked that every step count
+    fits an int. The state at ``t_out[k]`` is stored in ``out[k // every]``
+    when ``every`` divides ``k`` (decimated output: the same steps, fewer
+    samples kept).
     """
     ny = state.size - 6
     if ny == 7 and rows is None and method == SPLITTING:
-        return _splitting_free((1.0,), t_out, dt, state, inertia, out, budget, every)
+        return _splitting_free((1.0,), t_out, grid, state, inertia, out, budget, every)
     if ny == 7 and rows is None and method == SPLITTING4:
-        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, dt, state, inertia, out,
+        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, grid, state, inertia, out,
                                budget, every)
     y = np.empty(ny)
     for i in range(ny):
@@ -550,9 +591,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
     if k < 0:
         for i in range(7, ny):
             out[0, i] = y[i]
-        v = _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
-        for c in range(7):
-            out[0, c] = v[c]
+        _store(out, 0, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
         k = 0
     j, wait = _next_sample(k, every)
     taken = 0
@@ -563,7 +602,8 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
             for i in range(ny):
                 state[6 + i] = y[i]
             return PAUSED
-        h, n_sub, n = _interval_steps(t_out[k + 1] - t_out[k], dt, s0, budget - taken)
+        h, n_sub = grid[0, k], int(grid[1, k])
+        n = min(n_sub - s0, budget - taken)
         taken += n
         if ny == 7:
             if _advance(method, t_out[k], h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
@@ -590,9 +630,7 @@ def fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget
             j, wait = j + 1, every
             for i in range(7, ny):
                 out[j, i] = y[i]
-            v = _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
-            for c in range(7):
-                out[j, c] = v[c]
+            _store(out, j, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
     return OK
 
 
@@ -604,7 +642,7 @@ def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, ou
 
 
 @cached
-def run(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64], inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows,
+def run(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows,
         rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], budget: int, every: int) -> int:
     """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
 
@@ -615,11 +653,11 @@ def run(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.fl
     """
     if method == DOP853:
         return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
-    return fixed_step(method, t_out, dt, state, inertia, mass, rows, frows, out, budget, every)
+    return fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every)
 
 
 @parallel
-def run_batch(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64], inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
+def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
               rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], status: NDArray[np.int64], budget: int,
               every: int) -> None:
     """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
@@ -628,5 +666,5 @@ def run_batch(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray
     """
     for b in prange(state.shape[0]):
         if status[b] == PAUSED:
-            status[b] = run(method, t_out, dt, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
+            status[b] = run(method, t_out, grid, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
                             tables, out[b], budget, every)

@@ -238,16 +238,17 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     if code == _integrators.DOP853:  # its steps do not depend on the output times in between: same bits
         t, every = np.ascontiguousarray(t[::every]), 1
     out = empty((count, (t.size - 1) // every + 1, ny))
+    grid = np.empty((2, 0)) if code == _integrators.DOP853 else _integrators.step_grid(t, dt)
     state = np.stack([_integrators.new_state(code, y) for y in y0])
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
 
     def step(budget: int) -> bool:
         if count == 1:
-            status[0] = _integrators.run(code, t, dt, state[0], moments[0], mass[0], rows, frows, rtol, atol[0],
+            status[0] = _integrators.run(code, t, grid, state[0], moments[0], mass[0], rows, frows, rtol, atol[0],
                                          tables, out[0], budget, every)
         else:
-            _integrators.run_batch(code, t, dt, state, moments, mass, rows, frows, rtol, atol, tables, out, status,
+            _integrators.run_batch(code, t, grid, state, moments, mass, rows, frows, rtol, atol, tables, out, status,
                                    budget, every)
         return not np.any(status == _dop853.PAUSED)
 
