@@ -132,12 +132,11 @@ def _lock_index_updates():
 
 
 def _use_checkout_cache():
-    # any process may share its cache directory (a test hands its own to a notebook kernel): always locked
-    shared = _lock_index_updates()
     caches = checkout_cache_root()
     if caches is None or os.environ.get("NUMBA_CACHE_DIR"):
         return
     # without a file lock, each test worker keeps a cache of its own
+    shared = _lock_index_updates()
     numba.config.CACHE_DIR = str(caches / source_state() / ("shared" if shared else
                                                              os.environ.get("PYTEST_XDIST_WORKER", "main")))
 
