@@ -1,9 +1,8 @@
 """Test-session set-up shared by tests/ and the doctests in src/kreisel.
 
-Compiled code: a source checkout compiles into ``.numba_cache/<state>/``,
-keyed by the state of the package sources and shared by every process of the
-run (:mod:`kreisel._compiled` sets this up on import, for tests and every
-other run alike, and locks numba's cache updates). Here, the main process
+Compiled code: a source checkout compiles into ``.numba_cache/<state>/<worker>``,
+keyed by the state of the package sources (:mod:`kreisel._compiled` sets this
+up on import, for tests and every other run alike). Here, the main process
 removes the caches of earlier source states, which are never valid again, and
 every process checks at the end that no shared kernel of the compiled layer
 was compiled for more than one signature (``kreisel._compiled.signatures``);

@@ -64,28 +64,6 @@ def test_a_source_checkout_compiles_into_a_cache_of_its_source_state():
     assert numba.config.CACHE_DIR.startswith(expected)
 
 
-@pytest.mark.skipif(platform.system() == "Windows", reason="the shared cache needs a POSIX file lock")
-def test_processes_sharing_the_cache_add_signatures_one_at_a_time(tmp_path):
-    # numba picks the data file of a new signature from the index it read: two processes doing it at
-    # once would pick the same file; a save waits while another process holds the index's lock
-    import fcntl
-    import threading
-
-    from numba.core.caching import IndexDataCacheFile
-
-    assert numba.config.CACHE_DIR.endswith("shared") or os.environ.get("NUMBA_CACHE_DIR")
-    first, second = (IndexDataCacheFile(str(tmp_path), "kernel", ("stamp", 1)) for _ in range(2))
-    first.save(("sig1",), "code1")
-    with open(tmp_path / "kernel.nbi.lock", "a") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)   # as another process updating the index
-        saving = threading.Thread(target=second.save, args=(("sig2",), "code2"))
-        saving.start()
-        saving.join(0.5)
-        assert saving.is_alive()
-    saving.join()
-    assert (first.load(("sig1",)), first.load(("sig2",))) == ("code1", "code2")
-
-
 # ---------------------------------------------------------------------------- sincos
 
 def _ulps(got, want):

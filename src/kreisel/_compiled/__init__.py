@@ -60,14 +60,10 @@ Inlining and stale caches
     repository root instead, ``<state>`` a digest of the paths, sizes and
     modification times of the package sources, so any edit starts a fresh
     cache: tests, ``make demo``, ``make bench`` and ``make docs`` never run
-    stale machine code. All processes of a checkout (pytest-xdist workers,
-    the command-line runs and worker processes they start) share that cache,
-    so what one process compiled the others load: numba's update of a cache
-    index (read the index, name a new data file, write both) is made atomic
-    between processes by a file lock, since two processes adding signatures
-    to one index at the same moment could otherwise pair a signature with
-    the other's machine code. A ``NUMBA_CACHE_DIR`` set by the user is
-    respected.
+    stale machine code. Each pytest-xdist worker compiles into a directory of
+    its own (two processes adding signatures to one index at the same moment
+    can pair a signature with the other's machine code). A ``NUMBA_CACHE_DIR``
+    set by the user is respected.
 """
 
 from __future__ import annotations
@@ -102,43 +98,11 @@ def checkout_cache_root():
     return root / ".numba_cache"
 
 
-def _lock_index_updates():
-    """Make numba's cache saves atomic between processes (POSIX file lock); False where there is none.
-
-    ``IndexDataCacheFile.save`` reads the index, picks the first free data file
-    name and writes index and data: two processes doing this at once for two
-    signatures pick the same name. Under the lock, the second one reads the
-    first one's index. Readers need no lock: numba replaces both files
-    atomically and treats a data file not yet written as a cache miss.
-    """
-    try:
-        import fcntl
-    except ImportError:
-        return False
-    from numba.core.caching import IndexDataCacheFile
-
-    save = IndexDataCacheFile.save
-    if getattr(save, "_kreisel_locked", False):
-        return True
-
-    def locked_save(self, key, data):
-        with open(self._index_path + ".lock", "a") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            save(self, key, data)
-
-    locked_save._kreisel_locked = True  # type: ignore[attr-defined]
-    IndexDataCacheFile.save = locked_save
-    return True
-
-
 def _use_checkout_cache():
     caches = checkout_cache_root()
     if caches is None or os.environ.get("NUMBA_CACHE_DIR"):
         return
-    # without a file lock, each test worker keeps a cache of its own
-    shared = _lock_index_updates()
-    numba.config.CACHE_DIR = str(caches / source_state() / ("shared" if shared else
-                                                             os.environ.get("PYTEST_XDIST_WORKER", "main")))
+    numba.config.CACHE_DIR = str(caches / source_state() / os.environ.get("PYTEST_XDIST_WORKER", "main"))
 
 
 # before any kernel is decorated: numba picks a function's cache directory then
