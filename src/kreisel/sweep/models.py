@@ -30,6 +30,17 @@ __all__ = [
 APEX_LOCUS_KINDS = ("monotone", "cusp", "loop")
 
 
+def _matplotlib(module):
+    """``matplotlib.<module>``, or one line naming the ``plot`` extra if matplotlib is missing."""
+    return require(f"matplotlib.{module}", extra="plot", feature="sweep plots")
+
+
+def _figure():
+    """``(figure, axes)``: the one-axes figure every sweep plot draws on."""
+    fig = _matplotlib("figure").Figure(figsize=(6.4, 4.8), layout="constrained")
+    return fig, fig.add_subplot()
+
+
 # ---- tennis-racket stability map (Theory §5.4) ----------------------------------------------------
 def _first_middle_axis_zero(trajectory):
     """Time of the first sign change of ω2 on each body, by cubic Hermite interpolation.
@@ -157,11 +168,8 @@ def plot_tennis_racket(dataset):
     >>> type(plot_tennis_racket(ds)).__name__
     'Figure'
     """
-    LogNorm = require("matplotlib.colors", extra="plot", feature="sweep plots").LogNorm
-    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
-
-    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
-    ax = fig.add_subplot()
+    LogNorm = _matplotlib("colors").LogNorm
+    fig, ax = _figure()
     x, y = dataset["middle_moment"].values, dataset["tilt_deg"].values
     flip = dataset["flip_time"].transpose("tilt_deg", "middle_moment").values
     mesh = ax.pcolormesh(x, y, flip, shading="nearest", norm=LogNorm(), cmap="viridis")
@@ -229,11 +237,8 @@ def plot_lagrange_apex_locus(dataset):
     >>> type(plot_lagrange_apex_locus(ds)).__name__
     'Figure'
     """
-    colors = require("matplotlib.colors", extra="plot", feature="sweep plots")
-    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
-
-    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
-    ax = fig.add_subplot()
+    colors = _matplotlib("colors")
+    fig, ax = _figure()
     x, y = dataset["phi_dot"].values, dataset["psi_dot"].values
     kind = dataset["kind"].transpose("psi_dot", "phi_dot").values
     cmap = colors.ListedColormap(["#4c72b0", "#dd8452", "#55a868"])
@@ -312,10 +317,7 @@ def plot_imu_attitude_error(dataset):
     >>> type(plot_imu_attitude_error(ds)).__name__
     'Figure'
     """
-    Figure = require("matplotlib.figure", extra="plot", feature="sweep plots").Figure
-
-    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = _figure()
     arw = dataset["angle_random_walk"].values
     error = dataset["attitude_error_deg"].transpose("angle_random_walk", "trial").values
     ax.plot(np.repeat(arw, error.shape[1]), error.ravel(), ".", alpha=0.3, label="trials")
