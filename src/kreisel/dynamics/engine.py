@@ -196,26 +196,36 @@ def _initial_quaternion(q0: ArrayLike | None, batch_shape: tuple[int, ...] = ())
     return np.broadcast_to(q, batch_shape + (4,)).copy() if batch_shape else q
 
 
-def _torque_rows(torque: _TorqueArg, axes: _Array | None, t0: float, q0_body: _Array, omega0_body: _Array) -> _Array | None:
-    """Model table in the integration frame; a callable is registered (release the table after use)."""
-    if torque is None:
+def _model_rows(model: _TorqueArg | _ForceArg, name: str, axes: _Array | None, t0: float,
+                state: tuple[_Array, ...]) -> _Array | None:
+    """Model table of the ``torque`` or ``force`` argument in the integration frame; a callable is registered
+    (release the table after use).
+
+    ``state`` is the initial ``(q, omega_body)`` in the user's body frame, for a force followed by the position
+    and velocity. A callable is tried there once, then called with the principal-frame state turned to the
+    user's body frame; a torque, returned in that frame, is turned back (a force is given in space).
+    """
+    if model is None:
         return None
-    if isinstance(torque, _torques.TorqueModel):
-        return _table(_torques.to_principal(torque.rows(), axes))
-    if not callable(torque):
-        raise TypeError(f"torque must be None, a torque model or a callable torque(t, q, omega_body), "
-                        f"got {type(torque).__name__}")
-    checked = checked_callable(torque, "torque")
-    checked(t0, q0_body.copy(), omega0_body.copy())
+    models, model_type = (_forces, _forces.ForceModel) if name == "force" else (_torques, _torques.TorqueModel)
+    if isinstance(model, model_type):
+        return _table(models.to_principal(model.rows(), axes))
+    if not callable(model):
+        arguments = "t, q, omega_body, position, velocity" if name == "force" else "t, q, omega_body"
+        raise TypeError(f"{name} must be None, a {name} model or a callable {name}({arguments}), "
+                        f"got {type(model).__name__}")
+    checked = checked_callable(model, name)
+    checked(t0, *(x.copy() for x in state))
     if axes is None:
         fn = checked
     else:
         q_axes = matrix_to_quat(axes)
 
-        def fn(t: float, q: _Array, w: _Array) -> _Array:  # principal-frame state -> user's body frame and back
-            return axes.T @ checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w)
+        def fn(t: float, q: _Array, w: _Array, *translation: _Array) -> _Array:
+            value = checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, *translation)
+            return axes.T @ value if name == "torque" else value
 
-    return _model_tables.register_callback(fn)
+    return _model_tables.register_callback(fn, translation=name == "force")
 
 
 def _table(rows: _Array) -> _Array | None:
@@ -417,8 +427,8 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
     y0 = np.ascontiguousarray(np.concatenate(parts))
     rows = frows = None
     try:
-        rows = _torque_rows(torque, axes, t[0], q_body, w_body)
-        frows = _force_rows(force, axes, t[0], q_body, w_body, translation)
+        rows = _model_rows(torque, "torque", axes, t[0], (q_body, w_body))
+        frows = None if translation is None else _model_rows(force, "force", axes, t[0], (q_body, w_body, *translation))
         atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
         y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v, max_steps, progress, every)
     finally:
@@ -516,29 +526,6 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
     tensor, _, t, omega, q, _, meta = _single(body, t, omega0, q0, torque, method, dt, rtol, atol,
                                             allow_unphysical, max_steps, progress, every=every)
     return Trajectory(t, q, omega, tensor, meta=meta)
-
-
-def _force_rows(force: _ForceArg, axes: _Array | None, t0: float, q_body: _Array, w_body: _Array,
-                translation: tuple[_Array, _Array] | None) -> _Array | None:
-    if translation is None or force is None:
-        return None
-    if isinstance(force, _forces.ForceModel):
-        return _table(_forces.to_principal(force.rows(), axes))
-    if not callable(force):
-        raise TypeError(f"force must be None, a force model or a callable "
-                        f"force(t, q, omega_body, position, velocity), got {type(force).__name__}")
-    r0, v0 = translation
-    checked = checked_callable(force, "force")
-    checked(t0, q_body.copy(), w_body.copy(), r0.copy(), v0.copy())
-    if axes is None:
-        fn = checked
-    else:
-        q_axes = matrix_to_quat(axes)
-
-        def fn(t: float, q: _Array, w: _Array, r: _Array, v: _Array) -> _Array:
-            return checked(t, quat_multiply(q, quat_conjugate(q_axes)), axes @ w, r, v)
-
-    return _model_tables.register_callback(fn, translation=True)
 
 
 def simulate_6dof(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None,
