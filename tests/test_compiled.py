@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import kreisel
-from kreisel._compiled import checkout_cache_root, kernels, signatures, source_state
+from kreisel._compiled import checkout_cache_root, dop853, kernels, signatures, source_state
 from kreisel.so3 import quat_normalize, rotvec_to_matrix
 
 
@@ -113,3 +113,46 @@ def test_the_half_angle_loop_vectorises():
     half_angles(np.ones((8, 3)), 0, 8, scratch, scratch.copy(), scratch.copy())
     assembly = "".join(half_angles.inspect_asm().values())
     assert "mulpd" in assembly and not re.findall(r"\$\w*sin\w*", assembly)   # packed, no libm sin/sincos
+
+
+# ---------------------------------------------------------------------------- DOP853 dense output
+
+@pytest.mark.parametrize("scale", [1.0, 1e-200, 1e200])
+@pytest.mark.parametrize("unit", [3, -1])
+def test_samples_interpolated_together_are_those_of_the_one_sample_interpolant(scale, unit):
+    # bit for bit the per-sample interpolant and quat_unit, including quat_unit's rescaling of quaternions
+    # whose squares would underflow or overflow (scale), and y_new itself at the step's end
+    rng = np.random.default_rng(7)
+    ny, count, block = 7, dop853.BLOCK, np.empty((9, dop853.BLOCK))
+    y, y_new, dense = rng.normal(size=ny), rng.normal(size=ny), 1e-2 * rng.normal(size=(7, ny))
+    for a in (y, y_new, dense.T):
+        a[3:7] *= scale
+    t, h = 2.0, 0.3
+    t_new = t + h
+    t_out = np.concatenate([[1.9], np.sort(rng.uniform(t, t_new, count - 1)), [t_new, 2.5]])
+    out = np.full((count + 2, ny), np.nan)
+    block[ny, :count] = t_out[1:count + 1]
+    dop853.interpolate_samples(dense, y, y_new, t, t_new, h, count, unit, out, 1, block)
+    expected = np.empty((count, ny))
+    for s in range(count):
+        if t_out[1 + s] == t_new:
+            expected[s] = y_new
+        else:
+            dop853.interpolate(dense, y, (t_out[1 + s] - t) / h, expected[s])
+        if unit >= 0:
+            expected[s, 3:7] = kernels.quat_unit(*expected[s, 3:7])
+    np.testing.assert_array_equal(out[1:count + 1], expected)
+    assert np.isnan(out[0]).all() and np.isnan(out[count + 1]).all()
+    if unit >= 0:
+        np.testing.assert_allclose(np.linalg.norm(out[1:count + 1, 3:7], axis=-1), 1.0, rtol=1e-15)
+
+
+@pytest.mark.skipif(platform.machine().lower() not in ("x86_64", "amd64"), reason="x86 packed instructions")
+def test_the_sample_normalisation_vectorises():
+    # the reason interpolate_samples works on components of many samples: packed square roots and divisions
+    normalise = numba.njit(nogil=True, error_model="numpy")(dop853._normalise.py_func)
+    q = np.ones((5, 8))
+    normalise(q, 0, 4, 8)
+    np.testing.assert_array_equal(q[:4], 0.5)
+    assembly = "".join(normalise.inspect_asm().values())
+    assert "sqrtpd" in assembly and "divpd" in assembly

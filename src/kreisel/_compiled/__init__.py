@@ -116,10 +116,14 @@ cached: Callable[[_Function], _Function] = njit(cache=True, nogil=True)
 #: As :data:`cached`, inlined into its callers at the numba IR level (small
 #: models called in the innermost loop of an integrator).
 inlined: Callable[[_Function], _Function] = njit(cache=True, nogil=True, inline="always")
+#: As :data:`cached`, with numpy's error model: a division by zero gives inf
+#: or nan instead of raising, so a loop that divides needs no test per element
+#: and vectorises (SIMD). For loops over samples whose divisors are never zero.
+vectorised: Callable[[_Function], _Function] = njit(cache=True, nogil=True, error_model="numpy")
 #: Routines compiled anew for each argument type (a compiled function, a tuple
 #: of any length): never cached on their own, always inlined into a cached caller.
 generic: Callable[[_Function], _Function] = njit(nogil=True, inline="always")
 #: Cached multi-core loop (``prange``) over flattened batches.
 parallel: Callable[[_Function], _Function] = njit(parallel=True, cache=True)
 
-__all__ = ["cached", "checkout_cache_root", "generic", "inlined", "parallel", "source_state"]
+__all__ = ["cached", "checkout_cache_root", "generic", "inlined", "parallel", "source_state", "vectorised"]

@@ -31,8 +31,8 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from . import cached, generic
-from .kernels import quat_unit
+from . import cached, generic, vectorised
+from .kernels import SIZE_HIGH, SIZE_LOW, quat_unit
 
 OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
 PAUSED = 4
@@ -43,6 +43,7 @@ MESSAGES = {
 
 N_STAGES = 12  # stage 12 is the slope at the new point (first-same-as-last)
 N_STAGES_EXTENDED = 16  # three more for the 7th-order interpolant
+_LATE = 5  # the extra stages and the interpolant weigh stage 0 and stages from 5 on only (Hairer's tableau)
 _SAFETY = 0.9
 _MIN_FACTOR = 0.2
 _MAX_FACTOR = 10.0
@@ -62,6 +63,9 @@ def tableau() -> tuple[NDArray[np.float64], ...]:
                 or scipy_tables.INTERPOLATOR_POWER != 7):
             raise RuntimeError("scipy's DOP853 coefficient tables changed layout; kreisel needs 12+4 stages")
         tables = (scipy_tables.A, scipy_tables.B, scipy_tables.C, scipy_tables.E3, scipy_tables.E5, scipy_tables.D)
+        if np.any(scipy_tables.A[N_STAGES + 1:, 1:_LATE]) or np.any(scipy_tables.D[:, 1:_LATE]):
+            raise RuntimeError("scipy's DOP853 coefficients give stages 2-5 a weight in the dense output; "
+                               "kreisel leaves them out")
         _TABLES.append(tuple(np.ascontiguousarray(a, dtype=np.float64) for a in tables))
     return _TABLES[0]
 
@@ -263,6 +267,78 @@ def interpolate(dense, y, x, out):
                               dense[6, i])
 
 
+# A squared norm inside (_SQUARED_LOW, _SQUARED_HIGH) puts the largest component of a quaternion inside
+# (SIZE_LOW, SIZE_HIGH), with a margin for the rounding of the sum, so quat_unit would not rescale it
+_SQUARED_LOW = 8.0 * SIZE_LOW**2
+_SQUARED_HIGH = 0.5 * SIZE_HIGH**2
+#: Samples interpolated together (:func:`interpolate_samples`): its work arrays are (ny + 2, BLOCK).
+BLOCK = 64
+
+
+@vectorised
+def interpolate_samples(dense, y, y_new, t, t_new, h, count, unit, out, j, block):
+    """``out[j:j + count]`` = the states at the times ``block[ny, :count]`` in the last step, ``(t, t_new]`` of size ``h``.
+
+    A sample at the step's end is ``y_new`` itself. With ``unit >= 0``, the
+    four components from ``unit`` are a quaternion, written normalised as by
+    :func:`kreisel._compiled.kernels.quat_unit` (same bits). ``block`` is a
+    work array of shape ``(ny + 2, BLOCK)``, ``count`` at most ``BLOCK``; the
+    caller puts the times in its row ``ny`` (so that this kernel keeps one
+    signature whatever array of times the caller has).
+
+    One component at a time over the samples, not one sample at a time: the
+    interpolant's and the norm's loops then run over contiguous rows of
+    ``block`` and vectorise (SIMD) over the samples; the samples are written
+    to ``out`` (one row each) at the end.
+    """
+    ny = y.size
+    # rows of ``block`` indexed in place: a row view per component would cost reference counting per step
+    times, x = ny, ny + 1
+    for s in range(count):
+        block[x, s] = (block[times, s] - t) / h
+    for i in range(ny):
+        y_i, d0, d1, d2, d3, d4, d5, d6 = y[i], dense[0, i], dense[1, i], dense[2, i], dense[3, i], dense[4, i], \
+            dense[5, i], dense[6, i]
+        for s in range(count):
+            block[i, s] = interpolated(block[x, s], y_i, d0, d1, d2, d3, d4, d5, d6)
+    for s in range(count):
+        if block[times, s] == t_new:
+            for i in range(ny):
+                block[i, s] = y_new[i]
+    if unit >= 0:
+        _normalise(block, unit, x, count)
+    for s in range(count):
+        for i in range(ny):
+            out[j + s, i] = block[i, s]
+
+
+@vectorised
+def _normalise(block, unit, norm, count):
+    """Quaternions in rows ``unit … unit + 3`` of ``block``, columns ``< count``, divided by their norms, as ``quat_unit``.
+
+    Row ``norm`` is work space.
+    """
+    q0, q1, q2, q3 = unit, unit + 1, unit + 2, unit + 3
+    for s in range(count):
+        block[norm, s] = block[q0, s] * block[q0, s] + block[q1, s] * block[q1, s] + block[q2, s] * block[q2, s] \
+            + block[q3, s] * block[q3, s]
+    # every sample in practice; any other goes through quat_unit itself, which rescales it
+    outside = 0
+    for s in range(count):
+        outside += not (_SQUARED_LOW < block[norm, s] < _SQUARED_HIGH)
+    if outside:
+        for s in range(count):
+            block[q0, s], block[q1, s], block[q2, s], block[q3, s] = quat_unit(block[q0, s], block[q1, s],
+                                                                               block[q2, s], block[q3, s])
+        return
+    for s in range(count):
+        n = math.sqrt(block[norm, s])
+        block[q0, s] /= n
+        block[q1, s] /= n
+        block[q2, s] /= n
+        block[q3, s] /= n
+
+
 def new_state(y0):
     """The resumable state of :func:`integrate_steps` for the initial state ``y0``.
 
@@ -303,26 +379,31 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
     (``state`` then holds where to continue). With ``unit >= 0``, the four
     components from ``unit`` of every sample are a quaternion, stored
     normalised (:func:`kreisel._compiled.kernels.quat_unit`; the state itself
-    is left as it is): each sample is normalised where it is written, while
-    in the cache, not by a second pass over the output.
+    is left as it is): the samples of a step are interpolated and normalised
+    together in a small work array (:func:`interpolate_samples`, SIMD over
+    the samples) and then written, not fixed by a second pass over the output.
 
     The step (:func:`attempt`, as :func:`advance` takes it) and the dense
     output (:func:`dense_coefficients`) are written out in this one loop, a
     deliberate copy of their stage sums over the work arrays allocated here:
     every array handed to an inlined helper costs reference counting in the
     stage loop, which made it ~1.5x slower (same steps, same bits). Helpers
-    without ``rhs`` (error norm, interpolant) stay plain calls, which pass
+    without ``rhs`` (error norm, interpolation) stay plain calls, which pass
     arrays without reference counting.
     """
     A, B, C, E3, E5, D = tables[0], tables[1], tables[2], tables[3], tables[4], tables[5]
     ny = (state.size - 3) // 2
     n_out = t_out.size
-    k = np.empty(N_STAGES_EXTENDED * ny)
-    y = np.empty(ny)
-    y_new = np.empty(ny)
-    tmp = np.empty(ny)
-    probe = np.empty(ny)
-    dense = np.empty((7, ny))
+    # the work arrays as views of one allocation: a batch calls this once per body and chunk, often for a
+    # single step when every step is stored, and an allocation costs more than a view
+    work = np.empty((N_STAGES_EXTENDED + 11) * ny + (ny + 2) * BLOCK)
+    k = work[:N_STAGES_EXTENDED * ny]
+    y = work[N_STAGES_EXTENDED * ny:(N_STAGES_EXTENDED + 1) * ny]
+    y_new = work[(N_STAGES_EXTENDED + 1) * ny:(N_STAGES_EXTENDED + 2) * ny]
+    tmp = work[(N_STAGES_EXTENDED + 2) * ny:(N_STAGES_EXTENDED + 3) * ny]
+    probe = work[(N_STAGES_EXTENDED + 3) * ny:(N_STAGES_EXTENDED + 4) * ny]
+    dense = work[(N_STAGES_EXTENDED + 4) * ny:(N_STAGES_EXTENDED + 11) * ny].reshape((7, ny))
+    block = work[(N_STAGES_EXTENDED + 11) * ny:].reshape((ny + 2, BLOCK))
     for i in range(ny):
         y[i] = state[3 + i]
     t_end = t_out[n_out - 1]
@@ -330,7 +411,7 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
     if j == 0:
         for i in range(ny):
             out[0, i] = y[i]
-        if unit >= 0:  # written out here and below: a helper handed ``out`` would count references per sample
+        if unit >= 0:
             q = quat_unit(out[0, unit], out[0, unit + 1], out[0, unit + 2], out[0, unit + 3])
             for c in range(4):
                 out[0, unit + c] = q[c]
@@ -389,10 +470,12 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
         h = next_step(h, err, rejected, clipped, h_natural)
         if t_out[j] <= t_new:
             # dense_coefficients() written out (the documented stage copy, see the docstring)
+            # the stages of index 1 … _LATE - 1 have no weight here: left out of the sums (the same bits: each
+            # left-out term is ±0, and a sum started from +0.0 is never −0.0)
             for s in range(N_STAGES + 1, N_STAGES_EXTENDED):
                 for i in range(ny):
-                    acc = 0.0
-                    for r in range(s):
+                    acc = 0.0 + A[s, 0] * k[i]
+                    for r in range(_LATE, s):
                         acc += A[s, r] * k[r * ny + i]
                     tmp[i] = y[i] + h_taken * acc
                 rhs(t + C[s] * h_taken, tmp, args, k, s * ny)
@@ -401,26 +484,30 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
                 dense[0, i] = dy
                 dense[1, i] = h_taken * k[i] - dy
                 dense[2, i] = 2.0 * dy - h_taken * (k[N_STAGES * ny + i] + k[i])
-                for p in range(4):
-                    acc = 0.0
-                    for r in range(N_STAGES_EXTENDED):
-                        acc += D[p, r] * k[r * ny + i]
-                    dense[3 + p, i] = h_taken * acc
+                # the four sums side by side: each stage value is loaded once, four independent additions
+                a3 = 0.0 + D[0, 0] * k[i]
+                a4 = 0.0 + D[1, 0] * k[i]
+                a5 = 0.0 + D[2, 0] * k[i]
+                a6 = 0.0 + D[3, 0] * k[i]
+                for r in range(_LATE, N_STAGES_EXTENDED):
+                    k_r = k[r * ny + i]
+                    a3 += D[0, r] * k_r
+                    a4 += D[1, r] * k_r
+                    a5 += D[2, r] * k_r
+                    a6 += D[3, r] * k_r
+                dense[3, i] = h_taken * a3
+                dense[4, i] = h_taken * a4
+                dense[5, i] = h_taken * a5
+                dense[6, i] = h_taken * a6
             while j < n_out and t_out[j] <= t_new:
-                if t_out[j] == t_new:
-                    for i in range(ny):
-                        out[j, i] = y_new[i]
-                else:
-                    # element by element: a row view per sample costs as much as interpolating it
-                    x = (t_out[j] - t) / h_taken
-                    for i in range(ny):
-                        out[j, i] = interpolated(x, y[i], dense[0, i], dense[1, i], dense[2, i], dense[3, i],
-                                                 dense[4, i], dense[5, i], dense[6, i])
-                if unit >= 0:
-                    q = quat_unit(out[j, unit], out[j, unit + 1], out[j, unit + 2], out[j, unit + 3])
-                    for c in range(4):
-                        out[j, unit + c] = q[c]
-                j += 1
+                count = 1
+                while count < BLOCK and j + count < n_out and t_out[j + count] <= t_new:
+                    count += 1
+                for s in range(count):
+                    block[ny, s] = t_out[j + s]
+                # np.int64: a literal ``unit`` would compile the shared kernel once per value
+                interpolate_samples(dense, y, y_new, t, t_new, h_taken, count, np.int64(unit), out, j, block)
+                j += count
         for i in range(ny):
             y[i] = y_new[i]
             k[i] = k[N_STAGES * ny + i]
