@@ -75,9 +75,12 @@ def test_exact_free_top_streams_the_one_shot_run_bit_for_bit(client):
     # dop853 restarts its error control at each chunk: agreement to its tolerance (rtol 1e-12, ~1e-11 seen)
     (TENNIS, 1e-9),
     (LAGRANGE, 1e-9),
-    # fixed-step methods step each interval between samples on its own: the same arithmetic either way
+    # rk4 steps each interval between samples on its own: the same arithmetic either way
     (dict(TENNIS, method="rk4", dt=0.01), 1e-14),
-    (dict(TENNIS, method="splitting", dt=0.01), 1e-14),
+    # the splitting merges the half flows of the steps on either side of a sample within one run, a
+    # chunk's run applies them apart at its last sample: the same flows, rounded differently
+    # (<= 4e-14 seen after the flip, which amplifies round-off)
+    (dict(TENNIS, method="splitting", dt=0.01), 1e-12),
 ])
 def test_chunked_integration_agrees_with_the_one_shot_run(client, form, tolerance):
     messages, code = stream(client, {"form": form})
