@@ -53,6 +53,12 @@ def main(count=20000, repeats=3):
     def copy_kept():
         np.copyto(target, source)
 
+    def settle():
+        # untimed: maps and releases as many bytes as the dense output, so that the next run that allocates
+        # gets pages the kernel has just taken back (this VM returns released pages to its host after about a
+        # second; faulting those in again costs 3-4x more, by an amount that depends on the order of runs)
+        np.empty_like(source).fill(0.0)
+
     rows = []
     for method in METHODS:
         kw = {} if method == "dop853" else {"dt": T_END / STEPS}
@@ -60,8 +66,9 @@ def main(count=20000, repeats=3):
         def run(t, every=1, kw=kw, method=method):
             return discard(lambda: kr.simulate_batch(moments, t, omega0, method=method, every=every, **kw))
 
-        end, dense, sparse, copy, kept = interleaved(run(t_end), run(t_dense), run(t_dense, EVERY), copy_fresh,
-                                                     copy_kept, repeats=repeats)
+        timings = interleaved(run(t_end), settle, run(t_dense), settle, run(t_dense, EVERY), settle, copy_fresh,
+                              copy_kept, repeats=repeats)
+        end, dense, sparse, copy, kept = timings[0], timings[2], timings[4], timings[6], timings[7]
         excess = dense.median - end.median
         excess_cpu = dense.cpu_median - end.cpu_median
         samples = count * (STEPS + 1)
@@ -76,7 +83,10 @@ def main(count=20000, repeats=3):
         f"End state (`t = [0, {T_END:g}]`) against every step stored ({STEPS + 1} samples, "
         f"{count * (STEPS + 1) * 56 / 1e9:.2f} GB) and every {EVERY}th (`every={EVERY}`); copy bound: "
         "`np.copyto` of the dense output's bytes into an output allocated per run (copy, kept output: into "
-        "one allocated once, whose pages are mapped already: the bandwidth alone). Medians of "
+        "one allocated once, whose pages are mapped already: the bandwidth alone). Every run that allocates "
+        "follows an untimed allocation and release of the dense output's size, so that all of them get pages "
+        "just released (this VM hands released pages back to its host after about a second, and faulting those "
+        "in again cost 3-4x more, depending on the order of runs: the copy bound varied 0.17-0.66 s). Medians of "
         f"{repeats} runs in alternation, one process. Excess = dense − end state; goal: excess within "
         "2× of the copy bound. CPU column: the same ratio from process CPU times (all threads), "
         "which other jobs on a shared machine inflate less than wall times.",
