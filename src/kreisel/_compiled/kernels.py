@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from . import cached, generic, inlined
+from . import cached, generic, inlined, vectorised
 
 
 # ---------------------------------------------------------------------------
@@ -74,11 +74,32 @@ def norm3(x: float, y: float, z: float) -> float:
 
 
 @cached
+def squarable_as_is(q0: float, q1: float, q2: float, q3: float) -> bool:
+    """Whether ``q`` is finite and :func:`squarable` leaves it as it is.
+
+    Each component is compared (``max`` may drop a NaN), without a branch.
+    """
+    a0, a1, a2, a3 = abs(q0), abs(q1), abs(q2), abs(q3)
+    below = (a0 < SIZE_HIGH) & (a1 < SIZE_HIGH) & (a2 < SIZE_HIGH) & (a3 < SIZE_HIGH)
+    return below & (SIZE_LOW < max(max(a0, a1), max(a2, a3)))
+
+
+@vectorised
+def unit_of_squarable(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
+    """``q / |q|`` for a ``q`` that :func:`squarable` leaves as it is.
+
+    Its divisions are unchecked (numpy's error model), so a loop of it has no
+    branch and vectorises; ``|q| > 0`` there anyway.
+    """
+    n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    return q0 / n, q1 / n, q2 / n, q3 / n
+
+
+@cached
 def quat_unit(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     """``q / |q|`` for any nonzero finite ``q``."""
     q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
-    n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-    return q0 / n, q1 / n, q2 / n, q3 / n
+    return unit_of_squarable(q0, q1, q2, q3)
 
 
 @cached

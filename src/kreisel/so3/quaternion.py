@@ -16,7 +16,7 @@ import numpy as np
 from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import cached, kernels, parallel
+from .._compiled import cached, kernels, parallel, vectorised
 from .._compiled.outputs import check_out, deliver, takes_out
 from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, finite3, gufunc, refuse_nonfinite, refuse_quaternions
 from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
@@ -57,16 +57,20 @@ def _applied(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: 
 _INVERTIBLE_SIZE = 1e-300
 
 
+@vectorised
+def _conjugate_over(q0: float, q1: float, q2: float, q3: float, n2: float) -> tuple[float, float, float, float]:
+    # q* / n2 with unchecked divisions (n2 > 0 wherever it is called), so that a loop of it vectorises
+    return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
+
+
 @cached
 def _inverted(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     m = kernels.size(q0, q1, q2, q3)
     if kernels.SIZE_LOW < m < kernels.SIZE_HIGH:
-        n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-        return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
+        return _conjugate_over(q0, q1, q2, q3, q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     # q* / |q|² = (q/m)* / (|q/m|² m): no square of a huge or tiny component
     q0, q1, q2, q3 = q0 / m, q1 / m, q2 / m, q3 / m
-    n2 = (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) * m
-    return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
+    return _conjugate_over(q0, q1, q2, q3, (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) * m)
 
 
 @parallel
@@ -127,31 +131,69 @@ def _inverse_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
 _NORMALIZE, _INVERT = 0, 1
 
 
+@vectorised
+def _mapped_in_range(q: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int, operation: int) -> bool:
+    # Normalisation or inverse of rows start..stop-1, and whether every row
+    # there is finite with its size in (SIZE_LOW, SIZE_HIGH): the
+    # formulas of quat_unit and _inverted for such rows, in a loop without a
+    # branch over a flat view (a row stride the compiler knows), so that
+    # it vectorises; with any row outside, the caller computes the rows anew.
+    a = q.reshape(q.size)[4 * start:4 * stop]
+    b = out.reshape(out.size)[4 * start:4 * stop]
+    inside = True
+    for j in range(stop - start):
+        i = 4 * j
+        q0, q1, q2, q3 = a[i], a[i + 1], a[i + 2], a[i + 3]
+        inside &= kernels.squarable_as_is(q0, q1, q2, q3)
+        if operation == _NORMALIZE:
+            b[i], b[i + 1], b[i + 2], b[i + 3] = kernels.unit_of_squarable(q0, q1, q2, q3)
+        else:
+            b[i], b[i + 1], b[i + 2], b[i + 3] = _conjugate_over(q0, q1, q2, q3, q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    return inside
+
+
+@cached
+def _mapped_rows(q: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int, operation: int) -> float:
+    # Normalisation or inverse of each q of rows start..stop-1 that is finite
+    # and nonzero (the caller refuses the batch otherwise), and the smallest
+    # size there as sized_quaternion_array finds it.
+    least = np.inf
+    for i in range(start, stop):
+        q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
+        size = checked_quat_size(q0, q1, q2, q3)
+        least = min(least, size)
+        if size > 0.0:
+            if operation == _NORMALIZE:
+                out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(q0, q1, q2, q3)
+            else:
+                out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q0, q1, q2, q3)
+    return least
+
+
 @parallel
 def _map_checked(q: NDArray[np.float64], out: NDArray[np.float64], chunk: int, operation: int) -> float:
-    # Normalisation or inverse of each q that is finite and nonzero (the
-    # caller refuses the batch otherwise), and the smallest size of the batch
-    # as sized_quaternion_array finds it: one read of q for both.
+    # Normalisation or inverse of a batch (into an out that is not q) and a
+    # lower bound of its smallest size, exact where it is at most SIZE_LOW
+    # (-1: not finite), as sized_quaternion_array finds it: one read of q for
+    # both, unless a piece holds a size outside (SIZE_LOW, SIZE_HIGH).
     n = q.shape[0]
     pieces = (n + chunk - 1) // chunk
     smallest = np.empty(pieces)
     for c in prange(pieces):
-        least = np.inf
-        for i in range(c * chunk, min(n, (c + 1) * chunk)):
-            q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
-            size = checked_quat_size(q0, q1, q2, q3)
-            least = min(least, size)
-            if size > 0.0:
-                if operation == _NORMALIZE:
-                    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(q0, q1, q2, q3)
-                else:
-                    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _inverted(q0, q1, q2, q3)
-        smallest[c] = least
+        start, stop = c * chunk, min(n, (c + 1) * chunk)
+        if _mapped_in_range(q, out, start, stop, operation):
+            smallest[c] = kernels.SIZE_LOW
+        else:
+            smallest[c] = _mapped_rows(q, out, start, stop, operation)
     return float(smallest.min())
 
 
 def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tuple[NDArray[np.float64], float]:
-    """``(normalised or inverse q, smallest size)``; a large new result is checked in the same pass."""
+    """``(normalised or inverse q, smallest size)``; a large new result is checked in the same pass.
+
+    The size is a lower bound of the smallest, exact where at most
+    ``kernels.SIZE_LOW``: what the refusals and the inverse's overflow test need.
+    """
     a = as_float_array(q, "q", (4,), finite=False)
     fused = checked_in_one_pass((a,), (4,), _map_checked, operation) if out is None else None
     if fused is not None:
