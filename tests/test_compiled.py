@@ -1,5 +1,6 @@
 """The compiled layer's own rules (one signature per shared kernel, a cache keyed by the sources) and its sincos."""
 
+import json
 import os
 import pathlib
 import platform
@@ -10,9 +11,10 @@ import sys
 import numba
 import numpy as np
 import pytest
+from numba.core.compiler_lock import global_compiler_lock
 
 import kreisel
-from kreisel._compiled import checkout_cache_root, dop853, kernels, signatures, source_state
+from kreisel._compiled import checkout_cache_root, compile_lock, dop853, kernels, signatures, source_state
 from kreisel.so3 import quat_normalize, rotvec_to_matrix
 
 
@@ -62,6 +64,107 @@ def test_a_source_checkout_compiles_into_a_cache_of_its_source_state():
     assert root is not None and (root.parent / "pyproject.toml").is_file()
     expected = os.environ.get("NUMBA_CACHE_DIR") or str(root / source_state())  # a user's choice wins
     assert numba.config.CACHE_DIR.startswith(expected)
+
+
+
+# ---------------------------------------------------------------------------- processes sharing a cache
+
+_SHARED = """
+from kreisel._compiled import cached
+from kreisel._compiled.gufunc import gufunc
+
+
+@cached
+def halved(x):
+    return 0.5 * x
+
+
+@cached
+def cubed(x):
+    return x * x * x
+
+
+@gufunc(["void(f8[:], f8[:])"], "(2)->(2)")
+def swapped(a, out):
+    out[0], out[1] = halved(a[1]), a[0]
+
+
+@gufunc(["void(f8[:], f8[:])"], "(2)->(2)")
+def summed(a, out):
+    out[0], out[1] = a[0] + a[1], halved(a[0])
+
+
+@gufunc(["void(f8[:], f8[:])"], "(3)->(3)")
+def cubes(a, out):
+    out[0], out[1], out[2] = cubed(a[0]), cubed(a[1]), cubed(a[2])
+"""
+
+#: Compiles the functions of _SHARED (cubed for the one signature its index picks, everything if it is negative)
+#: together with the other processes, after a number of compilations of its own (numba's symbol names carry a
+#: per-process counter: they differ from the other processes' ones).
+_COMPILER = """
+import json, pathlib, sys, time
+import numba
+import numpy as np
+import shared
+index, count, ready = int(sys.argv[1]), int(sys.argv[2]), pathlib.Path(sys.argv[3])
+for _ in range(index % 3 + 1):
+    numba.njit(lambda x: x + 1.0)(1.0)
+steps = {"swapped": lambda: shared.swapped(np.array([1.0, 2.0])).tolist(),
+         "summed": lambda: shared.summed(np.array([1.0, 2.0])).tolist(),
+         "cubes": lambda: shared.cubes(np.array([1.0, 2.0, 3.0])).tolist(),
+         "cubed int": lambda: shared.cubed(3), "cubed float": lambda: shared.cubed(0.5)}
+names = [name for name in steps if index < 0 or name != ("cubed int", "cubed float")[index % 2]]
+(ready / str(index)).touch()
+deadline = time.monotonic() + 60
+while len(list(ready.iterdir())) < count and time.monotonic() < deadline:
+    time.sleep(0.002)
+print(json.dumps({name: steps[name]() for name in names}))
+"""
+
+
+def test_processes_compiling_into_one_empty_cache_at_once_build_it_consistently(tmp_path):
+    # numba symbol names carry a per-process counter: without the lock of kreisel._compiled.compile_lock a gufunc
+    # wrapper saved by one process next to the kernel saved by another segfaulted every process loading them, and two
+    # signatures added at once shared one data file
+    (tmp_path / "shared.py").write_text(_SHARED)
+    source = str(pathlib.Path(kreisel.__file__).parents[1])
+    expected = {"swapped": [1.0, 1.0], "summed": [3.0, 0.5], "cubes": [1.0, 8.0, 27.0], "cubed int": 27,
+                "cubed float": 0.125}
+    writers = 3
+    for attempt in range(2):
+        cache, ready = tmp_path / f"cache{attempt}", tmp_path / f"ready{attempt}"
+        ready.mkdir()
+        environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache),
+                       "PYTHONPATH": os.pathsep.join([str(tmp_path), source, os.environ.get("PYTHONPATH", "")])}
+
+        def start(index, count):
+            return subprocess.Popen([sys.executable, "-c", _COMPILER, str(index), str(count), str(ready)],
+                                    env=environment, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+        runs = [start(writers * attempt + i, writers) for i in range(writers)]
+        runs = [(run, *run.communicate()) for run in runs]
+        runs.append((loader := start(-1, 0), *loader.communicate()))   # loads everything from the cache
+        for run, out, err in runs:
+            assert run.returncode == 0, (run.returncode, err[-2000:])
+            found = json.loads(out)
+            assert found == {name: expected[name] for name in found}, found
+        assert list(cache.glob(f"*/{compile_lock.LOCK_NAME}"))
+
+
+
+@pytest.mark.skipif(os.name != "posix", reason="fcntl file locks")
+def test_numbas_compiler_lock_holds_the_cache_lock_file_from_its_outermost_hold():
+    import fcntl
+
+    with open(compile_lock.lock_path(), "a") as other:   # another open file: another holder to flock
+        with global_compiler_lock:
+            with global_compiler_lock:
+                pass
+            with pytest.raises(BlockingIOError):
+                fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        fcntl.flock(other, fcntl.LOCK_UN)
 
 
 # ---------------------------------------------------------------------------- sincos

@@ -19,7 +19,9 @@ holds
   (rate maps, Jacobians, Bortz coefficient);
 - :mod:`.series`: Maclaurin coefficients from exact rationals, for the
   functions that lose digits to cancellation at small angles;
-- :mod:`.dop853`: the one adaptive Dormand–Prince 8(5,3) integrator.
+- :mod:`.dop853`: the one adaptive Dormand–Prince 8(5,3) integrator;
+- :mod:`.compile_lock`: one compilation at a time among the processes that
+  share a cache directory.
 
 The decorator flavours below are the only ways kreisel compiles a function
 (besides user callables, compiled per call, and one object-mode callback).
@@ -36,8 +38,9 @@ One layout per shared kernel
     :mod:`.kernels`, such as ``quat_to_matrix``) is compiled for one type
     signature only: callers pass element slices with numba's layout ``'A'``,
     as gufuncs do, and read-only inputs are copied before a parallel loop.
-    Two processes adding different signatures to one on-disk cache index at
-    the same moment can pair a signature with the other's machine code.
+    (Two processes adding different signatures to one on-disk cache index
+    at the same moment could pair a signature with the other's machine code;
+    :mod:`.compile_lock` now keeps them apart.)
     ``tests/test_compiled.py`` fails when a test run leaves a shared kernel
     with more than one signature.
 Cache rules
@@ -61,9 +64,14 @@ Inlining and stale caches
     modification times of the package sources, so any edit starts a fresh
     cache: tests, ``make demo``, ``make bench`` and ``make docs`` never run
     stale machine code. Each pytest-xdist worker compiles into a directory of
-    its own (two processes adding signatures to one index at the same moment
-    can pair a signature with the other's machine code). A ``NUMBA_CACHE_DIR``
-    set by the user is respected.
+    its own. A ``NUMBA_CACHE_DIR`` set by the user is respected.
+Processes sharing a cache
+    A test worker and the command-line runs it starts, dask or
+    multiprocessing workers on a fresh install: processes that share a
+    cache directory load or compile one at a time, under numba's compiler
+    lock made an inter-process file lock (:mod:`.compile_lock`). Without it,
+    a gufunc kernel saved by one process next to the wrapper saved by another
+    segfaulted every process that loaded them.
 """
 
 from __future__ import annotations
@@ -76,6 +84,8 @@ from typing import Any, TypeVar
 
 import numba
 from numba import njit
+
+from . import compile_lock
 
 #: The package sources this layer belongs to.
 _PACKAGE = pathlib.Path(__file__).resolve().parents[1]
@@ -107,6 +117,7 @@ def _use_checkout_cache():
 
 # before any kernel is decorated: numba picks a function's cache directory then
 _use_checkout_cache()
+compile_lock.install()
 
 # to type checkers a flavour returns the function it compiles (numba has no annotations for njit)
 _Function = TypeVar("_Function", bound=Callable[..., Any])

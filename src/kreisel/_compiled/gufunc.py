@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from numba import guvectorize, prange
+from numba.core.compiler_lock import global_compiler_lock
 
 from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices, norm
 from .._validation import ROTVEC_RANGE, as_float_array, refuse_long_angle
@@ -72,11 +73,10 @@ class LazyGufunc:
         slice ``a[i]`` passed to a compiled call would cost tens of ns to
         build and make every thread update the reference count of the one
         shared array. Read-only inputs are copied so that the loop keeps one
-        compiled signature (two processes adding different signatures to the
-        same on-disk cache index at once can pair a signature with the
-        other's machine code). Used when the batch has at least
-        :data:`PARALLEL_THRESHOLD` elements and every input either has the
-        full batch shape or, if its index is in ``shared``, no batch axes.
+        compiled signature (one compilation, one cache entry). Used when the
+        batch has at least :data:`PARALLEL_THRESHOLD` elements and every
+        input either has the full batch shape or, if its index is in
+        ``shared``, no batch axes.
     shared : tuple of int
         Inputs without batch axes that the parallel loop takes whole: arrays
         such as Euler axis indices, or scalars such as a frame sign or a
@@ -118,9 +118,13 @@ class LazyGufunc:
                 return result
         gufunc = self._gufunc
         if gufunc is None:
-            gufunc = self._gufunc = guvectorize(
-                self._signatures, self._layout, nopython=True, cache=True
-            )(self._function)
+            # kernel and wrapper are two cache entries, the wrapper found by the kernel's symbol name: one hold of
+            # the lock shared with other processes (.compile_lock) for both, so that the wrapper is the one of this
+            # kernel even if the cache is emptied between the two
+            with global_compiler_lock:
+                gufunc = self._gufunc = guvectorize(
+                    self._signatures, self._layout, nopython=True, cache=True
+                )(self._function)
         if out is None:
             return gufunc(*args, *self._carriers[len(args):])
         # numpy copies an input that overlaps out before the loop
