@@ -346,7 +346,7 @@ CHECKED_CHUNK = 2**14
 
 
 def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], core_out: tuple[int, ...],
-                        loop: Callable[..., Any], *extra: Any) -> tuple[NDArray[np.float64], Any] | None:
+                        loop: Callable[..., Any], *extra: Any, single: bool = False) -> tuple[NDArray[np.float64], Any] | None:
     """``(result, statistic)`` of a loop that checks its inputs as it computes a large new result; None if small.
 
     ``loop(*flat_inputs, flat_out, CHECKED_CHUNK, *extra)`` runs on all
@@ -357,14 +357,19 @@ def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], core_out: tuple
     one: the check is still done before any work the caller sees, since the
     caller refuses the batch from the statistic and the new result is then
     dropped. With ``out=`` (which may be an input) the callers check first
-    instead. None also when the inputs' batch shapes differ (broadcasting).
+    instead. None also when the inputs' batch shapes differ (broadcasting),
+    except that with ``single`` an input without batch axes is passed as one
+    row ``(1, core)`` (the loop reads its row ``min(i, rows - 1)``).
     """
-    batch = inputs[0].shape[:-1]
+    batches = {a.shape[:-1] for a in inputs}
+    if single and len(batches) > 1:
+        batches.discard(())
+    batch = batches.pop()
     n = math.prod(batch)
-    if n < PARALLEL_THRESHOLD or any(a.shape[:-1] != batch for a in inputs):
+    if n < PARALLEL_THRESHOLD or batches:
         return None
     out = empty((*batch, *core_out))
-    flat = [_writable(np.ascontiguousarray(a)).reshape(n, a.shape[-1]) for a in inputs]
+    flat = [_writable(np.ascontiguousarray(a)).reshape(-1, a.shape[-1]) for a in inputs]
     return out, loop(*flat, out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
 
 

@@ -18,12 +18,12 @@ from .._html import html_table, number
 from .._validation import as_float_array, batch_shape
 from ..so3 import (
     Rotation,
-    quat_apply,
     quat_multiply,
     quat_to_matrix,
     quat_to_rotvec,
 )
 from ..so3.interpolation import gather_samples, mean_over
+from ..so3.quaternion import rotate_vectors
 from ..so3._batch import QuaternionBatch
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
 from . import _kernels, lie
@@ -222,13 +222,13 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_matrix(m).translation
         array([1., 2., 3.])
         """
-        packed = _kernels.from_matrix(finite_array(matrix, "matrix", (4, 4)))
-        if packed.size and not np.max(packed[..., 7]) <= RIGIDITY_TOLERANCE:
+        quat, translation, rigid = _kernels.poses_of_matrices(matrix, RIGIDITY_TOLERANCE)
+        if not rigid:
             raise ValueError(
                 "matrix must be rigid: bottom row (0, 0, 0, 1) and a rotation block "
                 f"(max |R^T R - 1| or bottom-row error <= {RIGIDITY_TOLERANCE:g}, det R > 0)"
             )
-        return cls._from_arrays(packed[..., :4], packed[..., 4:7])
+        return cls._from_arrays(quat, translation)
 
     @classmethod
     def from_dual_quat(cls, dual_quat: ArrayLike) -> RigidTransform:
@@ -567,9 +567,7 @@ class RigidTransform(QuaternionBatch):
         array([[1., 0., 1.],
                [0., 1., 1.]])
         """
-        points = finite_array(points, "points")
-        kernel = _kernels.apply_inverse if inverse else _kernels.apply
-        return kernel(self._q, self._translation, points, out=out)
+        return _kernels.move(self._q, self._translation, points, inverse, out, "points")
 
     @takes_out
     def apply_vector(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -587,7 +585,7 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
         array([1., 0., 0.])
         """
-        return quat_apply(self._q, finite_array(vectors, "vectors"), inverse=inverse, out=out)
+        return rotate_vectors(self._q, vectors, inverse, out, "vectors")
 
     def change_base_point(self, offset: ArrayLike) -> RigidTransform:
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.

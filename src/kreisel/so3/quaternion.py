@@ -490,17 +490,23 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
     >>> np.round(quat_apply(q, [1.0, 0.0, 0.0]), 12) + 0.0
     array([0., 1., 0.])
     """
+    return rotate_vectors(q, v, inverse, out)
+
+
+def rotate_vectors(q: ArrayLike, v: ArrayLike, inverse: bool = False, out: NDArray[np.float64] | None = None,
+                   name: str = "v") -> NDArray[np.float64]:
+    """:func:`quat_apply` with the vectors' argument named ``name`` in its refusals (checked once)."""
     sign = -1.0 if inverse else 1.0
     a = as_float_array(q, "q", (4,), finite=False)
-    b = _then(v, "v", (3,), lambda: quaternion_array(a, "q"))
+    b = _then(v, name, (3,), lambda: quaternion_array(a, "q"))
     fused = checked_in_one_pass((a, b), (3,), _product_checked, _APPLY, sign) if out is None else None
     if fused is not None:
         rotated, bad = fused
         if bad & 3:
             refuse_quaternions(-1.0 if bad & 1 else 0.0, "q")
-        refuse_nonfinite(not (bad & 4), "v")
+        refuse_nonfinite(not (bad & 4), name)
         return rotated
-    return _apply(quaternion_array(a, "q"), vector_array(b, "v"), sign, out=out)
+    return _apply(quaternion_array(a, "q"), vector_array(b, name), sign, out=out)
 
 
 @takes_out
