@@ -112,6 +112,17 @@ def positive_array(x: ArrayLike, name: str, allow_zero: bool = False) -> NDArray
     return a
 
 
+def check_flag(flag: object, name: str) -> bool:
+    """Return ``flag``, which must be ``True`` or ``False`` (numpy's too), else TypeError naming ``name``.
+
+    Truthiness is not accepted: ``scalar_first="no"`` or ``degrees=None`` would
+    silently pick a convention the caller did not ask for.
+    """
+    if not isinstance(flag, bool | np.bool_):
+        raise TypeError(f"{name} must be True or False, got {flag!r}")
+    return bool(flag)
+
+
 def check_frame(frame: object) -> bool:
     """Return True for ``frame="body"``, False for ``"space"``; refuse anything else."""
     if frame not in FRAMES:

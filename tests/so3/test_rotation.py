@@ -239,3 +239,39 @@ def test_mean_over_axes_matches_scipy(axis, rng):
         r.mean(axis=2)
     with pytest.raises(ValueError, match="weights must have the batch shape"):
         r.mean(np.ones(5))
+
+
+_AXES_ZXZ = [[0, 0, 1], [1, 0, 0], [0, 0, 1]]
+_FLAG_CALLS = {
+    "scalar_first": [lambda f: Rotation.from_quat([1.0, 0, 0, 0], scalar_first=f),
+                     lambda f: Rotation.identity().as_quat(scalar_first=f)],
+    "canonical": [lambda f: Rotation.identity().as_quat(canonical=f)],
+    "degrees": [lambda f: Rotation.from_rotvec([1.0, 0, 0], degrees=f),
+                lambda f: Rotation.identity().as_rotvec(degrees=f),
+                lambda f: Rotation.identity().as_axis_angle(degrees=f),
+                lambda f: Rotation.from_euler("ZXZ", [1.0, 2, 3], degrees=f),
+                lambda f: Rotation.from_euler("z", 1.0, degrees=f),
+                lambda f: Rotation.identity().as_euler("ZXZ", degrees=f),
+                lambda f: Rotation.identity().as_euler("ZX", degrees=f),
+                lambda f: kr.matrix_to_euler("ZXZ", np.eye(3), degrees=f),
+                lambda f: kr.gimbal_lock("ZXZ", [1.0, 2, 3], degrees=f),
+                lambda f: Rotation.from_axis_angle([1.0, 0, 0], 1.0, degrees=f),
+                lambda f: kr.davenport_to_quat(_AXES_ZXZ, "i", [1.0, 2, 3], degrees=f),
+                lambda f: kr.quat_to_davenport(_AXES_ZXZ, "i", [1.0, 0, 0, 0], degrees=f),
+                lambda f: kr.davenport_gimbal_lock(_AXES_ZXZ, "i", [1.0, 2, 3], degrees=f)],
+    "inverse": [lambda f: Rotation.identity().apply([1.0, 0, 0], inverse=f),
+                lambda f: kr.quat_apply([1.0, 0, 0, 0], [1.0, 0, 0], inverse=f)],
+    "suppress_warnings": [lambda f: Rotation.identity().as_euler("ZXZ", suppress_warnings=f)],
+}
+
+
+@pytest.mark.filterwarnings("ignore:gimbal lock")
+@pytest.mark.parametrize("name, call", [(n, c) for n, calls in _FLAG_CALLS.items() for c in calls])
+def test_convention_flags_take_only_booleans(name, call):
+    # "no" and None are truthy and falsy: read as flags they would silently pick the
+    # other quaternion order, unit or direction than the caller meant
+    for bad in ("no", None, 1, "False"):
+        with pytest.raises(TypeError, match=f"{name} must be True or False"):
+            call(bad)
+    for good in (True, False, np.True_, np.False_):
+        call(good)

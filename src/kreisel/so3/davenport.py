@@ -33,7 +33,7 @@ from .._compiled import cached, parallel
 from .._compiled.outputs import deliver, takes_out
 from .._compiled import kernels
 from .._compiled.gufunc import finite_array, gufunc, quaternion_array
-from .._validation import as_float_array
+from .._validation import as_float_array, check_flag
 from . import euler as _euler
 from .quaternion import quat_multiply
 from .matrix import matrix_to_quat
@@ -210,6 +210,7 @@ def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: b
     True
     """
     count, reverse, seq, lam, before, after, _, _ = _setup(axes, order)
+    degrees = check_flag(degrees, "degrees")
     if count == 3:
         a = finite_array(angles, "angles", (3,))
         if degrees:
@@ -252,6 +253,7 @@ def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool =
     True
     """
     count, reverse, seq, lam, before, _, inverse_after, other = _setup(axes, order)
+    degrees = check_flag(degrees, "degrees")
     if count == 3:
         if type(q) is np.ndarray and q.shape == (4,) and q.dtype == np.float64 and q.flags.writeable and np.isfinite(q).all() and q.any():
             angles = _one_angles(q, before, inverse_after, lam, int(other), int(reverse))
@@ -279,6 +281,7 @@ def davenport_gimbal_lock(axes: ArrayLike, order: str, angles: ArrayLike, degree
     """
     axes, _ = _parse(axes, order)
     _, lam, _ = _frame(axes)
+    degrees = check_flag(degrees, "degrees")
     a = as_float_array(angles, "angles", (3,))
     # the middle angle in its own statement: nested in the expression below, mypy spends a minute on the overloads
     middle: NDArray[np.float64] = np.deg2rad(a[..., 1]) if degrees else a[..., 1]

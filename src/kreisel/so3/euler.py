@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import LazyGufunc, finite_array, gufunc, matrix_array, quaternion_array
-from .._validation import AXES as _AXES, parse_sequence
+from .._validation import AXES as _AXES, check_flag, parse_sequence
 from . import matrix as _matrix
 from .._norms import unit
 
@@ -297,6 +297,7 @@ def _wrap(x: float) -> float:
 
 def _angles_array(seq: str, angles: ArrayLike, degrees: bool) -> tuple[str, NDArray[np.float64]]:
     """The sequence and angles ``(..., 3)`` in radians; short sequences are padded."""
+    degrees = check_flag(degrees, "degrees")
     short = _short_sequence(seq)
     if short is not None:
         return _padded(seq), _short_angles(angles, len(seq), degrees)
@@ -361,6 +362,7 @@ def _angles_of(seq: str, x: NDArray[np.float64], angles: LazyGufunc,
                out: NDArray[np.float64] | None) -> NDArray[np.float64]:
     """The angles of ``seq`` of quaternions or matrices ``x``: the compiled ``angles`` for three axes, the
     quaternions of ``x`` for one or two."""
+    degrees = check_flag(degrees, "degrees")
     short = _short_sequence(seq)
     if short is not None:
         return deliver(_finish(_short_sequence_angles(seq, *short, quaternions(x)), degrees), out)
@@ -468,6 +470,7 @@ def gimbal_lock(seq: str, angles: ArrayLike, degrees: bool = False, tolerance: f
     array([ True, False])
     """
     axes, _ = parse_sequence(seq)
+    degrees = check_flag(degrees, "degrees")
     a = finite_array(angles, "angles", (3,))
     middle = np.deg2rad(a[..., 1]) if degrees else a[..., 1]
     tol = np.deg2rad(tolerance) if degrees else tolerance

@@ -20,7 +20,7 @@ from .._compiled import cached, kernels, parallel, vectorised
 from .._compiled.outputs import check_out, deliver, takes_out
 from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, finite3, gufunc, refuse_nonfinite, refuse_quaternions
 from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
-from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, refuse_long_angle
+from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, check_flag, refuse_long_angle
 from .._norms import norm
 from .rotvec import quat_to_rotvec
 
@@ -496,7 +496,7 @@ def quat_apply(q: ArrayLike, v: ArrayLike, inverse: bool = False, *, out: NDArra
 def rotate_vectors(q: ArrayLike, v: ArrayLike, inverse: bool = False, out: NDArray[np.float64] | None = None,
                    name: str = "v") -> NDArray[np.float64]:
     """:func:`quat_apply` with the vectors' argument named ``name`` in its refusals (checked once)."""
-    sign = -1.0 if inverse else 1.0
+    sign = -1.0 if check_flag(inverse, "inverse") else 1.0
     a = as_float_array(q, "q", (4,), finite=False)
     b = _then(v, name, (3,), lambda: quaternion_array(a, "q"))
     fused = checked_in_one_pass((a, b), (3,), _product_checked, _APPLY, sign) if out is None else None

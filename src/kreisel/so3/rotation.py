@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled.outputs import deliver, takes_out
 from .._html import html_table, number
-from .._validation import as_float_array, batch_shape
+from .._validation import as_float_array, batch_shape, check_flag
 from . import alignment as _alignment
 from . import davenport as _davenport
 from . import euler as _euler
@@ -38,6 +38,7 @@ __all__ = ["Rotation"]
 def _scalar_first(q: ArrayLike, scalar_first: bool, name: str = "quat") -> NDArray[np.float64]:
     # The width is checked before any reordering: q[..., [3, 0, 1, 2]] of a
     # (..., 5) array would silently become a rotation.
+    scalar_first = check_flag(scalar_first, "scalar_first")
     array = as_float_array(q, name, (4,), finite=False)
     return array if scalar_first else array[..., [3, 0, 1, 2]]
 
@@ -148,7 +149,7 @@ class Rotation(QuaternionBatch):
         [0.0, 0.0, 90.0]
         """
         psi = as_float_array(rotvec, "rotvec", (3,), finite=False)
-        return cls._wrap(_rotvec.exp_quat(np.deg2rad(psi) if degrees else psi, "rotvec"))
+        return cls._wrap(_rotvec.exp_quat(np.deg2rad(psi) if check_flag(degrees, "degrees") else psi, "rotvec"))
 
     @classmethod
     def from_axis_angle(cls, axis: ArrayLike, angle: ArrayLike, degrees: bool = False) -> Rotation:
@@ -513,7 +514,8 @@ class Rotation(QuaternionBatch):
         >>> r.as_quat(scalar_first=False).tolist()
         [0.0, 0.8, 0.0, -0.6]
         """
-        q = canonical_quat(self._q) if canonical else self._q
+        scalar_first = check_flag(scalar_first, "scalar_first")
+        q = canonical_quat(self._q) if check_flag(canonical, "canonical") else self._q
         q = q if scalar_first else q[..., [1, 2, 3, 0]]
         return np.array(q) if out is None else deliver(q, out)
 
@@ -549,6 +551,7 @@ class Rotation(QuaternionBatch):
         >>> (np.round(r.as_rotvec(degrees=True), 9) + 0.0).tolist()
         [0.0, 0.0, -90.0]
         """
+        degrees = check_flag(degrees, "degrees")
         psi = _rotvec.quat_to_rotvec(self._q, out=out)
         return np.rad2deg(psi, out=psi) if degrees else psi
 
@@ -562,6 +565,7 @@ class Rotation(QuaternionBatch):
         >>> axis.round(12).tolist(), round(float(angle), 6)
         ([0.0, 0.6, 0.8], 57.29578)
         """
+        degrees = check_flag(degrees, "degrees")
         axis, angle = _rotvec.rotvec_to_axis_angle(_rotvec.quat_to_rotvec(self._q))
         return axis, (np.rad2deg(angle) if degrees else angle)
 
@@ -601,6 +605,7 @@ class Rotation(QuaternionBatch):
         >>> caught[0].category.__name__
         'GimbalLockWarning'
         """
+        suppress_warnings = check_flag(suppress_warnings, "suppress_warnings")
         angles = _euler.quat_to_euler(seq, self._q, degrees=degrees, out=out)
         if not suppress_warnings and len(seq) == 3:
             _warn_gimbal_lock(_euler.gimbal_lock(seq, angles, degrees=degrees, tolerance=_GIMBAL_TOLERANCE))

@@ -20,7 +20,7 @@ from .._compiled.gufunc import (
     checked_in_one_pass, finite_array, gufunc, in_pieces, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
     rotvec_in_range, vector_array,
 )
-from .._validation import as_float_array
+from .._validation import as_float_array, check_flag
 from .._norms import norm, unit
 
 __all__ = [
@@ -330,7 +330,7 @@ def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = Fals
     """
     axis = vector_array(axis, "axis")
     angle = finite_array(angle, "angle", ())
-    if degrees:
+    if check_flag(degrees, "degrees"):
         angle = np.deg2rad(angle)
     return deliver(unit(axis, "axis") * angle[..., None], out)
 
