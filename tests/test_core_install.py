@@ -169,7 +169,8 @@ def test_the_command_runs_on_the_core_and_names_a_missing_extra(core):
                         (["simulate", "tennis_racket", "-o", "t.parquet"], "io"),
                         (["fit", "phone_toss", "--plot", "fit.png"], "plot"),
                         # two extras in the one line, not one and after installing it the other
-                        (["plot", "t.nc", "-o", "fig.png"], "plot,io"), (["animate", "t.nc", "-o", "a.gif"], "plot,io")):
+                        (["plot", "t.nc", "-o", "fig.png"], "plot,io"), (["animate", "t.nc", "-o", "a.gif"], "plot,io"),
+                        (["sweep", "tennis_racket", "--plot", "fig.png"], "sweep,plot")):
         done = _run([bin_dir / "kreisel", *args], base, check=False)
         assert done.returncode == 2, (args, done.stdout, done.stderr)
         assert done.stderr.count("\n") == 1 and f'pip install "kreisel[{extra}]"' in done.stderr, done.stderr

@@ -111,6 +111,10 @@ def require_all(needs: list[tuple[str, str]], feature: str) -> list[ModuleType]:
     Traceback (most recent call last):
     ...
     kreisel._optional.MissingExtraError: kreisel plot needs no_such_one and no_such_two: pip install "kreisel[plot,io]"
+    >>> require_all([("no_such_a", "sweep"), ("no_such_b", "sweep"), ("no_such_c", "plot")], feature="a sweep")
+    Traceback (most recent call last):
+    ...
+    kreisel._optional.MissingExtraError: a sweep needs no_such_a, no_such_b and no_such_c: pip install "kreisel[sweep,plot]"
     """
     modules: list[ModuleType] = []
     missing: list[str] = []
@@ -122,6 +126,7 @@ def require_all(needs: list[tuple[str, str]], feature: str) -> list[ModuleType]:
             missing.append(exc.name or module)
             extras.append(extra)
     if missing:
-        raise MissingExtraError(f"{feature} needs {' and '.join(dict.fromkeys(missing))}",
-                                extra=",".join(dict.fromkeys(extras)), name=missing[0])
+        *others, last = dict.fromkeys(missing)
+        listed = f"{', '.join(others)} and {last}" if others else last
+        raise MissingExtraError(f"{feature} needs {listed}", extra=",".join(dict.fromkeys(extras)), name=missing[0])
     return modules

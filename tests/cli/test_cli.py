@@ -1,6 +1,7 @@
 """Every ``kreisel`` command through typer's runner, including the error paths (exit status 2)."""
 
 import re
+import sys
 
 import numpy as np
 import pytest
@@ -194,6 +195,23 @@ values = [10.0, 20.0]
     assert result.exit_code == 0, result.output
     result = run("sweep", str(sweep_file), "--scheduler", "serial", "-o", str(tmp_path / "s.nc"))
     assert result.exit_code == 2 and ".zarr" in result.output and not (tmp_path / "s.nc").exists()
+
+
+@pytest.mark.parametrize("args, message", [
+    (["fit", "phone_toss", "--plot", "fit.png"], 'kreisel fit --plot needs matplotlib: pip install "kreisel[plot]"'),
+    (["sweep", "tennis_racket", "--plot", "map.png"],
+     'kreisel sweep needs xarray, distributed, zarr and matplotlib: pip install "kreisel[sweep,plot]"'),
+    (["sweep", "tennis_racket", "--scheduler", "serial", "-o", "map.nc", "--plot", "map.png"],
+     'kreisel sweep needs xarray and matplotlib: pip install "kreisel[sweep,plot]"'),
+])
+def test_a_plot_option_names_its_extra_with_the_commands_ones_before_any_work(tmp_path, monkeypatch, args, message):
+    # as without the extras (tests/test_core_install.py): not the sweep's extra, then after a whole sweep the plot's
+    for package in ("matplotlib", "xarray", "distributed", "zarr"):
+        monkeypatch.setitem(sys.modules, package, None)
+    monkeypatch.chdir(tmp_path)
+    result = run(*args)
+    assert result.exit_code == 2 and result.output.strip() == f"error: {message}", result.output
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_convert_reads_a_csv_file(tmp_path):

@@ -59,7 +59,7 @@ def lock_path() -> str:
 
 
 def _locked_file() -> IO[str] | None:
-    """The lock file, open and locked for this process; None if it cannot be opened (numba cannot cache there either)."""
+    """The lock file, open and locked by this process; None if it cannot be opened (numba cannot cache there either)."""
     try:
         file = open(lock_path(), "a")
     except (OSError, RuntimeError):  # RuntimeError: numba finds no cache directory at all

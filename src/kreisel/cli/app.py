@@ -343,8 +343,12 @@ def sweep(
              "(default: the file's stream key)."),
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
+    from .._optional import require_all
     from ..io.bundled import suggestion
     from ..sweep import EXAMPLES, SweepError, example_path, load_sweep_file, plot_sweep, run_sweep_file
+    from ..sweep.core import sweep_needs
+
+    _check_plot_file(plot_file)
 
     if not sweep_file.exists():
         if str(sweep_file) not in EXAMPLES:
@@ -360,6 +364,9 @@ def sweep(
         if (spec.stream if stream is None else stream) and target.suffix != ".zarr":
             usage_error(f"streaming writes the chunks into a .zarr output as they arrive, not {target.name}: "
                         "pass -o NAME.zarr, or --no-stream")
+        # the sweep's packages and, for --plot, matplotlib, named together in one line before any chunk runs
+        require_all([*sweep_needs(scheduler, target), *([("matplotlib", "plot")] if plot_file else [])],
+                    feature="kreisel sweep")
         dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output,
                                  console=_console(stderr=True), stream=stream)
     except SweepError as exc:
@@ -373,6 +380,12 @@ def sweep(
 
         plots.save(plot_sweep(dataset), plot_file)
         say(f"wrote {plot_file}")
+
+
+def _check_plot_file(plot_file):
+    """A ``--plot`` output that is not .png, .svg or .pdf is a usage error (before any work)."""
+    if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
+        usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
 
 
 @app.command()
@@ -392,14 +405,14 @@ def fit(
     import warnings
 
     from .._fileio import atomic_output
+    from .._optional import require_all
     from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
     from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
     from .fit import summary
 
+    _check_plot_file(plot_file)
     if plot_file is not None:
-        if plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
-            usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
-        from .. import plot as plots  # without matplotlib, the one line naming the extra comes before the fit
+        require_all([("matplotlib", "plot")], feature="kreisel fit --plot")   # before the fit
     for option, target in (("--plot", plot_file), ("--json", json_file)):
         if target is not None and not target.parent.is_dir():
             usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
@@ -421,6 +434,8 @@ def fit(
     for line in summary(result):
         _console(stderr=not result.free_rotation).print(line, soft_wrap=True)
     if plot_file is not None:
+        from .. import plot as plots
+
         plots.save(plots.gyro_fit(result), plot_file)
         say(f"wrote {plot_file}")
     if json_file is not None:

@@ -457,6 +457,21 @@ def _assemble(grid, shape, chunk_size, results, variable_attrs, attrs):
     return xr.Dataset(variables, coords={name: values for name, values in grid.items()}, attrs=attrs)
 
 
+def sweep_needs(scheduler, output):
+    """The ``(module, extra)`` pairs a sweep on ``scheduler`` writing ``output`` imports.
+
+    In the form :func:`kreisel._optional.require_all` takes.
+
+    Examples
+    --------
+    >>> sweep_needs(SERIAL, None), sweep_needs(None, "out.zarr")[-1]
+    ([('xarray', 'sweep')], ('zarr', 'sweep'))
+    """
+    zarr = output is not None and pathlib.Path(output).suffix == ".zarr"
+    return [(module, "sweep") for module, needed in (("xarray", True), ("distributed", scheduler != SERIAL),
+                                                     ("zarr", zarr)) if needed]
+
+
 def _check_output(output):
     if output is None:
         return None
@@ -700,10 +715,8 @@ def sweep(function, grid, *, constants=None, chunk_size=256, scheduler=None, n_w
     if stream and (output is None or output.suffix != ".zarr"):
         raise ValueError("stream=True writes the chunks into a .zarr output as they arrive: pass output='….zarr'")
     # what the run needs, checked before any chunk is computed
-    for module, needed in (("xarray", True), ("distributed", scheduler != SERIAL),
-                           ("zarr", output is not None and output.suffix == ".zarr")):
-        if needed:
-            require(module, extra="sweep", feature="kreisel.sweep")
+    for module, extra in sweep_needs(scheduler, output):
+        require(module, extra=extra, feature="kreisel.sweep")
     chunk_size = int(chunk_size)
     shape = tuple(values.size for values in grid.values())
     total = math.prod(shape)
