@@ -88,9 +88,11 @@ class RigidTransform(QuaternionBatch):
     # -- construction ------------------------------------------------------------------------
 
     def _set(self, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> None:
+        # An array holding the whole batch is kept as it is: a (read-only)
+        # broadcast view of it would be copied by every multi-core loop.
         batch = np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1])
-        self._q = np.broadcast_to(quat, batch + (4,))
-        self._translation = np.broadcast_to(translation, batch + (3,))
+        self._q = quat if quat.shape[:-1] == batch else np.broadcast_to(quat, batch + (4,))
+        self._translation = translation if translation.shape[:-1] == batch else np.broadcast_to(translation, batch + (3,))
 
     @classmethod
     def _from_arrays(cls, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> RigidTransform:

@@ -486,7 +486,8 @@ class Rotation(QuaternionBatch):
         rng = np.random.default_rng(rng)
         # scipy reads the same Gaussian draws as scalar-last quaternions.
         q = rng.standard_normal((*shape, 4))[..., [3, 0, 1, 2]]
-        return cls._wrap(q / np.linalg.norm(q, axis=-1, keepdims=True))
+        # C order: the index along the last axis leaves the components as the slow axis
+        return cls._wrap(np.ascontiguousarray(q / np.linalg.norm(q, axis=-1, keepdims=True)))
 
     # -- representations ----------------------------------------------------
     @takes_out
