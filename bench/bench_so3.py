@@ -118,14 +118,16 @@ def main():
     load_before = load_average()
     rows = []
     for name, ours, scipy_run, npq_run, n_in, n_out in cases:
-        copies = [streaming_copy(n_in * N, n_out * N), allocating_copy(n_in * N, n_out * N)]
+        copies = [streaming_copy(n_in * N, n_out * N), allocating_copy(n_in * N, n_out * N),
+                  streaming_copy((n_in + n_out) * N // 2, 0)]
         runs = [ours, scipy_run, *copies] + ([npq_run] if npq_run else [])
-        t_ours, t_scipy, t_copy, t_new, *t_npq = interleaved(*runs, repeats=REPEATS)
+        t_ours, t_scipy, t_copy, t_new, t_own, *t_npq = interleaved(*runs, repeats=REPEATS)
         npq_cells = [_ms(t_npq[0].median), f"{t_npq[0].median / t_ours.median:.1f}×"] if t_npq else ["", ""]
         rows.append([
             name + ("" if name in MEMORY_BOUND else " †"),
             _ms(t_ours.median), _ms(t_scipy.median), f"{t_scipy.median / t_ours.median:.1f}×", *npq_cells,
             _ms(t_copy.median), f"{t_ours.median / t_copy.median:.2f}", _ms(t_new.median), f"{t_ours.median / t_new.median:.2f}",
+            _ms(t_own.median), f"{t_ours.median / t_own.median:.2f}", f"{t_scipy.median / 3 / t_own.median:.2f}",
             _ms(t_ours.best), f"{t_scipy.best / t_ours.best:.1f}×", f"{t_ours.best / t_copy.best:.2f}",
             f"{t_ours.cpu_median / t_ours.median:.1f}",
         ])
@@ -143,11 +145,15 @@ def main():
          "preallocated buffers; copy to new output: the same, but the output buffer is allocated per run, as every "
          "function returning a new array must (in this VM first touches of fresh pages are slow and erratic). "
          "kreisel CPU/wall: about 2 when both cores work. "
-         "† transcendental-bound (the others are memory-bound: goal within 2× of the copy bound)."],
+         "† transcendental-bound (the others are memory-bound: goal within 2× of the copy bound). "
+         "Own traffic: one `np.copyto` moving as many bytes as the operation must, (input + output)/2 doubles read "
+         "and as many written (half the copy bound's bytes); 3× scipy / own traffic below 1 means that 3× scipy is "
+         "faster than this machine moves the operation's bytes."],
         ["operation", "kreisel (ms)", "scipy (ms)", "vs scipy", "numpy-quaternion (ms)", "vs numpy-quaternion",
-         "copy bound (ms)", "kreisel / copy", "copy to new output (ms)", "kreisel / copy to new", "best kreisel (ms)", "best vs scipy", "best kreisel / best copy",
+         "copy bound (ms)", "kreisel / copy", "copy to new output (ms)", "kreisel / copy to new", "own traffic (ms)",
+         "kreisel / own traffic", "3× scipy / own traffic", "best kreisel (ms)", "best vs scipy", "best kreisel / best copy",
          "kreisel CPU / wall"],
-        rows, "l" + "r" * 13, load_before=load_before,
+        rows, "l" + "r" * 16, load_before=load_before,
     )
     lines += [
         "",
