@@ -103,6 +103,17 @@ def as_float(x: ArrayLike, name: str, finite: bool = True) -> float:
     return float(a)
 
 
+def sample_times(t: ArrayLike) -> NDArray[np.float64]:
+    """``t`` as a one-dimensional float array of at least one time, else ValueError naming ``t``.
+
+    A trajectory of no samples has no initial state to measure drift from, nor a time span to show.
+    """
+    a = as_float_array(t, "t")
+    if a.ndim != 1 or a.size == 0:
+        raise ValueError(f"t must be one-dimensional with at least one time, got shape {a.shape}")
+    return a
+
+
 def positive_array(x: ArrayLike, name: str, allow_zero: bool = False) -> NDArray[np.float64]:
     """:func:`as_float_array` of a quantity that must be > 0 (or >= 0: ``allow_zero``), else ValueError naming it."""
     a = as_float_array(x, name)

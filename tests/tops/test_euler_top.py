@@ -190,6 +190,13 @@ def test_bad_input_is_refused():
         top.solve([0.0, 1.0], [1.0, 2.0, 3.0], [0.0, 0.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="t must be one-dimensional"):
         top.solve([[0.0, 1.0]], [1.0, 2.0, 3.0])
+    # an empty trajectory used to come back, whose repr and drift() then raised IndexError
+    with pytest.raises(ValueError, match=r"t must be one-dimensional with at least one time, got shape \(0,\)"):
+        top.solve([], [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="t must be one-dimensional with at least one time"):
+        kr.LagrangeTop(1.0, 0.5, 1.0).solve([], [0.0, 0.5, 0.0], [0.0, 0.0, 10.0])
+    with pytest.raises(ValueError, match="t must be one-dimensional with at least one time"):
+        kr.Trajectory([], np.zeros((0, 4)), np.zeros((0, 3)), [1.0, 2.0, 3.0])
 
 
 # ---- exact everywhere: next to the separatrix and next to the axes -------------------------------

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _display
 from .._html import html_table, number
 from .._optional import require
-from .._validation import as_float_array, check_frame
+from .._validation import as_float_array, check_frame, sample_times
 from ..so3 import quat_apply
 from . import _trajectory_files
 
@@ -60,9 +60,7 @@ class Trajectory:
 
     def __init__(self, t: ArrayLike, q: ArrayLike, omega: ArrayLike, inertia: ArrayLike,
                  meta: dict[str, Any] | None = None, **extra: ArrayLike) -> None:
-        self.t = as_float_array(t, "t")
-        if self.t.ndim != 1:
-            raise ValueError(f"t must be one-dimensional, got shape {self.t.shape}")
+        self.t = sample_times(t)
         self.q = as_float_array(q, "q", tail=(self.t.size, 4), finite=False)
         self.omega = as_float_array(omega, "omega", tail=(self.t.size, 3), finite=False)
         tensor = as_float_array(inertia, "inertia")

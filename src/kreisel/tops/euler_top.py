@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import MAX_TURN, as_float, as_float_array, check_principal_moments
+from .._validation import MAX_TURN, as_float, as_float_array, check_principal_moments, sample_times
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
 from .._norms import norm
@@ -529,9 +529,7 @@ class EulerTop:
 
 def _check_inputs(t: ArrayLike, omega0: ArrayLike,
                   q0: ArrayLike | None) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    t = as_float_array(t, "t")
-    if t.ndim != 1:
-        raise ValueError(f"t must be one-dimensional, got shape {t.shape}")
+    t = sample_times(t)
     omega0 = as_float_array(omega0, "omega0", tail=(3,))
     q0 = np.array([1.0, 0.0, 0.0, 0.0]) if q0 is None else as_quaternion(q0, "q0")
     return t, omega0, q0

@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
 from .._html import html_table, number
-from .._validation import as_float, as_float_array, check_principal_moments
+from .._validation import as_float, as_float_array, check_principal_moments, sample_times
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
@@ -746,9 +746,7 @@ class LagrangeTop:
         >>> round(float(tr.zxz_angles[1, 1]), 6)
         0.523312
         """
-        t = as_float_array(t, "t")
-        if t.ndim != 1:
-            raise ValueError(f"t must be one-dimensional, got shape {t.shape}")
+        t = sample_times(t)
         quad, euler0, rates0 = self._quadrature(euler0, rates0)
         euler, rates = quad.angles_and_rates(t, self)
         euler[:, 0] += euler0[0]
