@@ -140,3 +140,20 @@ def test_checked_callable_refuses_bad_returns_naming_the_callable():
     import kreisel.dynamics.engine as engine
     assert particle.checked_callable is checked_callable is engine.checked_callable
     assert not hasattr(engine, "_checked_callable")
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: kr.frames.inertial_forces([1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0], mass=[1.0, -2.0]), "mass must be > 0, got -2.0"),
+    (lambda: kr.frames.hamiltonian([1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0], mass=0.0), "mass must be > 0, got 0.0"),
+    (lambda: kr.frames.simulate_particle([0.0, 1.0], [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0], mass=-1), "mass must be > 0, got -1.0"),
+    (lambda: kr.earth.foucault_pendulum(-1.0, 45.0, 10.0, 0.1), "length must be > 0, got -1.0"),
+    (lambda: kr.earth.foucault_pendulum(1.0, 45.0, 0.0, 0.1), "duration must be > 0, got 0.0"),
+    (lambda: kr.earth.foucault_pendulum(1.0, 45.0, 10.0, 0.1, g=-9.8), "g must be > 0, got -9.8"),
+    (lambda: kr.earth.foucault_pendulum([1.0, 2.0], 45.0, 10.0, 0.1), r"length must be a single number, got an array"),
+    (lambda: kr.larmor_precession_rate(1.0, mass=[1e-30, 0.0]), "mass must be > 0, got 0.0"),
+    (lambda: kr.nav.coning_motion(0.1, 1.0, -1e-3, 8), "sample_time must be > 0, got -0.001"),
+])
+def test_positive_quantities_are_refused_naming_the_argument_and_the_value(call, message):
+    # one check (kreisel._validation.positive_array / positive_float) for every physical quantity that must be > 0
+    with pytest.raises(ValueError, match=message):
+        call()

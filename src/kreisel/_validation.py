@@ -123,6 +123,13 @@ def positive_array(x: ArrayLike, name: str, allow_zero: bool = False) -> NDArray
     return a
 
 
+def positive_float(x: ArrayLike, name: str) -> float:
+    """:func:`as_float` of a quantity that must be > 0, else ValueError naming it (as :func:`positive_array`)."""
+    value = as_float(x, name)
+    positive_array(value, name)
+    return value
+
+
 def check_flag(flag: object, name: str) -> bool:
     """Return ``flag``, which must be ``True`` or ``False`` (numpy's too), else TypeError naming ``name``.
 

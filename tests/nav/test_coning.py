@@ -111,8 +111,8 @@ def test_coning_motion_broadcasts():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(half_angle=-0.1), "half_angle must be positive"),
-    (dict(rate=0.0), "rate must be positive"),
+    (dict(half_angle=-0.1), "half_angle must be > 0, got -0.1"),
+    (dict(rate=0.0), "rate must be > 0, got 0.0"),
     (dict(sample_time=np.nan), "sample_time must be finite"),
     (dict(n_samples=0), "n_samples must be a positive integer"),
     (dict(n_samples=2.5), "n_samples must be a positive integer"),

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
-from .._validation import MAX_TURN, as_float, check_allocation
+from .._validation import MAX_TURN, as_float, check_allocation, positive_float
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -306,12 +306,8 @@ def foucault_pendulum(
     >>> round(res.precession_rate / -0.01, 2)
     1.0
     """
-    length = as_float(length, "length")
-    if not length > 0:
-        raise ValueError(f"length must be positive, got {length}")
-    duration = as_float(duration, "duration")
-    if not duration > 0:
-        raise ValueError(f"duration must be positive, got {duration}")
+    length = positive_float(length, "length")
+    duration = positive_float(duration, "duration")
     amplitude = as_float(amplitude, "amplitude")
     if not 0 < amplitude < np.pi / 2:
         raise ValueError(f"amplitude must be an angle in (0, pi/2) rad, got {amplitude}")
@@ -319,9 +315,7 @@ def foucault_pendulum(
         # the swing is found from squared excursions, ~amplitude², which leave the normal doubles below 1e-154
         raise ValueError(f"amplitude = {amplitude:g} rad is out of range: below 1e-150 rad the squared excursions "
                          "that locate the swing plane underflow double precision")
-    g = as_float(g, "g")
-    if not g > 0:
-        raise ValueError(f"g must be positive, got {g}")
+    g = positive_float(g, "g")
     latitude = as_float(latitude_deg, "latitude_deg")
     azimuth = np.deg2rad(as_float(azimuth_deg, "azimuth_deg"))
     p = np.concatenate([angular_velocity_enu(latitude, omega), [g, length]])

@@ -14,7 +14,7 @@ from numba import njit, objmode
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._norms import norm
-from .._validation import MAX_TURN, as_float, as_float_array, checked_callable
+from .._validation import MAX_TURN, as_float, as_float_array, checked_callable, positive_float
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -294,9 +294,7 @@ def simulate_particle(
     v0 = as_float_array(v0, "v0", tail=(3,))
     if r0.shape != (3,) or v0.shape != (3,):
         raise ValueError("r0 and v0 must be single vectors of shape (3,)")
-    mass = as_float(mass, "mass")
-    if not mass > 0:
-        raise ValueError(f"mass must be positive, got {mass}")
+    mass = positive_float(mass, "mass")
     gravity = _vector(gravity, "gravity")
     spring = as_float(spring, "spring")
     for name, val in (("rtol", rtol), ("atol", atol)):

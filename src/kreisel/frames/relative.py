@@ -26,7 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .._validation import as_float_array, out_of_range
+from .._validation import as_float_array, out_of_range, positive_array
 from .._norms import norm
 from ..kinematics import five_term_acceleration
 
@@ -98,13 +98,6 @@ def _vectors(**named):
     return [as_float_array(v, k, tail=(3,)) for k, v in named.items()]
 
 
-def _scalar(x, name, positive=False):
-    a = as_float_array(x, name)
-    if positive and np.any(a <= 0):
-        raise ValueError(f"{name} must be positive")
-    return a
-
-
 def _dot(a, b):
     return np.sum(a * b, axis=-1)
 
@@ -150,7 +143,7 @@ def inertial_forces(r, v, omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), 
     ([1.0, 0.0, 0.0], [2.0, 0.0, 0.0])
     """
     r, v, omega, omega_dot, a0 = _vectors(r=r, v=v, omega=omega, omega_dot=omega_dot, a0=a0)
-    m = _scalar(mass, "mass", positive=True)[..., None]
+    m = positive_array(mass, "mass")[..., None]
     with out_of_range("r, v, omega, omega_dot, a0 and mass", "an inertial force") as guard:
         try:
             # each inertial force is -m times a transport or Coriolis term of the five-term acceleration
@@ -176,7 +169,7 @@ def canonical_momentum(r, v, omega, mass=1.0):
     [0.0, 2.0, 0.0]
     """
     r, v, omega = _vectors(r=r, v=v, omega=omega)
-    m = _scalar(mass, "mass", positive=True)[..., None]
+    m = positive_array(mass, "mass")[..., None]
     return m * (v + np.cross(omega, r))
 
 
@@ -189,7 +182,7 @@ def velocity_from_momentum(r, p, omega, mass=1.0):
     [0.0, 0.0, 0.0]
     """
     r, p, omega = _vectors(r=r, p=p, omega=omega)
-    m = _scalar(mass, "mass", positive=True)[..., None]
+    m = positive_array(mass, "mass")[..., None]
     return p / m - np.cross(omega, r)
 
 
@@ -220,8 +213,8 @@ def lagrangian_terms(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     (0.5, 1.0, 0.5)
     """
     r, v, omega, a0 = _vectors(r=r, v=v, omega=omega, a0=a0)
-    potential = _scalar(potential, "potential")
-    m = _scalar(mass, "mass", positive=True)
+    potential = as_float_array(potential, "potential")
+    m = positive_array(mass, "mass")
 
     def compute():
         wr = np.cross(omega, r)
@@ -239,8 +232,8 @@ def lagrangian(r, v, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     2.0
     """
     r, v, omega, a0 = _vectors(r=r, v=v, omega=omega, a0=a0)
-    potential = _scalar(potential, "potential")
-    m = _scalar(mass, "mass", positive=True)
+    potential = as_float_array(potential, "potential")
+    m = positive_array(mass, "mass")
 
     def compute():
         # the inertial speed as a whole: its square overflows only when the kinetic energy does, and
@@ -272,8 +265,8 @@ def hamiltonian_terms(r, p, omega, a0=(0.0, 0.0, 0.0), potential=0.0, mass=1.0):
     (2.0, -2.0)
     """
     r, p, omega, a0 = _vectors(r=r, p=p, omega=omega, a0=a0)
-    potential = _scalar(potential, "potential")
-    m = _scalar(mass, "mass", positive=True)
+    potential = as_float_array(potential, "potential")
+    m = positive_array(mass, "mass")
 
     def compute():
         return _dot(p, p) / (2.0 * m), -_dot(p, np.cross(omega, r)), m * _dot(a0, r), potential

@@ -15,7 +15,7 @@ from math import factorial
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import positive_array
 
 __all__ = ["ConingMotion", "coning_motion", "coning_drift", "coning_coefficients"]
 
@@ -111,13 +111,7 @@ class ConingMotion:
 
 
 def _positive_scalars(**kwargs):
-    out = []
-    for name, value in kwargs.items():
-        a = as_float_array(value, name)
-        if np.any(a <= 0):
-            raise ValueError(f"{name} must be positive, got {value!r}")
-        out.append(a)
-    return np.broadcast_arrays(*out)
+    return np.broadcast_arrays(*(positive_array(value, name) for name, value in kwargs.items()))
 
 
 def coning_motion(half_angle, rate, sample_time, n_samples):

@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
 from .._html import html_table, number
-from .._validation import as_float, as_float_array, check_principal_moments, sample_times
+from .._validation import as_float, as_float_array, check_principal_moments, positive_array, sample_times
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
@@ -126,9 +126,7 @@ def larmor_precession_rate(magnetic_field: ArrayLike, charge: ArrayLike = ELEMEN
     """
     b = as_float_array(magnetic_field, "magnetic_field")
     q = as_float_array(charge, "charge")
-    m = as_float_array(mass, "mass")
-    if np.any(m <= 0.0):
-        raise ValueError("mass must be positive")
+    m = positive_array(mass, "mass")
     # mantissas and binary exponents apart: |q| b/(2m) of 1e-300 T or 1e300 T rounds once, at the end,
     # instead of passing through a subnormal or an overflowing product
     (mq, eq), (mb, eb), (mm, em) = np.frexp(np.abs(q)), np.frexp(b), np.frexp(m)
