@@ -180,6 +180,11 @@ BAD_SIMULATE = [
     (dict(torque=lambda t, q, w: "x"), TypeError, "torque"),
     (dict(torque=lambda t, q, w: np.array([np.nan, 0, 0])), ValueError, "non-finite"),
     (dict(rtol=0.0), ValueError, "rtol"),
+    # float() parsed these strings: a tolerance or step typed as text ran silently
+    (dict(method="splitting", dt="0.01"), TypeError, "dt must be real numbers"),
+    (dict(rtol="1e-8"), TypeError, "rtol must be real numbers"),
+    (dict(atol="1e-8"), TypeError, "atol must be real numbers"),
+    (dict(method="splitting", dt=[0.01, 0.02]), ValueError, "dt must be a single number"),
 ]
 
 

@@ -59,7 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
 from .._compiled.outputs import empty
-from .._validation import as_float_array, check_allocation, check_inertia_tensor, check_principal_moments, checked_callable
+from .._validation import as_float, as_float_array, check_allocation, check_inertia_tensor, check_principal_moments, checked_callable
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
 from . import _integrators
@@ -169,7 +169,7 @@ def _check_method(method: str | None, dt: float | None, t: _Array) -> tuple[str,
         return method, 0.0
     if dt is None:
         raise ValueError(f"method {method!r} is fixed-step: pass dt (the largest step, seconds)")
-    dt = float(dt)
+    dt = as_float(dt, "dt", finite=False)
     if not (math.isfinite(dt) and dt > 0.0):
         raise ValueError(f"dt must be a positive finite number, got {dt}")
     return method, dt
@@ -311,7 +311,7 @@ def _raise_status(status: ArrayLike) -> None:
 def _atol(atol: float | None, omega_scale: _Array, ny: int, rtol: float) -> _Array:
     """Absolute tolerance per component: scaled by |ω0| so rtol is meaningful in any units."""
     if atol is not None:
-        a = float(atol)
+        a = as_float(atol, "atol", finite=False)
         if not (math.isfinite(a) and a > 0.0):
             raise ValueError(f"atol must be a positive finite number, got {atol}")
         if a < 1e-150:
@@ -325,7 +325,7 @@ def _atol(atol: float | None, omega_scale: _Array, ny: int, rtol: float) -> _Arr
 
 
 def _check_rtol(rtol: float) -> float:
-    rtol = float(rtol)
+    rtol = as_float(rtol, "rtol", finite=False)
     if not (math.isfinite(rtol) and 1e-15 <= rtol < 1.0):
         raise ValueError(f"rtol must be in [1e-15, 1), got {rtol}")
     return rtol
