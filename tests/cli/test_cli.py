@@ -117,6 +117,24 @@ def test_simulate_and_plot_errors(tmp_path, racket_toml):
     assert "Traceback" not in result.output
 
 
+def test_an_output_in_a_missing_directory_is_refused_before_the_run(tmp_path, racket_toml):
+    # simulate used to run the whole scenario and then end in a traceback (exit 1) when saving
+    scenario = tmp_path / "short.toml"
+    scenario.write_text(racket_toml)
+    missing = tmp_path / "absent"
+    result = run("simulate", str(scenario), "-o", str(missing / "traj.nc"))
+    assert result.exit_code == 2, result.output
+    assert f"-o: directory {str(missing)!r} does not exist" in result.output
+    assert "first integrals" not in result.output and "Traceback" not in result.output
+    traj = tmp_path / "traj.nc"
+    assert run("simulate", str(scenario), "-o", str(traj)).exit_code == 0
+    for args in (("plot", str(traj), "-o", str(missing / "p.png")),
+                 ("animate", str(traj), "-o", str(missing / "a.gif"), "--frames", "2")):
+        result = run(*args)
+        assert result.exit_code == 2 and "-o: directory" in result.output, result.output
+    assert not missing.exists()
+
+
 def test_examples_list_and_copy(tmp_path):
     result = run("examples")
     assert result.exit_code == 0

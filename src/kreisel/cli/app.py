@@ -196,6 +196,7 @@ def simulate(
     if output is not None:
         if output.suffix not in SUFFIXES:
             usage_error(f"-o: unsupported output {output.name!r} (expected {', '.join(SUFFIXES)})")
+        _check_directory("-o", output)
         require_backends(output.suffix, "writing results")  # before the run, not after it
     try:
         spec = load_scenario(scenario)
@@ -235,6 +236,7 @@ def plot(
 
     # matplotlib and the file's readers, named together in one line before any work
     require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel plot")
+    _check_directory("-o", output)
     from .. import plot as plots
     from ..dynamics import Trajectory
     from ..io.run import trajectory_integrals
@@ -271,6 +273,7 @@ def animate(
     from ..io.results import ResultError, backend_needs, load_trajectory
 
     require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel animate")
+    _check_directory("-o", output)
     from ..plot.animation import animate as run
 
     try:
@@ -382,6 +385,12 @@ def sweep(
         say(f"wrote {plot_file}")
 
 
+def _check_directory(option, target):
+    """An output whose directory does not exist is a usage error, found before the run rather than after it."""
+    if target is not None and not target.parent.is_dir():
+        usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
+
+
 def _check_plot_file(plot_file):
     """A ``--plot`` output that is not .png, .svg or .pdf is a usage error (before any work)."""
     if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
@@ -413,9 +422,8 @@ def fit(
     _check_plot_file(plot_file)
     if plot_file is not None:
         require_all([("matplotlib", "plot")], feature="kreisel fit --plot")   # before the fit
-    for option, target in (("--plot", plot_file), ("--json", json_file)):
-        if target is not None and not target.parent.is_dir():
-            usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
+    _check_directory("--plot", plot_file)
+    _check_directory("--json", json_file)
     if not recording.exists() and str(recording) in RECORDINGS:
         recording = recording_path(str(recording))
     try:
