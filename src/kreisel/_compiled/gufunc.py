@@ -369,8 +369,16 @@ def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], core_out: tuple
     if n < PARALLEL_THRESHOLD or batches:
         return None
     out = empty((*batch, *core_out))
-    flat = [_writable(np.ascontiguousarray(a)).reshape(-1, a.shape[-1]) for a in inputs]
-    return out, loop(*flat, out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
+    return out, loop(*map(loop_rows, inputs), out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
+
+
+def loop_rows(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``a`` as C-ordered, writable rows ``(n, a.shape[-1])`` for a multi-core loop (a copy only if it is not).
+
+    numba types read-only and strided arrays apart: passing every loop this
+    kind of array keeps each compiled for one signature.
+    """
+    return _writable(np.ascontiguousarray(a)).reshape(-1, a.shape[-1])
 
 
 def vector_array(v: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:

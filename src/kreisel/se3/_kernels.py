@@ -9,13 +9,17 @@ quaternion algebra comes from :mod:`kreisel._compiled.kernels`.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel
-from .._compiled.gufunc import checked_in_one_pass, finite3, finite_array, gufunc, refuse_nonfinite
+from .._compiled import gufunc as _gufunc
+from .._compiled.gufunc import LazyGufunc, checked_in_one_pass, finite3, finite_array, gufunc
+from .._compiled.gufunc import loop_rows, refuse_nonfinite
+from .._compiled.outputs import empty
 from .._validation import as_float_array
 
 _F8 = "f8[:]"
@@ -32,24 +36,42 @@ def split(pose: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.fl
 
 @parallel
 def _compose_parallel(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.float64], t2: NDArray[np.float64],
-                      out: NDArray[np.float64]) -> None:
+                      q: NDArray[np.float64], t: NDArray[np.float64]) -> None:
     for i in prange(q1.shape[0]):
         a0, a1, a2, a3 = q1[i, 0], q1[i, 1], q1[i, 2], q1[i, 3]
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_product(a0, a1, a2, a3, q2[i, 0], q2[i, 1], q2[i, 2], q2[i, 3])
+        q[i, 0], q[i, 1], q[i, 2], q[i, 3] = kernels.quat_product(a0, a1, a2, a3, q2[i, 0], q2[i, 1], q2[i, 2], q2[i, 3])
         r0, r1, r2 = kernels.rotated(a0, a1, a2, a3, t2[i, 0], t2[i, 1], t2[i, 2])
-        out[i, 4], out[i, 5], out[i, 6] = r0 + t1[i, 0], r1 + t1[i, 1], r2 + t1[i, 2]
+        t[i, 0], t[i, 1], t[i, 2] = r0 + t1[i, 0], r1 + t1[i, 1], r2 + t1[i, 2]
 
 
 @parallel
-def _invert_parallel(q: NDArray[np.float64], t: NDArray[np.float64], out: NDArray[np.float64]) -> None:
+def _invert_parallel(q: NDArray[np.float64], t: NDArray[np.float64], q_out: NDArray[np.float64],
+                     t_out: NDArray[np.float64]) -> None:
     for i in prange(q.shape[0]):
         q0, q1, q2, q3 = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
         r0, r1, r2 = kernels.rotated(q0, -q1, -q2, -q3, t[i, 0], t[i, 1], t[i, 2])
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4], out[i, 5], out[i, 6] = q0, -q1, -q2, -q3, -r0, -r1, -r2
+        q_out[i, 0], q_out[i, 1], q_out[i, 2], q_out[i, 3] = q0, -q1, -q2, -q3
+        t_out[i, 0], t_out[i, 1], t_out[i, 2] = -r0, -r1, -r2
+
+
+def _poses(loop: Callable[..., None], small: LazyGufunc,
+           inputs: tuple[NDArray[np.float64], ...]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(q, t)`` of a large batch from ``loop(*inputs, q, t)`` on all cores, else :func:`split` of ``small(*inputs)``.
+
+    Separate C-ordered q and t, not views of one packed result: the next
+    multi-core loop on them would have to copy strided views first.
+    """
+    batch = inputs[0].shape[:-1]
+    n = math.prod(batch)
+    if n < _gufunc.PARALLEL_THRESHOLD or any(a.shape[:-1] != batch for a in inputs):
+        return split(small(*inputs))
+    q, t = empty((*batch, 4)), empty((*batch, 3))
+    loop(*(loop_rows(a) for a in inputs), q.reshape(n, 4), t.reshape(n, 3))
+    return q, t
 
 
 # Results are packed as [q, t] in one (7,) core: one output array per call.
-@gufunc(_signature(6), "(4),(3),(4),(3),(7)->(7)", parallel=_compose_parallel)
+@gufunc(_signature(6), "(4),(3),(4),(3),(7)->(7)")
 def _compose(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.float64], t2: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     kernels.qmul(q1, q2, out[:4])
     kernels.qrotate(q1, t2, out[4:])
@@ -58,7 +80,7 @@ def _compose(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.fl
     out[6] += t1[2]
 
 
-@gufunc(_signature(4), "(4),(3),(7)->(7)", parallel=_invert_parallel)
+@gufunc(_signature(4), "(4),(3),(7)->(7)")
 def _invert(q: NDArray[np.float64], t: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArray[np.float64]) -> None:
     out[0] = q[0]
     out[1] = -q[1]
@@ -72,12 +94,12 @@ def _invert(q: NDArray[np.float64], t: NDArray[np.float64], carrier: NDArray[np.
 
 def compose(q1: NDArray[np.float64], t1: NDArray[np.float64], q2: NDArray[np.float64], t2: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(q1, t1)(q2, t2) = (q1 q2, R(q1) t2 + t1): apply pose 2, then pose 1."""
-    return split(_compose(q1, t1, q2, t2))
+    return _poses(_compose_parallel, _compose, (q1, t1, q2, t2))
 
 
 def invert(q: NDArray[np.float64], t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(q, t)⁻¹ = (q*, -R(q)ᵀ t)."""
-    return split(_invert(q, t))
+    return _poses(_invert_parallel, _invert, (q, t))
 
 
 @gufunc(_signature(4), "(4),(3),(3)->(3)")
