@@ -42,3 +42,29 @@ def test_coming_from_scipy_translation_agrees_with_scipy():
     scipy_rotation = Rotation.from_euler("ZXZ", [30, 45, 60], degrees=True)
     assert np.allclose(namespace["q_wxyz"], np.roll(scipy_rotation.as_quat(), 1))
     assert np.allclose(namespace["v"], scipy_rotation.apply([1.0, 0.0, 0.0]))
+
+
+def test_coming_from_gimbal_lock_splits_are_the_ones_stated():
+    import warnings
+
+    import numpy as np
+    from scipy.spatial.transform import Rotation
+
+    import kreisel as kr
+
+    def both(seq, angles):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # scipy's "Gimbal lock detected"
+            theirs = Rotation.from_euler(seq, angles).as_euler(seq)
+        return kr.Rotation.from_euler(seq, angles).as_euler(seq), theirs
+
+    ours, theirs = both("ZXZ", [0.3, 0.0, 0.7])  # exactly singular, intrinsic: the same split
+    np.testing.assert_allclose(ours, [1.0, 0.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(theirs, [1.0, 0.0, 0.0], atol=1e-15)
+    ours, theirs = both("zxz", [0.3, 0.0, 0.7])  # extrinsic: kreisel zeroes the first angle, scipy the third
+    np.testing.assert_allclose(ours, [0.0, 0.0, 1.0], atol=1e-15)
+    np.testing.assert_allclose(theirs, [1.0, 0.0, 0.0], atol=1e-15)
+    ours, theirs = both("ZXZ", [0.3, np.pi, 0.7])  # cos(pi/2) is not 0 in floating point
+    np.testing.assert_allclose(ours, [0.3, np.pi, 0.7], atol=1e-15)
+    np.testing.assert_allclose(theirs, [-0.4, np.pi, 0.0], atol=1e-15)
+    assert kr.Rotation.from_euler("ZXZ", ours).approx_equal(kr.Rotation.from_euler("ZXZ", theirs))
