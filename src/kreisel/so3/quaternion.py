@@ -40,6 +40,13 @@ __all__ = [
 def _applied(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: float) -> tuple[float, float, float]:
     # q v q* / |q|²: the rotation R(q/|q|) applied to v, valid for any nonzero norm.
     q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
+    return _applied_squarable(q0, q1, q2, q3, x, y, z)
+
+
+@vectorised
+def _applied_squarable(q0: float, q1: float, q2: float, q3: float, x: float, y: float,
+                       z: float) -> tuple[float, float, float]:
+    # _applied of a q that squarable leaves as it is, with unchecked divisions (a loop of it vectorises)
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
     c0 = q2 * z - q3 * y
     c1 = q3 * x - q1 * z
@@ -252,6 +259,26 @@ def _rotated(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.flo
     return bad
 
 
+@vectorised
+def _rotated_in_range(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int,
+                      sign: float) -> bool:
+    # _rotated of rows start..stop-1 and whether none of them needs a flag or
+    # squarable's division: every q finite with its size in (SIZE_LOW,
+    # SIZE_HIGH) and every result finite (then so is every v). No branch, flat
+    # views: the loop vectorises; otherwise the caller runs _rotated anew.
+    a = q.reshape(q.size)[4 * start:4 * stop]
+    b = v.reshape(v.size)[3 * start:3 * stop]
+    c = out.reshape(out.size)[3 * start:3 * stop]
+    inside = True
+    for j in range(stop - start):
+        i, k = 4 * j, 3 * j
+        q0, q1, q2, q3 = a[i], a[i + 1], a[i + 2], a[i + 3]
+        r0, r1, r2 = _applied_squarable(q0, sign * q1, sign * q2, sign * q3, b[k], b[k + 1], b[k + 2])
+        c[k], c[k + 1], c[k + 2] = r0, r1, r2
+        inside &= kernels.squarable_as_is(q0, q1, q2, q3) & finite3(r0, r1, r2)
+    return inside
+
+
 #: Operations of :func:`_product_checked`.
 _MULTIPLY, _APPLY = 0, 1
 
@@ -269,6 +296,8 @@ def _product_checked(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArra
         start, stop = c * chunk, min(n, (c + 1) * chunk)
         if operation == _MULTIPLY:
             flags[c] = _multiplied(a, b, out, start, stop)
+        elif _rotated_in_range(a, b, out, start, stop, sign):
+            flags[c] = 0
         else:
             flags[c] = _rotated(a, b, out, start, stop, sign)
     union = 0
