@@ -106,6 +106,22 @@ def test_files_written_before_the_formats_had_one_owner_still_load(tmp_path, tra
     assert sorted(p.name for p in tmp_path.iterdir()) == ["new.nc", "old.nc", "old.parquet"]  # written atomically
 
 
+def test_a_truncated_csv_file_is_refused_not_read_with_nan(tmp_path, trajectory):
+    path = tmp_path / "traj.csv"
+    trajectory.save(path)
+    text = path.read_bytes()
+    rows = text.splitlines(keepends=True)
+    cut = tmp_path / "cut.csv"
+    cut.write_bytes(text[:len(text) - len(rows[-1]) + 12])  # within the last row's quaternion
+    with pytest.raises(ValueError, match="ends within a row"):
+        kr.Trajectory.load(cut)
+    cut.write_bytes(b"".join(rows[:-3]))  # whole rows lost
+    with pytest.raises(ValueError, match="holds 18 of the 21 rows"):
+        kr.Trajectory.load(cut)
+    with pytest.raises(kr.io.ResultError, match="not a readable kreisel trajectory.*truncated"):
+        kr.io.load_trajectory(cut)
+
+
 def test_extra_arrays_may_not_hide_trajectory_attributes():
     args = ([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
     for name in ("euler", "energy", "drift", "omega_space"):

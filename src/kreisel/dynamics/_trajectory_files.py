@@ -5,10 +5,12 @@ reader; :mod:`kreisel.io` (``save_result``, ``load_trajectory``) calls them.
 NetCDF (xarray's scipy engine) holds batches, with CF ``units`` and
 ``long_name`` on the variables. CSV and Parquet hold one body as the table of
 :meth:`Trajectory.to_pandas` (numbers with 17 significant digits in CSV), with
-the inertia tensor, ``meta`` and the names of the extra arrays in a JSON
-header: a leading ``# kreisel-trajectory`` comment line in CSV, the frame's
-``kreisel`` attribute in Parquet (files written before the header named the
-extra arrays still load). Files are written atomically.
+the inertia tensor, ``meta``, the names of the extra arrays and the number of
+samples in a JSON header: a leading ``# kreisel-trajectory`` comment line in
+CSV, the frame's ``kreisel`` attribute in Parquet (files written before the
+header named the extra arrays or counted the samples still load). Files are
+written atomically; a CSV file that lost rows or ends within one (an
+interrupted copy) is refused, not read with the missing values as NaN.
 """
 
 from __future__ import annotations
@@ -44,7 +46,7 @@ def save(trajectory: Any, path: str | os.PathLike[str]) -> None:
     if suffix in _TABLES and trajectory.batch_shape:
         raise ValueError(f"{_TABLES[suffix]} holds one body; save a batched trajectory as .nc")
     header = json.dumps({"inertia": trajectory.inertia.tolist(), "meta": trajectory.meta,
-                         "extra": list(trajectory._extra)}, default=str)
+                         "extra": list(trajectory._extra), "samples": len(trajectory)}, default=str)
     with atomic_output(path) as tmp:
         if suffix == ".nc":
             cf_labelled(trajectory.to_xarray()).to_netcdf(tmp, engine="scipy")
@@ -56,6 +58,17 @@ def save(trajectory: Any, path: str | os.PathLike[str]) -> None:
             frame = trajectory.to_pandas()
             frame.attrs["kreisel"] = header
             frame.to_parquet(tmp)
+
+
+def _check_complete(path: pathlib.Path, frame: Any, header: dict[str, Any]) -> None:
+    """Refuse a CSV file cut short: pandas reads the missing fields of a partial last row as NaN."""
+    with open(path, "rb") as fh:
+        fh.seek(-1, os.SEEK_END)
+        if fh.read(1) != b"\n":
+            raise ValueError(f"{path} ends within a row (a truncated file?)")
+    samples = header.get("samples", len(frame))
+    if len(frame) != samples:
+        raise ValueError(f"{path} holds {len(frame)} of the {samples} rows it was written with (a truncated file?)")
 
 
 def load(cls: type[_T], path: str | os.PathLike[str]) -> _T:
@@ -76,6 +89,7 @@ def load(cls: type[_T], path: str | os.PathLike[str]) -> _T:
                 raise ValueError(f"{path} is not a kreisel trajectory CSV")
             header = json.loads(first[len(_CSV_MARK):])
             frame = pd.read_csv(fh, index_col=0)
+        _check_complete(path, frame, header)
     extra = {}
     for name in header.get("extra", ()):
         columns = [f"{name}_{c}" for c in _AXES]
