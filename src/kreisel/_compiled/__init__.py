@@ -129,7 +129,9 @@ cached: Callable[[_Function], _Function] = njit(cache=True, nogil=True)
 inlined: Callable[[_Function], _Function] = njit(cache=True, nogil=True, inline="always")
 #: As :data:`cached`, with numpy's error model: a division by zero gives inf
 #: or nan instead of raising, so a loop that divides needs no test per element
-#: and vectorises (SIMD). For loops over samples whose divisors are never zero.
+#: and vectorises (SIMD). For such loops and the element kernels they call,
+#: where the divisors are never zero (a loop that may meet a zero divisor
+#: flags its piece and leaves it to a checked loop).
 vectorised: Callable[[_Function], _Function] = njit(cache=True, nogil=True, error_model="numpy")
 #: Routines compiled anew for each argument type (a compiled function, a tuple
 #: of any length): never cached on their own, always inlined into a cached caller.
