@@ -208,7 +208,8 @@ def test_simulate_agrees_with_exact_solution():
 
 
 def test_bad_input():
-    with pytest.raises(ValueError, match="mgl"):
+    # mgl is a weight times a length: the refusal used to call it a moment of inertia
+    with pytest.raises(ValueError, match=r"^mgl must be a single positive number, got -1.0$"):
         kr.LagrangeTop(1.0, 0.5, -1.0)
     with pytest.raises(ValueError, match="theta"):
         TOP.turning_points([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])

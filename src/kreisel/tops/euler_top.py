@@ -105,7 +105,7 @@ def _check_moments(values: tuple[ArrayLike, ...], names: tuple[str, ...]) -> NDA
     for given, name in zip(values, names):
         value = as_float_array(given, name)
         if value.ndim != 0 or not value > 0.0:
-            raise ValueError(f"{name} must be a positive scalar moment of inertia, got {value!r}")
+            raise ValueError(f"{name} must be a single positive number, got {value.tolist()!r}")
         moments.append(float(value))
     return np.array(moments)
 
