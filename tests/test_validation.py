@@ -84,6 +84,25 @@ def test_allow_unphysical_skips_only_the_triangle_inequality_and_everywhere_alik
         assert _verdict(call, [1.0, 1.0, 5.0]) and not _verdict(call, [1e-10, 1.0, 5.0])
 
 
+def test_allow_unphysical_and_the_rate_maps_degrees_take_only_booleans():
+    # truthy text skipped the triangle inequality, or read radians as degrees, silently
+    for call in (lambda f: kr.simulate([1.0, 1.0, 5.0], T, OMEGA, method="rk4", dt=1e-3, allow_unphysical=f),
+                 lambda f: kr.EulerTop(1.0, 1.0, 5.0, allow_unphysical=f)):
+        with pytest.raises(TypeError, match="allow_unphysical must be True or False, got 'no'"):
+            call("no")
+    angles, rates = [0.1, 0.5, 0.2], [0.0, 0.0, 1.0]
+    for call in (lambda f: kr.euler_rate_matrix("ZXZ", angles, frame="body", degrees=f),
+                 lambda f: kr.euler_rate_matrix_inverse("ZXZ", angles, frame="body", degrees=f),
+                 lambda f: kr.euler_rates("ZXZ", angles, rates, frame="body", degrees=f),
+                 lambda f: kr.angular_velocity_from_euler_rates("ZXZ", angles, rates, frame="body", degrees=f),
+                 lambda f: kr.euler_rates_singular("ZXZ", angles, degrees=f),
+                 lambda f: kr.angular_acceleration_from_euler("ZXZ", angles, rates, rates, frame="body", degrees=f)):
+        for bad in ("no", None):
+            with pytest.raises(TypeError, match="degrees must be True or False"):
+                call(bad)
+        call(False)
+
+
 def _asymmetric(relative):
     """A symmetric tensor with largest entry 3 and I_01 - I_10 = ``relative`` times 3."""
     tensor = np.array([[2.0, 0.5, 0.0], [0.5, 2.0, 0.0], [0.0, 0.0, 3.0]])

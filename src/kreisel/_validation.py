@@ -394,7 +394,7 @@ def check_principal_moments(moments: ArrayLike, name: str, definite: bool = True
     if np.any(bad):
         raise ValueError(f"{name}: principal moments {m[bad][0]} must not be negative (positive semi-definite, "
                          f"to within {INERTIA_TOLERANCE:g} of their sum)")
-    if allow_unphysical:
+    if check_flag(allow_unphysical, "allow_unphysical"):
         return m
     excess = (2.0 * np.max(unit, axis=-1) - trace) / np.where(trace > 0.0, trace, 1.0)
     bad = excess > INERTIA_TOLERANCE

@@ -33,7 +33,7 @@ from numba import prange
 from .._compiled import cached, dexp, parallel
 from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import gufunc
-from .._validation import check_frame, check_tolerance, warn_if_any
+from .._validation import check_flag, check_frame, check_tolerance, warn_if_any
 from ..so3.euler import parse_sequence
 from ._checks import same_batch, vectors
 from ._singularity import SINGULAR_TOL, GimbalLockWarning
@@ -157,7 +157,7 @@ def _matrix_inverse(angles: NDArray[np.float64], code: NDArray[np.int64], tol: f
 
 def _angles(angles: ArrayLike, degrees: bool, name: str = "angles") -> NDArray[np.float64]:
     a = vectors(angles, name)
-    return np.deg2rad(a) if degrees else a
+    return np.deg2rad(a) if check_flag(degrees, "degrees") else a
 
 
 @takes_out
