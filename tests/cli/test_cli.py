@@ -133,6 +133,11 @@ def test_an_output_in_a_missing_directory_is_refused_before_the_run(tmp_path, ra
         result = run(*args)
         assert result.exit_code == 2 and "-o: directory" in result.output, result.output
     assert not missing.exists()
+    folder = tmp_path / "folder.nc"  # os.replace of the finished file onto it failed after the run
+    folder.mkdir()
+    result = run("simulate", str(scenario), "-o", str(folder))
+    assert result.exit_code == 2 and f"-o: {str(folder)!r} is a directory" in result.output, result.output
+    assert "first integrals" not in result.output and "Traceback" not in result.output
 
 
 def test_examples_list_and_copy(tmp_path):

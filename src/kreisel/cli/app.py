@@ -386,9 +386,11 @@ def sweep(
 
 
 def _check_directory(option, target):
-    """An output whose directory does not exist is a usage error, found before the run rather than after it."""
+    """An output file whose directory does not exist, or that is a directory, is a usage error found before the run."""
     if target is not None and not target.parent.is_dir():
         usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
+    if target is not None and target.is_dir():
+        usage_error(f"{option}: {str(target)!r} is a directory; name a file to write")
 
 
 def _check_plot_file(plot_file):
