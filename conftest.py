@@ -1,6 +1,6 @@
 """Test-session set-up shared by tests/ and the doctests in src/kreisel.
 
-Compiled code: a source checkout compiles into ``.numba_cache/<state>/<worker>``,
+Compiled code: a source checkout compiles into ``.numba_cache/<state>/shared``,
 keyed by the state of the package sources (:mod:`kreisel._compiled` sets this
 up on import, for tests and every other run alike). Here, the main process
 removes the caches of earlier source states, which are never valid again, and

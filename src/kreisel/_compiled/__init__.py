@@ -63,15 +63,16 @@ Inlining and stale caches
     repository root instead, ``<state>`` a digest of the paths, sizes and
     modification times of the package sources, so any edit starts a fresh
     cache: tests, ``make demo``, ``make bench`` and ``make docs`` never run
-    stale machine code. Each pytest-xdist worker compiles into a directory of
-    its own. A ``NUMBA_CACHE_DIR`` set by the user is respected.
+    stale machine code. A ``NUMBA_CACHE_DIR`` set by the user is respected.
 Processes sharing a cache
-    A test worker and the command-line runs it starts, dask or
+    The pytest-xdist workers and the command-line runs they start, dask or
     multiprocessing workers on a fresh install: processes that share a
     cache directory load or compile one at a time, under numba's compiler
-    lock made an inter-process file lock (:mod:`.compile_lock`). Without it,
-    a gufunc kernel saved by one process next to the wrapper saved by another
-    segfaulted every process that loaded them.
+    lock made an inter-process file lock (:mod:`.compile_lock`), so what one
+    compiled the others load. Without it, a gufunc kernel saved by one
+    process next to the wrapper saved by another segfaulted every process
+    that loaded them. Where there is no ``fcntl`` (Windows), each test
+    worker compiles into a directory of its own.
 """
 
 from __future__ import annotations
@@ -108,16 +109,17 @@ def checkout_cache_root():
     return root / ".numba_cache"
 
 
-def _use_checkout_cache():
+def _use_checkout_cache(shared):
     caches = checkout_cache_root()
     if caches is None or os.environ.get("NUMBA_CACHE_DIR"):
         return
-    numba.config.CACHE_DIR = str(caches / source_state() / os.environ.get("PYTEST_XDIST_WORKER", "main"))
+    # without an inter-process lock (no fcntl), each test worker keeps a cache of its own
+    numba.config.CACHE_DIR = str(caches / source_state() / ("shared" if shared else
+                                                             os.environ.get("PYTEST_XDIST_WORKER", "main")))
 
 
 # before any kernel is decorated: numba picks a function's cache directory then
-_use_checkout_cache()
-compile_lock.install()
+_use_checkout_cache(compile_lock.install())
 
 # to type checkers a flavour returns the function it compiles (numba has no annotations for njit)
 _Function = TypeVar("_Function", bound=Callable[..., Any])
