@@ -25,7 +25,7 @@ import numpy as np
 from numba import prange
 from numpy.typing import NDArray
 
-from .._compiled import cached, inlined, parallel
+from .._compiled import cached, generic, inlined, parallel
 from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
 from .._compiled.dop853 import new_state as _dop853_state
 from .._compiled.kernels import rotated
@@ -61,24 +61,23 @@ def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64],
     ``rows``/``frows`` are None for no torque/force: numba then compiles a
     specialisation without the model evaluation (measurably faster loops).
     """
-    w0, w1, w2 = y[0], y[1], y[2]
-    q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
     evaluate_torque(rows, t, y, scratch)
-    m0, m1, m2 = scratch[7], scratch[8], scratch[9]
-    i0, i1, i2 = inertia[0], inertia[1], inertia[2]
-    dy[offset] = ((i1 - i2) * w1 * w2 + m0) / i0
-    dy[offset + 1] = ((i2 - i0) * w2 * w0 + m1) / i1
-    dy[offset + 2] = ((i0 - i1) * w0 * w1 + m2) / i2
-    d0, d1, d2, d3 = quat_product(q0, q1, q2, q3, 0.0, w0, w1, w2)
-    dy[offset + 3] = 0.5 * d0
-    dy[offset + 4] = 0.5 * d1
-    dy[offset + 5] = 0.5 * d2
-    dy[offset + 6] = 0.5 * d3
+    dy[offset], dy[offset + 1], dy[offset + 2], dy[offset + 3], dy[offset + 4], dy[offset + 5], dy[offset + 6] = \
+        _euler_rates(inertia[0], inertia[1], inertia[2], scratch[7], scratch[8], scratch[9],
+                     y[0], y[1], y[2], y[3], y[4], y[5], y[6])
     if ny == 13:
         evaluate_force(frows, t, y, scratch)
         for k in range(3):
             dy[offset + 7 + k] = y[10 + k]
             dy[offset + 10 + k] = scratch[10 + k] / mass
+
+
+@cached
+def _euler_rates(i0, i1, i2, m0, m1, m2, w0, w1, w2, q0, q1, q2, q3):
+    """(ω̇′, q̇) of the principal moments ``i``, the body torque ``m`` and the state ``(ω′, q)``, as numbers."""
+    d0, d1, d2, d3 = quat_product(q0, q1, q2, q3, 0.0, w0, w1, w2)
+    return (((i1 - i2) * w1 * w2 + m0) / i0, ((i2 - i0) * w2 * w0 + m1) / i1, ((i0 - i1) * w0 * w1 + m2) / i2,
+            0.5 * d0, 0.5 * d1, 0.5 * d2, 0.5 * d3)
 
 
 @inlined
@@ -252,19 +251,52 @@ def _kick_drift_kick(method, t, h, inertia, rows, y, scratch):
 
 
 @cached
-def _rk4(t, h, inertia, rows, y, y0, k, tmp, scratch):
-    """Classical RK4 on (ω′, q); ``k`` holds the four stages at offsets 0, 7, 14, 21."""
-    for i in range(7):
-        y0[i] = y[i]
-    rhs(t, y0, 7, inertia, 1.0, rows, None, k, 0, scratch)
-    for s in range(1, 4):
-        a = h if s == 3 else 0.5 * h
-        for i in range(7):
-            tmp[i] = y0[i] + a * k[7 * (s - 1) + i]
-        rhs(t + a, tmp, 7, inertia, 1.0, rows, None, k, 7 * s, scratch)
-    for i in range(7):
-        y[i] = y0[i] + h / 6.0 * (k[i] + 2.0 * k[7 + i] + 2.0 * k[14 + i] + k[21 + i])
-    y[3], y[4], y[5], y[6] = quat_unit(y[3], y[4], y[5], y[6])
+def _rates_at(t, i0, i1, i2, rows, stage, scratch, y):
+    """:func:`_euler_rates` at the state ``y`` (a 7-tuple) under the torque table ``rows``.
+
+    No torque (``rows`` None): numba prunes the model branch at compile
+    time and the state never leaves the registers; a model reads the state
+    from the array ``stage`` (``scratch`` as in :func:`rhs`).
+    """
+    m0 = m1 = m2 = 0.0
+    if rows is not None:
+        stage[0], stage[1], stage[2], stage[3], stage[4], stage[5], stage[6] = y
+        evaluate_torque(rows, t, stage, scratch)
+        m0, m1, m2 = scratch[7], scratch[8], scratch[9]
+    return _euler_rates(i0, i1, i2, m0, m1, m2, *y)
+
+
+@cached
+def _shifted(y, a, k):
+    """``y + a k`` for 7-tuples."""
+    return (y[0] + a * k[0], y[1] + a * k[1], y[2] + a * k[2], y[3] + a * k[3], y[4] + a * k[4], y[5] + a * k[5],
+            y[6] + a * k[6])
+
+
+@cached
+def _rk4_sum(y, c, k1, k2, k3, k4, i):
+    return y[i] + c * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@cached
+def _rk4_step(t, h, i0, i1, i2, rows, stage, scratch, y):
+    """Classical RK4 on the 7-tuple ``y = (ω′, q)``, q renormalised; the new state as a tuple (see :func:`_rates_at`)."""
+    k1 = _rates_at(t, i0, i1, i2, rows, stage, scratch, y)
+    k2 = _rates_at(t + 0.5 * h, i0, i1, i2, rows, stage, scratch, _shifted(y, 0.5 * h, k1))
+    k3 = _rates_at(t + 0.5 * h, i0, i1, i2, rows, stage, scratch, _shifted(y, 0.5 * h, k2))
+    k4 = _rates_at(t + h, i0, i1, i2, rows, stage, scratch, _shifted(y, h, k3))
+    c = h / 6.0
+    q0, q1, q2, q3 = quat_unit(_rk4_sum(y, c, k1, k2, k3, k4, 3), _rk4_sum(y, c, k1, k2, k3, k4, 4),
+                               _rk4_sum(y, c, k1, k2, k3, k4, 5), _rk4_sum(y, c, k1, k2, k3, k4, 6))
+    return (_rk4_sum(y, c, k1, k2, k3, k4, 0), _rk4_sum(y, c, k1, k2, k3, k4, 1), _rk4_sum(y, c, k1, k2, k3, k4, 2),
+            q0, q1, q2, q3)
+
+
+@cached
+def _rk4(t, h, inertia, rows, y, stage, scratch):
+    """:func:`_rk4_step` on the array ``y`` (its first 7 components)."""
+    y[0], y[1], y[2], y[3], y[4], y[5], y[6] = _rk4_step(t, h, inertia[0], inertia[1], inertia[2], rows, stage, scratch,
+                                                         (y[0], y[1], y[2], y[3], y[4], y[5], y[6]))
 
 
 @cached
@@ -362,7 +394,7 @@ def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
         status += _kick_drift_kick(SPLITTING, t2, YOSHIDA_OUTER * h, inertia, rows, y, scratch)
         return status
     if method == RK4:
-        _rk4(t, h, inertia, rows, y, wa, wc, wb, scratch)
+        _rk4(t, h, inertia, rows, y, wa, scratch)
         return OK
     if method == RKMK4:
         _rkmk4(t, h, inertia, rows, y, wa, wb, wc, wd, scratch)
@@ -379,7 +411,7 @@ def _advance(method, t0, h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch):
     """
     if method == RK4:
         for s in range(s0, s0 + n):
-            _rk4(t0 + s * h, h, inertia, rows, y, wa, wc, wb, scratch)
+            _rk4(t0 + s * h, h, inertia, rows, y, wa, scratch)
     elif method == RKMK4:
         for s in range(s0, s0 + n):
             _rkmk4(t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
@@ -441,19 +473,19 @@ def step_grid(t_out: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
     return np.stack([span / counts, counts])
 
 
-@inlined
-def _store(out, j, w0, w1, w2, q0, q1, q2, q3):
-    """``out[j, 0:7] = (ω′, q/|q|)``: an output sample, its attitude as a unit quaternion.
+@cached
+def _sample(w0, w1, w2, q0, q1, q2, q3):
+    """The output sample ``(ω′, q/|q|)``: its attitude as a unit quaternion.
 
     The squares are summed in numpy's order (``np.linalg.norm`` over the last
     axis), so the samples carry the same bits as normalising the whole output
-    afterwards would give, without a second pass over it. Inlined: a call
-    handed ``out`` would update its reference count per sample, a count that
-    every body of a parallel batch shares.
+    afterwards would give, without a second pass over it. The drivers write
+    the tuple into the output themselves: no helper is handed the output
+    array, whose reference count (shared by every body of a parallel batch,
+    hence by both cores) numba would otherwise update per sample.
     """
     q0, q1, q2, q3 = quat_unit(q0, q1, q2, q3)
-    out[j, 0], out[j, 1], out[j, 2] = w0, w1, w2
-    out[j, 3], out[j, 4], out[j, 5], out[j, 6] = q0, q1, q2, q3
+    return w0, w1, w2, q0, q1, q2, q3
 
 
 @cached
@@ -472,38 +504,32 @@ def _finite(a, b, c, d, e, f, g):
             and math.isfinite(f) and math.isfinite(g))
 
 
-@cached
-def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
-    """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
+@generic
+def _register_run(steps, at_output, from_omega, params, t_out, grid, state, inertia, out, budget, every):
+    """:func:`fixed_step` of a torque-free body whose state stays in registers: one loop over numbers.
 
-    Each step is a composition of Strang steps of sizes ``weights·h``.
-    Consecutive half-flows about axis 0 are merged into one (they commute and
-    add: m_0 is their invariant), saving one flow in five; ``pending`` is
-    the time of the half flow not yet applied. The flows act on m = I ω′, and
-    the state stays m across output times (ω′ = m/I is formed for the
-    samples only). A pause keeps the momentum and ``pending`` in
-    ``state[2:6]``.
+    ``steps(params, n, h, i0, i1, i2, s, pending) -> (s, pending)`` takes
+    ``n`` steps of size ``h`` from the 7-tuple ``s``; ``at_output(params,
+    h_next, i0, i1, i2, s, pending) -> (sample, s, pending)`` completes the
+    state at an output time (``h_next``: the next interval's step, NaN after
+    the last) and returns the sample ``(ω′, q)``; ``from_omega(params, i0,
+    i1, i2, s)`` turns ``(ω′, q)`` into the method's state. ``pending``
+    is a method's deferred work (see :func:`_splitting_free`). A pause keeps
+    the state's first three components and ``pending`` in ``state[2:6]``
+    (``state[6:9]`` keeps ω′ at the start).
 
-    At an output time between two intervals of equal steps the pending half
-    flow and the next interval's first one are equal: the sample is the state
-    advanced by the first and the state is advanced by both at once, both
-    from one sine and cosine (:func:`_flows_at_output`); ``pending`` then
-    turns negative (the state is ahead by the next half flow) and the next
-    step skips its own. So storing every step costs no flow that the
-    end-state run does not take. Elsewhere (uneven steps, the last time) the
-    pending flow is applied before the sample, as at the end of a run.
-
-    The whole run over the output intervals is one loop over numbers: no
-    array is handed to a helper per interval (each costs reference counting,
-    which two threads contend for on the shared output).
+    No array is handed to a helper in the loop: numba would update its
+    reference count per interval, and the output's and the moments' counts
+    are shared by every body of a parallel batch, hence contended by both
+    cores (this cost more than the steps of a dense run).
     """
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     k, s0, pending = int(state[0]), int(state[1]), state[2]
     s = (state[3], state[4], state[5], state[9], state[10], state[11], state[12])
     if k < 0:
-        w0, w1, w2 = state[6], state[7], state[8]
-        _store(out, 0, w0, w1, w2, s[3], s[4], s[5], s[6])
-        s = (i0 * w0, i1 * w1, i2 * w2, s[3], s[4], s[5], s[6])
+        s = (state[6], state[7], state[8], s[3], s[4], s[5], s[6])
+        out[0, 0], out[0, 1], out[0, 2], out[0, 3], out[0, 4], out[0, 5], out[0, 6] = _sample(*s)
+        s = from_omega(params, i0, i1, i2, s)
         k, pending = 0, 0.0
     j, wait = _next_sample(k, every)
     last = t_out.size - 1
@@ -517,37 +543,103 @@ def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
         h, n_sub = grid[0, k], int(grid[1, k])
         n = min(n_sub - s0, budget - taken)
         taken += n
-        for _ in range(n):
-            for g in weights:
-                pending += 0.5 * g * h
-                if pending != 0.0:  # zero: the state is ahead by this half flow already
-                    s = _axis_flow(0, pending, i0, i1, i2, *s)
-                s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
-                s = _axis_flow(2, g * h, i0, i1, i2, *s)
-                s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
-                pending = 0.5 * g * h
+        s, pending = steps(params, n, h, i0, i1, i2, s, pending)
         s0 += n
         if s0 < n_sub:
             continue
         k += 1
         s0 = 0
         wait -= 1
-        keep = wait == 0
-        ahead = 0.5 * weights[0] * grid[0, k] if k < last else -1.0
-        if ahead == pending:
-            v, s = _flows_at_output(pending, i0, *s)
-            pending = -ahead
-        else:
-            s = _axis_flow(0, pending, i0, i1, i2, *s)
-            v = s
-            pending = 0.0
-        w0, w1, w2 = v[0] / i0, v[1] / i1, v[2] / i2
-        if not (_finite(*s) and _finite(w0, w1, w2, v[3], v[4], v[5], v[6])):
+        v, s, pending = at_output(params, grid[0, k] if k < last else np.nan, i0, i1, i2, s, pending)
+        if not (_finite(*s) and _finite(*v)):
             return NOT_FINITE
-        if keep:
+        if wait == 0:
             j, wait = j + 1, every
-            _store(out, j, w0, w1, w2, v[3], v[4], v[5], v[6])
+            out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5], out[j, 6] = _sample(*v)
     return OK
+
+
+@cached
+def _strang_steps(weights, n, h, i0, i1, i2, s, pending):
+    """``n`` steps of :func:`_splitting_free`, the flows about axis 0 merged; ``pending`` the one not yet applied."""
+    for _ in range(n):
+        for g in weights:
+            pending += 0.5 * g * h
+            if pending != 0.0:  # zero: the state is ahead by this half flow already
+                s = _axis_flow(0, pending, i0, i1, i2, *s)
+            s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
+            s = _axis_flow(2, g * h, i0, i1, i2, *s)
+            s = _axis_flow(1, 0.5 * g * h, i0, i1, i2, *s)
+            pending = 0.5 * g * h
+    return s, pending
+
+
+@cached
+def _strang_output(weights, h_next, i0, i1, i2, s, pending):
+    """The sample of :func:`_splitting_free` at an output time: the pending flow applied, or merged with the next."""
+    ahead = 0.5 * weights[0] * h_next
+    if ahead == pending:
+        v, s = _flows_at_output(pending, i0, *s)
+        pending = -ahead
+    else:
+        s = _axis_flow(0, pending, i0, i1, i2, *s)
+        v = s
+        pending = 0.0
+    return (v[0] / i0, v[1] / i1, v[2] / i2, v[3], v[4], v[5], v[6]), s, pending
+
+
+@cached
+def _momentum(params, i0, i1, i2, s):
+    """``(m = I ω′, q)`` from ``(ω′, q)``: the state of the splitting flows."""
+    return i0 * s[0], i1 * s[1], i2 * s[2], s[3], s[4], s[5], s[6]
+
+
+@cached
+def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
+    """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
+
+    Each step is a composition of Strang steps of sizes ``weights·h``.
+    Consecutive half-flows about axis 0 are merged into one (they commute and
+    add: m_0 is their invariant), saving one flow in five; ``pending`` is
+    the time of the half flow not yet applied. The flows act on m = I ω′, and
+    the state stays m across output times (ω′ = m/I is formed for the
+    samples only).
+
+    At an output time between two intervals of equal steps the pending half
+    flow and the next interval's first one are equal: the sample is the state
+    advanced by the first and the state is advanced by both at once, both
+    from one sine and cosine (:func:`_flows_at_output`); ``pending`` then
+    turns negative (the state is ahead by the next half flow) and the next
+    step skips its own. So storing every step costs no flow that the
+    end-state run does not take. Elsewhere (uneven steps, the last time) the
+    pending flow is applied before the sample, as at the end of a run.
+    """
+    return _register_run(_strang_steps, _strang_output, _momentum, weights, t_out, grid, state, inertia, out, budget,
+                         every)
+
+
+@cached
+def _rk4_steps(params, n, h, i0, i1, i2, s, pending):
+    """``n`` torque-free :func:`_rk4_step` (which then depends on neither the time nor the arrays)."""
+    for _ in range(n):
+        s = _rk4_step(0.0, h, i0, i1, i2, None, None, None, s)
+    return s, pending
+
+
+@cached
+def _rk4_output(params, h_next, i0, i1, i2, s, pending):
+    return s, s, pending
+
+
+@cached
+def _same(params, i0, i1, i2, s):
+    return s
+
+
+@cached
+def _rk4_free(t_out, grid, state, inertia, out, budget, every):
+    """:func:`fixed_step` of ``rk4`` without torque, its state ``(ω′, q)`` in registers."""
+    return _register_run(_rk4_steps, _rk4_output, _same, None, t_out, grid, state, inertia, out, budget, every)
 
 
 @cached
@@ -582,6 +674,8 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
     if ny == 7 and rows is None and method == SPLITTING4:
         return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, grid, state, inertia, out,
                                budget, every)
+    if ny == 7 and rows is None and method == RK4:
+        return _rk4_free(t_out, grid, state, inertia, out, budget, every)
     y = np.empty(ny)
     for i in range(ny):
         y[i] = state[6 + i]
@@ -591,7 +685,8 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
     if k < 0:
         for i in range(7, ny):
             out[0, i] = y[i]
-        _store(out, 0, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+        out[0, 0], out[0, 1], out[0, 2], out[0, 3], out[0, 4], out[0, 5], out[0, 6] = \
+            _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
         k = 0
     j, wait = _next_sample(k, every)
     taken = 0
@@ -630,7 +725,8 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
             j, wait = j + 1, every
             for i in range(7, ny):
                 out[j, i] = y[i]
-            _store(out, j, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
+            out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5], out[j, 6] = \
+                _sample(y[0], y[1], y[2], y[3], y[4], y[5], y[6])
     return OK
 
 
