@@ -72,7 +72,8 @@ def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64],
             dy[offset + 10 + k] = scratch[10 + k] / mass
 
 
-@cached
+# inlined: as a call, LLVM left it out of the DOP853 stage loop (end-state runs 1.5x slower)
+@inlined
 def _euler_rates(i0, i1, i2, m0, m1, m2, w0, w1, w2, q0, q1, q2, q3):
     """(ω̇′, q̇) of the principal moments ``i``, the body torque ``m`` and the state ``(ω′, q)``, as numbers."""
     d0, d1, d2, d3 = quat_product(q0, q1, q2, q3, 0.0, w0, w1, w2)
@@ -263,7 +264,7 @@ def _rates_at(t, i0, i1, i2, rows, stage, scratch, y):
         stage[0], stage[1], stage[2], stage[3], stage[4], stage[5], stage[6] = y
         evaluate_torque(rows, t, stage, scratch)
         m0, m1, m2 = scratch[7], scratch[8], scratch[9]
-    return _euler_rates(i0, i1, i2, m0, m1, m2, *y)
+    return _euler_rates(i0, i1, i2, m0, m1, m2, y[0], y[1], y[2], y[3], y[4], y[5], y[6])
 
 
 @cached
