@@ -154,9 +154,12 @@ def test_processes_compiling_into_one_empty_cache_at_once_build_it_consistently(
 
 
 @pytest.mark.skipif(os.name != "posix", reason="fcntl file locks")
-def test_numbas_compiler_lock_holds_the_cache_lock_file_from_its_outermost_hold():
+def test_numbas_compiler_lock_holds_the_cache_lock_file_from_its_outermost_hold(tmp_path, monkeypatch):
     import fcntl
 
+    # a cache of its own: the test workers' shared cache is locked by whichever worker compiles at the moment
+    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
+    os.makedirs(os.path.dirname(compile_lock.lock_path()), exist_ok=True)
     with open(compile_lock.lock_path(), "a") as other:   # another open file: another holder to flock
         with global_compiler_lock:
             with global_compiler_lock:
