@@ -73,6 +73,34 @@ def test_degrees_per_second_converted(tmp_path, unit):
     check(kr.io.read_gyro(path))
 
 
+@pytest.mark.parametrize("unit, per_rad_s", [("mdps", 180e3 / np.pi), ("mdeg/s", 180e3 / np.pi),
+                                             ("mrad/s", 1e3)])
+def test_milli_units_per_second_converted(tmp_path, unit, per_rad_s):
+    """MEMS gyros (e.g. STMicro's) report millidegrees per second: "mdps" is not "dps"."""
+    path = tmp_path / "milli.csv"
+    rows = "\n".join(",".join(str(v) for v in (t, *(w * per_rad_s))) for t, w in zip(T, W))
+    path.write_text(f"t (s),gyro x ({unit}),gyro y ({unit}),gyro z ({unit})\n{rows}\n", encoding="utf-8")
+    check(kr.io.read_gyro(path))
+
+
+@pytest.mark.parametrize("header, per_second", [("Time (ns)", 1e9), ("time (us)", 1e6), ("time (µs)", 1e6),
+                                                ("timestamp [ms since boot]", 1e3), ("time_ms", 1e3),
+                                                ("t_ns", 1e9), ("time (sec)", 1.0)])
+def test_time_units_converted(tmp_path, header, per_second):
+    """Loggers stamp samples in ms, µs or ns; the header's unit scales them to seconds."""
+    path = tmp_path / "stamped.csv"
+    rows = "\n".join(",".join(repr(float(v)) for v in (t * per_second, *w)) for t, w in zip(T, W))
+    path.write_text(f"{header},gx,gy,gz\n{rows}\n", encoding="utf-8")
+    check(kr.io.read_gyro(path))
+
+
+def test_time_unit_that_is_not_a_time_is_refused(tmp_path):
+    path = tmp_path / "minutes.csv"
+    path.write_text("# a log\ntime (min),gx,gy,gz\n0,0,0,1\n1,0,0,1\n", encoding="utf-8")
+    with pytest.raises(GyroFileError, match=r"line 2: the time column's unit in 'time \(min\)' is not one of"):
+        kr.io.read_gyro(path)
+
+
 def test_degrees_in_whitespace_header_with_spaces(tmp_path):
     path = tmp_path / "deg.txt"
     rows = "\n".join(" ".join(str(v) for v in (t, *np.degrees(w))) for t, w in zip(T, W))

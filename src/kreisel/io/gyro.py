@@ -26,8 +26,15 @@ RECORDINGS = {"phone_toss": "phone_toss.csv"}
 
 # phyphox's "Gyroscope" experiment writes this file; its export folder or zip holds it
 GYRO_FILE = "gyroscope.csv"
-_DEGREES = re.compile(r"deg|°|dps", re.IGNORECASE)
-_MILLISECONDS = re.compile(r"[(\[]\s*ms\s*[)\]]", re.IGNORECASE)
+# rate units a column header may give, in rad/s; milli-units first: "mdps" also matches "dps"
+_RATE_UNITS = ((re.compile(r"mdps|mdeg\s*/\s*s|m°/s", re.IGNORECASE), np.pi / 180e3),
+               (re.compile(r"deg|°|dps", re.IGNORECASE), np.pi / 180.0),
+               (re.compile(r"mrad\s*/\s*s", re.IGNORECASE), 1e-3))
+# the time column's unit: the first word in brackets, "(ms)", "[ms since boot]", or a "_ms" suffix;
+# phones and loggers stamp samples in ms, µs or ns
+_TIME_UNIT = re.compile(r"[(\[]\s*([^()\[\]\s]+)[^()\[\]]*[)\]]|_(ns|us|µs|μs|ms|s)$", re.IGNORECASE)
+_SECONDS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0, "ms": 1e-3, "us": 1e-6,
+            "µs": 1e-6, "μs": 1e-6, "ns": 1e-9}
 
 
 class GyroFileError(ValueError):
@@ -96,8 +103,24 @@ def _number(cell):
         return None
 
 
+def _to_rad(name):
+    """rad/s per unit of a rate column headed ``name`` (radians unless the header says otherwise)."""
+    return next((scale for unit, scale in _RATE_UNITS if unit.search(name)), 1.0)
+
+
+def _time_scale(name):
+    """Seconds per unit of a time column headed ``name``; None for a unit that is not a time."""
+    match = _TIME_UNIT.search(name.strip())
+    if match is None:
+        return 1.0
+    return _SECONDS.get((match.group(1) or match.group(2)).lower())
+
+
 def _layout(header, ncols):
-    """Column indices of ω, acceleration and the unit conversions, from the header."""
+    """Column indices of ω, acceleration and the unit conversions, from the header.
+
+    The time scale is None when the time column's header gives a unit that is not a time.
+    """
     gyro, accel = [1, 2, 3], None
     to_rad = np.ones(3)
     time_scale = 1.0
@@ -111,16 +134,13 @@ def _layout(header, ncols):
         found = [i for i, name in enumerate(names) if "acc" in name]
         if len(found) >= 3:
             accel = found[:3]
-        to_rad = np.array([np.pi / 180.0 if _DEGREES.search(names[i]) else 1.0 for i in gyro])
-        if _MILLISECONDS.search(names[0]):
-            time_scale = 1e-3
+        to_rad = np.array([_to_rad(names[i]) for i in gyro])
+        time_scale = _time_scale(names[0])
     else:
         # names with spaces in a whitespace-separated header: only the units can be trusted
-        joined = " ".join(header)
-        if _DEGREES.search(joined):
-            to_rad[:] = np.pi / 180.0
-        if _MILLISECONDS.search(header[0] + (" " + header[1] if len(header) > 1 else "")):
-            time_scale = 1e-3
+        to_rad[:] = _to_rad(" ".join(header))
+        unit = header[1] if len(header) > 1 and header[1][:1] in "([" else ""
+        time_scale = _time_scale(f"{header[0]} {unit}")
     return gyro, accel, to_rad, time_scale
 
 
@@ -142,7 +162,7 @@ def parse_gyro(text, source="<text>"):
     """
     if not isinstance(text, str):
         raise TypeError(f"text must be a str, got {type(text).__name__}")
-    header = None
+    header = header_line = None
     rows, numbers = [], []
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip()
@@ -153,7 +173,7 @@ def parse_gyro(text, source="<text>"):
         bad = next((cell for cell, value in zip(cells, values) if value is None), None)
         if bad is not None:
             if header is None and not rows and not any(value is not None for value in values):
-                header = cells
+                header, header_line = cells, number
                 continue
             raise GyroFileError(f"{source}, line {number}: not a number: {bad!r}")
         if not all(np.isfinite(values)):
@@ -169,6 +189,9 @@ def parse_gyro(text, source="<text>"):
         raise GyroFileError(f"{source}: empty (no data rows)")
     ncols = min(len(row) for row in rows)
     gyro, accel, to_rad, time_scale = _layout(header, max(len(row) for row in rows))
+    if time_scale is None:
+        raise GyroFileError(f"{source}, line {header_line}: the time column's unit in {header[0]!r} is not one "
+                            f"of {', '.join(_SECONDS)}")
     needed = max(gyro + (accel or [])) + 1
     if ncols < needed:
         k = next(i for i, row in enumerate(rows) if len(row) < needed)
@@ -221,8 +244,10 @@ def read_gyro(path):
 
     Columns headed with ``gyro`` (three of them) are taken as ω wherever they
     stand, columns headed ``acc`` as the accelerometer; columns whose header
-    gives degrees (``deg/s``, ``°/s``, ``dps``) are converted to rad/s, a time
-    header in ``(ms)`` to seconds.
+    gives degrees (``deg/s``, ``°/s``, ``dps``), millidegrees (``mdps``) or
+    milliradians (``mrad/s``) are converted to rad/s, a time header in ``(ms)``,
+    ``(us)``, ``(µs)`` or ``(ns)`` (or ending ``_ms``, ``_us``, ``_ns``) to
+    seconds; a time header with another unit in brackets is refused.
 
     Parameters
     ----------
