@@ -92,6 +92,24 @@ def test_defective_logs_are_refused(tmp_path, text, kwargs, match):
         read_good(path, **kwargs)
 
 
+@pytest.mark.parametrize("sep, decimal", [(";", ","), (";", "."), ("\t", ".")])
+def test_semicolon_and_tab_separated_logs_read_as_the_comma_one(tmp_path, sep, decimal):
+    """European spreadsheets export ';' between cells and a decimal comma."""
+    text = "\n".join(line.replace(",", sep).replace(".", decimal) for line in GOOD.strip().splitlines())
+    log = read_good(write_csv(tmp_path / "imu.csv", text))
+    reference = read_good(write_csv(tmp_path / "comma.csv", GOOD))
+    np.testing.assert_array_equal(log.t, reference.t)
+    np.testing.assert_array_equal(log.gyro, reference.gyro)
+
+
+def test_rows_after_blank_lines_are_named_by_their_file_line(tmp_path):
+    text = GOOD.replace("0.01,", "\n  \n0.01,").replace("0.03,0.0,0.0,10.0", "0.03,0.0,0.0,abc")
+    path = write_csv(tmp_path / "gaps.csv", text)
+    with pytest.raises(ValueError, match=r"'gyro_z': non-numeric value 'abc' at row 3 \(line 7 of the file\)"):
+        read_good(path)
+    assert path.read_text().splitlines()[6] == "0.03,0.0,0.0,abc"
+
+
 def test_dataframe_rows_are_named_without_file_lines():
     df = pd.DataFrame({"t": [0.0, 0.1, 0.2], "gx": [0.0, np.nan, 0.0], "gy": [0.0] * 3, "gz": [0.0] * 3})
     with pytest.raises(ValueError, match=r"column 'gx': missing or non-finite value nan at row 1; 1 bad"):

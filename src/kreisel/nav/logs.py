@@ -148,11 +148,31 @@ def _show(value):
     return repr(value) if isinstance(value, str) else str(value)
 
 
-def _where(row, line_offset):
-    return f"row {row}" + (f" (line {row + line_offset} of the file)" if line_offset else "")
+def _where(row, lines):
+    """Data row ``row``, with its line in the file when ``lines`` (the file line of each row) is known."""
+    return f"row {row}" + (f" (line {lines[row]} of the file)" if lines is not None else "")
 
 
-def _numeric_column(frame, column, line_offset):
+def _csv_layout(name):
+    """The separator and decimal mark of CSV file ``name``, and the file line of each data row.
+
+    A header with semicolons and no comma is a European export (``;`` between cells, ``,`` as the
+    decimal mark); tabs alone make a tab-separated file. pandas skips blank lines, so the data rows'
+    lines are counted over the non-blank ones after the header.
+    """
+    with open(name, encoding="utf-8-sig", errors="replace") as fh:
+        filled = [(number, line) for number, line in enumerate(fh, start=1) if line.strip()]
+    header = filled[0][1] if filled else ""
+    if "," not in header and ";" in header:
+        sep, decimal = ";", ","
+    elif "," not in header and "\t" in header:
+        sep, decimal = "\t", "."
+    else:
+        sep, decimal = ",", "."
+    return sep, decimal, [number for number, _ in filled[1:]]
+
+
+def _numeric_column(frame, column, lines):
     pd = _pandas()
     raw = frame[column]
     values = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=np.float64)
@@ -163,7 +183,7 @@ def _numeric_column(frame, column, line_offset):
             what = f"missing or non-finite value {_show(raw.iloc[i])}"
         else:
             what = f"non-numeric value {_show(raw.iloc[i])}"
-        raise ValueError(f"column {column!r}: {what} at {_where(i, line_offset)}; "
+        raise ValueError(f"column {column!r}: {what} at {_where(i, lines)}; "
                          f"{int(bad.sum())} bad value(s) in total")
     return values
 
@@ -175,7 +195,8 @@ def read_imu_log(source, time="t", gyro=("gx", "gy", "gz"), kind="rate", units=N
     Parameters
     ----------
     source : str, os.PathLike or pandas.DataFrame
-        CSV file with a header row, or a DataFrame.
+        CSV file with a header row, or a DataFrame. Cells are separated by commas, by
+        semicolons (then with a decimal comma, ``0,5``) or by tabs, as the header shows.
     time : str
         Name of the time column.
     gyro : sequence of 3 str
@@ -227,16 +248,16 @@ def read_imu_log(source, time="t", gyro=("gx", "gy", "gz"), kind="rate", units=N
         raise ValueError(f"time_scale must be a positive scalar, got {time_scale!r}")
 
     if isinstance(source, pd.DataFrame):
-        frame_data, name, line_offset = source, "DataFrame", 0
+        frame_data, name, lines = source, "DataFrame", None
     elif isinstance(source, (str, os.PathLike)):
         name = os.fspath(source)
         if not os.path.isfile(name):
             raise ValueError(f"source: no such file {name!r}")
+        sep, decimal, lines = _csv_layout(name)
         try:
-            frame_data = pd.read_csv(name, skipinitialspace=True)
+            frame_data = pd.read_csv(name, sep=sep, decimal=decimal, skipinitialspace=True)
         except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-            raise ValueError(f"source: {name!r} is not a readable CSV file ({exc})") from exc
-        line_offset = 2  # the header is line 1; data row 0 is line 2
+            raise ValueError(f"source: {name!r} is not a readable CSV file ({str(exc).strip()})") from exc
     else:
         raise TypeError(f"source must be a file path or a pandas DataFrame, got {type(source).__name__}")
 
@@ -251,12 +272,12 @@ def read_imu_log(source, time="t", gyro=("gx", "gy", "gz"), kind="rate", units=N
     if len(frame_data) < 2:
         raise ValueError(f"{name}: need at least 2 rows of data, got {len(frame_data)}")
 
-    t = _numeric_column(frame_data, time, line_offset) * float(scale)
-    data = np.column_stack([_numeric_column(frame_data, c, line_offset) for c in gyro])
+    t = _numeric_column(frame_data, time, lines) * float(scale)
+    data = np.column_stack([_numeric_column(frame_data, c, lines) for c in gyro])
     step = np.diff(t)
     if np.any(step <= 0):
         i = int(np.argmax(step <= 0)) + 1
-        raise ValueError(f"{name}: time column {time!r} must strictly increase; at {_where(i, line_offset)} "
+        raise ValueError(f"{name}: time column {time!r} must strictly increase; at {_where(i, lines)} "
                          f"{_show(frame_data[time].iloc[i])} follows {_show(frame_data[time].iloc[i - 1])}")
     return ImuLog(t, data * _UNITS[kind][units], kind, frame, name)
 
