@@ -163,6 +163,13 @@ def test_a_record_that_hardly_changes_is_refused_before_fitting(span):
         kr.fit_free_rotation(np.linspace(0.0, 2.0, 100), np.tile([0.0, 0.0, 10.0], (100, 1)))
 
 
+@pytest.mark.parametrize("bias", [False, True])
+def test_a_record_of_a_sensor_at_rest_is_refused_before_fitting(bias):
+    # all zeros (a phone lying on the table): no ratio, no SVD of a 0/0 scaled table
+    with pytest.raises(ValueError, match="omega is zero at every sample"):
+        kr.fit_free_rotation(np.linspace(0.0, 1.0, 100), np.zeros((100, 3)), bias=bias)
+
+
 def test_a_record_changing_faster_than_free_rotation_can_is_refused_with_the_numbers():
     # a 4 s record replayed with t in units 1e5 times too large: ω′ moves by 0.128 of its size while the
     # body turns 4.04e-5 rad, and |dω′/dt| <= |ω|²/√3 allows 2.33e-5

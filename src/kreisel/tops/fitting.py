@@ -428,6 +428,9 @@ def _determinable(t, omega, bias):
     speed = np.linalg.norm(omega, axis=1)
     change = float(np.max(np.linalg.norm(omega - omega[0], axis=1)))
     size = float(np.max(speed))
+    if size == 0.0:
+        raise ValueError("t and omega cannot determine the moment ratios: omega is zero at every sample (the "
+                         "sensor did not turn: a phone lying still, or a recording of another sensor)")
     if change < MIN_CHANGE * size:
         raise ValueError(
             f"t and omega cannot determine the moment ratios: omega changes over the record by only "
