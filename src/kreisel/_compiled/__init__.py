@@ -21,7 +21,9 @@ holds
   functions that lose digits to cancellation at small angles;
 - :mod:`.dop853`: the one adaptive Dormand–Prince 8(5,3) integrator;
 - :mod:`.compile_lock`: one compilation at a time among the processes that
-  share a cache directory.
+  share a cache directory;
+- :mod:`.threads`: the thread count of each multi-core loop (numba's, fewer
+  while the machine has more runnable tasks than cores).
 
 The decorator flavours below are the only ways kreisel compiles a function
 (besides user callables, compiled per call, and one object-mode callback).
@@ -81,12 +83,13 @@ import hashlib
 import os
 import pathlib
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import numba
 from numba import njit
 
 from . import compile_lock
+from .threads import ParallelLoop
 
 #: The package sources this layer belongs to.
 _PACKAGE = pathlib.Path(__file__).resolve().parents[1]
@@ -138,7 +141,12 @@ vectorised: Callable[[_Function], _Function] = njit(cache=True, nogil=True, erro
 #: Routines compiled anew for each argument type (a compiled function, a tuple
 #: of any length): never cached on their own, always inlined into a cached caller.
 generic: Callable[[_Function], _Function] = njit(nogil=True, inline="always")
-#: Cached multi-core loop (``prange``) over flattened batches.
-parallel: Callable[[_Function], _Function] = njit(parallel=True, cache=True)
+_parallel_jit = njit(parallel=True, cache=True)
+
+
+def parallel(function: _Function) -> _Function:
+    """Cached multi-core loop (``prange``) over flattened batches, on :mod:`.threads`' count of threads."""
+    return cast(_Function, ParallelLoop(_parallel_jit(function)))
+
 
 __all__ = ["cached", "checkout_cache_root", "generic", "inlined", "parallel", "source_state", "vectorised"]

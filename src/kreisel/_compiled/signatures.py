@@ -11,6 +11,7 @@ from numba.core.caching import NullCache
 from numba.core.registry import CPUDispatcher
 
 from . import dexp, dop853, gufunc, kernels
+from .threads import ParallelLoop
 
 
 def shared_kernels():
@@ -23,6 +24,7 @@ def shared_kernels():
     found = {}
     for module in (dexp, dop853, gufunc, kernels):
         for obj in vars(module).values():
+            obj = obj.dispatcher if isinstance(obj, ParallelLoop) else obj
             if isinstance(obj, CPUDispatcher) and not isinstance(obj._cache, NullCache):
                 found[f"{module.__name__}.{obj.py_func.__name__}"] = obj
     return found
