@@ -29,7 +29,7 @@ $(VENV)/.installed-docs: pyproject.toml $(VENV)/.created
 	touch $@
 
 demo: $(VENV)/.installed-run
-	$(PY) -m kreisel tour --out tour
+	$(PY) -m kreisel tour --out tour --force
 
 test: $(VENV)/.installed-dev docs/node_modules/.installed
 	$(PY) -m pytest -n 2 --dist loadfile -q

@@ -22,6 +22,7 @@ EXAMPLES = {
     "simulate": [
         ("simulate tennis_racket", "run a bundled scenario and print its first integrals"),
         ("simulate my_top.toml -o traj.nc", "run a scenario file and save the trajectory (netCDF)"),
+        ("simulate my_top.toml -o traj.nc --force", "run it again, replacing the saved trajectory"),
     ],
     "plot": [("plot traj.nc --kind polhode -o polhode.png", "the polhode of a saved trajectory")],
     "animate": [("animate traj.nc -o top.mp4", "an animation of the body with its axes, ω and J")],

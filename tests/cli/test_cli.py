@@ -1,5 +1,6 @@
 """Every ``kreisel`` command through typer's runner, including the error paths (exit status 2)."""
 
+import pathlib
 import re
 import sys
 
@@ -285,3 +286,109 @@ def test_simulate_reports_progress_of_a_long_run(tmp_path, runaway, monkeypatch)
     result = run("simulate", str(path))
     assert result.exit_code == 0, result.output
     assert len(seen) > 10 and 0 <= seen[0] and seen[-1] < 1 and np.all(np.diff(seen) >= 0)
+
+
+def _no_work(*args, **kwargs):
+    raise AssertionError("the command started its work before refusing its output")
+
+
+# (command line with {out} for the output or {dir} for its directory, output name, module and function doing the
+# command's work)
+_WRITERS = [
+    (["simulate", "tennis_racket", "-o", "{out}"], "traj.nc", "kreisel.io.run", "run_scenario"),
+    (["plot", "traj.nc", "-o", "{out}"], "p.png", "kreisel.io.results", "load_result"),
+    (["animate", "traj.nc", "-o", "{out}"], "a.gif", "kreisel.io.results", "load_trajectory"),
+    (["fit", "phone_toss", "--json", "{out}"], "fit.json", "kreisel.io.gyro", "read_gyro"),
+    (["fit", "phone_toss", "--plot", "{out}"], "fit.png", "kreisel.io.gyro", "read_gyro"),
+    (["sweep", "lagrange_apex", "--scheduler", "serial", "-o", "{out}"], "map.nc", "kreisel.sweep", "run_sweep_file"),
+    (["sweep", "lagrange_apex", "--scheduler", "serial", "-o", "m.nc", "--plot", "{out}"], "map.png",
+     "kreisel.sweep", "run_sweep_file"),
+    (["tour", "--out", "{dir}"], "index.html", "kreisel.tour", "run_tour"),
+    (["tour", "--notebooks", "{dir}"], "01_rotations.ipynb", "kreisel.tour.notebooks", "write_notebooks"),
+]
+
+
+@pytest.mark.parametrize("args, name, module, function", _WRITERS, ids=lambda v: v if isinstance(v, str) else None)
+def test_an_existing_output_is_refused_before_any_work_without_force(tmp_path, monkeypatch, args, name, module,
+                                                                     function):
+    import importlib
+
+    monkeypatch.setattr(importlib.import_module(module), function, _no_work)
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "out" / name
+    out.parent.mkdir()
+    out.write_text("the user's file")
+    option = next(args[k - 1] for k, arg in enumerate(args) if arg in ("{out}", "{dir}"))
+    result = run(*[{"{out}": str(out), "{dir}": str(out.parent)}.get(arg, arg) for arg in args])
+    assert result.exit_code == 2, result.output
+    assert result.output.strip() == f"error: {option}: {str(out)!r} already exists; pass --force to replace it"
+    assert out.read_text() == "the user's file"
+    assert sorted(p.name for p in out.parent.iterdir()) == [name]  # no temporary left
+
+
+def test_force_replaces_an_existing_output_atomically(tmp_path, racket_toml):
+    scenario = tmp_path / "short.toml"
+    scenario.write_text(racket_toml)
+    traj = tmp_path / "traj.nc"
+    traj.write_text("an old run")
+    mode = traj.stat().st_mode
+    result = run("simulate", str(scenario), "-o", str(traj), "--force")
+    assert result.exit_code == 0 and result.stdout.rstrip().endswith(f"wrote {traj}"), result.output
+    assert len(kr.io.load_trajectory(traj)) == 101 and traj.stat().st_mode == mode
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["short.toml", "traj.nc"]
+    png = tmp_path / "omega.png"
+    png.write_text("an old figure")
+    assert run("plot", str(traj), "-o", str(png), "--force").exit_code == 0
+    with Image.open(png) as image:
+        assert image.format == "PNG"
+
+
+def test_a_directory_in_place_of_a_zarr_store_is_refused_even_with_force(tmp_path):
+    folder = tmp_path / "photos.zarr"
+    folder.mkdir()
+    (folder / "holiday.jpg").write_text("keep me")
+    result = run("sweep", "lagrange_apex", "--scheduler", "serial", "-o", str(folder), "--force")
+    assert result.exit_code == 2 and "is a directory but not a Zarr store" in result.output, result.output
+    assert (folder / "holiday.jpg").read_text() == "keep me"
+
+
+def test_a_sweep_store_is_replaced_with_force_and_its_summary_is_text(tmp_path):
+    import xarray as xr
+
+    sweep_file = tmp_path / "small.toml"
+    sweep_file.write_text('model = "lagrange_apex"\n[grid.phi_dot]\nvalues = [-0.2, 0.35]\n'
+                          '[grid.psi_dot]\nvalues = [10.0, 20.0, 30.0]\n')
+    store = tmp_path / "s.zarr"
+    for extra in ([], ["--force"]):
+        result = run("sweep", str(sweep_file), "--scheduler", "serial", "-o", str(store), *extra)
+        assert result.exit_code == 0, result.output
+        assert result.stdout.splitlines() == ["6 points: phi_dot 2 values from -0.2 to 0.35, "
+                                              "psi_dot 3 values from 10 to 30", f"wrote {store}"]
+    with xr.open_zarr(store) as dataset:
+        assert dict(dataset.sizes) == {"phi_dot": 2, "psi_dot": 3}
+    result = run("sweep", str(sweep_file), "--scheduler", "serial", "-o", str(store))
+    assert result.exit_code == 2 and "already exists; pass --force" in result.output
+
+
+@pytest.mark.skipif(not pathlib.Path("/proc/self").is_dir(), reason="needs a directory no file can be created in")
+def test_an_output_directory_that_cannot_be_written_is_refused_before_the_run(monkeypatch):
+    monkeypatch.setattr(kr.io.run, "run_scenario", _no_work)
+    result = run("simulate", "tennis_racket", "-o", "/proc/traj.nc")
+    assert result.exit_code == 2 and result.output.startswith("error: -o: cannot write in '/proc'"), result.output
+
+
+def test_an_error_while_writing_is_one_line_with_status_1(tmp_path, monkeypatch, racket_toml):
+    import errno
+
+    scenario = tmp_path / "short.toml"
+    scenario.write_text(racket_toml)
+    traj = tmp_path / "traj.nc"
+    assert run("simulate", str(scenario), "-o", str(traj)).exit_code == 0
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(kr.plot, "save", full)
+    result = run("plot", str(traj), "-o", str(tmp_path / "p.png"))
+    assert result.exit_code == 1, result.output
+    assert result.output.strip() == f"error: -o: cannot write {str(tmp_path / 'p.png')!r} (No space left on device)"

@@ -47,6 +47,16 @@ def test_refusals(tmp_path, trajectory):
     assert list(tmp_path.iterdir()) == []
 
 
+
+def test_an_animation_that_cannot_be_written_raises_without_a_matplotlib_warning(tmp_path, trajectory, recwarn):
+    # matplotlib warns when an animation is collected unsaved; one made before the file failed to open was
+    import gc
+
+    with pytest.raises(ValueError, match="does not exist"):
+        animate(trajectory, tmp_path / "gone" / "a.gif", frames=2)
+    gc.collect()
+    assert not [w for w in recwarn if issubclass(w.category, UserWarning)], [str(w.message) for w in recwarn]
+
 def test_euler_plot_avoids_the_gimbal_lock_of_the_tennis_racket_and_unwraps():
     import kreisel as kr
     from kreisel.plot import euler, regular_sequence

@@ -6,7 +6,10 @@ on standard error and exit with status 2; they never show a traceback.
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import math
+import os
 import pathlib
 import sys
 from typing import List, Optional
@@ -55,6 +58,10 @@ app = typer.Typer(
     # Traceback renderers, which alone take longer than the help's start-up budget
     rich_markup_mode=None,
 )
+
+
+_FIGURES = (".png", ".svg", ".pdf")
+_FORCE_HELP = "Replace existing output files (without it, an existing one is refused before any work)."
 
 
 @functools.cache
@@ -187,6 +194,7 @@ def _read_input(path):
 def simulate(
     scenario: str = typer.Argument(..., help="Scenario TOML file, or the name of a bundled one (`kreisel examples`)."),
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="traj.nc | .csv | .parquet"),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Run a scenario file and report its first integrals."""
     from ..io.results import SUFFIXES, require_backends, save_result
@@ -196,7 +204,7 @@ def simulate(
     if output is not None:
         if output.suffix not in SUFFIXES:
             usage_error(f"-o: unsupported output {output.name!r} (expected {', '.join(SUFFIXES)})")
-        _check_directory("-o", output)
+        _check_output("-o", output, force)
         require_backends(output.suffix, "writing results")  # before the run, not after it
     try:
         spec = load_scenario(scenario)
@@ -218,8 +226,8 @@ def simulate(
     for line in summary(result):
         say(line)
     if output is not None:
-        save_result(result, output)
-        say(f"wrote {output}")
+        with _writing("-o", output):
+            save_result(result, output)
 
 
 @app.command()
@@ -229,6 +237,7 @@ def plot(
         None, "--kind", "-k", help="Trajectories: omega (default) | energy | euler | polhode | herpolhode | apex; "
                                    "Foucault results: azimuth; coning results: error."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="fig.png | .svg | .pdf"),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Plot a saved result: a trajectory, or what a Foucault or coning run holds."""
     from .._optional import require_all
@@ -236,7 +245,7 @@ def plot(
 
     # matplotlib and the file's readers, named together in one line before any work
     require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel plot")
-    _check_directory("-o", output)
+    _check_output("-o", output, force, _FIGURES)
     from .. import plot as plots
     from ..dynamics import Trajectory
     from ..io.run import trajectory_integrals
@@ -255,10 +264,10 @@ def plot(
         if kind not in kinds:
             usage_error(f"--kind: {trajectory} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
         fig = plots.energy(result, trajectory_integrals(result)) if kind == "energy" else kinds[kind](result)
-        plots.save(fig, output)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))
-    say(f"wrote {output}")
+    with _writing("-o", output):
+        plots.save(fig, output)
 
 
 @app.command()
@@ -267,28 +276,29 @@ def animate(
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="anim.gif | .mp4"),
     frames: int = typer.Option(120, "--frames", min=2, max=2000, help="Number of frames."),
     fps: int = typer.Option(24, "--fps", min=1, max=120),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Animate a saved trajectory: the body with its axes, ω and J."""
     from .._optional import require_all
     from ..io.results import ResultError, backend_needs, load_trajectory
 
     require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel animate")
-    _check_directory("-o", output)
+    _check_output("-o", output, force, (".gif", ".mp4"))
     from ..plot.animation import animate as run
 
     try:
         traj = load_trajectory(trajectory)
-        run(traj, output, frames=frames, fps=fps)
+        with _writing("-o", output):
+            run(traj, output, frames=frames, fps=fps)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))
-    say(f"wrote {output}")
 
 
 @app.command()
 def examples(
     name: Optional[str] = typer.Argument(None, help="Example to copy out; none: list them."),
     directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
-    force: bool = typer.Option(False, "--force", help="Replace an existing file of the same name."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """List the bundled scenario files, or copy one out to edit."""
     from ..io.bundled import EXAMPLES, copy_example, describe, suggestion
@@ -314,11 +324,13 @@ def tour(
         None, "--notebooks", metavar="DIR",
         help="Instead of running the tour, write its sections as Jupyter notebooks DIR/01_rotations.ipynb, ... "
              "(needs kreisel[notebook]); with --quick their problems are small."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Run every demonstration of the chapter and write DIR/index.html, or write the tour as notebooks."""
     if notebooks is not None:
-        from ..tour.notebooks import write_notebooks
+        from ..tour.notebooks import NOTEBOOKS, write_notebooks
 
+        _check_outputs_in("--notebooks", notebooks, [f"{name}.ipynb" for name in NOTEBOOKS], force)
         try:
             written = write_notebooks(notebooks, quick=quick)
         except (ImportError, OSError, ValueError) as exc:
@@ -328,6 +340,7 @@ def tour(
         raise typer.Exit(0)
     from ..tour import run_tour
 
+    _check_outputs_in("--out", out_dir, ["index.html"], force)
     ok = run_tour(out_dir, quick=quick, console=_console())
     raise typer.Exit(0 if ok else 1)
 
@@ -344,14 +357,13 @@ def sweep(
         None, "--stream/--no-stream",
         help="Write each chunk into the .zarr output as it arrives, keeping about one chunk in memory "
              "(default: the file's stream key)."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Run a parameter sweep on Dask; interrupted sweeps resume from their finished chunks."""
     from .._optional import require_all
     from ..io.bundled import suggestion
     from ..sweep import EXAMPLES, SweepError, example_path, load_sweep_file, plot_sweep, run_sweep_file
     from ..sweep.core import sweep_needs
-
-    _check_plot_file(plot_file)
 
     if not sweep_file.exists():
         if str(sweep_file) not in EXAMPLES:
@@ -360,10 +372,13 @@ def sweep(
         sweep_file = example_path(str(sweep_file))
     try:
         spec = load_sweep_file(sweep_file)
+        option = "-o" if output is not None else f"{sweep_file.name}: output" if spec.output else "-o (default)"
         if output is None and spec.output is None:
             # results (and the checkpoint that lets an interrupted run resume) go to the working directory
             output = pathlib.Path(f"{sweep_file.stem}.zarr")
         target = output if output is not None else spec.output
+        _check_output(option, target, force, (".zarr", ".nc"), store=target.suffix == ".zarr")
+        _check_output("--plot", plot_file, force, _FIGURES)
         if (spec.stream if stream is None else stream) and target.suffix != ".zarr":
             usage_error(f"streaming writes the chunks into a .zarr output as they arrive, not {target.name}: "
                         "pass -o NAME.zarr, or --no-stream")
@@ -377,26 +392,79 @@ def sweep(
         raise typer.Exit(1)
     except ValueError as exc:
         usage_error(str(exc))
-    say(f"{dict(dataset.sizes)} points" + (f", wrote {output}" if output else ""))
+    say(f"{math.prod(values.size for values in spec.grid.values())} points: "
+        + ", ".join(f"{name} {values.size} values from {values.min():g} to {values.max():g}"
+                    for name, values in spec.grid.items()))
+    say(f"wrote {target}")
     if plot_file is not None:
         from .. import plot as plots
 
-        plots.save(plot_sweep(dataset), plot_file)
-        say(f"wrote {plot_file}")
+        with _writing("--plot", plot_file):
+            plots.save(plot_sweep(dataset), plot_file)
 
 
-def _check_directory(option, target):
-    """An output file whose directory does not exist, or that is a directory, is a usage error found before the run."""
-    if target is not None and not target.parent.is_dir():
+def _check_output(option, target, force, suffixes=(), store=False):
+    """Refuse, before any work, an output the command could not write or would replace unasked.
+
+    A suffix not in ``suffixes`` (any case; none: any suffix), a missing or
+    read-only directory, a directory in a file's place, and an existing file
+    without ``--force`` are usage errors naming the option and the file, so
+    that nothing the user had is replaced unless they say so; the writes
+    themselves stay atomic (the old file is replaced only by a complete new
+    one). ``store``: the output is a Zarr store, a directory, which
+    ``--force`` replaces only if it is one.
+    """
+    if target is None:
+        return
+    if suffixes and target.suffix.lower() not in suffixes:
+        usage_error(f"{option}: unsupported output {target.name!r} (expected {', '.join(suffixes)})")
+    if not target.parent.is_dir():
         usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
-    if target is not None and target.is_dir():
-        usage_error(f"{option}: {str(target)!r} is a directory; name a file to write")
+    if target.is_dir() and not (store and _is_zarr_store(target)):
+        usage_error(f"{option}: {str(target)!r} is a directory; name a file to write"
+                    if not store else f"{option}: {str(target)!r} is a directory but not a Zarr store; "
+                                      "name a new .zarr to write")
+    if os.path.lexists(target) and not force:
+        usage_error(f"{option}: {str(target)!r} already exists; pass --force to replace it")
+    _probe_directory(option, target)
 
 
-def _check_plot_file(plot_file):
-    """A ``--plot`` output that is not .png, .svg or .pdf is a usage error (before any work)."""
-    if plot_file is not None and plot_file.suffix.lower() not in (".png", ".svg", ".pdf"):
-        usage_error(f"--plot: unsupported output {plot_file.name!r} (expected .png, .svg or .pdf)")
+def _probe_directory(option, target):
+    """A directory the output's temporary file cannot be created in (read-only, no permission) is a usage error."""
+    import tempfile
+
+    from .._fileio import temporary_prefix
+
+    try:
+        fd, probe = tempfile.mkstemp(prefix=temporary_prefix(target), suffix=".probe", dir=target.parent)
+    except OSError as exc:
+        usage_error(f"{option}: cannot write in {str(target.parent)!r} ({exc.strerror or exc})")
+    os.close(fd)
+    os.unlink(probe)
+
+
+@contextlib.contextmanager
+def _writing(option, target):
+    """Write ``target`` in the block, then say so; an error of the file system (disk full) is one line, status 1."""
+    try:
+        yield
+    except OSError as exc:
+        error_line(f"{option}: cannot write {str(target)!r} ({exc.strerror or exc})")
+        raise typer.Exit(1) from None
+    say(f"wrote {target}")
+
+
+def _check_outputs_in(option, directory, names, force):
+    """:func:`_check_output` for the files ``names`` a command writes into ``directory`` (created if missing)."""
+    if directory.is_dir():
+        for name in names:
+            _check_output(option, directory / name, force)
+    elif os.path.lexists(directory):
+        usage_error(f"{option}: {str(directory)!r} is not a directory")
+
+
+def _is_zarr_store(path):
+    return any((path / name).is_file() for name in (".zgroup", ".zarray", "zarr.json"))
 
 
 @app.command()
@@ -410,6 +478,7 @@ def fit(
     align: bool = typer.Option(False, "--align", help="Also fit the rotation from sensor to principal axes."),
     plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Draw data, fit and residuals: fit.png | .svg | .pdf"),
     json_file: Optional[pathlib.Path] = typer.Option(None, "--json", help="Write the results as JSON."),
+    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Fit the free (Euler) top to a gyroscope recording: moment ratios, ω0, bias, regime."""
     import json
@@ -421,11 +490,10 @@ def fit(
     from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
     from .fit import summary
 
-    _check_plot_file(plot_file)
+    _check_output("--plot", plot_file, force, _FIGURES)
     if plot_file is not None:
         require_all([("matplotlib", "plot")], feature="kreisel fit --plot")   # before the fit
-    _check_directory("--plot", plot_file)
-    _check_directory("--json", json_file)
+    _check_output("--json", json_file, force)
     if not recording.exists() and str(recording) in RECORDINGS:
         recording = recording_path(str(recording))
     try:
@@ -446,10 +514,10 @@ def fit(
     if plot_file is not None:
         from .. import plot as plots
 
-        plots.save(plots.gyro_fit(result), plot_file)
-        say(f"wrote {plot_file}")
+        with _writing("--plot", plot_file):
+            plots.save(plots.gyro_fit(result), plot_file)
     if json_file is not None:
-        with atomic_output(json_file) as tmp:
+        with _writing("--json", json_file), atomic_output(json_file) as tmp:
             tmp.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
         say(f"wrote {json_file}")
     if not result.free_rotation:

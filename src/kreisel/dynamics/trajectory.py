@@ -329,7 +329,9 @@ class Trajectory:
 
         CSV and Parquet hold one body; they keep the inertia tensor, ``meta``
         and the names of the extra arrays in a header so :meth:`load` restores
-        them. The file is written atomically (complete or untouched).
+        them. The file is written atomically (complete or untouched); an
+        existing file at ``path`` is replaced, as by xarray's and pandas'
+        writers (``kreisel simulate -o`` refuses one unless given ``--force``).
 
         Examples
         --------

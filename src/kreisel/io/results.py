@@ -25,7 +25,9 @@ def save_result(result, path):
 
     NetCDF keeps everything; CSV and Parquet hold one body, with the
     trajectory's inertia and metadata in the file (CSV header / Parquet
-    key-value metadata) so :func:`load_trajectory` restores it.
+    key-value metadata) so :func:`load_trajectory` restores it. The file is
+    written atomically; an existing one is replaced (``kreisel simulate -o``
+    refuses one unless given ``--force``).
 
     Examples
     --------

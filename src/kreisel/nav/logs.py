@@ -324,7 +324,8 @@ def write_attitude(path, t, q, frame="NED", input_frame="NED", degrees=True):
     Parameters
     ----------
     path : str or os.PathLike
-        Output CSV file; its directory must exist.
+        Output CSV file; its directory must exist. An existing file is
+        replaced (as by pandas' ``to_csv``).
     t : (n,) array_like
         Times (s).
     q : (n, 4) array_like

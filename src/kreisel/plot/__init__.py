@@ -25,7 +25,7 @@ _FORMATS = {".png", ".svg", ".pdf"}
 
 
 def save(fig, path, dpi=120):
-    """Write ``fig`` to ``path`` (.png, .svg or .pdf) atomically.
+    """Write ``fig`` to ``path`` (.png, .svg or .pdf) atomically; an existing file is replaced, as by ``savefig``.
 
     Examples
     --------

@@ -37,7 +37,8 @@ def animate(traj, path, frames=120, fps=24):
 
     The body is drawn as the uniform box with the trajectory's principal
     moments, with its principal axes; ω (red) and J (black) are scaled to unit
-    length at the start.
+    length at the start. The file is written atomically; an existing one is
+    replaced.
     """
     path = pathlib.Path(path)
     suffix = path.suffix.lower()
@@ -79,8 +80,8 @@ def animate(traj, path, frames=120, fps=24):
         title.set_text(f"t = {traj.t[index[k]]:.2f} s")
         return [*edge_lines, *axis_lines, omega_line, momentum_line, title]
 
-    movie = FuncAnimation(fig, draw, frames=len(index), blit=False)
     writer = PillowWriter(fps=fps) if suffix == ".gif" else FFMpegWriter(fps=fps)
     with atomic_output(path) as tmp:
-        movie.save(tmp, writer=writer)
+        # made only once the file can be written: an animation dropped unsaved warns when collected
+        FuncAnimation(fig, draw, frames=len(index), blit=False).save(tmp, writer=writer)
     return path

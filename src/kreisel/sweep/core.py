@@ -44,6 +44,7 @@ import functools
 import hashlib
 import inspect
 import json
+import logging
 import math
 import os
 import pathlib
@@ -373,7 +374,15 @@ def _open_session(scheduler, n_workers, threads_per_worker, key):
 
         def close():
             client.close()
-            cluster.close()
+            # every task is done: a worker process slow to exit (numba and Dask to tear down on a loaded
+            # machine) is killed after 4 s, which the nanny would log as a warning the user can do nothing about
+            nanny = logging.getLogger("distributed.nanny")
+            level = nanny.level
+            nanny.setLevel(logging.ERROR)
+            try:
+                cluster.close()
+            finally:
+                nanny.setLevel(level)
         return _Session(_DaskExecutor(client, key), close)
     client = Client(scheduler)
     return _Session(_DaskExecutor(client, key), client.close)
