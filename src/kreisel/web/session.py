@@ -87,7 +87,7 @@ def toml_text(data):
         if isinstance(v, bool):
             return "true" if v else "false"
         if isinstance(v, (int, float)) and not isinstance(v, bool):
-            if not np.isfinite(v):
+            if isinstance(v, float) and not math.isfinite(v):
                 raise ValueError(f"TOML numbers must be finite, got {v!r}")
             return repr(v)
         if isinstance(v, str):
@@ -170,10 +170,30 @@ def check_workload(scenario, max_samples=MAX_SAMPLES):
     if grid.get("dt") is not None and grid["t_end"] / grid["dt"] > MAX_STEPS:
         raise RunRefused(f"integration: t_end / dt = {grid['t_end'] / grid['dt']:.3g} steps is too many: "
                          f"the viewer allows at most {MAX_STEPS}")
-    turns = grid["t_end"] * float(np.linalg.norm(data["initial"]["omega"])) / (2 * np.pi)
-    if turns > MAX_TURNS:
-        raise RunRefused(f"integration.t_end: {turns:.3g} turns of the body requested, the viewer allows at most "
-                         f"{MAX_TURNS}")
+
+
+def _check_turns(data, body):
+    """Refuse a run in which the body would turn more than MAX_TURNS times; RunRefused says why.
+
+    Its angular speed is of order |ω0|, plus what the torques give it: the rate 2 √(mgl/I_min) that
+    gravity reaches at most (it converts at most 2 mgl of potential energy), and the |τ| t_end / I_min
+    a constant torque adds.
+    """
+    grid = data["integration"]
+    smallest = float(np.min(body.principal_moments))
+    rate, why = float(np.linalg.norm(data["initial"]["omega"])), ""
+    with np.errstate(over="ignore"):
+        for entry in data.get("torque", []):
+            if entry["kind"] == "gravity":
+                rate += 2.0 * math.sqrt(entry["weight"] * float(np.linalg.norm(entry["lever"])) / smallest)
+                why = " (with gravity's rate)"
+            elif entry["kind"] != "damping":
+                rate += float(np.linalg.norm(entry["torque"])) * grid["t_end"] / smallest
+                why = " (with the torque's spin-up)"
+        turns = grid["t_end"] * rate / (2 * np.pi)
+    if not turns <= MAX_TURNS:
+        raise RunRefused(f"integration.t_end: {turns:.3g} turns of the body requested{why}, the viewer allows at "
+                         f"most {MAX_TURNS}")
 
 
 def load(text, max_samples=MAX_SAMPLES, exact=False, path=None):
@@ -192,13 +212,15 @@ def load(text, max_samples=MAX_SAMPLES, exact=False, path=None):
         if not exact and grid.get("method") not in (None, *ADAPTIVE) and grid.get("dt") is None:
             raise ScenarioError(f"{path or '<scenario>'}: integration.dt: method {grid['method']!r} takes fixed steps and "
                                 "needs dt (s)")
+        built = {}
         for key, build in (("body", lambda: build_body(data["body"])),
                            ("initial.attitude", lambda: initial_attitude(data["initial"].get("attitude"))),
                            ("torque", lambda: torque_model(data.get("torque", [])))):
             try:
-                build()
+                built[key] = build()
             except ValueError as exc:
                 raise ScenarioError(f"{path or '<scenario>'}: {key}: {exc}") from None
+        _check_turns(data, built["body"])
         if exact:
             Solver(scenario, exact=True)  # RunRefused when the closed form does not apply
     return scenario
