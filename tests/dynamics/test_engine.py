@@ -220,6 +220,10 @@ def test_batch_bad_input():
         kr.simulate_batch([[1.0, 2.0, 3.0]], t, [0.1, 1, 0.1], method="scipy")
     with pytest.raises(ValueError, match="first axis"):
         kr.simulate_batch(np.ones((3, 3)) + [0, 1, 1], t, [0.1, 1, 0.1], reduce=lambda tr: 1.0)
+    # an empty omega0 or q0 batch against one body: refused by name (was numpy's "need at least one array")
+    for omega0, q0 in ((np.zeros((0, 3)), None), ([0.1, 1, 0.1], np.zeros((2, 0, 4)))):
+        with pytest.raises(ValueError, match=r"broadcast to an empty batch \(.*0.*\); give at least one body"):
+            kr.simulate_batch([1.0, 2.0, 3.0], t, omega0, q0=q0)
 
 
 def test_integration_failure_is_reported():

@@ -654,6 +654,9 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
         batch = np.broadcast_shapes(*shapes)
     except ValueError as exc:
         raise ValueError(f"bodies, omega0 and q0 batch shapes do not broadcast: {shapes}") from exc
+    if 0 in batch:
+        raise ValueError(f"bodies, omega0 and q0 (batch shapes {shapes}) broadcast to an empty batch {batch}; give "
+                         "at least one body")
     _check_omega_range(np.broadcast_to(w, batch + (3,)), np.broadcast_to(moments, batch + (3,)))
     if torque is not None and not isinstance(torque, _torques.TorqueModel):
         raise TypeError("simulate_batch takes a built-in torque model (GravityTorque, ConstantTorque, "
