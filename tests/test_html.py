@@ -68,6 +68,18 @@ def test_trajectory_shows_first_integrals_and_meta():
     assert len(repr(tr)) < 80
 
 
+@pytest.mark.parametrize("array", ["q", "omega"])
+def test_trajectory_with_nan_samples_shows_where_they_are(array):
+    # Trajectory accepts non-finite samples; its summary must not fail on them (Jupyter would show a traceback)
+    tr = _free_trajectory()
+    values = getattr(tr, array).copy()
+    values[150:, 0] = np.nan
+    tr = kr.dynamics.Trajectory(tr.t, values if array == "q" else tr.q, values if array == "omega" else tr.omega,
+                                tr.inertia)
+    text = parse(tr._repr_html_())
+    assert "non-finite samples 51 of 201, the first at t = 1.5 s" in text and "T(t0)" not in text
+
+
 def test_batched_trajectory_shows_its_batch_shape():
     t = np.linspace(0.0, 1.0, 11)
     tr = kr.simulate_batch(np.array([[1.0, 2.0, 3.0]] * 2), t, [0.1, 1.0, 0.1])

@@ -89,14 +89,22 @@ class Trajectory:
         if self.batch_shape:
             rows.append(("batch shape", self.batch_shape))
         else:
-            drift = self.drift()
-            rows += [
-                ("principal moments", number(np.linalg.eigvalsh(self.inertia)) + " kg m²"),
-                ("ω′(t0)", number(self.omega[0]) + " rad/s"),
-                ("T(t0)", number(self.energy[0]) + " J"),
-                ("J(t0)", number(self.angular_momentum_space[0]) + " kg m²/s"),
-                ("max relative change of T, |J|", f"{number(drift['energy'], 3)}, {number(drift['angular_momentum'], 3)}"),
-            ]
+            rows += [("principal moments", number(np.linalg.eigvalsh(self.inertia)) + " kg m²"),
+                     ("ω′(t0)", number(self.omega[0]) + " rad/s")]
+            # the constructor takes NaN samples (a run stopped midway, a file with gaps): say where, since the
+            # first integrals of such samples are not defined
+            bad = ~(np.isfinite(self.q).all(axis=-1) & np.isfinite(self.omega).all(axis=-1))
+            if bad.any():
+                rows.append(("non-finite samples", f"{int(bad.sum())} of {bad.size}, the first at "
+                                                   f"t = {self.t[bad][0]:g} s"))
+            else:
+                drift = self.drift()
+                rows += [
+                    ("T(t0)", number(self.energy[0]) + " J"),
+                    ("J(t0)", number(self.angular_momentum_space[0]) + " kg m²/s"),
+                    ("max relative change of T, |J|",
+                     f"{number(drift['energy'], 3)}, {number(drift['angular_momentum'], 3)}"),
+                ]
         rows += [(key, value) for key, value in self.meta.items()]
         rows += [("extra arrays", ", ".join(self._extra))] if self._extra else []
         return html_table("Trajectory", rows, note="quaternions scalar-first, R maps body to space; ω′ in body axes")
