@@ -171,8 +171,36 @@ def test_checked_callable_refuses_bad_returns_naming_the_callable():
     (lambda: kr.earth.foucault_pendulum([1.0, 2.0], 45.0, 10.0, 0.1), r"length must be a single number, got an array"),
     (lambda: kr.larmor_precession_rate(1.0, mass=[1e-30, 0.0]), "mass must be > 0, got 0.0"),
     (lambda: kr.nav.coning_motion(0.1, 1.0, -1e-3, 8), "sample_time must be > 0, got -0.001"),
+    (lambda: kr.simulate([1, 2, 3], [0.0, 1.0], [0, 0, 1.0], method="rk4", dt=-0.1), "dt must be > 0, got -0.1"),
+    (lambda: kr.simulate([1, 2, 3], [0.0, 1.0], [0, 0, 1.0], method="rk4", dt=np.inf), r"dt must be finite"),
+    (lambda: kr.simulate([1, 2, 3], [0.0, 1.0], [0, 0, 1.0], atol=0.0), "atol must be > 0, got 0.0"),
+    (lambda: kr.simulate([1, 2, 3], [0.0, 1.0], [0, 0, 1.0], rtol=np.nan), r"rtol must be in \[1e-15, 1\), got nan"),
+    (lambda: kr.frames.simulate_particle([0.0, 1.0], [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0], rtol=-1e-9),
+     "rtol must be > 0, got -1e-09"),
+    (lambda: kr.frames.simulate_particle([0.0, 1.0], [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0], atol=np.inf),
+     "atol must be finite"),
+    # max_step's default inf means no bound; NaN and non-positive steps are not bounds
+    (lambda: kr.frames.simulate_particle([0.0, 1.0], [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0], max_step=np.nan),
+     "max_step must be > 0, got nan"),
+    (lambda: kr.frames.simulate_particle([0.0, 1.0], [1.0, 0, 0], [0, 0, 0], [0, 0, 1.0], max_step=-np.inf),
+     "max_step must be > 0, got -inf"),
 ])
 def test_positive_quantities_are_refused_naming_the_argument_and_the_value(call, message):
     # one check (kreisel._validation.positive_array / positive_float) for every physical quantity that must be > 0
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_a_bound_may_be_inf_where_asked_and_a_tolerance_is_a_number_in_its_range():
+    from kreisel._validation import check_tolerance, positive_float
+
+    assert positive_float(np.inf, "max_step", allow_inf=True) == np.inf
+    with pytest.raises(ValueError, match="max_step must be finite"):
+        positive_float(np.inf, "max_step")
+    with pytest.raises(TypeError, match="max_step must be real numbers"):
+        positive_float("1", "max_step", allow_inf=True)
+    assert check_tolerance(0.5) == 0.5
+    with pytest.raises(TypeError, match="tol must be real numbers"):  # float() used to parse text
+        check_tolerance("0.1")
+    with pytest.raises(ValueError, match=r"tol must be in \[0, 1\), got 1.0"):
+        check_tolerance(1.0)

@@ -114,19 +114,32 @@ def sample_times(t: ArrayLike) -> NDArray[np.float64]:
     return a
 
 
-def positive_array(x: ArrayLike, name: str, allow_zero: bool = False) -> NDArray[np.float64]:
-    """:func:`as_float_array` of a quantity that must be > 0 (or >= 0: ``allow_zero``), else ValueError naming it."""
-    a = as_float_array(x, name)
-    bad = a < 0 if allow_zero else a <= 0
+def positive_array(x: ArrayLike, name: str, allow_zero: bool = False,
+                   allow_inf: bool = False) -> NDArray[np.float64]:
+    """:func:`as_float_array` of a quantity that must be > 0 (or >= 0: ``allow_zero``), else ValueError naming it.
+
+    Infinities are refused (as :func:`as_float_array` does) unless ``allow_inf``,
+    for a bound whose default ``inf`` means none; NaN never passes.
+    """
+    a = as_float_array(x, name, finite=not allow_inf)
+    bad = ~(a >= 0) if allow_zero else ~(a > 0)  # NaN is bad too
     if np.any(bad):
         raise ValueError(f"{name} must be {'>= 0' if allow_zero else '> 0'}, got {float(a[bad].flat[0])!r}")
     return a
 
 
-def positive_float(x: ArrayLike, name: str) -> float:
+def positive_float(x: ArrayLike, name: str, allow_inf: bool = False) -> float:
     """:func:`as_float` of a quantity that must be > 0, else ValueError naming it (as :func:`positive_array`)."""
-    value = as_float(x, name)
-    positive_array(value, name)
+    value = as_float(x, name, finite=not allow_inf)
+    positive_array(value, name, allow_inf=allow_inf)
+    return value
+
+
+def float_in_range(x: ArrayLike, name: str, low: float, high: float) -> float:
+    """:func:`as_float` of a number in ``[low, high)``, else ValueError naming it and the range (NaN is outside)."""
+    value = as_float(x, name, finite=False)
+    if not low <= value < high:
+        raise ValueError(f"{name} must be in [{low:g}, {high:g}), got {value!r}")
     return value
 
 
@@ -150,10 +163,7 @@ def check_frame(frame: object) -> bool:
 
 def check_tolerance(tol: float, name: str = "tol") -> float:
     """``tol`` as a float in [0, 1) (a singularity threshold on a sine or a determinant), or ValueError."""
-    t = float(tol)
-    if not (0.0 <= t < 1.0):
-        raise ValueError(f"{name} must be in [0, 1), got {tol!r}")
-    return t
+    return float_in_range(tol, name, 0.0, 1.0)
 
 
 def warn_if_any(mask: NDArray[np.bool_], category: type[Warning], message: str) -> None:

@@ -48,7 +48,6 @@ needs it) and the result is transformed back: ``q = q_principal ⊗ q_axes*``,
 
 from __future__ import annotations
 
-import math
 import operator
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -59,7 +58,8 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
 from .._compiled.outputs import empty
-from .._validation import as_float, as_float_array, check_allocation, check_inertia_tensor, check_principal_moments, checked_callable
+from .._validation import (as_float_array, check_allocation, check_inertia_tensor, check_principal_moments,
+                          checked_callable, float_in_range, positive_float)
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
 from ..so3._coercion import as_quaternion
 from . import _integrators
@@ -169,10 +169,7 @@ def _check_method(method: str | None, dt: float | None, t: _Array) -> tuple[str,
         return method, 0.0
     if dt is None:
         raise ValueError(f"method {method!r} is fixed-step: pass dt (the largest step, seconds)")
-    dt = as_float(dt, "dt", finite=False)
-    if not (math.isfinite(dt) and dt > 0.0):
-        raise ValueError(f"dt must be a positive finite number, got {dt}")
-    return method, dt
+    return method, positive_float(dt, "dt")
 
 
 def _check_omega_range(w: _Array, moments: _Array) -> None:
@@ -311,9 +308,7 @@ def _raise_status(status: ArrayLike) -> None:
 def _atol(atol: float | None, omega_scale: _Array, ny: int, rtol: float) -> _Array:
     """Absolute tolerance per component: scaled by |ω0| so rtol is meaningful in any units."""
     if atol is not None:
-        a = as_float(atol, "atol", finite=False)
-        if not (math.isfinite(a) and a > 0.0):
-            raise ValueError(f"atol must be a positive finite number, got {atol}")
+        a = positive_float(atol, "atol")
         if a < 1e-150:
             raise ValueError(f"atol = {a:g} is below 1e-150: the error estimate is squared after dividing by "
                              "atol, which overflows for order-one states; use a larger atol")
@@ -325,10 +320,7 @@ def _atol(atol: float | None, omega_scale: _Array, ny: int, rtol: float) -> _Arr
 
 
 def _check_rtol(rtol: float) -> float:
-    rtol = as_float(rtol, "rtol", finite=False)
-    if not (math.isfinite(rtol) and 1e-15 <= rtol < 1.0):
-        raise ValueError(f"rtol must be in [1e-15, 1), got {rtol}")
-    return rtol
+    return float_in_range(rtol, "rtol", 1e-15, 1.0)
 
 
 # ---------------------------------------------------------------------------- drivers

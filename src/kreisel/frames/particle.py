@@ -297,11 +297,8 @@ def simulate_particle(
     mass = positive_float(mass, "mass")
     gravity = _vector(gravity, "gravity")
     spring = as_float(spring, "spring")
-    for name, val in (("rtol", rtol), ("atol", atol)):
-        if not (np.isfinite(val) and val > 0):
-            raise ValueError(f"{name} must be a positive finite number, got {val}")
-    if not max_step > 0:
-        raise ValueError(f"max_step must be positive, got {max_step}")
+    rtol, atol = positive_float(rtol, "rtol"), positive_float(atol, "atol")
+    max_step = positive_float(max_step, "max_step", allow_inf=True)
     if callable(omega) and omega_dot is None:
         raise ValueError("omega_dot is required when omega is a callable")
     if force is not None and not callable(force):
@@ -314,8 +311,7 @@ def simulate_particle(
 
     y0 = np.concatenate([r0, v0])
     tables = _dop853.tableau()
-    rtol, max_step = float(rtol), float(max_step)
-    atol = np.full(y0.size, float(atol))
+    atol = np.full(y0.size, atol)
     y = np.empty((t.size, y0.size))
     builtin = not (callable(omega) or callable(omega_dot) or callable(a0) or force is not None)
     if builtin:
