@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import kreisel as kr
+from kreisel.dynamics import _integrators
 from kreisel.dynamics.torques import ConstantTorque, LinearDamping
 
 MOMENTS = np.array([[1.0, 2.0, 2.85], [1.1, 2.05, 2.9], [0.7, 1.3, 1.9]])
@@ -84,3 +85,15 @@ def test_dense_samples_are_the_end_states_of_shorter_runs(method, torque):
                                 method=method, dt=0.125)
         for name in ("omega", "q", "position", "velocity"):
             np.testing.assert_array_equal(getattr(end6, name)[-1], getattr(six, name)[k], err_msg=name)
+
+
+def test_the_register_drivers_finite_test_rejects_exactly_the_non_finite_numbers():
+    # one sum of x - x stands for fourteen isfinite tests, the largest finite numbers included
+    finite = [1e308, -1e308, 5e-324, -0.0, 0.0, 1.0, -2.5, 1.7976931348623157e308, -1.7976931348623157e308, 3.0,
+              1e-300, 7.0, -7.0, 2.0]
+    assert _integrators._finite(tuple(finite[:7]), tuple(finite[7:]))
+    for position in range(14):
+        for bad in (math.inf, -math.inf, math.nan):
+            values = list(finite)
+            values[position] = bad
+            assert not _integrators._finite(tuple(values[:7]), tuple(values[7:]))
