@@ -122,6 +122,55 @@ def test_a_truncated_csv_file_is_refused_not_read_with_nan(tmp_path, trajectory)
         kr.io.load_trajectory(cut)
 
 
+def _edited(tmp_path, trajectory, line, edit):
+    """A saved CSV trajectory with line ``line`` (1-based) passed through ``edit``."""
+    path = tmp_path / "traj.csv"
+    trajectory.save(path)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[line - 1] = edit(lines[line - 1])
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def _cell(index, value):
+    return lambda line: ",".join(value if i == index else cell for i, cell in enumerate(line.split(",")))
+
+
+@pytest.mark.parametrize(("line", "edit", "match"), [
+    (5, _cell(1, "0.5"), r"traj.csv: columns q0..q3, line 5: quaternion of length 0.6\d+, not a unit quaternion"),
+    (5, _cell(6, "abc"), r"traj.csv: column 'omega_2', line 5: not a number: 'abc'"),
+    (7, _cell(0, "x"), r"traj.csv: column 't', line 7: not a number: 'x'"),
+    (1, lambda line: line[:-3], r"traj.csv: the kreisel header is not valid JSON"),
+    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[1.0, 0.5, 0.0]"), r"traj.csv: header: inertia must be symmetric"),
+    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[-1.0, 0.0, 0.0]"), r"traj.csv: header: inertia: principal moments"),
+])
+def test_a_hand_edited_csv_file_is_refused_naming_file_column_and_line(tmp_path, trajectory, line, edit, match):
+    with pytest.raises(ValueError, match=match):
+        kr.Trajectory.load(_edited(tmp_path, trajectory, line, edit))
+
+
+def test_a_csv_file_saved_again_with_semicolons_is_refused_with_a_hint(tmp_path, trajectory):
+    path = tmp_path / "traj.csv"
+    trajectory.save(path)
+    header, *table = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join([header] + [row.replace(",", ";") for row in table]) + "\n", encoding="utf-8")
+    with pytest.raises(ValueError, match=r"column\(s\) q0, q1, q2, q3 not found; .*another separator"):
+        kr.Trajectory.load(path)
+
+
+def test_what_a_trajectory_holds_still_loads_from_csv(tmp_path):
+    # times in any order (an exact solution takes them so) and a body outside the triangle inequalities
+    # (allow_unphysical) are what a Trajectory holds: they round-trip
+    t = np.array([0.0, -1.0, 0.5])
+    omega = np.array([[0.1, 1.0, 0.1], [0.2, 1.0, 0.1], [0.1, 1.0, 0.1]])
+    tr = kr.Trajectory(t, [[1.0, 0.0, 0.0, 0.0]] * 3, omega, [2.0, 1.0, 2.0 / 3.0])
+    tr.save(tmp_path / "odd.csv")
+    back = kr.Trajectory.load(tmp_path / "odd.csv")
+    np.testing.assert_array_equal(back.t, t)
+    np.testing.assert_array_equal(back.omega, omega)
+    np.testing.assert_array_equal(back.inertia, tr.inertia)
+
+
 def test_extra_arrays_may_not_hide_trajectory_attributes():
     args = ([0.0, 1.0], [[1, 0, 0, 0]] * 2, [[0, 0, 1]] * 2, [1, 2, 3])
     for name in ("euler", "energy", "drift", "omega_space"):
