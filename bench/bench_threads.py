@@ -3,7 +3,7 @@
 Every multi-core loop of kreisel runs on numba's thread count, or on fewer
 threads while the machine has more runnable tasks than cores
 (``kreisel._compiled.threads``). This script times, in one process and in
-alternation (the order rotated each round), kreisel as it is, kreisel always on numba's count (the choice
+alternation (in a shuffled order each round), kreisel as it is, kreisel always on numba's count (the choice
 switched off, as before it existed), kreisel on one thread
 (``numba.set_num_threads(1)``) and scipy, for 10^6-rotation operations and
 one batch simulation: first on the machine as it is, then with ``2 × cores``
@@ -13,7 +13,7 @@ are the other runs' times over kreisel's: above 1 means kreisel is faster.
 Writes ``bench/results/threads.md`` (notes after the ``_common.NOTES_MARKER``
 line are kept).
 
-Usage: ``python bench/bench_threads.py [repeats]`` (default 5).
+Usage: ``python bench/bench_threads.py [repeats]`` (default 9).
 """
 
 from __future__ import annotations
@@ -33,8 +33,8 @@ import kreisel as kr
 from kreisel._compiled import threads
 
 N = 1_000_000
-BODIES = 4000
-#: Timed runs of the batch simulation (each about 0.1 s on a quiet machine, several times that on a busy one).
+BODIES = 2000
+#: Timed runs of the batch simulation (each about 0.05 s on a quiet machine, several times that on a busy one).
 BATCH_REPEATS = 3
 #: Longest life of a busy process, should this script die before it kills them.
 BUSY_SECONDS = 40
@@ -45,7 +45,6 @@ def _cases(rng):
     q = rng.normal(size=(N, 4))
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
     raw = 2.0 * rng.normal(size=(N, 4))
-    v = rng.normal(size=(N, 3))
     last = lambda x: np.ascontiguousarray(x[:, [1, 2, 3, 0]])  # noqa: E731
     sq, raw_last = S.from_quat(last(q)), last(raw)
     moments = np.empty((BODIES, 3))
@@ -55,7 +54,6 @@ def _cases(rng):
     return [
         ("inverse", lambda: kr.quat_inverse(q), lambda: sq.inv()),
         ("normalisation", lambda: kr.quat_normalize(raw), lambda: S.from_quat(raw_last)),
-        ("apply R(q) v", lambda: kr.quat_apply(q, v), lambda: sq.apply(v)),
         (f"simulate_batch, {BODIES} bodies, rk4, 1000 steps, end state",
          lambda: kr.simulate_batch(moments, [0.0, 10.0], omega0, method="rk4", dt=0.01), None),
     ]
@@ -99,15 +97,18 @@ def _busy(count):
 
 
 def _rounds(runs, repeats):
-    """(median wall, median CPU) of each run over ``repeats`` rounds, each round in an order rotated by one.
+    """(median wall, median CPU) of each run over ``repeats`` rounds, each round in a shuffled order.
 
-    On a busy machine the run after a two-thread loop that waited for a
-    descheduled thread starts with the scheduler's credit for that wait and
-    is rarely preempted: a fixed order would favour whichever run follows it.
+    On a busy machine a run that follows one which slept (a two-thread loop
+    waiting at its end for a descheduled thread) starts with the scheduler's
+    credit for that sleep and is rarely preempted, while one that follows a
+    busy run is: a fixed or rotated order would favour whatever run follows
+    the sleeper.
     """
     walls, cpus = [[] for _ in runs], [[] for _ in runs]
+    shuffle = np.random.default_rng(0)
     for r in range(repeats):
-        order = [(i + r) % len(runs) for i in range(len(runs))]
+        order = shuffle.permutation(len(runs))
         for i, timing in zip(order, interleaved(*(runs[i] for i in order), repeats=1, warmup=r == 0)):
             walls[i].append(timing.median)
             cpus[i].append(timing.cpu_median)
@@ -126,14 +127,14 @@ def _rows(cases, label, repeats):
             runs, repeats if scipy_run else BATCH_REPEATS)
         scipy_cells = [_ms(peer[0][0]), f"{peer[0][0] / ours_wall:.1f}×"] if peer else ["", ""]
         rows.append([
-            name, label, _ms(ours_wall), *scipy_cells, _ms(fixed_wall), f"{fixed_wall / ours_wall:.2f}",
-            _ms(one_wall), f"{one_wall / ours_wall:.2f}", f"{ours_cpu / ours_wall:.1f}", f"{fixed_cpu / fixed_wall:.1f}",
+            name, label, _ms(ours_wall), *scipy_cells, _ms(fixed_wall), f"{fixed_wall / ours_wall:.2f}", _ms(one_wall),
+            f"{one_wall / ours_wall:.2f}", f"{ours_cpu / ours_wall:.1f}", f"{fixed_cpu / fixed_wall:.1f}",
         ])
         print(" | ".join(rows[-1]), flush=True)
     return rows
 
 
-def main(repeats=5):
+def main(repeats=9):
     cases = _cases(np.random.default_rng(0))
     load_before = load_average()
     busy = 2 * (os.cpu_count() or 1)
@@ -143,7 +144,7 @@ def main(repeats=5):
     lines = table_section(
         "kreisel's multi-core loops on a busy machine",
         [f"Medians of {repeats} rounds ({BATCH_REPEATS} for the batch simulation) of runs taken in alternation in one "
-         "process, the order rotated by one each round, in ms: kreisel "
+         "process, in a shuffled order each round, in ms: kreisel "
          "as it is (numba's thread count, fewer while more tasks are runnable than there are cores), kreisel always on "
          "numba's count (`KREISEL_ADAPTIVE_THREADS=0`), kreisel on one thread (`numba.set_num_threads(1)`) and scipy "
          "(one thread), on 10^6 rotations; first on the machine as it is, then with busy processes (one spinning "

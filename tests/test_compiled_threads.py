@@ -1,6 +1,7 @@
-"""The thread count of kreisel's multi-core loops (kreisel._compiled.threads): in effect, and without effect on results."""
+"""The thread count of kreisel's multi-core loops (kreisel._compiled.threads): in effect, not in the results."""
 
 import importlib
+import os
 import pkgutil
 
 import numba
@@ -107,3 +108,25 @@ def test_results_do_not_depend_on_the_thread_count():
         numba.set_num_threads(configured)
     for a, b in zip(both, one):
         np.testing.assert_array_equal(a, b)
+
+
+def test_the_chunks_of_a_long_run_share_their_cpu_time_over_the_threads_the_loop_ran_on(monkeypatch):
+    monkeypatch.setattr(threads, "_CORES", 2)
+    monkeypatch.setattr(threads, "runnable_tasks", lambda: 3)
+    probe()
+    assert threads.last_threads() == max(1, numba.get_num_threads() - 1)
+    monkeypatch.setattr(threads, "runnable_tasks", lambda: 1)
+    probe()
+    assert threads.last_threads() == numba.get_num_threads()
+
+
+def test_an_unreadable_count_leaves_numbas_count(monkeypatch, tmp_path):
+    other = tmp_path / "loadavg"
+    other.write_text("no counts here\n")
+    fd = os.open(other, os.O_RDONLY)
+    try:
+        monkeypatch.setattr(threads, "_loadavg", [fd])
+        monkeypatch.setattr(threads, "_last", [-1.0, None])
+        assert threads.runnable_tasks() is None and threads._loadavg == [None]
+    finally:
+        os.close(fd)

@@ -20,8 +20,9 @@ import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
-import numba
 import numpy as np
+
+from . import threads
 
 __all__ = ["MAX_STEPS", "CHUNK_SECONDS", "StepBudgetExceeded", "check_max_steps", "interrupts_between_chunks", "run_chunked",
            "run_resumable"]
@@ -123,12 +124,12 @@ def _chunk_seconds(start: float, start_cpu: float) -> float:
     On a loaded machine the wall clock also counts the time other processes
     had the cores, and chunks sized by it shrink to a step or two whose fixed
     cost (tens of ns a body in a batch) then dominates; the process's CPU
-    time shared over numba's threads does not. On an idle machine the two
-    agree; under load a chunk lasts longer in wall time (by the load factor),
+    time shared over the threads of the last loop does not. On an idle
+    machine the two agree; under load a chunk lasts longer in wall time (by the load factor),
     which still returns to Python well within a second.
     """
     wall = time.perf_counter() - start
-    cpu = (time.process_time() - start_cpu) / numba.get_num_threads()
+    cpu = (time.process_time() - start_cpu) / threads.last_threads()
     return min(wall, cpu) if cpu > 0.0 else wall
 
 

@@ -11,7 +11,9 @@ threads against 2–3 ms on one. Longer loops (a batch simulation of
 0.6 s) were no faster on two threads than on one at that load either.
 
 So each call first reads how many tasks the machine has runnable at that
-moment (Linux: ``/proc/loadavg``, about 3 µs) and runs on as many threads
+moment (Linux: ``/proc/loadavg``, 3–7 µs, read again after
+:data:`READING_SECONDS` at the earliest, so that a loop of small batches
+does not pay it each time) and runs on as many threads
 fewer than numba's current count as there are runnable tasks beyond the
 cores, at least one (:func:`threads_for`). The count includes the caller
 and kreisel's worker threads still spinning after a previous loop, so on a
@@ -26,34 +28,51 @@ pieces' results in order afterwards.
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Callable
 from typing import Any
 
 import numba
 
-__all__ = ["ADAPTIVE", "ParallelLoop", "runnable_tasks", "threads_for"]
+__all__ = ["ADAPTIVE", "READING_SECONDS", "ParallelLoop", "last_threads", "runnable_tasks", "threads_for"]
 
-#: Whether loops run on fewer threads while the machine is oversubscribed (``KREISEL_ADAPTIVE_THREADS=0``: never).
-ADAPTIVE = os.environ.get("KREISEL_ADAPTIVE_THREADS", "1") != "0"
+#: Whether loops run on fewer threads while the machine is oversubscribed (never with
+#: ``KREISEL_ADAPTIVE_THREADS=0``, nor when numba has one thread: ``NUMBA_NUM_THREADS=1``).
+ADAPTIVE = os.environ.get("KREISEL_ADAPTIVE_THREADS", "1") != "0" and numba.config.NUMBA_NUM_THREADS > 1
 
 #: Cores the runnable tasks of ``/proc/loadavg`` (counted over the whole machine) share.
 _CORES = os.cpu_count() or 1
 
+#: A count of runnable tasks is used for this long (a machine's load changes over seconds, a loop takes µs to ms).
+READING_SECONDS = 1e-3
+
 _loadavg: list[int | None] = []
+#: When the last count was read, and the count.
+_last: list[Any] = [-1.0, None]
 
 
 def runnable_tasks() -> int | None:
-    """Tasks running or waiting for a core on the whole machine now, the caller included; None if unknown."""
+    """Tasks running or waiting for a core on the whole machine, the caller included; None if unknown.
+
+    The count read at most :data:`READING_SECONDS` ago, or a new one.
+    """
+    now = time.monotonic()
+    if now - _last[0] < READING_SECONDS:
+        return _last[1]
     if not _loadavg:
         try:
             _loadavg.append(os.open("/proc/loadavg", os.O_RDONLY))
         except OSError:
             _loadavg.append(None)
-    fd = _loadavg[0]
-    if fd is None:
-        return None
-    # "0.52 0.58 0.59 3/215 12345": the fourth field is runnable/existing tasks
-    return int(os.pread(fd, 128, 0).split()[3].split(b"/")[0])
+    count = None
+    if _loadavg[0] is not None:
+        try:
+            # "0.52 0.58 0.59 3/215 12345": the fourth field is runnable/existing tasks
+            count = int(os.pread(_loadavg[0], 128, 0).split()[3].split(b"/")[0])
+        except (OSError, IndexError, ValueError):
+            _loadavg[0] = None  # a /proc of another layout (a sandbox): numba's count from now on
+    _last[:] = now, count
+    return count
 
 
 def threads_for(configured: int, runnable: int | None) -> int:
@@ -61,6 +80,15 @@ def threads_for(configured: int, runnable: int | None) -> int:
     if runnable is None:
         return configured
     return max(1, min(configured, configured - (runnable - _CORES)))
+
+
+#: Threads the last loop was given when fewer than numba's count, else None.
+_given: list[int | None] = [None]
+
+
+def last_threads() -> int:
+    """Threads the most recent multi-core loop ran on (numba's count unless it was lowered)."""
+    return _given[0] or numba.get_num_threads()
 
 
 class ParallelLoop:
@@ -74,9 +102,11 @@ class ParallelLoop:
     def __call__(self, *args: Any) -> Any:
         runnable = runnable_tasks() if ADAPTIVE else None
         if runnable is None or runnable <= _CORES:
+            _given[0] = None
             return self.dispatcher(*args)
         configured = numba.get_num_threads()
-        numba.set_num_threads(threads_for(configured, runnable))
+        _given[0] = threads_for(configured, runnable)
+        numba.set_num_threads(_given[0])
         try:
             return self.dispatcher(*args)
         finally:
