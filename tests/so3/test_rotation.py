@@ -42,6 +42,18 @@ def test_composition_inverse_apply(rng):
     assert a.approx_equal(a).all()
 
 
+def test_approx_equal_takes_scipys_degrees():
+    a, b = Rotation.random(50, rng=4), Rotation.random(50, rng=5)
+    angles = np.degrees((a.inv() * b).magnitude())
+    for atol in (np.median(angles), 90.0):
+        expected = S.from_quat(a.as_quat(), scalar_first=True).approx_equal(
+            S.from_quat(b.as_quat(), scalar_first=True), atol=atol, degrees=True)
+        np.testing.assert_array_equal(a.approx_equal(b, atol, degrees=True), expected)
+        np.testing.assert_array_equal(a.approx_equal(b, atol=np.radians(atol)), expected)
+    with pytest.raises(TypeError, match="degrees"):
+        a.approx_equal(b, 1.0, degrees="yes")
+
+
 def test_container_protocol_and_repr():
     r = Rotation.random((4, 3), rng=3)
     assert r.shape == (4, 3) and len(r) == 4

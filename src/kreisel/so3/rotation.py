@@ -815,7 +815,7 @@ class Rotation(QuaternionBatch):
         return Rotation._wrap(_interp.quat_slerp(self._q, other._q, t))
 
     @takes_out
-    def approx_equal(self, other: Rotation, atol: float = 1e-12, *,
+    def approx_equal(self, other: Rotation, atol: float = 1e-12, degrees: bool = False, *,
                      out: NDArray[np.bool_] | None = None) -> NDArray[np.bool_]:
         """Whether the rotations agree to ``atol`` in angle (sign of q ignored).
 
@@ -824,7 +824,9 @@ class Rotation(QuaternionBatch):
         other : Rotation
             Broadcast against ``self``.
         atol : float
-            Largest angle between equal rotations, radians.
+            Largest angle between equal rotations, radians (degrees when ``degrees``).
+        degrees : bool
+            ``atol`` is in degrees, as scipy's ``approx_equal(other, atol, degrees=True)``.
 
         Examples
         --------
@@ -835,7 +837,8 @@ class Rotation(QuaternionBatch):
         >>> bool(Rotation.from_quat(q).approx_equal(Rotation.from_quat(-q)))
         True
         """
-        return deliver((self.inv() * other).magnitude() <= atol, out)
+        tolerance = np.deg2rad(atol) if check_flag(degrees, "degrees") else atol
+        return deliver((self.inv() * other).magnitude() <= tolerance, out)
 
     # -- container protocol (shape, single and len: QuaternionBatch) --------
     def __iter__(self) -> Iterator[Rotation]:
