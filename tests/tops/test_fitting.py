@@ -163,6 +163,14 @@ def test_a_record_that_hardly_changes_is_refused_before_fitting(span):
         kr.fit_free_rotation(np.linspace(0.0, 2.0, 100), np.tile([0.0, 0.0, 10.0], (100, 1)))
 
 
+def test_a_window_outside_the_record_names_the_records_span():
+    t = 4.2731 + np.linspace(0.0, 0.65, 100)   # a phone's clock: the toss starts 4.27 s into the recording
+    omega = kr.EulerTop(1.0, 2.0, 2.5).omega(t - t[0], [0.1, 1.0, 0.1])
+    with pytest.raises(ValueError, match=r"window \(0.1, 0.5\) holds no sample: the record spans t = 4.2731 … "
+                                         r"4.9231 s"):
+        kr.fit_free_rotation(t, omega, window=(0.1, 0.5))
+
+
 @pytest.mark.parametrize("bias", [False, True])
 def test_a_record_of_a_sensor_at_rest_is_refused_before_fitting(bias):
     # all zeros (a phone lying on the table): no ratio, no SVD of a 0/0 scaled table

@@ -318,6 +318,10 @@ def _check(t, omega, window):
         if not start < stop:
             raise ValueError(f"window must have t_start < t_stop, got {window!r}")
         keep = (t >= start) & (t <= stop)
+        if t.size and not keep.any():
+            # the usual slip: a window from 0 for a phone's clock, which starts anywhere
+            raise ValueError(f"window ({start:g}, {stop:g}) holds no sample: the record spans t = {t[0]:g} … "
+                             f"{t[-1]:g} s")
         t, omega = t[keep], omega[keep]
     return t, omega
 
