@@ -7,15 +7,17 @@ only cuts the shares smaller, still assigned up front), and the call returns
 when the last share is done. With more runnable tasks than cores, one thread
 waits for a core for whole time slices while the others spin at the loop's
 end: at load 6 on 2 cores a 10^6-quaternion inverse took 30–60 ms on two
-threads against 2–3 ms on one. Longer loops (a batch simulation of
-0.6 s) were no faster on two threads than on one at that load either.
+threads against 2–3 ms on one. Long loops fare about the same on one
+thread as on two under load, where two threads also get two shares of the
+cores (a batch simulation of 0.4–2 s took 0.88–1.49 times as long on one
+thread, seven runs at load 5–11).
 
 So each call first reads how many tasks the machine has runnable at that
 moment (Linux: ``/proc/loadavg``, 3–7 µs, read again after
 :data:`READING_SECONDS` at the earliest, so that a loop of small batches
-does not pay it each time) and runs on as many threads
-fewer than numba's current count as there are runnable tasks beyond the
-cores, at least one (:func:`threads_for`). The count includes the caller
+does not pay it each time) and runs on as many threads fewer than numba's
+current count as there are runnable tasks beyond the cores, at least one
+(:func:`threads_for`). The count includes the caller
 and kreisel's worker threads still spinning after a previous loop, so on a
 quiet machine it never exceeds the cores and every loop runs on numba's
 count, unchanged. Where the count cannot be read, or with the environment
