@@ -44,11 +44,11 @@ def test_parallel_matches_serial(poses, monkeypatch):
         assert np.array_equal(fast.view(np.uint64), slow.view(np.uint64))
 
 
-def test_composition_and_inverse_store_plain_arrays(poses, monkeypatch):
+def test_composition_inverse_and_from_matrix_store_plain_arrays(poses, monkeypatch):
     # The next multi-core call reads them without copying strided views first.
     _parallel(monkeypatch)
     a, b, _ = poses
-    for t in (a * b, a.inv()):
+    for t in (a * b, a.inv(), RigidTransform.from_matrix(a.as_matrix())):
         assert t.as_quat().flags.c_contiguous and t._q.flags.c_contiguous and t._translation.flags.c_contiguous
 
 

@@ -104,24 +104,52 @@ def test_parallel_checks_find_bad_entries_anywhere(data, parallel, position):
         kr.matrix_to_rotvec(nan_R)
 
 
-def test_results_checked_as_computed_match_those_checked_first(data, parallel):
-    q, _, psi, _, _ = data
-    for function, x in ((kr.quat_normalize, q), (kr.quat_inverse, q), (kr.rotvec_to_quat, psi)):
-        first_checked = function(x, out=np.empty((N, 4)))  # out=: checked before the loop
-        assert function(x).tobytes() == first_checked.tobytes()
-
-
-def test_products_checked_as_computed_match_those_checked_first(parallel):
-    # quat_multiply and quat_apply check p, q and v inside the loop: non-unit,
-    # tiny and huge inputs (products that overflow included) give the same bits.
+def _awkward(width):
+    # non-unit, tiny and huge rows: pieces that the loops' fast formulas leave to their row-by-row loop
     rng = np.random.default_rng(3)
-    scale = lambda width: rng.normal(size=(N, width)) * 10.0 ** rng.integers(-320, 306, size=(N, 1))  # noqa: E731
-    p, q, v = scale(4), scale(4), scale(3)
+    return rng.normal(size=(N, width)) * 10.0 ** rng.integers(-150, 150, size=(N, 1))
+
+
+def _three_ways(function, *inputs):
+    """``function(*inputs)`` new, into a fresh ``out=`` and into an ``out=`` that is an input of the result's shape."""
+    shape = function(*inputs).shape
+    aliased = [x.copy() for x in inputs]
+    return (function(*inputs), function(*inputs, out=np.empty(shape)),
+            function(*aliased, out=next(x for x in aliased if x.shape == shape)))
+
+
+@pytest.mark.parametrize("name", ["quat_normalize", "quat_inverse", "quat_apply", "quat_apply inverse", "quat_multiply"])
+def test_out_gives_the_bits_of_the_row_by_row_gufunc(name, monkeypatch):
+    # The multi-core loops (fresh result, or an out= that overlaps no input) compute a piece by
+    # fast formulas and redo it row by row when it holds an awkward row; an out= that is an input
+    # takes the row-by-row loop. Every way gives the gufunc's bits (a batch this small, unpatched).
+    function = {
+        "quat_normalize": kr.quat_normalize, "quat_inverse": kr.quat_inverse, "quat_apply": kr.quat_apply,
+        "quat_apply inverse": lambda q, v, out=None: kr.quat_apply(q, v, inverse=True, out=out),
+        "quat_multiply": kr.quat_multiply,
+    }[name]
+    inputs = {"quat_apply": (_awkward(4), _awkward(3)), "quat_apply inverse": (_awkward(4), _awkward(3)),
+              "quat_multiply": (_awkward(4), _awkward(4)[::-1])}.get(name, (_awkward(4),))
     with np.errstate(all="ignore"):
-        for inverse in (False, True):
-            first_checked = kr.quat_apply(q, v, inverse, out=np.empty((N, 3)))
-            assert kr.quat_apply(q, v, inverse).tobytes() == first_checked.tobytes()
-        assert kr.quat_multiply(p, q).tobytes() == kr.quat_multiply(p, q, out=np.empty((N, 4))).tobytes()
+        serial = function(*inputs)
+        monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
+        monkeypatch.setattr(_gufunc, "CHECKED_CHUNK", 5)
+        for result in _three_ways(function, *inputs):
+            assert result.tobytes() == serial.tobytes()
+
+
+def test_out_takes_the_checked_loop_unless_it_overlaps_an_input(data, parallel, monkeypatch):
+    from kreisel.so3 import quaternion
+
+    calls = []
+    loop = quaternion._map_checked
+    monkeypatch.setattr(quaternion, "_map_checked", lambda *args: calls.append(args[1]) or loop(*args))
+    q = data[0].copy()
+    out = np.empty_like(q)
+    assert kr.quat_normalize(q, out=out) is out and calls[-1].ctypes.data == out.ctypes.data
+    kr.quat_normalize(q, out=q)
+    kr.quat_normalize(q[:-1:2], out=q[1::2])  # a strided input is copied first, but out is not C-ordered
+    assert len(calls) == 1
 
 
 @pytest.mark.parametrize("position", [0, N // 2, N - 1])

@@ -251,15 +251,21 @@ def in_pieces(kernel: Callable[..., None], a: NDArray[np.float64], out: NDArray[
 
 
 @generic
-def piece_results(kernel: Callable[..., Any], flat: NDArray[np.float64], chunk: int,
+def piece_results(kernel: Callable[..., Any], args: tuple[Any, ...], size: int, chunk: int,
                   results: NDArray[Any]) -> NDArray[Any]:
-    """``results[c] = kernel(flat, start, stop)`` for the pieces of ``chunk`` entries of ``flat``, on all cores.
+    """``results[c] = kernel(*args, start, stop)`` for the pieces ``start:stop`` of ``chunk`` of ``range(size)``, on all cores.
 
-    ``results`` holds one entry per piece (:func:`pieces`); inlined like
-    :func:`in_pieces`. The caller reduces ``results`` to the batch's statistic.
+    The one multi-core loop over the pieces of a batch that yields a result
+    per piece (a check's statistic, refusal flags). ``args`` are the
+    kernel's arrays and parameters, passed as one tuple: numba inlines no
+    function with ``*args``. ``results`` holds a row per piece
+    (:func:`pieces`; a tuple-valued kernel fills a row of several columns);
+    the caller reduces it to the batch's statistic. Inlined like
+    :func:`in_pieces`.
     """
-    for c in prange(results.size):
-        results[c] = kernel(flat, c * chunk, min(flat.size, (c + 1) * chunk))
+    for c in prange(results.shape[0]):
+        start = c * chunk
+        results[c] = kernel(*args, start, min(size, start + chunk))
     return results
 
 
@@ -269,14 +275,23 @@ def pieces(size: int, chunk: int) -> int:
     return (size + chunk - 1) // chunk
 
 
+@inlined
+def union(flags: NDArray[np.int64]) -> int:
+    """The bitwise or of refusal ``flags`` (one per piece)."""
+    every = 0
+    for flag in flags:
+        every |= flag
+    return every
+
+
 @parallel
 def _smallest_quat_size_parallel(flat, chunk):
-    return piece_results(_smallest_quat_size, flat, chunk, np.empty(pieces(flat.size, chunk))).min()
+    return piece_results(_smallest_quat_size, (flat,), flat.size, chunk, np.empty(pieces(flat.size, chunk))).min()
 
 
 @parallel
 def _all_finite_parallel(flat, chunk):
-    return piece_results(_all_finite, flat, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
+    return piece_results(_all_finite, (flat,), flat.size, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
 
 
 def _read_only_flat(a):
@@ -345,31 +360,69 @@ def refuse_nonfinite(finite: bool, name: str) -> None:
 CHECKED_CHUNK = 2**14
 
 
-def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], core_out: tuple[int, ...],
-                        loop: Callable[..., Any], *extra: Any, single: bool = False) -> tuple[NDArray[np.float64], Any] | None:
-    """``(result, statistic)`` of a loop that checks its inputs as it computes a large new result; None if small.
+def checked_in_one_pass(inputs: tuple[NDArray[np.float64], ...], cores_out: tuple[tuple[int, ...], ...],
+                        loop: Callable[..., Any], *extra: Any,
+                        single: bool = False) -> tuple[tuple[NDArray[np.float64], ...], Any] | None:
+    """``(results, statistic)`` of a loop that checks its inputs as it computes large new results; None if small.
 
-    ``loop(*flat_inputs, flat_out, CHECKED_CHUNK, *extra)`` runs on all
+    ``results`` holds a new C-ordered array per core shape of ``cores_out``
+    (separate arrays, not views of one packed result: the next multi-core
+    loop would have to copy strided views first).
+    ``loop(*flat_inputs, *flat_results, CHECKED_CHUNK, *extra)`` runs on all
     cores over ``(n, core)`` views, computes every element (what it writes
     for one that fails its check is never seen) and returns the batch's
     check statistic. The inputs are read once instead of once to check and once to
     compute, and one multi-core loop starts instead of one per input plus
     one: the check is still done before any work the caller sees, since the
-    caller refuses the batch from the statistic and the new result is then
-    dropped. With ``out=`` (which may be an input) the callers check first
-    instead. None also when the inputs' batch shapes differ (broadcasting),
-    except that with ``single`` an input without batch axes is passed as one
-    row ``(1, core)`` (the loop reads its row ``min(i, rows - 1)``).
+    caller refuses the batch from the statistic and the new results are then
+    dropped. With ``out=`` the callers check first instead and then run the
+    loop into it (:func:`checked_loop_into`). None also when the inputs'
+    batch shapes differ (broadcasting), except that with ``single`` an input
+    without batch axes is passed as one row ``(1, core)`` (the loop reads its
+    row ``min(i, rows - 1)``).
+    """
+    batch = _loop_batch(inputs, single)
+    if batch is None:
+        return None
+    n = math.prod(batch)
+    results = tuple(empty((*batch, *core)) for core in cores_out)
+    flat = (r.reshape(n, *core) for r, core in zip(results, cores_out))
+    return results, loop(*map(loop_rows, inputs), *flat, CHECKED_CHUNK, *extra)
+
+
+def checked_loop_into(out: NDArray[np.float64] | None, inputs: tuple[NDArray[np.float64], ...],
+                      core_out: tuple[int, ...], loop: Callable[..., Any], *extra: Any) -> NDArray[np.float64] | None:
+    """``out`` filled by a loop of :func:`checked_in_one_pass` on all cores, the inputs checked already; else None.
+
+    Such a loop computes a piece by its fast formulas and, if the piece holds
+    an awkward row, computes it again row by row from the inputs, which must
+    still be intact then: it gets only an ``out`` that shares no memory with
+    them (an input copied to C-ordered rows shares none). None when ``out``
+    is None, overlaps an input or is not C-ordered, or when the batch is small or
+    broadcast: the caller's gufunc fills ``out`` then (one row at a time, any overlap).
+    ``out`` is checked here (:func:`~kreisel._compiled.outputs.check_out`).
+    """
+    batch = None if out is None else _loop_batch(inputs)
+    if batch is None:
+        return None
+    check_out(out, (*batch, *core_out))
+    rows = [loop_rows(a) for a in inputs]
+    if not out.flags.c_contiguous or any(np.may_share_memory(a, out) for a in rows):
+        return None
+    loop(*rows, out.reshape(math.prod(batch), *core_out), CHECKED_CHUNK, *extra)
+    return out
+
+
+def _loop_batch(inputs: tuple[NDArray[np.float64], ...], single: bool = False) -> tuple[int, ...] | None:
+    """The batch shape the inputs of a checked loop share if it has at least :data:`PARALLEL_THRESHOLD` rows, else None.
+
+    With ``single``, inputs without batch axes are left out (the loop reads their one row).
     """
     batches = {a.shape[:-1] for a in inputs}
     if single and len(batches) > 1:
         batches.discard(())
     batch = batches.pop()
-    n = math.prod(batch)
-    if n < PARALLEL_THRESHOLD or batches:
-        return None
-    out = empty((*batch, *core_out))
-    return out, loop(*map(loop_rows, inputs), out.reshape(n, *core_out), CHECKED_CHUNK, *extra)
+    return None if batches or math.prod(batch) < PARALLEL_THRESHOLD else batch
 
 
 def loop_rows(a: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -408,7 +461,7 @@ def _rotvecs_in_range(flat, start, stop):
 
 @parallel
 def _rotvecs_in_range_parallel(flat, chunk):
-    return piece_results(_rotvecs_in_range, flat, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
+    return piece_results(_rotvecs_in_range, (flat,), flat.size, chunk, np.empty(pieces(flat.size, chunk), np.bool_)).all()
 
 
 def rotvec_array(psi: ArrayLike, name: str, what: str = "|psi|") -> NDArray[np.float64]:
@@ -460,11 +513,8 @@ def _orthogonality_defect(flat, start, stop):
 
 @parallel
 def _orthogonality_defect_parallel(flat, chunk):
-    worst = np.empty(pieces(flat.size, chunk))
-    smallest_det = np.empty(worst.size)
-    for c in prange(worst.size):
-        worst[c], smallest_det[c] = _orthogonality_defect(flat, c * chunk, min(flat.size, (c + 1) * chunk))
-    return worst.max(), smallest_det.min()
+    defects = piece_results(_orthogonality_defect, (flat,), flat.size, chunk, np.empty((pieces(flat.size, chunk), 2)))
+    return defects[:, 0].max(), defects[:, 1].min()
 
 
 def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY_TOLERANCE) -> NDArray[np.float64]:

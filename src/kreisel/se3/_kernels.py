@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled import gufunc as _gufunc
 from .._compiled.gufunc import LazyGufunc, checked_in_one_pass, finite3, finite_array, gufunc
-from .._compiled.gufunc import loop_rows, refuse_nonfinite
+from .._compiled.gufunc import loop_rows, piece_results, pieces, refuse_nonfinite, union
 from .._compiled.outputs import empty
 from .._validation import as_float_array
 
@@ -127,7 +127,7 @@ def apply_inverse(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.
 
 @cached
 def _moved_rows(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.float64], out: NDArray[np.float64],
-                start: int, stop: int, inverse: bool) -> bool:
+                inverse: bool, start: int, stop: int) -> bool:
     # apply (or apply_inverse) of rows start..stop-1, and whether their points
     # are finite. q and t (or p) hold a row per result or one row (one pose,
     # or one point). A non-finite point makes its result non-finite (the pose
@@ -153,10 +153,7 @@ def _moved_rows(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.fl
 def _move_checked(q: NDArray[np.float64], t: NDArray[np.float64], p: NDArray[np.float64], out: NDArray[np.float64],
                   chunk: int, inverse: bool) -> bool:
     n = out.shape[0]
-    finite = np.empty((n + chunk - 1) // chunk, dtype=np.bool_)
-    for c in prange(finite.size):
-        finite[c] = _moved_rows(q, t, p, out, c * chunk, min(n, (c + 1) * chunk), inverse)
-    return finite.all()
+    return piece_results(_moved_rows, (q, t, p, out, inverse), n, chunk, np.empty(pieces(n, chunk), np.bool_)).all()
 
 
 def move(q: NDArray[np.float64], t: NDArray[np.float64], points: ArrayLike, inverse: bool,
@@ -167,10 +164,11 @@ def move(q: NDArray[np.float64], t: NDArray[np.float64], points: ArrayLike, inve
     many points) is computed on all cores in the pass that checks the points.
     """
     p = as_float_array(points, name, (3,), finite=False)
-    fused = checked_in_one_pass((q, t, p), (3,), _move_checked, inverse, single=True) if out is None else None
+    fused = checked_in_one_pass((q, t, p), ((3,),), _move_checked, inverse, single=True) if out is None else None
     if fused is not None:
-        refuse_nonfinite(bool(fused[1]), name)
-        return fused[0]
+        (moved,), finite = fused
+        refuse_nonfinite(bool(finite), name)
+        return moved
     return (apply_inverse if inverse else apply)(q, t, finite_array(p, name), out=out)
 
 
@@ -227,8 +225,9 @@ def from_matrix(m: NDArray[np.float64], carrier: NDArray[np.float64], out: NDArr
 
 
 @cached
-def _poses_rows(m: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int, tolerance: float) -> int:
-    # Packed [q, t] of the homogeneous matrices (rows of 16 entries) start..stop-1
+def _poses_rows(m: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64], tolerance: float, start: int,
+                stop: int) -> int:
+    # q and t of the homogeneous matrices (rows of 16 entries) start..stop-1
     # that are finite, and their refusal flags (1: a matrix is not finite, 2: a
     # finite one is not rigid within tolerance).
     flags = 0
@@ -241,8 +240,8 @@ def _poses_rows(m: NDArray[np.float64], out: NDArray[np.float64], start: int, st
             continue
         r00, r01, r02, r10, r11, r12 = m[i, 0], m[i, 1], m[i, 2], m[i, 4], m[i, 5], m[i, 6]
         r20, r21, r22 = m[i, 8], m[i, 9], m[i, 10]
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
-        out[i, 4], out[i, 5], out[i, 6] = m[i, 3], m[i, 7], m[i, 11]
+        q[i, 0], q[i, 1], q[i, 2], q[i, 3] = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
+        t[i, 0], t[i, 1], t[i, 2] = m[i, 3], m[i, 7], m[i, 11]
         defect = _rigidity_defect(r00, r01, r02, r10, r11, r12, r20, r21, r22, m[i, 12], m[i, 13], m[i, 14], m[i, 15])
         if not defect <= tolerance:
             flags |= 2
@@ -250,15 +249,10 @@ def _poses_rows(m: NDArray[np.float64], out: NDArray[np.float64], start: int, st
 
 
 @parallel
-def _poses_checked(m: NDArray[np.float64], out: NDArray[np.float64], chunk: int, tolerance: float) -> int:
+def _poses_checked(m: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64], chunk: int,
+                   tolerance: float) -> int:
     n = m.shape[0]
-    flags = np.empty((n + chunk - 1) // chunk, dtype=np.int64)
-    for c in prange(flags.size):
-        flags[c] = _poses_rows(m, out, c * chunk, min(n, (c + 1) * chunk), tolerance)
-    union = 0
-    for flag in flags:
-        union |= flag
-    return union
+    return union(piece_results(_poses_rows, (m, q, t, tolerance), n, chunk, np.empty(pieces(n, chunk), np.int64)))
 
 
 def poses_of_matrices(matrix: ArrayLike, tolerance: float) -> tuple[NDArray[np.float64], NDArray[np.float64], bool]:
@@ -268,10 +262,10 @@ def poses_of_matrices(matrix: ArrayLike, tolerance: float) -> tuple[NDArray[np.f
     A large batch is converted on all cores in the pass that checks it.
     """
     a = as_float_array(matrix, "matrix", (4, 4), finite=False)
-    fused = checked_in_one_pass((a.reshape(*a.shape[:-2], 16),), (7,), _poses_checked, tolerance)
+    fused = checked_in_one_pass((a.reshape(*a.shape[:-2], 16),), ((4,), (3,)), _poses_checked, tolerance)
     if fused is not None:
-        packed, flags = fused
+        (q, t), flags = fused
         refuse_nonfinite(not flags & 1, "matrix")
-        return packed[..., :4], packed[..., 4:], not flags & 2
+        return q, t, not flags & 2
     packed = from_matrix(finite_array(a, "matrix", (4, 4)))
     return packed[..., :4], packed[..., 4:7], not (packed.size and not np.max(packed[..., 7]) <= tolerance)

@@ -18,8 +18,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, kernels, parallel, vectorised
 from .._compiled.outputs import check_out, deliver, takes_out
-from .._compiled.gufunc import checked_in_one_pass, checked_quat_size, finite3, gufunc, refuse_nonfinite, refuse_quaternions
-from .._compiled.gufunc import finite_array, quaternion_array, sized_quaternion_array, vector_array
+from .._compiled.gufunc import (
+    checked_in_one_pass, checked_loop_into, checked_quat_size, finite3, finite_array, gufunc, piece_results, pieces,
+    quaternion_array, refuse_nonfinite, refuse_quaternions, sized_quaternion_array, union, vector_array,
+)
 from .._validation import ROTVEC_RANGE, as_float_array, batch_shape, check_flag, refuse_long_angle
 from .._norms import norm
 from .rotvec import quat_to_rotvec
@@ -177,22 +179,22 @@ def _mapped_rows(q: NDArray[np.float64], out: NDArray[np.float64], start: int, s
     return least
 
 
+@cached
+def _mapped_piece(q: NDArray[np.float64], out: NDArray[np.float64], operation: int, start: int, stop: int) -> float:
+    # Normalisation or inverse of rows start..stop-1 and a lower bound of their
+    # smallest size, exact where it is at most SIZE_LOW (-1: not finite), as
+    # sized_quaternion_array finds it: one read of q for both, unless the piece
+    # holds a size outside (SIZE_LOW, SIZE_HIGH).
+    if _mapped_in_range(q, out, start, stop, operation):
+        return kernels.SIZE_LOW
+    return _mapped_rows(q, out, start, stop, operation)
+
+
 @parallel
 def _map_checked(q: NDArray[np.float64], out: NDArray[np.float64], chunk: int, operation: int) -> float:
-    # Normalisation or inverse of a batch (into an out that is not q) and a
-    # lower bound of its smallest size, exact where it is at most SIZE_LOW
-    # (-1: not finite), as sized_quaternion_array finds it: one read of q for
-    # both, unless a piece holds a size outside (SIZE_LOW, SIZE_HIGH).
+    # _mapped_piece of a batch (into an out that is not q), on all cores
     n = q.shape[0]
-    pieces = (n + chunk - 1) // chunk
-    smallest = np.empty(pieces)
-    for c in prange(pieces):
-        start, stop = c * chunk, min(n, (c + 1) * chunk)
-        if _mapped_in_range(q, out, start, stop, operation):
-            smallest[c] = kernels.SIZE_LOW
-        else:
-            smallest[c] = _mapped_rows(q, out, start, stop, operation)
-    return float(smallest.min())
+    return float(piece_results(_mapped_piece, (q, out, operation), n, chunk, np.empty(pieces(n, chunk))).min())
 
 
 def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tuple[NDArray[np.float64], float]:
@@ -202,11 +204,15 @@ def _mapped(q: ArrayLike, operation: int, out: NDArray[np.float64] | None) -> tu
     ``kernels.SIZE_LOW``: what the refusals and the inverse's overflow test need.
     """
     a = as_float_array(q, "q", (4,), finite=False)
-    fused = checked_in_one_pass((a,), (4,), _map_checked, operation) if out is None else None
+    fused = checked_in_one_pass((a,), ((4,),), _map_checked, operation) if out is None else None
     if fused is not None:
-        refuse_quaternions(fused[1], "q")
-        return fused
+        (mapped,), smallest = fused
+        refuse_quaternions(smallest, "q")
+        return mapped, smallest
     a, smallest = sized_quaternion_array(a, "q")
+    filled = checked_loop_into(out, (a,), (4,), _map_checked, operation)
+    if filled is not None:
+        return filled, smallest
     return (_normalize if operation == _NORMALIZE else _inverse)(a, out=out), smallest
 
 
@@ -283,27 +289,25 @@ def _rotated_in_range(q: NDArray[np.float64], v: NDArray[np.float64], out: NDArr
 _MULTIPLY, _APPLY = 0, 1
 
 
+@cached
+def _product_piece(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray[np.float64], operation: int, sign: float,
+                   start: int, stop: int) -> int:
+    # p q (a = p, b = q) or R(q) v (a = q, b = v) of rows start..stop-1 and the
+    # union of their refusal flags: one read of both inputs for the check and the result.
+    if operation == _MULTIPLY:
+        return _multiplied(a, b, out, start, stop)
+    if _rotated_in_range(a, b, out, start, stop, sign):
+        return 0
+    return _rotated(a, b, out, start, stop, sign)
+
+
 @parallel
 def _product_checked(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray[np.float64], chunk: int,
                      operation: int, sign: float) -> int:
-    # p q (a = p, b = q) or R(q) v (a = q, b = v) of a batch and the union of
-    # the refusal flags of its elements: one read of both inputs for the check
-    # and the result.
+    # _product_piece of a batch, on all cores
     n = a.shape[0]
-    pieces = (n + chunk - 1) // chunk
-    flags = np.empty(pieces, dtype=np.int64)
-    for c in prange(pieces):
-        start, stop = c * chunk, min(n, (c + 1) * chunk)
-        if operation == _MULTIPLY:
-            flags[c] = _multiplied(a, b, out, start, stop)
-        elif _rotated_in_range(a, b, out, start, stop, sign):
-            flags[c] = 0
-        else:
-            flags[c] = _rotated(a, b, out, start, stop, sign)
-    union = 0
-    for flag in flags:
-        union |= flag
-    return union
+    return union(piece_results(_product_piece, (a, b, out, operation, sign), n, chunk,
+                               np.empty(pieces(n, chunk), dtype=np.int64)))
 
 
 def _then(x: ArrayLike, name: str, tail: tuple[int, ...], previous_checks: Callable[[], object]) -> NDArray[np.float64]:
@@ -416,9 +420,9 @@ def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None
             return product
     a = as_float_array(p, "p", (4,), finite=False)
     b = _then(q, "q", (4,), lambda: quaternion_array(a, "p", nonzero=False))
-    fused = checked_in_one_pass((a, b), (4,), _product_checked, _MULTIPLY, 1.0) if out is None else None
+    fused = checked_in_one_pass((a, b), ((4,),), _product_checked, _MULTIPLY, 1.0) if out is None else None
     if fused is not None:
-        product, bad = fused
+        (product,), bad = fused
         if bad & 1:
             refuse_quaternions(-1.0, "p")
         if bad & 2:
@@ -528,14 +532,16 @@ def rotate_vectors(q: ArrayLike, v: ArrayLike, inverse: bool = False, out: NDArr
     sign = -1.0 if check_flag(inverse, "inverse") else 1.0
     a = as_float_array(q, "q", (4,), finite=False)
     b = _then(v, name, (3,), lambda: quaternion_array(a, "q"))
-    fused = checked_in_one_pass((a, b), (3,), _product_checked, _APPLY, sign) if out is None else None
+    fused = checked_in_one_pass((a, b), ((3,),), _product_checked, _APPLY, sign) if out is None else None
     if fused is not None:
-        rotated, bad = fused
+        (rotated,), bad = fused
         if bad & 3:
             refuse_quaternions(-1.0 if bad & 1 else 0.0, "q")
         refuse_nonfinite(not (bad & 4), name)
         return rotated
-    return _apply(quaternion_array(a, "q"), vector_array(b, name), sign, out=out)
+    a, b = quaternion_array(a, "q"), vector_array(b, name)
+    filled = checked_loop_into(out, (a, b), (3,), _product_checked, _APPLY, sign)
+    return _apply(a, b, sign, out=out) if filled is None else filled
 
 
 @takes_out

@@ -17,8 +17,8 @@ from numpy.typing import ArrayLike, NDArray
 from .._compiled import cached, kernels, parallel
 from .._compiled.outputs import deliver, takes_out
 from .._compiled.gufunc import (
-    checked_in_one_pass, finite_array, gufunc, in_pieces, matrix_array, quaternion_array, refuse_rotvecs, rotvec_array,
-    rotvec_in_range, vector_array,
+    checked_in_one_pass, finite_array, gufunc, in_pieces, matrix_array, piece_results, pieces, quaternion_array,
+    refuse_rotvecs, rotvec_array, rotvec_in_range, vector_array,
 )
 from .._validation import as_float_array, check_flag
 from .._norms import norm, unit
@@ -56,23 +56,24 @@ def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64])
     in_pieces(kernels.rotvec_quats, psi, out, _PIECE)  # psi checked (at most 1e8 rad long) by the caller
 
 
+@cached
+def _rotvec_quats_checked(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> bool:
+    # exp of each psi of rows start..stop-1 and whether all were finite and in
+    # range (the caller refuses the batch otherwise): one read of psi for the
+    # check and the result. The kernel turns NaN or inf into NaN without
+    # raising, so it runs unguarded.
+    flat = psi.reshape(psi.size)[3 * start:3 * stop]  # indices from 0 and a known stride: the check vectorises
+    ok = True
+    for i in range(0, flat.size, 3):
+        ok &= rotvec_in_range(flat[i], flat[i + 1], flat[i + 2])
+    kernels.rotvec_quats(psi, out, start, stop)
+    return ok
+
+
 @parallel
 def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> np.bool_:
-    # exp of each psi and whether all were finite and in range (the caller
-    # refuses the batch otherwise): one read of psi for the check and the
-    # result. The kernel turns NaN or inf into NaN without raising, so it runs unguarded.
     n = psi.shape[0]
-    pieces = (n + chunk - 1) // chunk
-    accepted = np.empty(pieces, dtype=np.bool_)
-    for c in prange(pieces):
-        start = int(c) * chunk
-        stop = min(n, start + chunk)
-        ok = True
-        for i in range(start, stop):
-            ok &= rotvec_in_range(psi[i, 0], psi[i, 1], psi[i, 2])
-        kernels.rotvec_quats(psi, out, start, stop)
-        accepted[c] = ok
-    return accepted.all()
+    return piece_results(_rotvec_quats_checked, (psi, out), n, chunk, np.empty(pieces(n, chunk), np.bool_)).all()
 
 
 @parallel
@@ -267,11 +268,12 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
 def exp_quat(psi: ArrayLike, name: str, out: NDArray[np.float64] | None = None, what: str = "|psi|") -> NDArray[np.float64]:
     """:func:`rotvec_to_quat` of the argument ``name``, refused naming it and ``what`` its length is."""
     a = as_float_array(psi, name, (3,), finite=False)
-    fused = checked_in_one_pass((a,), (4,), _rotvec_to_quat_checked) if out is None else None
+    fused = checked_in_one_pass((a,), ((4,),), _rotvec_to_quat_checked) if out is None else None
     if fused is not None:
-        if not fused[1]:
+        (quats,), accepted = fused
+        if not accepted:
             refuse_rotvecs(a, name, what)
-        return fused[0]
+        return quats
     return _rotvec_to_quat(rotvec_array(a, name, what), out=out)
 
 
