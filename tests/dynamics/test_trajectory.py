@@ -159,16 +159,29 @@ def test_a_csv_file_saved_again_with_semicolons_is_refused_with_a_hint(tmp_path,
 
 
 def test_what_a_trajectory_holds_still_loads_from_csv(tmp_path):
-    # times in any order (an exact solution takes them so) and a body outside the triangle inequalities
-    # (allow_unphysical) are what a Trajectory holds: they round-trip
+    # NaN samples, times in any order (an exact solution takes them so) and a body outside the triangle
+    # inequalities (allow_unphysical) are what a Trajectory holds: they round-trip
     t = np.array([0.0, -1.0, 0.5])
-    omega = np.array([[0.1, 1.0, 0.1], [0.2, 1.0, 0.1], [0.1, 1.0, 0.1]])
+    omega = np.array([[0.1, 1.0, 0.1], [np.nan, 1.0, 0.1], [0.1, 1.0, 0.1]])
     tr = kr.Trajectory(t, [[1.0, 0.0, 0.0, 0.0]] * 3, omega, [2.0, 1.0, 2.0 / 3.0])
     tr.save(tmp_path / "odd.csv")
     back = kr.Trajectory.load(tmp_path / "odd.csv")
     np.testing.assert_array_equal(back.t, t)
     np.testing.assert_array_equal(back.omega, omega)
     np.testing.assert_array_equal(back.inertia, tr.inertia)
+
+
+def test_space_vectors_are_nan_only_at_nan_samples(trajectory, tmp_path):
+    omega = trajectory.omega.copy()
+    omega[5, 1] = np.nan
+    tr = kr.Trajectory(trajectory.t, trajectory.q, omega, trajectory.inertia)
+    R = Rotation.from_quat(trajectory.q, scalar_first=True)
+    for got, body in ((tr.omega_space, omega), (tr.angular_momentum_space, omega * [1.0, 2.0, 3.0])):
+        assert np.isnan(got[5]).all() and np.isfinite(np.delete(got, 5, axis=0)).all()
+        np.testing.assert_allclose(np.delete(got, 5, axis=0), np.delete(R.apply(np.nan_to_num(body)), 5, axis=0),
+                                   atol=1e-14)
+    tr.save(tmp_path / "gap.nc")   # was "v must be finite (no NaN or inf)"
+    np.testing.assert_array_equal(kr.Trajectory.load(tmp_path / "gap.nc").omega, omega)
 
 
 def test_extra_arrays_may_not_hide_trajectory_attributes():

@@ -155,15 +155,27 @@ class Trajectory:
         energy: NDArray[np.float64] = 0.5 * np.einsum("...i,...i->...", self.omega, self.angular_momentum_body)
         return energy
 
+    def _to_space(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
+        """R v of body vectors ``v`` (..., n, 3); NaN at the samples whose q or v is not finite.
+
+        The constructor takes such samples (a run stopped midway, a file with gaps); quat_apply refuses them.
+        """
+        finite = np.isfinite(self.q).all(axis=-1) & np.isfinite(v).all(axis=-1)
+        if finite.all():
+            return quat_apply(self.q, v)
+        out = np.full(v.shape, np.nan)
+        out[finite] = quat_apply(self.q[finite], v[finite])
+        return out
+
     @property
     def omega_space(self) -> NDArray[np.float64]:
         """ω = R ω′ in space components (Theory §3.1)."""
-        return quat_apply(self.q, self.omega)
+        return self._to_space(self.omega)
 
     @property
     def angular_momentum_space(self) -> NDArray[np.float64]:
         """J = R J′ in space components; constant for a free body (Theory §4.4)."""
-        return quat_apply(self.q, self.angular_momentum_body)
+        return self._to_space(self.angular_momentum_body)
 
     def angular_momentum(self, frame: str = "space") -> NDArray[np.float64]:
         """Angular momentum J (``frame="space"``) or J′ (``frame="body"``), kg m²/s.
