@@ -587,10 +587,13 @@ def _strang_steps(weights, n, h, i0, i1, i2, s, pending):
 
 @inlined
 def _strang_output(weights, h_next, i0, i1, i2, s, pending):
-    """The sample of :func:`_splitting_free` at an output time: the pending flow applied, or merged with the next."""
+    """The sample of :func:`_splitting_free` at an output time (the pending flow applied) and the state.
+
+    Before another interval the state is ahead by that interval's first half flow.
+    """
     ahead = 0.5 * weights[0] * h_next
-    if ahead == pending:
-        v, s = _flows_at_output(pending, i0, *s)
+    if not math.isnan(ahead):
+        v, s = _flows_at_output(pending, ahead, i0, s)
         pending = -ahead
     else:
         s = _axis_flow(0, pending, i0, i1, i2, *s)
@@ -616,14 +619,15 @@ def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
     the state stays m across output times (ω′ = m/I is formed for the
     samples only).
 
-    At an output time between two intervals of equal steps the pending half
-    flow and the next interval's first one are equal: the sample is the state
-    advanced by the first and the state is advanced by both at once, both
-    from one sine and cosine (:func:`_flows_at_output`); ``pending`` then
+    At an output time before another interval the sample is the state
+    advanced by the pending half flow, and the state is advanced by the next
+    interval's first one too (:func:`_flows_at_output`); ``pending`` then
     turns negative (the state is ahead by the next half flow) and the next
-    step skips its own. So storing every step costs no flow that the
-    end-state run does not take. Elsewhere (uneven steps, the last time) the
-    pending flow is applied before the sample, as at the end of a run.
+    step skips its own. Between intervals of equal steps both flows come
+    from one sine and cosine, so storing every step costs no flow that the
+    end-state run does not take; steps that differ (if only in their last
+    bits) take two, evaluated side by side. At the last time the pending
+    flow is applied before the sample, as at the end of a run.
     """
     return _register_run(_strang_steps, _strang_output, _momentum, weights, t_out, grid, state, inertia, out, budget,
                          every)
@@ -653,18 +657,30 @@ def _rk4_free(t_out, grid, state, inertia, out, budget, every):
     return _register_run(_rk4_steps, _rk4_output, _same, None, t_out, grid, state, inertia, out, budget, every)
 
 
-@cached
-def _flows_at_output(p, i0, m0, m1, m2, q0, q1, q2, q3):
-    """(the state after the flow of time ``p`` about axis 0, the state after twice that flow), from one sine and cosine.
+# inlined: LLVM kept it out of line, a call per output interval
+@inlined
+def _flows_at_output(p, ahead, i0, s):
+    """(the state ``s`` after the flow of time ``p`` about axis 0, after that flow and the next of time ``ahead``).
 
-    The flow of 2p turns the quaternion by twice the half angle of the flow
-    of p: its cosine and sine follow by the double-angle formulas, as the
-    momentum's do inside :func:`_axis_turn` (round-off as that of sin and cos).
+    Equal flows (even steps) take one sine and cosine: the flow of 2p turns
+    the quaternion by twice the half angle of the flow of p, whose cosine
+    and sine follow by the double-angle formulas, as the momentum's do
+    inside :func:`_axis_turn` (round-off as that of sin and cos). Unequal
+    ones (steps that differ in their last bits, as those of most grids of
+    ``np.linspace`` do) take the two flows of :func:`_axis_flow`; their
+    angles depend on m_0 only, which neither flow changes, so the second
+    sine and cosine need not wait for the first flow: the two evaluations
+    overlap instead of following each other.
     """
+    m0, m1, m2, q0, q1, q2, q3 = s
     half = 0.5 * p / i0 * m0
     c2, s2 = math.cos(half), math.sin(half)
     once = _axis_turn(c2, s2, m1, m2, q0, q1, q2, q3)
-    twice = _axis_turn((c2 - s2) * (c2 + s2), 2.0 * s2 * c2, m1, m2, q0, q1, q2, q3)
+    if ahead == p:
+        twice = _axis_turn((c2 - s2) * (c2 + s2), 2.0 * s2 * c2, m1, m2, q0, q1, q2, q3)
+    else:
+        half = 0.5 * ahead / i0 * m0
+        twice = _axis_turn(math.cos(half), math.sin(half), *once)
     return (m0, once[0], once[1], once[2], once[3], once[4], once[5]), \
         (m0, twice[0], twice[1], twice[2], twice[3], twice[4], twice[5])
 
