@@ -52,10 +52,14 @@ def test_fixed_step_run_just_inside_the_budget_runs():
         kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01, max_steps=99)
 
 
+# a torque: a free body's run over 1e9 s is refused before it starts (test_a_free_adaptive_run_out_of_reach...)
+_NUDGE = ConstantTorque([0.0, 0.0, 1e-3])
+
+
 @pytest.mark.parametrize("run", [
-    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], max_steps=steps),
-    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], method="scipy", max_steps=steps),
-    lambda steps: kr.simulate_batch([[1, 2, 3]] * 3, [0, 1e9], [0.1, 1, 0.1], max_steps=steps),
+    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], torque=_NUDGE, max_steps=steps),
+    lambda steps: kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], torque=_NUDGE, method="scipy", max_steps=steps),
+    lambda steps: kr.simulate_batch([[1, 2, 3]] * 3, [0, 1e9], [0.1, 1, 0.1], torque=_NUDGE, max_steps=steps),
     lambda steps: kr.frames.simulate_particle([0, 1e9], [1, 0, 0], [0, -1, 0], [0, 0, 1], max_steps=steps),
     lambda steps: kr.earth.foucault_pendulum(1.0, 45.0, 1e9, 0.1, max_steps=steps),
 ], ids=["simulate", "scipy", "simulate_batch", "simulate_particle", "foucault_pendulum"])
@@ -64,6 +68,63 @@ def test_adaptive_run_stops_at_its_step_budget(run):
         run(50)
     with pytest.raises(TypeError, match="max_steps"):
         run(1.5)
+
+
+@pytest.mark.parametrize("run", [
+    lambda: kr.simulate([1, 2, 3], [0, 1e300], [0.1, 1, 0.1]),
+    lambda: kr.simulate([1, 2, 3], [0, 1e300], [0.1, 1, 0.1], method="scipy"),
+    lambda: kr.simulate_batch([[1, 2, 3]], [0, 1e300], [[0, 0, 0], [0.1, 1, 0.1]]),
+    lambda: kr.simulate_6dof([1, 2, 3], [0, 1e300], [0.1, 1, 0.1], force=kr.dynamics.ConstantForce([0, 0, -9.8])),
+], ids=["simulate", "scipy", "simulate_batch", "simulate_6dof"])
+def test_a_free_adaptive_run_out_of_reach_is_refused_before_it_starts(monkeypatch, run):
+    # it ran for hours until the step budget stopped it
+    def no_run(*args, **kwargs):
+        raise AssertionError("the integration started")
+
+    monkeypatch.setattr(engine, "_run", no_run)
+    monkeypatch.setattr(engine, "_scipy", no_run)
+    with pytest.raises(ValueError, match=r"^t = 0 … 1e\+300 is out of reach of the adaptive method .*\|ω\| >= 1\.0\d "
+                                         r"rad/s.*needs at least 5\.\d+e\+299 steps, about .* years of computing; "
+                                         r"over the budget max_steps = 1e\+10"):
+        run()
+
+
+def _steps_taken(run):
+    """The steps a run takes: the smallest ``max_steps`` it finishes within (found by bisection)."""
+    lo, hi = 1, 1 << 20
+    while lo < hi:
+        mid = (lo + hi) // 2
+        try:
+            run(mid)
+            hi = mid
+        except chunks.StepBudgetExceeded:
+            lo = mid + 1
+    return lo
+
+
+@pytest.mark.parametrize("moments, omega0, options", [
+    ([1, 2, 3], [0, 0, 1.0], {}),  # uniform spin: the longest steps
+    ([1, 2, 3], [0, 0, 1.0], dict(rtol=0.999)),
+    ([1, 2, 3], [0, 0, 1.0], dict(atol=1.0)),
+    ([1, 2, 3], [0.6, 0.1, 0.6], {}),  # tumbling
+    ([1, 1, 1e-3], [0, 0, 1.0], dict(rtol=1e-6)),  # about the smallest axis: 2T/|J| = |ω|
+])
+def test_the_reach_check_never_refuses_a_free_run_that_can_finish(moments, omega0, options):
+    # the run is tried with max_steps = the steps it takes: the up-front bound, a lower bound on them, lets it
+    # through (bisection runs every budget without ValueError); for uniform spin it is within 10x of them
+    span = 2000.0
+    steps = _steps_taken(lambda budget: kr.simulate(moments, [0.0, span], omega0, max_steps=budget, **options))
+    if not np.count_nonzero(omega0) - 1:
+        with pytest.raises(ValueError, match="out of reach"):
+            kr.simulate(moments, [0.0, span], omega0, max_steps=steps // 10, **options)
+
+
+def test_long_runs_of_slow_or_resting_bodies_are_not_refused():
+    slow = kr.simulate([1, 2, 3], [0.0, 1e6], [1e-3, 1e-2, 1e-3])  # 1e4 rad in 1e6 s
+    assert slow.t[-1] == 1e6 and abs(slow.energy[-1] / slow.energy[0] - 1.0) < 1e-9
+    rest = kr.simulate([1, 2, 3], [0.0, 1e300], [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(rest.q[-1], [1.0, 0.0, 0.0, 0.0])
+    kr.simulate([1, 2, 3], [0.0, 1e300], [1e-300, 0.0, 0.0], max_steps=10**4)
 
 
 def test_output_too_large_for_memory_is_refused_with_its_size():
@@ -169,11 +230,12 @@ CHILD = textwrap.dedent("""
     from kreisel.dynamics import ConstantTorque
     simulate = [
         dict(omega0=[0.1, 1, 0.1], method="rk4", dt=1e-3, max_steps=10**13),
-        dict(omega0=[0.1, 1, 0.1]),
-        dict(omega0=[1e5, 1e5, 1e5]),
+        # budgets that let the free runs over 1e9 s start (they need at least 5e8 and 8e13 steps)
+        dict(omega0=[0.1, 1, 0.1], max_steps=10**15),
+        dict(omega0=[1e5, 1e5, 1e5], max_steps=10**15),
         dict(omega0=[0.1, 1, 0.1], torque=ConstantTorque([1e12, 0, 1e12])),
         dict(omega0=[0.1, 1, 0.1], torque=lambda t, q, w: np.sin(t) * np.ones(3)),
-        dict(omega0=[0.1, 1, 0.1], method="scipy"),
+        dict(omega0=[0.1, 1, 0.1], method="scipy", max_steps=10**15),
         dict(omega0=[0.1, 1, 0.1], method="scipy", torque=lambda t, q, w: np.sin(t) * np.ones(3)),
     ]
     def simulate_case(case):
@@ -183,7 +245,7 @@ CHILD = textwrap.dedent("""
         return run
     runs = {
         "simulate": [simulate_case(case) for case in simulate],
-        "simulate_batch": [lambda t: kr.simulate_batch([[1, 2, 3]] * 4, t, [0.1, 1, 0.1])],
+        "simulate_batch": [lambda t: kr.simulate_batch([[1, 2, 3]] * 4, t, [0.1, 1, 0.1], max_steps=10**15)],
         "simulate_particle": [lambda t: kr.frames.simulate_particle(t, [1, 0, 0], [0, -1, 0], [0, 0, 1])],
         "simulate_particle_callable_force": [
             lambda t: kr.frames.simulate_particle(t, [1, 0, 0], [0, -1, 0], [0, 0, 1], force=lambda tt, r, v: -r),

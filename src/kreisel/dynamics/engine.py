@@ -34,8 +34,12 @@ requested times are hit exactly (no interpolation).
 
 Every run is bounded and interruptible: a fixed-step run whose step count
 exceeds ``max_steps`` (default ``MAX_STEPS`` = 10¹⁰) is refused before it starts,
-with its estimated time; an adaptive run stops with ``RuntimeError`` once it
-has taken ``max_steps`` steps; outputs that would not fit in memory are refused
+with its estimated time, and so is a torque-free adaptive run that needs more
+(a free body turns at ``|ω| >= 2T/|J|`` all along, and a DOP853 step turns it
+by a bounded angle: see ``_check_adaptive_span``); any other adaptive run stops
+with ``RuntimeError`` once it has taken ``max_steps`` steps (a torque may speed
+the body up or bring it to rest, so no count is known before); outputs that
+would not fit in memory are refused
 with their size. Every method (``scipy`` too) runs in chunks of ~50 ms
 (:mod:`kreisel._compiled.chunks`), so Ctrl-C stops any run with a
 ``KeyboardInterrupt`` and ``progress`` is told how far the run got.
@@ -97,7 +101,7 @@ DEFAULT_RTOL = 1e-12
 
 # rough single-core cost of one step of each compiled method (free body; a torque adds to it), for the
 # time estimate in the message that refuses a run over its step budget
-_SECONDS_PER_STEP = {"dop853": 1.5e-6, "splitting": 3e-7, "splitting4": 1e-6, "dmv": 1e-6, "rkmk4": 6e-7,
+_SECONDS_PER_STEP = {"dop853": 1.5e-6, "scipy": 3e-5, "splitting": 3e-7, "splitting4": 1e-6, "dmv": 1e-6, "rkmk4": 6e-7,
                      "midpoint": 5e-7, "rk4": 3.5e-7}
 # steps of the first call (shared by the bodies of a batch); later calls adapt to the measured speed
 _FIRST_CHUNK_STEPS = 2**16
@@ -289,6 +293,39 @@ def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_
     return max_steps
 
 
+def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array, rtol: float, atol: _Array,
+                         max_steps: int) -> None:
+    """Refuse, before any work, torque-free adaptive runs (one body or a batch) that cannot end within ``max_steps``.
+
+    A free body turns at ``|ω| >= 2T/|J|`` all along (``ω·J = 2T``, with T and
+    ``|J|`` conserved), and one DOP853 step turns it by at most
+    ``40 tol^(1/9)`` rad, ``tol`` being ``rtol`` plus the attitude's ``atol``:
+    twice the largest measured over ``rtol`` 1e-15 … 0.999 and ``atol`` up
+    to 1e3, uniform spin (the easiest motion) and tumbling, whose steps are
+    shorter (0.43 rad at the default ``rtol`` 1e-12, 12 rad at ``rtol``
+    0.999). So the run needs at least ``(t[-1] - t[0]) 2T/|J|`` over that
+    many steps; a body at rest or a short run passes whatever the span.
+    """
+    if method not in ADAPTIVE:
+        return
+    scaled = moments / moments.max(axis=-1, keepdims=True)  # 2T/|J| does not depend on the moments' scale
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        two_t = np.sum(scaled * omega * omega, axis=-1)
+        rate = np.where(two_t > 0.0, two_t / np.linalg.norm(scaled * omega, axis=-1), 0.0)
+        per_step = 40.0 * (rtol + atol[..., 3:7].max(axis=-1)) ** (1.0 / 9.0)
+        steps = np.broadcast_to((t[-1] - t[0]) * rate / per_step, rate.shape)
+    worst = int(np.argmax(steps))
+    if not steps.flat[worst] <= max_steps:
+        body = f" (body {worst} of {steps.size})" if steps.ndim else ""
+        rate, per_step = rate.flat[worst], np.broadcast_to(per_step, rate.shape).flat[worst]
+        seconds = steps.flat[worst] * _SECONDS_PER_STEP[method]
+        raise ValueError(f"t = {t[0]:g} … {t[-1]:g} is out of reach of the adaptive method {method!r}: the "
+                         f"free body{body} turns at |ω| >= {rate:.3g} rad/s, through {rate * (t[-1] - t[0]):.3g} rad, "
+                         f"and one step at rtol = {rtol:g} turns it by at most {per_step:.2g} rad, so the run needs "
+                         f"at least {steps.flat[worst]:.3g} steps, about {_duration(seconds)} of computing; over "
+                         f"the budget max_steps = {max_steps:.3g}: shorten t, or pass a larger max_steps")
+
+
 def _duration(seconds: float) -> str:
     """A rough duration in the largest fitting unit, for messages."""
     for unit, size in (("years", 3.15e7), ("days", 86400.0), ("hours", 3600.0), ("minutes", 60.0)):
@@ -417,11 +454,13 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
     if translation is not None:
         parts.extend(translation)
     y0 = np.ascontiguousarray(np.concatenate(parts))
+    atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
+    if torque is None:  # forces move the centre of mass only: the attitude is still a free body's
+        _check_adaptive_span(method, t, moments, w_pr, rtol, atol_v, max_steps)
     rows = frows = None
     try:
         rows = _model_rows(torque, "torque", axes, t[0], (q_body, w_body))
         frows = None if translation is None else _model_rows(force, "force", axes, t[0], (q_body, w_body, *translation))
-        atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
         y = _integrate(method, t, dt, y0, moments, mass, rows, frows, rtol, atol_v, max_steps, progress, every)
     finally:
         _model_tables.release_callback(rows)
@@ -475,7 +514,9 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
         "Which inertia input is accepted".
     max_steps : int, optional
         Step budget (default 10¹⁰): a fixed-step run needing
-        more steps is refused before it starts, an adaptive run is stopped
+        more steps is refused before it starts, as is a torque-free adaptive
+        run that needs more (at least its turn ``(t[-1] - t[0]) 2T/|J|`` over
+        a bound on the angle of one step); another adaptive run is stopped
         when it has taken that many.
     progress : callable, optional
         ``progress(t_reached)``, called about every 50 ms of a long run
@@ -668,6 +709,8 @@ def simulate_batch(bodies: ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Array
     y0[:, 0:3] = np.broadcast_to(w, batch + (3,)).reshape(count, 3)
     y0[:, 3:7] = _initial_quaternion(q_in, batch).reshape(count, 4) if q_in is not None else [1.0, 0, 0, 0]
     atol_v = _atol(atol, np.linalg.norm(y0[:, 0:3], axis=-1), 7, rtol)
+    if torque is None:
+        _check_adaptive_span(method, t, moments, y0[:, 0:3], rtol, atol_v, max_steps)
     mass = np.ones(count)
     code = _CODES[method]
     meta = {"method": method, "dt": dt, "rtol": rtol if method in ADAPTIVE else 0.0,
