@@ -267,6 +267,15 @@ def test_simulate_refuses_runaway_scenarios_before_work(tmp_path, runaway, extra
     assert re.search(message, " ".join(result.output.split())), result.output
 
 
+def test_simulate_refuses_a_free_run_out_of_the_adaptive_methods_reach(tmp_path, runaway):
+    path = tmp_path / "forever.toml"
+    path.write_text(runaway.replace("t_end = 10.0", "t_end = 1e300") + "n_samples = 11\n", encoding="utf-8")
+    result = run("simulate", str(path))
+    assert result.exit_code == 2, result.output
+    assert re.search(r"cannot run: t = 0 … 1e\+300 is out of reach of the adaptive method 'dop853'.*"
+                     r"max_steps = 1e\+10", " ".join(result.output.split())), result.output
+
+
 def test_simulate_reports_progress_of_a_long_run(tmp_path, runaway, monkeypatch):
     from kreisel._compiled import chunks
     from kreisel.dynamics import engine
