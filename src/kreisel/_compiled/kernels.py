@@ -29,7 +29,9 @@ from . import cached, generic, inlined, vectorised
 # Tuple kernels: one per element operation.
 
 
-@cached
+# inlined at numba's level: where LLVM kept it a call (the DOP853 stages of the dense output, q̇ = ½ q ⊗ ω′),
+# numba could not drop the reference counts of the arrays around it: six atomic updates per stage
+@inlined
 def quat_product(p0: float, p1: float, p2: float, p3: float, q0: float, q1: float, q2: float,
                  q3: float) -> tuple[float, float, float, float]:
     """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
