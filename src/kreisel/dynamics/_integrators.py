@@ -403,27 +403,6 @@ def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
     return _midpoint(t, h, inertia, rows, y, wa, wb, scratch)
 
 
-# inlined: a call per output interval passing arrays costs ~100 ns, as much as a step
-@inlined
-def _advance(method, t0, h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch):
-    """Rotation steps ``s0 … s0+n-1`` of size ``h`` from ``t0``; returns a status.
-
-    One loop per method keeps the dispatch out of the hot loop.
-    """
-    if method == RK4:
-        for s in range(s0, s0 + n):
-            _rk4(t0 + s * h, h, inertia, rows, y, wa, scratch)
-    elif method == RKMK4:
-        for s in range(s0, s0 + n):
-            _rkmk4(t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-    else:
-        for s in range(s0, s0 + n):
-            status = _rotation_step(method, t0 + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-            if status != OK:
-                return status
-    return OK
-
-
 @cached
 def _translation_kick(t, h, mass, frows, y, scratch):
     if frows is None:
@@ -727,9 +706,18 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
         h, n_sub = grid[0, k], int(grid[1, k])
         n = min(n_sub - s0, budget - taken)
         taken += n
-        if ny == 7:
-            if _advance(method, t_out[k], h, s0, n, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
-                return NO_CONVERGENCE
+        # one loop per method keeps the dispatch out of the hot loop; written here, not in an inlined helper:
+        # numba counted the references of the seven arrays handed to the helper at every output interval
+        if ny == 7 and method == RK4:
+            for s in range(s0, s0 + n):
+                _rk4(t_out[k] + s * h, h, inertia, rows, y, wa, scratch)
+        elif ny == 7 and method == RKMK4:
+            for s in range(s0, s0 + n):
+                _rkmk4(t_out[k] + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
+        elif ny == 7:
+            for s in range(s0, s0 + n):
+                if _rotation_step(method, t_out[k] + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
+                    return NO_CONVERGENCE
         for s in range(s0, s0 + n if ny == 13 else 0):
             t = t_out[k] + s * h
             # velocity Verlet for the centre of mass around the rotation step
