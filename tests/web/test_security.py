@@ -14,10 +14,21 @@ from kreisel.web.runner import Limits
 from .conftest import RELAXED
 
 TENNIS = {"moments": [1.0, 2.0, 3.0], "omega": [0.01, 1.0, 0.01], "t_end": 2.0, "n_samples": 21}
-# a heavy top with almost no inertia: ω ~ sqrt(mgl / I) ~ 1e9 rad/s, so the adaptive integrator's steps
-# shrink to ~1e-10 s and the run would take hours (the up-front workload check sees only ω0 = 0.1)
-RUNAWAY = {"form": {"moments": [1e-6, 1e-6, 1e-6], "omega": [0.1, 0.0, 0.0], "euler_deg": [0.0, 30.0, 0.0],
-                    "mgl": 1e12, "t_end": 30.0, "n_samples": 1000}}
+# a body under stiff damping: decay rate c / I = 1e18 /s, so the explicit adaptive integrator's steps stay
+# near 1e-18 s and the run would take years; the up-front workload check counts turns, which damping only
+# lowers (ω0 = 0.1 rad/s, 30 s: half a turn)
+RUNAWAY = {"toml": """title = "stiff damping"
+[body]
+moments = [1e-6, 1e-6, 1e-6]
+[initial]
+omega = [0.1, 0.0, 0.0]
+[[torque]]
+kind = "damping"
+coefficient = 1e12
+[integration]
+t_end = 30.0
+n_samples = 1000
+"""}
 FOREIGN = ["http://127.0.0.1:58771", "http://evil.example", "null"]
 
 
@@ -255,7 +266,8 @@ def test_a_runaway_run_is_cut_off_by_its_step_budget(app_client):
     assert messages[-1]["type"] == "error" and "budget of 20000 integration steps" in messages[-1]["detail"]
     assert closed.value.code == 1011
     # an ordinary request stays far inside the same budget
-    ordinary = {"form": {**RUNAWAY["form"], "moments": [1.0, 1.0, 1.0], "mgl": 1.0}}
+    ordinary = {"form": {"moments": [1.0, 1.0, 1.0], "omega": [0.1, 0.0, 0.0], "euler_deg": [0.0, 30.0, 0.0],
+                         "mgl": 1.0, "t_end": 30.0, "n_samples": 1000}}
     assert client.post("/api/run", json=ordinary).status_code == 200
     with pytest.raises(ValueError, match="max_steps"):
         Limits(max_steps=0)
