@@ -249,3 +249,12 @@ def test_mean_matches_scipy(axis):
         RigidTransform.identity(0).mean()
     with pytest.raises(ValueError, match="weights"):
         T.mean(-w)
+
+
+@pytest.mark.parametrize("axis", [None, 0, ()])
+def test_the_mean_of_a_single_pose_is_itself_as_in_scipy(axis):
+    T = RigidTransform.random(rng=16)
+    ours, theirs = T.mean(axis=axis), T.to_scipy().mean(axis=axis)
+    assert ours.shape == theirs.as_matrix().shape[:-2]
+    np.testing.assert_allclose(ours.as_matrix(), theirs.as_matrix(), atol=5e-15)
+    np.testing.assert_allclose(T.mean([3.0]).as_matrix(), T.as_matrix(), atol=5e-15)

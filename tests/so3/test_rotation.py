@@ -103,6 +103,19 @@ def test_mean_matches_scipy_and_is_sign_independent():
         r.mean(-w)
 
 
+@pytest.mark.parametrize("axis", [None, 0, ()])
+def test_the_mean_of_a_single_rotation_is_itself_as_in_scipy(axis):
+    # scipy averages a single rotation as a batch of one: the result's shape follows axis
+    v = np.array([0.1, 0.2, -3.0])
+    ours, theirs = Rotation.from_rotvec(v).mean(axis=axis), S.from_rotvec(v).mean(axis=axis)
+    assert ours.shape == theirs.as_quat().shape[:-1]
+    np.testing.assert_allclose(ours.as_matrix(), theirs.as_matrix(), atol=1e-15)
+    np.testing.assert_allclose(Rotation.from_rotvec(v).mean(weights=[2.0]).as_matrix(),
+                               Rotation.from_rotvec(v).as_matrix(), atol=1e-15)
+    with pytest.raises(ValueError, match=r"weights must have the batch shape \(1,\)"):
+        Rotation.from_rotvec(v).mean(weights=2.0)
+
+
 def test_slerp_constant_rate_and_endpoints():
     a, b = Rotation.random(rng=8), Rotation.random(rng=9)
     t = np.linspace(0, 1, 11)

@@ -513,8 +513,9 @@ class RigidTransform(QuaternionBatch):
         Parameters
         ----------
         weights : array_like, optional
-            Non-negative, of the batch shape.
+            Non-negative, of the batch shape (``(1,)`` for a single pose).
         axis : None, int or tuple of int
+            As for :meth:`Rotation.mean <kreisel.so3.Rotation.mean>`.
 
         Examples
         --------
@@ -526,9 +527,12 @@ class RigidTransform(QuaternionBatch):
         >>> m.translation.tolist(), round(float(m.rotation.magnitude()), 12)
         ([1.0, 0.0, 0.0], 0.2)
         """
-        quat, axes = mean_over(self._q, weights, axis)
-        nd = len(self.shape)
-        t = gather_samples(np.asarray(self._translation), nd, axes)
+        q, translation = self._q, np.asarray(self._translation)
+        if self.single:  # as scipy: a single pose is a batch of one, so its mean is itself
+            q, translation = q[np.newaxis], translation[np.newaxis]
+        quat, axes = mean_over(q, weights, axis)
+        nd = q.ndim - 1
+        t = gather_samples(translation, nd, axes)
         if weights is None:
             translation = t.mean(axis=-2)
         else:

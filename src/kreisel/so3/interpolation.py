@@ -116,8 +116,6 @@ def quat_mean(q: ArrayLike, weights: ArrayLike | None = None, axis: int = -2, *,
 def sample_axes(batch_shape: tuple[int, ...], axis: int | tuple[int, ...] | None) -> tuple[int, ...]:
     """Normalised, sorted batch axes to average over (scipy's ``axis``: None = all)."""
     nd = len(batch_shape)
-    if nd == 0:
-        raise ValueError("mean needs a batch of rotations, got a single one")
     if axis is None:
         return tuple(range(nd))
     axes = (axis,) if isinstance(axis, (int, np.integer)) else axis

@@ -763,9 +763,10 @@ class Rotation(QuaternionBatch):
         Parameters
         ----------
         weights : array_like, optional
-            Non-negative, of the batch shape.
+            Non-negative, of the batch shape (``(1,)`` for a single rotation).
         axis : None, int or tuple of int
-            Batch axes to average over; ``None`` (scipy's default) means all.
+            Batch axes to average over; ``None`` (scipy's default) means all. A single
+            rotation is averaged as a batch of one: its mean is itself.
 
         Examples
         --------
@@ -778,7 +779,9 @@ class Rotation(QuaternionBatch):
         >>> Rotation.random((5, 3), rng=0).mean(axis=0).shape
         (3,)
         """
-        return Rotation._wrap(_interp.mean_over(self._q, weights, axis)[0])
+        # as scipy: a single rotation is a batch of one, so its mean is itself
+        q = self._q[np.newaxis] if self.single else self._q
+        return Rotation._wrap(_interp.mean_over(q, weights, axis)[0])
 
     def __pow__(self, p: ArrayLike, modulus: None = None) -> Rotation:
         """``r ** p``: the rotation about the same axis by ``p`` times the angle, ``exp(p log r)``.
