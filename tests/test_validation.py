@@ -141,6 +141,18 @@ def test_the_tolerance_scales_with_the_body():
         assert not _verdict(MOMENT_ENTRIES["RigidBody"], scale * _asymmetric(1.1 * TOL))
 
 
+def test_the_symmetric_part_of_a_tensor_near_the_largest_double_does_not_overflow():
+    from kreisel._validation import check_inertia_tensor
+
+    scale = 2.0**1022  # largest entry 3 * 2**1022: I + Iᵀ would overflow
+    with np.errstate(all="raise"):
+        symmetric = check_inertia_tensor(scale * _asymmetric(0.5 * TOL), "I")
+    np.testing.assert_array_equal(symmetric, symmetric.T)
+    np.testing.assert_array_equal(symmetric, scale * check_inertia_tensor(_asymmetric(0.5 * TOL), "I"))
+    with np.errstate(all="raise"):
+        assert kr.RigidBody(np.diag([1e308, 1e308, 1e308])).principal_moments.tolist() == [1e308] * 3
+
+
 def test_checked_callable_refuses_bad_returns_naming_the_callable():
     """One check (``kreisel._validation.checked_callable``) for the torque, force and particle-force callables."""
     from kreisel._validation import checked_callable

@@ -364,7 +364,8 @@ def check_inertia_tensor(tensor: ArrayLike, name: str) -> NDArray[np.float64]:
     if np.any(asymmetry > INERTIA_TOLERANCE):
         raise ValueError(f"{name} must be symmetric (I_jk = I_kj to within {INERTIA_TOLERANCE:g} of the largest "
                          f"entry); largest |I_jk - I_kj| is {float(np.max(asymmetry)):.3g} of the largest entry")
-    return 0.5 * (a + np.swapaxes(a, -1, -2))
+    # halves first: a + aᵀ would overflow for entries above half the largest double
+    return 0.5 * a + 0.5 * np.swapaxes(a, -1, -2)
 
 
 def check_principal_moments(moments: ArrayLike, name: str, definite: bool = True,
