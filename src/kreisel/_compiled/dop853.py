@@ -354,14 +354,15 @@ def _normalise(block, unit, norm, count):
 
 
 def new_state(y0):
-    """The resumable state of :func:`integrate_steps` for the initial state ``y0``.
+    """The resumable states of :func:`integrate_steps` for initial states ``y0 (..., ny)``.
 
-    Layout ``[t, h, j, y (ny), f(t, y) (ny)]``: ``j`` is the next output index,
-    0 before the first call.
+    Layout ``[t, h, j, y (ny), f(t, y) (ny)]`` along the last axis: ``j`` is
+    the next output index, 0 before the first call.
     """
     y0 = np.asarray(y0, dtype=np.float64)
-    state = np.zeros(3 + 2 * y0.size)
-    state[3:3 + y0.size] = y0
+    ny = y0.shape[-1]
+    state = np.zeros((*y0.shape[:-1], 3 + 2 * ny))
+    state[..., 3:3 + ny] = y0
     return state
 
 

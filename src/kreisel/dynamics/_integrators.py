@@ -413,17 +413,17 @@ def _translation_kick(t, h, mass, frows, y, scratch):
 
 
 def new_state(method: int, y0: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The resumable state of :func:`run` for one body starting at ``y0``.
+    """The resumable states of :func:`run` for bodies starting at ``y0 (..., ny)``, one array for all.
 
     DOP853 keeps the layout of :func:`kreisel._compiled.dop853.new_state`; a fixed-step
     method keeps ``[interval, step, pending, m0, m1, m2, y…]`` (interval −1
-    before the first call).
+    before the first call) along the last axis.
     """
     if method == DOP853:
         return _dop853_state(y0)
-    state = np.zeros(6 + len(y0))
-    state[0] = -1.0
-    state[6:] = y0
+    state = np.zeros((*y0.shape[:-1], 6 + y0.shape[-1]))
+    state[..., 0] = -1.0
+    state[..., 6:] = y0
     return state
 
 

@@ -250,7 +250,8 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
         t, every = np.ascontiguousarray(t[::every]), 1
     out = empty((count, (t.size - 1) // every + 1, ny))
     grid = np.empty((2, 0)) if code == _integrators.DOP853 else _integrators.step_grid(t, dt)
-    state = np.stack([_integrators.new_state(code, y) for y in y0])
+    # one array for the batch: a state per body made 10^4 arrays for the garbage collector to scan
+    state = _integrators.new_state(code, y0)
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
 
