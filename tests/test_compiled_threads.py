@@ -120,6 +120,25 @@ def test_the_chunks_of_a_long_run_share_their_cpu_time_over_the_threads_the_loop
     assert threads.last_threads() == numba.get_num_threads()
 
 
+@pytest.mark.skipif(numba.config.NUMBA_NUM_THREADS < 2, reason="needs two numba threads")
+def test_the_chunks_of_a_batch_simulation_keep_numbas_count_on_a_busy_machine(monkeypatch):
+    monkeypatch.setattr(threads, "_CORES", 2)
+    monkeypatch.setattr(threads, "runnable_tasks", lambda: 6)
+    configured = numba.get_num_threads()
+    numba.set_num_threads(2)
+    try:
+        assert probe() == 1
+        with threads.numbas_count():
+            with threads.numbas_count():
+                assert probe() == 2
+            assert probe() == 2
+        assert probe() == 1
+        kr.simulate_batch([[1.0, 2.0, 2.5]] * 64, [0.0, 1.0], [[0.1, 1.0, 0.1]] * 64, method="rk4", dt=0.01)
+        assert threads.last_threads() == 2
+    finally:
+        numba.set_num_threads(configured)
+
+
 def test_an_unreadable_count_leaves_numbas_count(monkeypatch, tmp_path):
     other = tmp_path / "loadavg"
     other.write_text("no counts here\n")

@@ -104,7 +104,8 @@ def run_chunked(step: Callable[[int], bool], reached: Callable[[], float], t_end
             # one step over the budget: a run that needs exactly max_steps steps finishes
             budget = min(budget, max_steps - taken + 1)
             start, start_cpu = time.perf_counter(), time.process_time()
-            finished = step(budget)
+            with threads.numbas_count():
+                finished = step(budget)
             elapsed = _chunk_seconds(start, start_cpu)
             if interrupted:
                 raise KeyboardInterrupt

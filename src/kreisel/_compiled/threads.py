@@ -7,10 +7,14 @@ only cuts the shares smaller, still assigned up front), and the call returns
 when the last share is done. With more runnable tasks than cores, one thread
 waits for a core for whole time slices while the others spin at the loop's
 end: at load 6 on 2 cores a 10^6-quaternion inverse took 30–60 ms on two
-threads against 2–3 ms on one. Long loops fare about the same on one
-thread as on two under load, where two threads also get two shares of the
-cores (a batch simulation of 0.4–2 s took 0.88–1.49 times as long on one
-thread, seven runs at load 5–11).
+threads against 2–3 ms on one. A loop of tens of milliseconds or more
+spans many time slices, so a thread waiting for a core costs it a fraction,
+not a multiple, and two threads also get two shares of the cores: the
+chunks of a batch simulation (:func:`kreisel._compiled.chunks.run_chunked`,
+about 50 ms each) run inside :func:`numbas_count` and keep numba's count
+whatever the load (2000 bodies, rk4, 1000 steps, with four busy processes on
+2 cores, 15 runs each in alternation: 192 ms median on numba's 2 threads
+against 285 ms with the count lowered to one).
 
 So each call first reads how many tasks the machine has runnable at that
 moment (Linux: ``/proc/loadavg``, 3–7 µs, read again after
@@ -29,14 +33,17 @@ pieces' results in order afterwards.
 
 from __future__ import annotations
 
+import contextlib
 import os
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import numba
 
-__all__ = ["ADAPTIVE", "READING_SECONDS", "ParallelLoop", "last_threads", "runnable_tasks", "threads_for"]
+__all__ = ["ADAPTIVE", "READING_SECONDS", "ParallelLoop", "last_threads", "numbas_count", "runnable_tasks",
+           "threads_for"]
 
 #: Whether loops run on fewer threads while the machine is oversubscribed (never with
 #: ``KREISEL_ADAPTIVE_THREADS=0``, nor when numba has one thread: ``NUMBA_NUM_THREADS=1``).
@@ -93,6 +100,21 @@ def last_threads() -> int:
     return _given[0] or numba.get_num_threads()
 
 
+#: How deep the calling thread is in :func:`numbas_count` (numba's thread count is per thread too).
+_held = threading.local()
+
+
+@contextlib.contextmanager
+def numbas_count() -> Iterator[None]:
+    """Within this context the calling thread's loops run on numba's count, whatever the load (long loops)."""
+    depth = getattr(_held, "depth", 0)
+    _held.depth = depth + 1
+    try:
+        yield
+    finally:
+        _held.depth = depth
+
+
 class ParallelLoop:
     """A compiled multi-core loop called on :func:`threads_for` threads; its dispatcher's attributes pass through."""
 
@@ -102,7 +124,7 @@ class ParallelLoop:
         self.dispatcher = dispatcher
 
     def __call__(self, *args: Any) -> Any:
-        runnable = runnable_tasks() if ADAPTIVE else None
+        runnable = runnable_tasks() if ADAPTIVE and not getattr(_held, "depth", 0) else None
         if runnable is None or runnable <= _CORES:
             _given[0] = None
             return self.dispatcher(*args)
