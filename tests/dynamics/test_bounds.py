@@ -89,6 +89,12 @@ def test_a_free_adaptive_run_out_of_reach_is_refused_before_it_starts(monkeypatc
         run()
 
 
+def test_the_refusal_of_a_run_out_of_reach_names_what_sets_its_rate():
+    # a fast omega0 within a short t: the fuzz test scales omega0 by 1e5 and wants it named
+    with pytest.raises(ValueError, match=r"t = 0 … 1 is out of reach.*from omega0 and the moments"):
+        kr.simulate_batch([[1, 2, 3]] * 2, [0, 1], [[0.1, 1, 0.1], [1e4, 1e5, 1e4]], max_steps=20_000)
+
+
 def _steps_taken(run):
     """The steps a run takes: the smallest ``max_steps`` it finishes within (found by bisection)."""
     lo, hi = 1, 1 << 20
