@@ -321,10 +321,11 @@ def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array,
         rate, per_step = rate.flat[worst], np.broadcast_to(per_step, rate.shape).flat[worst]
         seconds = steps.flat[worst] * _SECONDS_PER_STEP[method]
         raise ValueError(f"t = {t[0]:g} … {t[-1]:g} is out of reach of the adaptive method {method!r}: the "
-                         f"free body{body} turns at |ω| >= {rate:.3g} rad/s (2T/|J| from omega0 and the moments), through {rate * (t[-1] - t[0]):.3g} rad, "
-                         f"and one step at rtol = {rtol:g} turns it by at most {per_step:.2g} rad, so the run needs "
-                         f"at least {steps.flat[worst]:.3g} steps, about {_duration(seconds)} of computing; over "
-                         f"the budget max_steps = {max_steps:.3g}: shorten t, or pass a larger max_steps")
+                         f"free body{body} turns at |ω| >= {rate:.3g} rad/s (2T/|J| from omega0 and the moments), "
+                         f"through {rate * (t[-1] - t[0]):.3g} rad, and one step at rtol = {rtol:g} turns it by at "
+                         f"most {per_step:.2g} rad, so the run needs at least {steps.flat[worst]:.3g} steps, about "
+                         f"{_duration(seconds)} of computing; over the budget max_steps = {max_steps:.3g}: shorten t, "
+                         "or pass a larger max_steps")
 
 
 def _duration(seconds: float) -> str:
