@@ -3,13 +3,10 @@
 Each element operation has one *tuple kernel*: it takes plain numbers and
 returns a tuple (``quat_product``, ``rotated``, ``quat_matrix``,
 ``matrix_entries_quat``, ``rotvec_quat``, ``quat_rotvec``, ``quat_unit``).
-The serial gufuncs and the multi-core ``prange`` loops of :mod:`kreisel.so3`
-both read their arrays into these and write the tuples back, so no array
-slice is ever passed per element: a slice argument costs tens of ns to build,
-and in a parallel loop every thread would update the reference count of the
-one shared parent array. The array forms below (``qmul``, ``qrotate``,
-``quat_to_matrix``, ...) are thin shells over the tuple kernels for callers
-with per-element arrays, such as the integrators in :mod:`kreisel.dynamics`
+The declared array operations of :mod:`kreisel.so3` (:mod:`.elementwise`)
+call them with an element's numbers; the array forms below (``qmul``,
+``qrotate``, ``write_matrix``, ...) are thin shells for callers that hold
+one element in an array, such as the integrators in :mod:`kreisel.dynamics`
 and :mod:`kreisel.nav`. Conventions: scalar-first Hamilton quaternions,
 ``R(q)`` of Theory §2.4.
 """
@@ -17,12 +14,10 @@ and :mod:`kreisel.nav`. Conventions: scalar-first Hamilton quaternions,
 from __future__ import annotations
 
 import math
-from typing import Any
-
 import numpy as np
 from numpy.typing import NDArray
 
-from . import cached, generic, inlined, vectorised
+from . import cached, inlined, vectorised
 
 
 # ---------------------------------------------------------------------------
@@ -50,61 +45,40 @@ SIZE_LOW = 1e-140
 SIZE_HIGH = 1e140
 
 
-@cached
-def size(q0: float, q1: float, q2: float, q3: float) -> float:
+@vectorised
+def largest_component(q0: float, q1: float, q2: float, q3: float) -> float:
     """The largest ``|component|`` of ``q``."""
     return max(max(abs(q0), abs(q1)), max(abs(q2), abs(q3)))
 
 
-@cached
+@vectorised
 def squarable(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     """``q``, or ``q`` divided by its largest ``|component|`` when squaring it would overflow or underflow."""
-    m = size(q0, q1, q2, q3)
+    m = largest_component(q0, q1, q2, q3)
     if SIZE_LOW < m < SIZE_HIGH:
         return q0, q1, q2, q3
     return q0 / m, q1 / m, q2 / m, q3 / m
 
 
-@cached
+@vectorised
 def norm3(x: float, y: float, z: float) -> float:
     """``|(x, y, z)|`` for any finite components (divided by the largest first when squaring would over- or underflow)."""
-    m = size(0.0, x, y, z)
+    m = largest_component(0.0, x, y, z)
     if SIZE_LOW < m < SIZE_HIGH or m == 0.0:
         return math.sqrt(x * x + y * y + z * z)
     x, y, z = x / m, y / m, z / m
     return m * math.sqrt(x * x + y * y + z * z)
 
 
-@cached
-def squarable_as_is(q0: float, q1: float, q2: float, q3: float) -> bool:
-    """Whether ``q`` is finite and :func:`squarable` leaves it as it is.
-
-    Each component is compared (``max`` may drop a NaN), without a branch.
-    """
-    a0, a1, a2, a3 = abs(q0), abs(q1), abs(q2), abs(q3)
-    below = (a0 < SIZE_HIGH) & (a1 < SIZE_HIGH) & (a2 < SIZE_HIGH) & (a3 < SIZE_HIGH)
-    return below & (SIZE_LOW < max(max(a0, a1), max(a2, a3)))
-
-
 @vectorised
-def unit_of_squarable(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
-    """``q / |q|`` for a ``q`` that :func:`squarable` leaves as it is.
-
-    Its divisions are unchecked (numpy's error model), so a loop of it has no
-    branch and vectorises; ``|q| > 0`` there anyway.
-    """
+def quat_unit(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
+    """``q / |q|`` for any nonzero finite ``q``."""
+    q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
     n = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
     return q0 / n, q1 / n, q2 / n, q3 / n
 
 
-@cached
-def quat_unit(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
-    """``q / |q|`` for any nonzero finite ``q``."""
-    q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
-    return unit_of_squarable(q0, q1, q2, q3)
-
-
-@cached
+@vectorised
 def rotated(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: float) -> tuple[float, float, float]:
     """``R(q) v`` for a unit quaternion, without forming the matrix."""
     # t = 2 (u x v); v' = v + q0 t + u x t  (u the vector part)
@@ -114,7 +88,7 @@ def rotated(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: f
     return x + q0 * t0 + q2 * t2 - q3 * t1, y + q0 * t1 + q3 * t0 - q1 * t2, z + q0 * t2 + q1 * t1 - q2 * t0
 
 
-@cached
+@vectorised
 def quat_matrix(q0: float, q1: float, q2: float, q3: float) -> tuple[float, ...]:
     """Entries of ``R(q)`` (Theory §2.4) row by row, for a possibly non-unit (nonzero, finite) quaternion."""
     q0, q1, q2, q3 = squarable(q0, q1, q2, q3)
@@ -132,7 +106,7 @@ def quat_matrix(q0: float, q1: float, q2: float, q3: float) -> tuple[float, ...]
     )
 
 
-@cached
+@vectorised
 def matrix_entries_quat(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
                         r22: float) -> tuple[float, float, float, float]:
     """Unit quaternion with q0 >= 0 of a rotation matrix given row by row (Shepperd/Markley).
@@ -244,10 +218,10 @@ def sincos(x: float) -> tuple[float, float]:
     return (-first if (n & 2) != 0 else first), (-second if ((n + 1) & 2) != 0 else second)
 
 
-@cached
+@vectorised
 def rotvec_angle(x: float, y: float, z: float) -> float:
     """``|ψ|`` of a rotation vector (scaled first when the squares would overflow; tiny ones may underflow to 0)."""
-    m = size(0.0, x, y, z)
+    m = largest_component(0.0, x, y, z)
     if m < SIZE_HIGH:
         return math.sqrt(x * x + y * y + z * z)
     return m * math.sqrt((x / m) ** 2 + (y / m) ** 2 + (z / m) ** 2)
@@ -267,7 +241,7 @@ def rotvec_quat_from(x: float, y: float, z: float, angle: float, sin_half: float
     return cos_half, s * x, s * y, s * z
 
 
-@cached
+@vectorised
 def rotvec_quat(x: float, y: float, z: float) -> tuple[float, float, float, float]:
     """Exponential ``(cos(ψ/2), n sin(ψ/2))``, ψ = |(x, y, z)|, with no sign flip.
 
@@ -284,58 +258,7 @@ def rotvec_quat(x: float, y: float, z: float) -> tuple[float, float, float, floa
     return rotvec_quat_from(x, y, z, a, sin_half, cos_half)
 
 
-#: Rotation vectors per block of :func:`rotvec_quats` and :func:`rotvec_matrices`: the angles and
-#: half-angle sines and cosines of a block sit in scratch arrays of this length, so that the
-#: sine-cosine loop runs over contiguous numbers and vectorises.
-EXP_BLOCK = 256
-
-
-@cached
-def _half_angles(psi: NDArray[np.float64], start: int, stop: int, angle: NDArray[np.float64],
-                 sin_half: NDArray[np.float64], cos_half: NDArray[np.float64]) -> None:
-    """Lengths of ``psi[start:stop]`` (at most 1e8, i.e. checked, else meaningless) and the sine and cosine of their halves."""
-    m = stop - start
-    for j in range(m):
-        angle[j] = rotvec_angle(psi[start + j, 0], psi[start + j, 1], psi[start + j, 2])
-    for j in range(m):  # the vectorised loop
-        sin_half[j], cos_half[j] = sincos(0.5 * angle[j])
-
-
-@generic
-def _exp_blocks(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int, write: Any) -> None:
-    """``write(out, i, q)`` with q = :func:`rotvec_quat` ``(psi[i])`` for ``start <= i < stop``, block by block."""
-    angle, sin_half, cos_half = np.empty(EXP_BLOCK), np.empty(EXP_BLOCK), np.empty(EXP_BLOCK)
-    for first in range(start, stop, EXP_BLOCK):
-        last = min(stop, first + EXP_BLOCK)
-        _half_angles(psi, first, last, angle, sin_half, cos_half)
-        for i in range(first, last):
-            j = i - first
-            q0, q1, q2, q3 = rotvec_quat_from(psi[i, 0], psi[i, 1], psi[i, 2], angle[j], sin_half[j], cos_half[j])
-            write(out, i, q0, q1, q2, q3)
-
-
-@inlined
-def write_quat_at(out: NDArray[np.float64], i: int, q0: float, q1: float, q2: float, q3: float) -> None:
-    """Write ``q`` into ``out[i]``."""
-    out[i, 0], out[i, 1], out[i, 2], out[i, 3] = q0, q1, q2, q3
-
-
-@cached
-def rotvec_quats(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
-    """``out[i] =`` :func:`rotvec_quat` ``(psi[i])`` for ``start <= i < stop``, for rotation vectors at most 1e8 rad long.
-
-    Bit-identical to :func:`rotvec_quat` in that range; longer (unchecked) vectors give meaningless numbers.
-    """
-    _exp_blocks(psi, out, start, stop, write_quat_at)
-
-
-@cached
-def rotvec_matrices(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> None:
-    """``out[i] = R(ψ_i)`` for ``start <= i < stop``, as :func:`rotvec_quats` (rotation vectors at most 1e8 rad long)."""
-    _exp_blocks(psi, out, start, stop, write_matrix_at)
-
-
-@cached
+@vectorised
 def quat_rotvec(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float]:
     """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
 
@@ -408,24 +331,6 @@ def write_matrix_at(out: NDArray[np.float64], i: int, q0: float, q1: float, q2: 
 
 
 @cached
-def quat_to_matrix(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    """``out = R(q)`` exactly as printed in Theory §2.4 (q need not be unit: it is scaled)."""
-    write_matrix(q[0], q[1], q[2], q[3], out)
-
-
-@cached
 def matrix_quat(R: NDArray[np.float64]) -> tuple[float, float, float, float]:
     """:func:`matrix_entries_quat` of a 3×3 array."""
     return matrix_entries_quat(R[0, 0], R[0, 1], R[0, 2], R[1, 0], R[1, 1], R[1, 2], R[2, 0], R[2, 1], R[2, 2])
-
-
-@cached
-def rotvec_to_quat(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    """``out`` = :func:`rotvec_quat` of ``psi``."""
-    out[0], out[1], out[2], out[3] = rotvec_quat(psi[0], psi[1], psi[2])
-
-
-@cached
-def quat_to_rotvec(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    """``out`` = :func:`quat_rotvec` of ``q``."""
-    out[0], out[1], out[2] = quat_rotvec(q[0], q[1], q[2], q[3])
