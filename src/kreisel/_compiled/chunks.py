@@ -22,7 +22,6 @@ from typing import Any
 
 import numpy as np
 
-from . import threads
 
 __all__ = ["MAX_STEPS", "CHUNK_SECONDS", "StepBudgetExceeded", "check_max_steps", "interrupts_between_chunks", "run_chunked",
            "run_resumable"]
@@ -103,10 +102,9 @@ def run_chunked(step: Callable[[int], bool], reached: Callable[[], float], t_end
         while True:
             # one step over the budget: a run that needs exactly max_steps steps finishes
             budget = min(budget, max_steps - taken + 1)
-            start, start_cpu = time.perf_counter(), time.process_time()
-            with threads.numbas_count():
-                finished = step(budget)
-            elapsed = _chunk_seconds(start, start_cpu)
+            start = time.perf_counter()
+            finished = step(budget)
+            elapsed = time.perf_counter() - start
             if interrupted:
                 raise KeyboardInterrupt
             if finished:
@@ -117,21 +115,6 @@ def run_chunked(step: Callable[[int], bool], reached: Callable[[], float], t_end
             if progress is not None:
                 progress(reached())
             budget = int(min(8 * budget, max(1.0, budget * CHUNK_SECONDS / max(elapsed, 1e-9))))
-
-
-def _chunk_seconds(start: float, start_cpu: float) -> float:
-    """How long the chunk since ``start`` would have taken on an idle machine.
-
-    On a loaded machine the wall clock also counts the time other processes
-    had the cores, and chunks sized by it shrink to a step or two whose fixed
-    cost (tens of ns a body in a batch) then dominates; the process's CPU
-    time shared over the threads of the last loop does not. On an idle
-    machine the two agree; under load a chunk lasts longer in wall time (by the load factor),
-    which still returns to Python well within a second.
-    """
-    wall = time.perf_counter() - start
-    cpu = (time.process_time() - start_cpu) / threads.last_threads()
-    return min(wall, cpu) if cpu > 0.0 else wall
 
 
 def run_resumable(advance: Callable[[Any, int], int], state: Any, t_end: float, max_steps: int,

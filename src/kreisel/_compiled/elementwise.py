@@ -299,19 +299,21 @@ def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
 
     Examples
     --------
-    >>> from kreisel._compiled.elementwise import Input, elementwise, kernel
     >>> from kreisel._compiled.checks import VECTOR
     >>> @kernel
     ... def _doubled(x, y, z):
     ...     return 2.0 * x, 2.0 * y, 2.0 * z
     >>> @elementwise(_doubled, [Input("v", (3,), VECTOR)], (3,))
-    ... def doubled(v, *, out=None):
+    ... def doubled_vectors(v, *, out=None):
     ...     '''Twice ``v``.
     ...
     ...     Examples
     ...     --------
-    ...     >>> doubled([1.0, 2.0, 3.0])
+    ...     >>> doubled_vectors([1.0, 2.0, 3.0])
     ...     '''
+    >>> doubled_vectors([[1.0, 2.0, 3.0], [0.5, 0.0, -1.0]])
+    array([[ 2.,  4.,  6.],
+           [ 1.,  0., -2.]])
     """
 
     def build(stub: Callable[..., Any]) -> Callable[..., Any]:

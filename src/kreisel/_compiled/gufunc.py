@@ -29,7 +29,9 @@ from .._norms import ORTHOGONALITY_TOLERANCE, checked_rotation_matrices, norm
 from .._validation import ROTVEC_RANGE, as_float_array, refuse_long_angle
 from . import cached, generic, inlined, parallel
 from . import outputs
-from .outputs import check_out, empty
+from numpy import empty
+
+from .outputs import check_out
 
 #: Batches with at least this many elements (rotations, vectors) use the
 #: multi-core loops; below it, waking the worker threads costs more than it saves.
@@ -110,8 +112,6 @@ class LazyGufunc:
         shape = (*batch, *self._out)
         if out is not None:
             check_out(out, shape)
-        elif 8 * math.prod(shape) >= outputs.RECYCLED_BYTES:
-            out = empty(shape)
         if self._parallel is not None:
             result = self._call_parallel(args, batch, out)
             if result is not None:

@@ -1,42 +1,12 @@
-"""Output arrays of kreisel's array functions: caller-owned ``out=`` buffers and recycled large ones.
+"""Output arrays of kreisel's array functions: caller-owned ``out=`` buffers.
 
 Every array function of :mod:`kreisel.so3`, :mod:`kreisel.kinematics` and
 :mod:`kreisel.se3` takes ``out=`` (checked by :func:`check_out`, documented
-by :func:`takes_out`). Without it, the result is a new array from :func:`empty`.
-
-Why large results are recycled
-------------------------------
-glibc's ``malloc`` serves a block above its mmap threshold (at most 32 MiB)
-with a fresh ``mmap`` and unmaps it on ``free``. numpy allocates arrays with
-``malloc``, so a 10^6-rotation result of 72 MB (matrices) or 128 MB (4×4
-poses) arrives as untouched pages every call, and the first write to each
-page faults it in: the kernel zeroes it and, in a virtual machine whose free
-memory has been returned to the host, the host maps it again. That costs far
-more than the computation (quat → matrix: ~5 ms of compiled loop, 30–500 ms
-of faults depending on where the pages come from, worst with numpy's
-transparent huge pages taken from memory the host has reclaimed). Smaller
-blocks stay in malloc's heap after the first ``free`` and are reused with
-their pages already mapped.
-
-So results of at least :data:`RECYCLED_BYTES` come from a pool of slabs that
-kreisel keeps mapped: the returned array is a view of a slab whose base
-object gives the slab back to the pool when the last view of it dies.
-At most :data:`IDLE_BYTES` of unused slabs are kept (the most recently
-released); the rest go back to the operating system as usual.
-
-The trade-off: memory the program no longer uses stays with the process.
-256 MiB holds the slabs of a loop that alternates the largest common results
-of a batch of 10^6 (72 MB of rotation matrices and 128 MB of 4×4 poses), so
-such a loop never faults its results in again; a smaller cap would drop one of
-them at every turn. :func:`release_memory` gives the idle slabs back at once,
-e.g. after the heavy part of a program (the next large result then maps fresh
-pages again), and assigning ``IDLE_BYTES = 0`` keeps none.
+by :func:`takes_out`). Without it, the result is a new numpy array.
 """
 
 from __future__ import annotations
 
-import math
-import threading
 from collections.abc import Callable
 from typing import Any, TypeVar, overload
 
@@ -46,97 +16,6 @@ from numpy.typing import DTypeLike, NDArray
 _Result = TypeVar("_Result", bound=NDArray[Any])
 _Out = TypeVar("_Out")
 _Function = TypeVar("_Function", bound=Callable[..., Any])
-
-#: Results of at least this many bytes come from the pool (glibc's largest mmap threshold).
-RECYCLED_BYTES = 32 * 2**20
-#: Unused slabs kept mapped for the next large result, in bytes.
-IDLE_BYTES = 256 * 2**20
-
-_lock = threading.RLock()  # re-entrant: a result may die (and release its slab) inside the pool's own code
-#: Unused slabs (1-D float64 arrays), most recently released last.
-_idle: list[NDArray[np.float64]] = []
-
-
-def _release(slab: NDArray[np.float64]) -> None:
-    with _lock:
-        _idle.append(slab)
-        kept = 0
-        for index in range(len(_idle) - 1, -1, -1):
-            kept += _idle[index].nbytes
-            if kept > IDLE_BYTES:
-                del _idle[: index + 1]
-                break
-
-
-def _take(size: int) -> NDArray[np.float64] | None:
-    """An unused slab of ``size`` to ``size * 5/4`` doubles (the closest fit), or None."""
-    with _lock:
-        fits = [slab for slab in _idle if size <= slab.size <= size + size // 4]
-        if not fits:
-            return None
-        best = min(fits, key=lambda slab: slab.size)
-        for index, slab in enumerate(_idle):
-            if slab is best:
-                del _idle[index]
-                break
-        return best
-
-
-def release_memory() -> int:
-    """Give the idle memory kept for large results back to the operating system.
-
-    Array functions of :mod:`kreisel.so3`, :mod:`kreisel.kinematics` and
-    :mod:`kreisel.se3` place results of at least 32 MiB (e.g. 10^6 rotation
-    matrices) on memory that kreisel reuses once the result is gone, since
-    mapping fresh pages for every such result can cost several times the
-    computation. Up to 256 MiB of it may stay with the process while unused
-    (see :ref:`out-arrays`); this frees it now. Results still alive are not
-    affected, and their memory is kept for reuse when they die.
-
-    Returns
-    -------
-    int
-        The number of bytes released.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import kreisel as kr
-    >>> R = kr.quat_to_matrix(np.tile([1.0, 0.0, 0.0, 0.0], (500_000, 1)))  # 36 MB
-    >>> del R                                   # its memory waits for the next large result
-    >>> kr.release_memory() >= 36_000_000
-    True
-    >>> kr.release_memory()
-    0
-    """
-    with _lock:
-        released = sum(slab.nbytes for slab in _idle)
-        _idle.clear()
-    return released
-
-
-class _Lease:
-    """Base object of a recycled result: holds its slab and returns it when the result dies."""
-
-    __slots__ = ("_slab", "__array_interface__")
-
-    def __init__(self, slab: NDArray[np.float64], shape: tuple[int, ...]) -> None:
-        self._slab = slab
-        self.__array_interface__ = {"shape": shape, "typestr": "<f8", "data": (slab.ctypes.data, False), "version": 3}
-
-    def __del__(self, release: Callable[[NDArray[np.float64]], None] = _release) -> None:  # bound now: module globals may be gone at interpreter exit
-        release(self._slab)
-
-
-def empty(shape: tuple[int, ...]) -> NDArray[np.float64]:
-    """A new float64 array of ``shape``; recycled pages when it has at least :data:`RECYCLED_BYTES`."""
-    size = math.prod(shape)
-    if 8 * size < RECYCLED_BYTES:
-        return np.empty(shape)
-    slab = _take(size)
-    if slab is None:
-        slab = np.empty(size)
-    return np.asarray(_Lease(slab, tuple(shape)))
 
 
 def check_out(out: _Out, shape: tuple[int, ...], dtype: DTypeLike = np.float64, name: str = "out") -> _Out:

@@ -61,7 +61,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
 from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
-from .._compiled.outputs import empty
 from .._validation import (as_float_array, check_allocation, check_inertia_tensor, check_principal_moments,
                           checked_callable, float_in_range, positive_float)
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
@@ -240,15 +239,12 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     """Integrate bodies ``y0 (count, ny)`` in compiled chunks (:func:`kreisel._compiled.chunks.run_chunked`).
 
     Returns ``(out, status)``, ``out`` the samples at ``t[::every]``;
-    ``progress(t_reached)`` is told the earliest time over the bodies. The
-    output comes from the pool of recycled pages (:func:`kreisel._compiled.outputs.empty`):
-    a dense run's first touches of a fresh multi-gigabyte output would cost
-    more than writing it.
+    ``progress(t_reached)`` is told the earliest time over the bodies.
     """
     count, ny = y0.shape
     if code == _integrators.DOP853:  # its steps do not depend on the output times in between: same bits
         t, every = np.ascontiguousarray(t[::every]), 1
-    out = empty((count, (t.size - 1) // every + 1, ny))
+    out = np.empty((count, (t.size - 1) // every + 1, ny))
     grid = np.empty((2, 0)) if code == _integrators.DOP853 else _integrators.step_grid(t, dt)
     # one array for the batch: a state per body made 10^4 arrays for the garbage collector to scan
     state = _integrators.new_state(code, y0)

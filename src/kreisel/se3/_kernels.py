@@ -19,7 +19,7 @@ from .._compiled import cached, kernels, parallel
 from .._compiled import gufunc as _gufunc
 from .._compiled.gufunc import LazyGufunc, checked_in_one_pass, finite3, finite_array, gufunc
 from .._compiled.gufunc import loop_rows, piece_results, pieces, refuse_nonfinite, union
-from .._compiled.outputs import empty
+
 from .._validation import as_float_array
 
 _F8 = "f8[:]"
@@ -65,7 +65,7 @@ def _poses(loop: Callable[..., None], small: LazyGufunc,
     n = math.prod(batch)
     if n < _gufunc.PARALLEL_THRESHOLD or any(a.shape[:-1] != batch for a in inputs):
         return split(small(*inputs))
-    q, t = empty((*batch, 4)), empty((*batch, 3))
+    q, t = np.empty((*batch, 4)), np.empty((*batch, 3))
     loop(*(loop_rows(a) for a in inputs), q.reshape(n, 4), t.reshape(n, 3))
     return q, t
 

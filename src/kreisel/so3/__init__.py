@@ -31,7 +31,6 @@ from .rotation import *  # noqa: F401,F403
 from .rotvec import *  # noqa: F401,F403
 from .spline import *  # noqa: F401,F403
 from .su2 import *  # noqa: F401,F403
-from .._compiled.outputs import release_memory
 
 # Literal, so that every type checker reads it (mypy reads neither `+=` nor `*` of another module's list);
 # tests/test_public_surface.py checks that it holds exactly the names of the modules imported above.
@@ -65,6 +64,4 @@ __all__ = [
     "Rotation",
     # spline
     "RotationSpline", "Slerp",
-    # the memory kept for large results of so3, kinematics and se3
-    "release_memory",
 ]

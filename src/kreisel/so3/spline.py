@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached, dexp, kernels, parallel
 from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
-from .._compiled.outputs import check_out, empty, takes_out
+from .._compiled.outputs import check_out, takes_out
 from .._norms import norm
 from .._validation import check_frame, refuse_long_angle
 from .rotation import Rotation
@@ -268,7 +268,7 @@ class RotationSpline:
             self._check_extrapolation(flat, index)
         # the loop writes each row after reading its time: out must not overlap the times it reads
         direct = out is not None and out.flags.c_contiguous and not np.may_share_memory(out, flat)
-        result = out if out is not None and direct else empty(shape)
+        result = out if out is not None and direct else np.empty(shape)
         run = _evaluate_parallel if flat.size >= PARALLEL_THRESHOLD else _evaluate_serial
         run(flat, self.times, index, self._coeff, self._quats, order, space, result.reshape(flat.size, shape[-1]))
         if order == 0:
