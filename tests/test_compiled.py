@@ -1,173 +1,12 @@
-"""The compiled layer's own rules (one signature per shared kernel, a cache keyed by the sources) and its sincos."""
+"""The compiled layer's shared kernels: sincos and the DOP853 dense output."""
 
-import json
-import os
-import pathlib
 import platform
-import re
-import subprocess
-import sys
 
 import numba
 import numpy as np
 import pytest
-from numba.core.compiler_lock import global_compiler_lock
 
-import kreisel
-from kreisel._compiled import checkout_cache_root, compile_lock, dop853, kernels, signatures, source_state
-from kreisel.so3 import quat_normalize, rotvec_to_matrix
-
-
-def test_a_kernel_compiled_for_two_layouts_is_reported():
-    @numba.njit
-    def total(a):
-        return a.sum()
-
-    total(np.ones(3))
-    assert signatures.violations({"total": total}) == {}
-    total(np.ones(6)[::2])
-    assert list(signatures.violations({"total": total})) == ["total"]
-
-
-def test_the_shared_kernels_are_the_cached_ones():
-    kernels = signatures.shared_kernels()
-    assert "kreisel._compiled.kernels.qmul" in kernels and "kreisel._compiled.gufunc._all_finite" in kernels
-    # routines taking a compiled right-hand side are compiled for each and never cached
-    assert not any(name.endswith(".integrate") for name in kernels)
-
-
-def test_the_loops_over_pieces_load_from_the_cache_in_a_new_process():
-    # in_pieces and piece_results take the per-piece kernel as an argument: each parallel caller
-    # inlines them with its own kernel and must still be cached (numba would recompile the ones it cannot)
-    psi = np.random.default_rng(3).normal(size=(2**15, 3))
-    rotvec_to_matrix(psi)
-    quat_normalize(np.ones((2**15, 4)), out=np.empty((2**15, 4)))
-    script = """
-import numpy as np
-from kreisel._compiled import gufunc
-from kreisel.so3 import quat_normalize, rotvec, rotvec_to_matrix
-psi = np.random.default_rng(3).normal(size=(2**15, 3))
-rotvec_to_matrix(psi)
-quat_normalize(np.ones((2**15, 4)), out=np.empty((2**15, 4)))
-loops = (rotvec._rotvec_to_matrix_parallel, gufunc._rotvecs_in_range_parallel, gufunc._smallest_quat_size_parallel)
-print([(sum(f.stats.cache_hits.values()), sum(f.stats.cache_misses.values())) for f in loops])
-"""
-    source = str(pathlib.Path(kreisel.__file__).parents[1])
-    environment = {**os.environ, "NUMBA_CACHE_DIR": numba.config.CACHE_DIR,
-                   "PYTHONPATH": os.pathsep.join([source, os.environ.get("PYTHONPATH", "")])}
-    found = subprocess.run([sys.executable, "-c", script], env=environment, capture_output=True, text=True, check=True)
-    assert found.stdout.strip() == "[(1, 0), (1, 0), (1, 0)]", found.stdout + found.stderr
-
-
-def test_a_source_checkout_compiles_into_a_cache_of_its_source_state():
-    root = checkout_cache_root()
-    assert root is not None and (root.parent / "pyproject.toml").is_file()
-    expected = os.environ.get("NUMBA_CACHE_DIR") or str(root / source_state())  # a user's choice wins
-    assert numba.config.CACHE_DIR.startswith(expected)
-
-
-
-# ---------------------------------------------------------------------------- processes sharing a cache
-
-_SHARED = """
-from kreisel._compiled import cached
-from kreisel._compiled.gufunc import gufunc
-
-
-@cached
-def halved(x):
-    return 0.5 * x
-
-
-@cached
-def cubed(x):
-    return x * x * x
-
-
-@gufunc(["void(f8[:], f8[:])"], "(2)->(2)")
-def swapped(a, out):
-    out[0], out[1] = halved(a[1]), a[0]
-
-
-@gufunc(["void(f8[:], f8[:])"], "(2)->(2)")
-def summed(a, out):
-    out[0], out[1] = a[0] + a[1], halved(a[0])
-
-
-@gufunc(["void(f8[:], f8[:])"], "(3)->(3)")
-def cubes(a, out):
-    out[0], out[1], out[2] = cubed(a[0]), cubed(a[1]), cubed(a[2])
-"""
-
-#: Compiles the functions of _SHARED (cubed for the one signature its index picks, everything if it is negative)
-#: together with the other processes, after a number of compilations of its own (numba's symbol names carry a
-#: per-process counter: they differ from the other processes' ones).
-_COMPILER = """
-import json, pathlib, sys, time
-import numba
-import numpy as np
-import shared
-index, count, ready = int(sys.argv[1]), int(sys.argv[2]), pathlib.Path(sys.argv[3])
-for _ in range(index % 3 + 1):
-    numba.njit(lambda x: x + 1.0)(1.0)
-steps = {"swapped": lambda: shared.swapped(np.array([1.0, 2.0])).tolist(),
-         "summed": lambda: shared.summed(np.array([1.0, 2.0])).tolist(),
-         "cubes": lambda: shared.cubes(np.array([1.0, 2.0, 3.0])).tolist(),
-         "cubed int": lambda: shared.cubed(3), "cubed float": lambda: shared.cubed(0.5)}
-names = [name for name in steps if index < 0 or name != ("cubed int", "cubed float")[index % 2]]
-(ready / str(index)).touch()
-deadline = time.monotonic() + 60
-while len(list(ready.iterdir())) < count and time.monotonic() < deadline:
-    time.sleep(0.002)
-print(json.dumps({name: steps[name]() for name in names}))
-"""
-
-
-def test_processes_compiling_into_one_empty_cache_at_once_build_it_consistently(tmp_path):
-    # numba symbol names carry a per-process counter: without the lock of kreisel._compiled.compile_lock a gufunc
-    # wrapper saved by one process next to the kernel saved by another segfaulted every process loading them, and two
-    # signatures added at once shared one data file
-    (tmp_path / "shared.py").write_text(_SHARED)
-    source = str(pathlib.Path(kreisel.__file__).parents[1])
-    expected = {"swapped": [1.0, 1.0], "summed": [3.0, 0.5], "cubes": [1.0, 8.0, 27.0], "cubed int": 27,
-                "cubed float": 0.125}
-    writers = 3
-    for attempt in range(2):
-        cache, ready = tmp_path / f"cache{attempt}", tmp_path / f"ready{attempt}"
-        ready.mkdir()
-        environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache),
-                       "PYTHONPATH": os.pathsep.join([str(tmp_path), source, os.environ.get("PYTHONPATH", "")])}
-
-        def start(index, count):
-            return subprocess.Popen([sys.executable, "-c", _COMPILER, str(index), str(count), str(ready)],
-                                    env=environment, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-
-        runs = [start(writers * attempt + i, writers) for i in range(writers)]
-        runs = [(run, *run.communicate()) for run in runs]
-        runs.append((loader := start(-1, 0), *loader.communicate()))   # loads everything from the cache
-        for run, out, err in runs:
-            assert run.returncode == 0, (run.returncode, err[-2000:])
-            found = json.loads(out)
-            assert found == {name: expected[name] for name in found}, found
-        assert list(cache.glob(f"*/{compile_lock.LOCK_NAME}"))
-
-
-
-@pytest.mark.skipif(os.name != "posix", reason="fcntl file locks")
-def test_numbas_compiler_lock_holds_the_cache_lock_file_from_its_outermost_hold(tmp_path, monkeypatch):
-    import fcntl
-
-    # a cache of its own: the test workers' shared cache is locked by whichever worker compiles at the moment
-    monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
-    os.makedirs(os.path.dirname(compile_lock.lock_path()), exist_ok=True)
-    with open(compile_lock.lock_path(), "a") as other:   # another open file: another holder to flock
-        with global_compiler_lock:
-            with global_compiler_lock:
-                pass
-            with pytest.raises(BlockingIOError):
-                fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        fcntl.flock(other, fcntl.LOCK_UN)
+from kreisel._compiled import dop853, kernels
 
 
 # ---------------------------------------------------------------------------- sincos
@@ -208,17 +47,6 @@ def test_sincos_is_within_a_quarter_ulp_of_libm_and_below_0_8_ulp():
             for got_value, exact in ((s, mpmath.sin(v)), (c, mpmath.cos(v))):
                 ulp = np.spacing(abs(float(exact))) if float(exact) else 5e-324
                 assert float(abs(mpmath.mpf(got_value) - exact)) / ulp <= 0.8, (v, got_value, exact)
-
-
-@pytest.mark.skipif(platform.machine().lower() not in ("x86_64", "amd64"), reason="x86 packed instructions")
-def test_the_half_angle_loop_vectorises():
-    # the reason sincos exists: LLVM's one libm sincos call per element kept the exp loops scalar
-    # an uncached copy: numba does not show the machine code of cached functions
-    half_angles = numba.njit(nogil=True)(kernels._half_angles.py_func)
-    scratch = np.empty(kernels.EXP_BLOCK)
-    half_angles(np.ones((8, 3)), 0, 8, scratch, scratch.copy(), scratch.copy())
-    assembly = "".join(half_angles.inspect_asm().values())
-    assert "mulpd" in assembly and not re.findall(r"\$\w*sin\w*", assembly)   # packed, no libm sin/sincos
 
 
 # ---------------------------------------------------------------------------- DOP853 dense output
