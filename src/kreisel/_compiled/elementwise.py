@@ -60,6 +60,9 @@ from .outputs import check_out, with_out_entry
 PARALLEL_THRESHOLD = 2**14
 #: Elements per piece of the multi-core loop.
 PIECE = 2**13
+# Indices are unsigned: numba then omits its test for negative (wrap-around) indices, whose branch
+# per access kept LLVM from vectorising the loops.
+_ZERO, _ONE, _PIECE = np.uint64(0), np.uint64(1), np.uint64(PIECE)
 
 #: Kernel flavour: numpy's error model (a division by zero gives inf or NaN, which the loop's result
 #: check catches, instead of raising).
@@ -129,15 +132,15 @@ class ArrayOperation:
         body, components, conditions = [], [], []
         for k, (item, width) in enumerate(zip(self.inputs, self._widths)):
             names = [f"x{k}_{c}" for c in range(width)]
-            body.append(f"        j = {width} * (i * s{k})")
-            body += [f"        {n} = a{k}[j + {c}]" for c, n in enumerate(names)]
+            body.append(f"        j = uint64({width}) * (i * s{k})")
+            body += [f"        {n} = a{k}[j + uint64({c})]" for c, n in enumerate(names)]
             components += names
             conditions.append(item.kind.condition(names))
         results = [f"r{c}" for c in range(self._width)]
         arguments = ", ".join(components + [f"p{k}" for k in range(len(self.parameters))])
         body.append(f"        {', '.join(results)}{',' if self._width == 1 and self.output else ''} = kernel({arguments})")
-        body.append(f"        j = {self._width} * i")
-        body += [f"        out[j + {c}] = {r}" for c, r in enumerate(results)]
+        body.append(f"        j = uint64({self._width}) * i")
+        body += [f"        out[j + uint64({c})] = {r}" for c, r in enumerate(results)]
         conditions.append(finite_condition(results))
         body.append("        ok &= " + " & ".join(f"({c})" for c in conditions))
         name = self.name
@@ -159,10 +162,10 @@ class ArrayOperation:
             "",
             "",
             f"def {name}_parallel({arrays}, {params}out, piece):",
-            f"    n = out.size // {self._width}",
-            "    flags = np.empty((n + piece - 1) // piece, np.bool_)",
+            f"    n = uint64(out.size // {self._width})",
+            "    flags = np.empty((n + piece - uint64(1)) // piece, np.bool_)",
             "    for c in prange(flags.size):",
-            "        start = c * piece",
+            "        start = uint64(c) * piece",
             f"        flags[c] = {name}_serial({arrays}, {params}out, start, min(n, start + piece))",
             "    return flags.all()",
             "",
@@ -172,18 +175,19 @@ class ArrayOperation:
         """The compiled serial or parallel loop (compiled or loaded from the cache on first use)."""
         loop = self._loops.get(variant)
         if loop is None:
-            namespace: dict[str, Any] = {"__name__": __name__, "kernel": self.kernel, "np": np, "prange": prange}
+            namespace: dict[str, Any] = {"__name__": __name__, "kernel": self.kernel, "np": np, "prange": prange,
+                                          "uint64": types.uint64}
             exec(compile(self.source, f"<kreisel loops of {self.name}>", "exec"), namespace)
             flat_in = types.Array(types.float64, 1, "C", readonly=True)
-            args = [t for _ in self.inputs for t in (flat_in, types.int64)]
+            args = [t for _ in self.inputs for t in (flat_in, types.uint64)]
             args += [p.type for p in self.parameters]
             args.append(types.Array(types.float64, 1, "C"))
             serial = njit(nogil=True, error_model="numpy")(namespace[f"{self.name}_serial"])
-            cache.attach(serial).compile(types.boolean(*args, types.int64, types.int64))
+            cache.attach(serial).compile(types.boolean(*args, types.uint64, types.uint64))
             serial.disable_compile()
             if variant == "valid":
                 valid = njit(nogil=True, error_model="numpy")(namespace[f"{self.name}_valid"])
-                cache.attach(valid).compile(types.boolean(*args[:2 * len(self.inputs)], types.int64))
+                cache.attach(valid).compile(types.boolean(*args[:2 * len(self.inputs)], types.uint64))
                 valid.disable_compile()
                 loop = valid
             elif variant == "serial":
@@ -191,7 +195,7 @@ class ArrayOperation:
             else:
                 namespace[f"{self.name}_serial"] = serial
                 parallel = njit(parallel=True, error_model="numpy")(namespace[f"{self.name}_parallel"])
-                cache.attach(parallel).compile(types.boolean(*args, types.int64))
+                cache.attach(parallel).compile(types.boolean(*args, types.uint64))
                 parallel.disable_compile()
                 loop = parallel
             self._loops[variant] = loop
@@ -250,13 +254,13 @@ class ArrayOperation:
             if np.may_share_memory(a, flat_out) and not (
                     a.ctypes.data == flat_out.ctypes.data and a.size == flat_out.size and elements == n):
                 a = a.copy()
-            flat += [a, 1 if elements == n else 0]
+            flat += [a, _ONE if elements == n else _ZERO]
         if result is None:
-            return bool(self._loop("valid")(*flat, n))
+            return bool(self._loop("valid")(*flat, np.uint64(n)))
         if n >= PARALLEL_THRESHOLD:
-            ok = self._loop("parallel")(*flat, *parameters, flat_out, PIECE)
+            ok = self._loop("parallel")(*flat, *parameters, flat_out, _PIECE)
         else:
-            ok = self._loop("serial")(*flat, *parameters, flat_out, 0, n)
+            ok = self._loop("serial")(*flat, *parameters, flat_out, _ZERO, np.uint64(n))
         if not contiguous:
             result[...] = flat_out.reshape(result.shape)
         return bool(ok)
@@ -332,9 +336,9 @@ def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
                 bound = signature.bind(*args, out=out, **keywords)
                 args = tuple(bound.arguments.get(n, d) for n, d in zip(wanted, defaults))
             elif len(args) < len(wanted):
+                if any(d is inspect.Parameter.empty for d in defaults[len(args):]):
+                    signature.bind(*args, out=out)
                 args = (*args, *defaults[len(args):])
-                if inspect.Parameter.empty in args:
-                    signature.bind(*args[:len(args) - defaults.count(inspect.Parameter.empty)])
             return operation(*args, out=out)
 
         if function.__doc__ is not None:

@@ -55,9 +55,9 @@ def largest_component(q0: float, q1: float, q2: float, q3: float) -> float:
 def squarable(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
     """``q``, or ``q`` divided by its largest ``|component|`` when squaring it would overflow or underflow."""
     m = largest_component(q0, q1, q2, q3)
-    if SIZE_LOW < m < SIZE_HIGH:
-        return q0, q1, q2, q3
-    return q0 / m, q1 / m, q2 / m, q3 / m
+    # a division by 1 is exact: one formula for both cases, without a branch, so that loops of it vectorise
+    d = 1.0 if SIZE_LOW < m < SIZE_HIGH else m
+    return q0 / d, q1 / d, q2 / d, q3 / d
 
 
 @vectorised

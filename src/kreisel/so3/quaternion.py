@@ -55,14 +55,12 @@ def _norm(q0: float, q1: float, q2: float, q3: float) -> float:
 
 @kernel
 def _inverse(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
-    # q* / |q|², as ((q/m)* / |q/m|²) / m where the squares would over- or underflow
+    # q* / |q|² as ((q/m)* / |q/m|²) / m, m = 1 unless the squares would over- or underflow
     m = kernels.largest_component(q0, q1, q2, q3)
-    if kernels.SIZE_LOW < m < kernels.SIZE_HIGH:
-        n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-        return q0 / n2, -q1 / n2, -q2 / n2, -q3 / n2
-    q0, q1, q2, q3 = q0 / m, q1 / m, q2 / m, q3 / m
+    d = 1.0 if kernels.SIZE_LOW < m < kernels.SIZE_HIGH else m
+    q0, q1, q2, q3 = q0 / d, q1 / d, q2 / d, q3 / d
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-    return q0 / n2 / m, -q1 / n2 / m, -q2 / n2 / m, -q3 / n2 / m
+    return q0 / n2 / d, -q1 / n2 / d, -q2 / n2 / d, -q3 / n2 / d
 
 
 @kernel
