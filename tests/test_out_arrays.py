@@ -16,9 +16,7 @@ from __future__ import annotations
 
 import inspect
 import pathlib
-import sys
 import tracemalloc
-import weakref
 
 import numpy as np
 import pytest
@@ -26,8 +24,7 @@ import pytest
 import kreisel.kinematics as kinematics
 import kreisel.se3 as se3
 import kreisel.so3 as so3
-from kreisel import release_memory as kr_release
-from kreisel._compiled import gufunc, outputs
+from kreisel._compiled import elementwise, outputs
 
 MODULES = (so3, kinematics, se3)
 N = 5
@@ -94,7 +91,6 @@ NOT_ARRAY_FUNCTIONS = {
                                                                     np.zeros((N, 2)))),
     "change_base_point": ("returns a RigidTransform", lambda: se3.change_base_point(POSES, VECTORS)),
     "sclerp": ("returns a RigidTransform", lambda: se3.sclerp(POSES, POSES[::-1], 0.5)),
-    "release_memory": ("frees kreisel's idle memory, returns a byte count", so3.release_memory),
 }
 
 
@@ -433,7 +429,7 @@ def test_out_may_be_an_input(name):
 # The multi-core loops (batches of at least PARALLEL_THRESHOLD) read each
 # element whole before writing it, so out may be an input; any other overlap
 # is copied first.
-LARGE = gufunc.PARALLEL_THRESHOLD
+LARGE = elementwise.PARALLEL_THRESHOLD
 
 
 _big = np.random.default_rng(3)
@@ -477,57 +473,3 @@ def test_out_allocates_no_result_sized_array(name):
     finally:
         tracemalloc.stop()
     assert peak < out.nbytes / 4, (peak, out.nbytes)
-
-
-def test_large_results_are_recycled(monkeypatch):
-    monkeypatch.setattr(outputs, "RECYCLED_BYTES", 8 * 1000)
-    monkeypatch.setattr(outputs, "IDLE_BYTES", 3 * 8 * 9000)
-    monkeypatch.setattr(outputs, "_idle", [])
-    q = QUATS[np.arange(1000) % N]
-    expected = np.stack([so3.quat_to_matrix(x) for x in q])
-    first = so3.quat_to_matrix(q)
-    assert first.tobytes() == expected.tobytes()
-    slab = first.base._slab
-    view = first[3]
-    del first
-    assert outputs._idle == []  # a view keeps the slab leased
-    del view
-    assert len(outputs._idle) == 1 and outputs._idle[0] is slab
-    second = so3.quat_to_matrix(q)
-    assert second.base._slab is slab and outputs._idle == []
-    assert second.tobytes() == expected.tobytes()
-    # smaller results below the threshold are ordinary arrays
-    assert so3.quat_to_matrix(q[:10]).base is None
-    # the pool keeps at most IDLE_BYTES of unused slabs, the most recently released
-    held = [so3.quat_to_matrix(q) for _ in range(5)]
-    slabs = [h.base._slab for h in held]
-    while held:
-        held.pop(0)
-    del second
-    assert [id(s) for s in outputs._idle] == [id(s) for s in (slabs[3], slabs[4], slab)]
-
-
-def _resident_bytes():
-    with open("/proc/self/statm") as statm:
-        return int(statm.read().split()[1]) * 4096
-
-
-def test_release_memory_gives_idle_slabs_back(monkeypatch):
-    monkeypatch.setattr(outputs, "_idle", [])
-    q = QUATS[np.arange(600_000) % N]  # a 43 MB result: recycled by default
-    held = so3.quat_to_matrix(q)
-    slab = weakref.ref(held.base._slab)
-    del held
-    assert slab() is not None and outputs._idle == [slab()]
-    resident = _resident_bytes() if sys.platform == "linux" else None
-    assert kr_release() == 600_000 * 9 * 8
-    assert slab() is None and outputs._idle == []
-    if resident is not None:  # the pages went back to the operating system, not to malloc's heap
-        assert resident - _resident_bytes() > 0.9 * 600_000 * 9 * 8
-    assert kr_release() == 0
-    # a result still alive is not touched, and its slab is kept again when it dies
-    alive = so3.quat_to_matrix(q)
-    assert kr_release() == 0
-    assert alive.tobytes() == so3.quat_to_matrix(q[:10]).tobytes() * 60_000
-    del alive
-    assert len(outputs._idle) == 1
