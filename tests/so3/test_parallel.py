@@ -1,24 +1,23 @@
-"""The multi-core paths for large batches agree with the per-element gufuncs.
+"""The multi-core loops for large batches agree with the serial loops bit for bit.
 
-Lowering ``PARALLEL_THRESHOLD`` sends small batches through the parallel
-loops and chunked checks, so they are compared bit for bit with the serial
-gufuncs without allocating 10^4 rotations.
+Lowering ``PARALLEL_THRESHOLD`` sends small batches through the multi-core
+loops (in pieces of ``PIECE`` elements), so they are compared with the serial
+loops without allocating 10^4 rotations.
 """
 
 import numpy as np
 import pytest
 
 import kreisel as kr
-from kreisel._compiled import gufunc as _gufunc
+from kreisel._compiled import elementwise
 
-N = 37  # odd, so the chunked checks see a ragged last piece
+N = 37  # odd, so the multi-core loop sees a ragged last piece
 
 
 @pytest.fixture
 def parallel(monkeypatch):
-    monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
-    monkeypatch.setattr(_gufunc, "_CHUNK", 36 * 2)
-    monkeypatch.setattr(_gufunc, "CHECKED_CHUNK", 5)
+    monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PIECE", 5)
 
 
 @pytest.fixture(scope="module")
@@ -52,9 +51,10 @@ CASES = {
 @pytest.mark.parametrize("name", list(CASES))
 def test_parallel_matches_serial(name, data, monkeypatch):
     serial = CASES[name](*data)
-    monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PIECE", 5)
     assert np.array_equal(CASES[name](*data), serial)
-    # Non-contiguous inputs are copied into the flat views the loops expect.
+    # Non-contiguous inputs are copied into the flat arrays the loops read.
     assert np.array_equal(CASES[name](*(np.asfortranarray(x) for x in data)), serial)
 
 
@@ -65,7 +65,7 @@ def test_parallel_keeps_leading_shape(data, parallel):
     np.testing.assert_array_equal(R[2, 5], kr.quat_to_matrix(q[2, 5]))
 
 
-def test_parallel_broadcast_falls_back(data, parallel):
+def test_parallel_broadcast_reads_one_element_in_place(data, parallel):
     q, p = data[0], data[1]
     np.testing.assert_array_equal(kr.quat_multiply(p[0], q), kr.quat_multiply(np.broadcast_to(p[0], q.shape).copy(), q))
 
@@ -104,10 +104,10 @@ def test_parallel_checks_find_bad_entries_anywhere(data, parallel, position):
         kr.matrix_to_rotvec(nan_R)
 
 
-def _awkward(width):
-    # non-unit, tiny and huge rows: pieces that the loops' fast formulas leave to their row-by-row loop
+def _awkward(width, decades=150):
+    # non-unit, tiny and huge rows: the kernels rescale before squaring
     rng = np.random.default_rng(3)
-    return rng.normal(size=(N, width)) * 10.0 ** rng.integers(-150, 150, size=(N, 1))
+    return rng.normal(size=(N, width)) * 10.0 ** rng.integers(-decades, decades, size=(N, 1))
 
 
 def _three_ways(function, *inputs):
@@ -119,37 +119,23 @@ def _three_ways(function, *inputs):
 
 
 @pytest.mark.parametrize("name", ["quat_normalize", "quat_inverse", "quat_apply", "quat_apply inverse", "quat_multiply"])
-def test_out_gives_the_bits_of_the_row_by_row_gufunc(name, monkeypatch):
-    # The multi-core loops (fresh result, or an out= that overlaps no input) compute a piece by
-    # fast formulas and redo it row by row when it holds an awkward row; an out= that is an input
-    # takes the row-by-row loop. Every way gives the gufunc's bits (a batch this small, unpatched).
+def test_out_gives_the_bits_of_the_serial_loop(name, monkeypatch):
+    # a fresh result, an out= that overlaps no input and an out= that is an input, on all cores
     function = {
         "quat_normalize": kr.quat_normalize, "quat_inverse": kr.quat_inverse, "quat_apply": kr.quat_apply,
         "quat_apply inverse": lambda q, v, out=None: kr.quat_apply(q, v, inverse=True, out=out),
         "quat_multiply": kr.quat_multiply,
     }[name]
-    inputs = {"quat_apply": (_awkward(4), _awkward(3)), "quat_apply inverse": (_awkward(4), _awkward(3)),
+    # R(q) v is computed as (q v q*) / |q|²: |q|² |v| must stay below the largest double
+    rotated = (_awkward(4, 70), _awkward(3))
+    inputs = {"quat_apply": rotated, "quat_apply inverse": rotated,
               "quat_multiply": (_awkward(4), _awkward(4)[::-1])}.get(name, (_awkward(4),))
     with np.errstate(all="ignore"):
         serial = function(*inputs)
-        monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
-        monkeypatch.setattr(_gufunc, "CHECKED_CHUNK", 5)
+        monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+        monkeypatch.setattr(elementwise, "PIECE", 5)
         for result in _three_ways(function, *inputs):
             assert result.tobytes() == serial.tobytes()
-
-
-def test_out_takes_the_checked_loop_unless_it_overlaps_an_input(data, parallel, monkeypatch):
-    from kreisel.so3 import quaternion
-
-    calls = []
-    loop = quaternion._map_checked
-    monkeypatch.setattr(quaternion, "_map_checked", lambda *args: calls.append(args[1]) or loop(*args))
-    q = data[0].copy()
-    out = np.empty_like(q)
-    assert kr.quat_normalize(q, out=out) is out and calls[-1].ctypes.data == out.ctypes.data
-    kr.quat_normalize(q, out=q)
-    kr.quat_normalize(q[:-1:2], out=q[1::2])  # a strided input is copied first, but out is not C-ordered
-    assert len(calls) == 1
 
 
 @pytest.mark.parametrize("position", [0, N // 2, N - 1])

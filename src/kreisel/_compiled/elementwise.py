@@ -62,7 +62,7 @@ PARALLEL_THRESHOLD = 2**14
 PIECE = 2**13
 # Indices are unsigned: numba then omits its test for negative (wrap-around) indices, whose branch
 # per access kept LLVM from vectorising the loops.
-_ZERO, _ONE, _PIECE = np.uint64(0), np.uint64(1), np.uint64(PIECE)
+_ZERO, _ONE = np.uint64(0), np.uint64(1)
 
 #: Kernel flavour: numpy's error model (a division by zero gives inf or NaN, which the loop's result
 #: check catches, instead of raising).
@@ -204,7 +204,13 @@ class ArrayOperation:
     def __call__(self, *args: Any, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """The operation of the inputs, then the parameters, positionally; ``out`` as documented."""
         count = len(self.inputs)
-        arrays = [as_float_array(x, i.name, i.shape, finite=False) for x, i in zip(args[:count], self.inputs)]
+        arrays: list[NDArray[np.float64]] = []
+        for x, item in zip(args[:count], self.inputs):
+            try:
+                arrays.append(as_float_array(x, item.name, item.shape, finite=False))
+            except (TypeError, ValueError):
+                self._checked(arrays)  # the refusal of checking each argument in turn
+                raise
         parameters = args[count:]
         batch = _broadcast([a.shape[: a.ndim - len(i.shape)] for a, i in zip(arrays, self.inputs)])
         shape = (*batch, *self.output)
@@ -258,7 +264,7 @@ class ArrayOperation:
         if result is None:
             return bool(self._loop("valid")(*flat, np.uint64(n)))
         if n >= PARALLEL_THRESHOLD:
-            ok = self._loop("parallel")(*flat, *parameters, flat_out, _PIECE)
+            ok = self._loop("parallel")(*flat, *parameters, flat_out, np.uint64(PIECE))
         else:
             ok = self._loop("serial")(*flat, *parameters, flat_out, _ZERO, np.uint64(n))
         if not contiguous:
