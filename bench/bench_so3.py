@@ -268,19 +268,14 @@ def _faults():
     return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
 
 
-def fresh_outputs_child(recycle):
+def fresh_outputs_child():
     """Run in a new process: the order of calls of a script, timed; prints one JSON row per operation.
 
     Other 10^6-sized arrays are allocated first (the inputs and their
     conversions), then each operation is called once (compilation, cache
     load) and timed in alternation with scipy and an allocating copy of the
-    same output size. ``recycle=False`` switches kreisel's recycling of large
-    results off (:mod:`kreisel._compiled.outputs`), the state before it.
+    same output size.
     """
-    from kreisel._compiled import outputs
-
-    if not recycle:
-        outputs.RECYCLED_BYTES = float("inf")
     for name, ours, scipy_run, into, n_out in _fresh_output_cases(np.random.default_rng(0)):
         new_copy = allocating_copy(0, n_out * N)
         faults = []
@@ -299,32 +294,29 @@ def fresh_outputs_child(recycle):
 
 
 def fresh_outputs():
-    """The section's lines: large fresh outputs with and without recycling, each in a new process."""
+    """The section's lines: large fresh outputs, in a new process."""
     load_before = load_average()
     rows = []
-    for recycle in (False, True):
-        child = subprocess.run([sys.executable, __file__, "--fresh-outputs-child", str(int(recycle))],
-                               capture_output=True, text=True, check=True)
-        for line in child.stdout.splitlines():
-            r = json.loads(line)
-            med = {key: float(np.median(r[key])) for key in ("ours", "scipy", "new", "into")}
-            rows.append([
-                r["name"], "on" if recycle else "off", " ".join(_ms(t) for t in r["ours"]), _ms(med["ours"]),
-                _ms(med["scipy"]), f"{med['scipy'] / med['ours']:.1f}×", _ms(med["new"]),
-                f"{med['ours'] / med['new']:.2f}", _ms(med["into"]), str(int(np.median(r["faults"]))),
-            ])
-            print(" | ".join(rows[-1]), flush=True)
+    child = subprocess.run([sys.executable, __file__, "--fresh-outputs-child"], capture_output=True, text=True,
+                           check=True)
+    for line in child.stdout.splitlines():
+        r = json.loads(line)
+        med = {key: float(np.median(r[key])) for key in ("ours", "scipy", "new", "into")}
+        rows.append([
+            r["name"], " ".join(_ms(t) for t in r["ours"]), _ms(med["ours"]), _ms(med["scipy"]),
+            f"{med['scipy'] / med['ours']:.1f}×", _ms(med["new"]), f"{med['ours'] / med['new']:.2f}",
+            _ms(med["into"]), str(int(np.median(r["faults"]))),
+        ])
+        print(" | ".join(rows[-1]), flush=True)
     return [FRESH_HEADING, ""] + table_section(
         None,
-        [f"The order of calls that exposed quat -> matrix at 0.4× scipy: a new process allocates other 10^6-sized "
-         f"arrays first, then times each operation in alternation with scipy and a copy into a newly allocated "
-         f"output of the same size ({REPEATS} runs after one untimed call; every run returns a new 72 MB or 128 MB "
-         "array). 'recycled off' is kreisel with its recycling of large results switched off (each result on "
-         "freshly mapped pages, as numpy allocates it), 'on' the default. Page faults: minor faults of one "
-         "kreisel call (median)."],
-        ["operation", "recycled", "kreisel runs (ms)", "kreisel (ms)", "scipy (ms)", "vs scipy",
-         "copy to new output (ms)", "kreisel / copy to new", "kreisel into out= (ms)", "page faults"],
-        rows, "ll" + "r" * 8, load_before=load_before,
+        [f"A new process allocates other 10^6-sized arrays first, then times each operation in alternation with "
+         f"scipy and a copy into a newly allocated output of the same size ({REPEATS} runs after one untimed call; "
+         "every run returns a new 72 MB or 128 MB array on freshly mapped pages, as numpy allocates it). Page "
+         "faults: minor faults of one kreisel call (median)."],
+        ["operation", "kreisel runs (ms)", "kreisel (ms)", "scipy (ms)", "vs scipy", "copy to new output (ms)",
+         "kreisel / copy to new", "kreisel into out= (ms)", "page faults"],
+        rows, "l" + "r" * 8, load_before=load_before,
     )
 
 
@@ -343,7 +335,7 @@ def write_section(heading, lines):
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--fresh-outputs-child"]:
-        fresh_outputs_child(bool(int(sys.argv[2])))
+        fresh_outputs_child()
     elif sys.argv[1:] == ["--parity"]:
         write_section(PARITY_HEADING, parity())
     elif sys.argv[1:] == ["--fresh-outputs"]:
