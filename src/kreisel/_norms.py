@@ -6,8 +6,8 @@ far from unit size. As ``math.hypot`` does, the vector is first divided by
 its largest component. The compiled kernels do the same in their rare slow
 path (:mod:`kreisel._compiled.kernels`).
 
-This module imports no numba: ``kreisel convert`` uses it without loading
-the compiled layer (:mod:`kreisel.cli.rotations`).
+This module imports no numba: the compiled layer (:mod:`kreisel._compiled`)
+builds its input checks on it.
 """
 
 from __future__ import annotations

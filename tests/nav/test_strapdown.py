@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 import kreisel as kr
-from kreisel.nav._kernels import bortz_coefficient
+from kreisel.nav._kernels import bortz_coefficient_from_square
 
 nav = kr.nav
 OMEGA = 2 * np.pi
@@ -95,13 +95,14 @@ def test_increments_bad_input():
         nav.attitude_from_increments([1, 0, 0, 0], np.zeros((10, 3)), 5)
 
 
-def test_bortz_coefficient_series_and_closed_form_agree():
+def test_bortz_coefficient_from_square_series_and_closed_form_agree():
     # the switch at ψ = 0.1 is seamless, and ψ → 0 gives the chapter's 1/12
-    below, above = bortz_coefficient(np.nextafter(1e-2, 0)), bortz_coefficient(1e-2)
+    below, above = bortz_coefficient_from_square(np.nextafter(1e-2, 0)), bortz_coefficient_from_square(1e-2)
     assert above == pytest.approx(below, rel=1e-15)
-    assert bortz_coefficient(0.0) == 1 / 12
+    assert bortz_coefficient_from_square(0.0) == 1 / 12
     psi = 1.3
-    assert bortz_coefficient(psi**2) == pytest.approx((1 - psi / 2 / np.tan(psi / 2)) / psi**2, rel=1e-14)
+    assert bortz_coefficient_from_square(psi**2) == pytest.approx((1 - psi / 2 / np.tan(psi / 2)) / psi**2, rel=1e-14)
+    assert bortz_coefficient_from_square(psi**2) == pytest.approx(kr.kinematics.bortz_coefficient(psi), rel=1e-14)
 
 
 def smooth_rate(t):

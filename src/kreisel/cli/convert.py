@@ -3,8 +3,8 @@
 Representations are named like ``quat``, ``matrix``, ``rotvec``, ``euler:ZXZ``
 (any of the 24 sequences), ``axis_angle``, ``gibbs``, ``mrp``, ``su2`` and
 ``cayley_klein``. Values come from the command line or, row by row, from
-standard input or a CSV file. The conversions are the NumPy formulas of
-:mod:`kreisel.cli.rotations`, so that the command never loads numba.
+standard input or a CSV file. Every conversion goes through unit quaternions,
+each step made by the public function of :mod:`kreisel.so3` for it.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import io
 
 import numpy as np
 
+from .. import so3
 from .._validation import parse_sequence
-from .rotations import from_quat, to_quat
 
 __all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows"]
 
@@ -143,8 +143,8 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     if src == "quat" and scalar_last:
         values = np.roll(values, 1, axis=-1)
     try:
-        q = to_quat(src, src_seq, values, degrees)
-        out = from_quat(q, dst, dst_seq, degrees)
+        q = _to_quat(src, src_seq, values, degrees)
+        out = _from_quat(q, dst, dst_seq, degrees)
     except ValueError as exc:
         raise ConversionError(_first_invalid(src, src_seq, dst, dst_seq, values, degrees, lines, exc)) from None
     if dst == "quat" and scalar_last:
@@ -152,14 +152,127 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     return out
 
 
+def _radians(values, degrees):
+    return np.deg2rad(values) if degrees else values
+
+
+def _degrees(values, degrees):
+    return np.rad2deg(values) if degrees else values
+
+
+def _to_quat(name, seq, values, degrees=False):
+    """Unit quaternions ``(n, 4)`` of rotations given as rows in representation ``name``.
+
+    Parameters
+    ----------
+    name : str
+        ``quat``, ``matrix`` (rows ``(n, 3, 3)``), ``rotvec``, ``euler`` (with
+        ``seq``), ``axis_angle`` (axis, then angle), ``gibbs``, ``mrp`` or
+        ``euler_parameters``.
+    seq : str
+        Euler axis sequence for ``euler``, else ignored.
+    values : ndarray, shape (n, k)
+    degrees : bool
+        Angles (``euler``, ``axis_angle``, ``rotvec``) in degrees.
+
+    Returns
+    -------
+    ndarray, shape (n, 4)
+
+    Raises
+    ------
+    ValueError
+        For values that are no rotation, with the message of the
+        :mod:`kreisel.so3` function that reads them.
+
+    Examples
+    --------
+    >>> _to_quat("euler", "ZXZ", np.array([[90.0, 0.0, 0.0]]), degrees=True).round(6) + 0.0
+    array([[0.707107, 0.      , 0.      , 0.707107]])
+    """
+    if name == "quat":
+        return so3.quat_normalize(values)
+    if name == "euler_parameters":
+        return so3.euler_parameters_to_quat(values)
+    if name == "matrix":
+        return so3.matrix_to_quat(values)
+    if name == "euler":
+        return so3.euler_to_quat(seq, values, degrees=degrees)
+    if name == "rotvec":
+        return so3.rotvec_to_quat(_radians(values, degrees))
+    if name == "axis_angle":
+        return so3.rotvec_to_quat(so3.axis_angle_to_rotvec(values[..., :3], values[..., 3], degrees=degrees))
+    if name == "gibbs":
+        return so3.gibbs_to_quat(values)
+    if name == "mrp":
+        return so3.mrp_to_quat(values)
+    raise ValueError(f"cannot read rotations from {name!r}")
+
+
+def _from_quat(q, name, seq="", degrees=False):
+    """Rotations given by unit quaternions ``q`` as rows of representation ``name``.
+
+    Parameters
+    ----------
+    q : ndarray, shape (n, 4)
+    name : str
+        One of :func:`_to_quat`'s names, or ``su2`` and ``cayley_klein``
+        (complex rows ``a, b, -b*, a*``).
+    seq : str
+        Euler axis sequence for ``euler``, else ignored.
+    degrees : bool
+        Angles (``euler``, ``axis_angle``, ``rotvec``) in degrees.
+
+    Returns
+    -------
+    ndarray, shape (n, k)
+        Real, or complex for ``su2`` and ``cayley_klein``.
+
+    Raises
+    ------
+    ValueError
+        For the Gibbs vector of a half turn, which is infinite.
+
+    Examples
+    --------
+    >>> q = np.array([[np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)]])
+    >>> _from_quat(q, "euler", "ZXZ", degrees=True).round(9) + 0.0
+    array([[90.,  0.,  0.]])
+    >>> _from_quat(q, "axis_angle", degrees=True).round(9) + 0.0
+    array([[ 0.,  0.,  1., 90.]])
+    """
+    if name == "quat":
+        return q
+    if name == "matrix":
+        return so3.quat_to_matrix(q).reshape(q.shape[:-1] + (9,))
+    if name == "rotvec":
+        return _degrees(so3.quat_to_rotvec(q), degrees)
+    if name == "euler":
+        return so3.quat_to_euler(seq, q, degrees=degrees)
+    if name == "axis_angle":
+        axis, angle = so3.rotvec_to_axis_angle(so3.quat_to_rotvec(q))
+        return np.concatenate([axis, _degrees(angle, degrees)[..., None]], axis=-1)
+    if name == "euler_parameters":
+        return so3.quat_to_euler_parameters(q)
+    if name == "su2":
+        return so3.quat_to_su2(q).reshape(q.shape[:-1] + (4,))
+    if name == "cayley_klein":
+        return so3.quat_to_cayley_klein(q)
+    if name == "gibbs":
+        return so3.quat_to_gibbs(q)
+    if name == "mrp":
+        return so3.quat_to_mrp(q)
+    raise ValueError(f"cannot write rotations as {name!r}")
+
+
 def _first_invalid(src, src_seq, dst, dst_seq, values, degrees, lines, batch_error):
     """Message naming the first row that cannot be converted (and its input line)."""
     for index in range(len(values)):
         what = f"invalid {src}"
         try:
-            q = to_quat(src, src_seq, values[index:index + 1], degrees)
+            q = _to_quat(src, src_seq, values[index:index + 1], degrees)
             what = f"no {dst} of this rotation"
-            from_quat(q, dst, dst_seq, degrees)
+            _from_quat(q, dst, dst_seq, degrees)
         except ValueError as exc:
             where = f"input line {lines[index]}: " if lines is not None and len(values) > 1 else ""
             return f"{where}{what}: {exc}"

@@ -246,7 +246,7 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
         t, every = np.ascontiguousarray(t[::every]), 1
     out = np.empty((count, (t.size - 1) // every + 1, ny))
     grid = np.empty((2, 0)) if code == _integrators.DOP853 else _integrators.step_grid(t, dt)
-    # one array for the batch: a state per body made 10^4 arrays for the garbage collector to scan
+    # one array for the batch: a state per body would leave an array per body for the garbage collector to scan
     state = _integrators.new_state(code, y0)
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
     tables = _dop853.tableau()
@@ -297,11 +297,10 @@ def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array,
     A free body turns at ``|ω| >= 2T/|J|`` all along (``ω·J = 2T``, with T and
     ``|J|`` conserved), and one DOP853 step turns it by at most
     ``40 tol^(1/9)`` rad, ``tol`` being ``rtol`` plus the attitude's ``atol``:
-    twice the largest measured over ``rtol`` 1e-15 … 0.999 and ``atol`` up
-    to 1e3, uniform spin (the easiest motion) and tumbling, whose steps are
-    shorter (0.43 rad at the default ``rtol`` 1e-12, 12 rad at ``rtol``
-    0.999). So the run needs at least ``(t[-1] - t[0]) 2T/|J|`` over that
-    many steps; a body at rest or a short run passes whatever the span.
+    twice the largest step angle of uniform spin (the easiest motion, with
+    the longest steps) over ``rtol`` 1e-15 … 0.999 and ``atol`` up to 1e3.
+    So the run needs at least ``(t[-1] - t[0]) 2T/|J|`` over that many steps;
+    a body at rest or a short run passes whatever the span.
     """
     if method not in ADAPTIVE:
         return
@@ -493,8 +492,9 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
         A built-in model (:class:`GravityTorque`, :class:`ConstantTorque`,
         :class:`MagneticTorque`, :class:`LinearDamping`, sums of them: run
         compiled) or ``torque(t, q, omega_body) -> body torque (3,)`` in N m
-        (called back from the compiled loop: a few µs per call). A callable is
-        called once with the initial state to check its output before integrating.
+        (called back from the compiled loop, far slower than a built-in
+        model). A callable is called once with the initial state to check its
+        output before integrating.
     method : str, optional
         One of ``"dop853"`` (default), ``"splitting"``, ``"splitting4"``,
         ``"dmv"``, ``"rkmk4"``, ``"midpoint"``, ``"rk4"``, ``"scipy"`` (see the

@@ -5,7 +5,7 @@ compiled integrators read inside their time loop, so a simulation under
 gravity, a magnetic field, damping or any sum of them never leaves machine
 code. A plain Python callable ``torque(t, q, omega_body) -> (3,)`` is also
 accepted by :func:`kreisel.simulate`; it is called back from the compiled loop
-(through numba's object mode), which costs a few microseconds per evaluation.
+(through numba's object mode), far slower than a built-in model.
 
 Table layout (:mod:`kreisel.dynamics._model_tables`): one row of ``ROW_SIZE`` floats
 per model, ``row[0]`` the kind, ``row[1:]`` its parameters, all in the frame

@@ -138,7 +138,7 @@ class ImuLog:
 
 
 def _pandas():
-    # pandas costs most of a second to import; only log reading and writing need it
+    # pandas is slow to import, and only log reading and writing need it
     return require("pandas", extra="io", feature="reading and writing IMU logs")
 
 

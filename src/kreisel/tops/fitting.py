@@ -537,7 +537,7 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
             f"too few samples: {t.size} (in the window); fitting {n_params} parameters needs at least "
             f"{n_params + MARGIN}"
         )
-    from scipy.optimize import least_squares  # 0.13 s to import: only when fitting
+    from scipy.optimize import least_squares  # slow to import: only when fitting
 
     # free rotation is homogeneous: data ω(t) and c ω(c t) have the same moments. The fit runs with time
     # from the first sample and rates divided by c, a power of two (exact) near the largest |ω|, so that

@@ -253,7 +253,7 @@ class _Quadrature:
             if F(2.0) >= 0.0:
                 root = 2.0
             else:
-                from scipy.optimize import brentq  # 0.13 s to import: only when a root must be searched for
+                from scipy.optimize import brentq  # slow to import: only when a root must be searched for
 
                 root = brentq(F, h, 2.0, xtol=1e-300, rtol=1e-15, maxiter=2000)
         # the other two roots: product q = c0/(β root) <= 0, sum from whichever Vieta relation

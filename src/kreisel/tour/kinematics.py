@@ -8,7 +8,7 @@ from matplotlib.figure import Figure
 from .. import kinematics
 from .report import Check, Section, panel
 
-__all__ = ["rolling_wheel_centrodes", "bortz_coefficient", "SECTIONS"]
+__all__ = ["rolling_wheel_centrodes", "bortz_series_and_closed_form", "SECTIONS"]
 
 
 def rolling_wheel_centrodes(quick):
@@ -70,7 +70,7 @@ def rolling_wheel_centrodes(quick):
     )
 
 
-def bortz_coefficient(quick):
+def bortz_series_and_closed_form(quick):
     """The Bortz coefficient"""
     psi = np.concatenate([[0.0], np.logspace(-8, np.log10(6.0), 200)])
     coefficient = kinematics.bortz_coefficient(psi)
@@ -98,4 +98,4 @@ def bortz_coefficient(quick):
     )
 
 
-SECTIONS = (rolling_wheel_centrodes, bortz_coefficient)
+SECTIONS = (rolling_wheel_centrodes, bortz_series_and_closed_form)

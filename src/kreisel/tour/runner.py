@@ -52,7 +52,7 @@ def run_tour(out_dir="tour", quick=False, console=None):
     out_dir : str or os.PathLike
         Created if missing; ``index.html`` inside it is replaced atomically.
     quick : bool
-        Smaller problems (under 30 s in all) with the same checks.
+        Smaller problems with the same checks.
     console : rich.console.Console, optional
         Where the progress bar and summary go (default: standard output).
     """

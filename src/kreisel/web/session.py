@@ -573,9 +573,9 @@ def stream(text, exact=False, chunk_samples=CHUNK_SAMPLES, max_steps=RUN_STEPS):
     ``{"type": "chunk", "index", "offset", t, q, omega, ...}`` with consecutive samples, then
     ``{"type": "done", "integrals": ...}``. The integrators restart each chunk from the last state of the
     previous one: dop853's error control then restarts too, so a streamed run agrees with :func:`run` to
-    the integrator's tolerance (not bit for bit; ~3e-11 on the tennis racket at rtol 1e-12); fixed-step
-    methods take the same steps either way (each interval between samples is stepped alone), and the
-    exact solution is evaluated per sample, so those agree to round-off.
+    the integrator's tolerance (not bit for bit); fixed-step methods take the same steps either way (each
+    interval between samples is stepped alone), and the exact solution is evaluated per sample, so those
+    agree to round-off.
 
     Examples
     --------
