@@ -80,7 +80,7 @@ def run_chunked(step: Callable[[int], bool], reached: Callable[[], float], t_end
     ``reached()`` is the time the run has got to (for ``progress`` and for
     :class:`StepBudgetExceeded`, raised when the budget is spent before
     ``t_end``); ``first_budget`` is the length of the first chunk, in steps
-    (short when a Python callable, up to ~1 ms a step, is in the loop).
+    (short when a Python callable, slow per step, is in the loop).
 
     Examples
     --------
