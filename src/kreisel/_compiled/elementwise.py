@@ -110,13 +110,19 @@ def finite_condition(names: Sequence[str]) -> str:
     return " & ".join(f"(abs({n}) <= {_BIG})" for n in names)
 
 
+def not_infinite_condition(names: Sequence[str]) -> str:
+    """No component infinite (NaN allowed)."""
+    return " & ".join(f"(not abs({n}) > {_BIG})" for n in names)
+
+
 class ArrayOperation:
     """An array operation: a kernel broadcast over batches, with checks and ``out=`` (see the module)."""
 
     def __init__(self, name: str, kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
-                 parameters: Sequence[Parameter] = ()) -> None:
+                 parameters: Sequence[Parameter] = (), singular: bool = False) -> None:
         self.name, self.kernel, self.output = name, kernel, tuple(output)
-        self.inputs, self.parameters = tuple(inputs), tuple(parameters)
+        self.inputs, self.parameters, self.singular = tuple(inputs), tuple(parameters), singular
+        self.overflow: str | None = None
         self._widths = tuple(math.prod(i.shape) for i in self.inputs)
         self._width = math.prod(self.output)
         self.source = self._generate()
@@ -138,7 +144,7 @@ class ArrayOperation:
         body.append(f"        {', '.join(results)}{',' if self._width == 1 and self.output else ''} = kernel({arguments})")
         body.append(f"        j = {self._width} * i")
         body += [f"        out[j + {c}] = {r}" for c, r in enumerate(results)]
-        conditions.append(finite_condition(results))
+        conditions.append((not_infinite_condition if self.singular else finite_condition)(results))
         body.append("        ok &= " + " & ".join(f"({c})" for c in conditions))
         name = self.name
         reads = [line for line in body if " = a" in line or line.startswith("        j = ") and "* s" in line]
@@ -215,6 +221,8 @@ class ArrayOperation:
             arrays = self._checked(arrays)
             if self._run(arrays, parameters, batch, result):
                 return result
+        if self.overflow is not None:
+            raise ValueError(self.overflow)
         names = [i.name for i in self.inputs]
         subject = names[0] + " is" if len(names) == 1 else ", ".join(names[:-1]) + f" and {names[-1]} are"
         raise ValueError(f"{subject} out of range for {self.name}: the result overflows (beyond the largest "
@@ -224,6 +232,12 @@ class ArrayOperation:
         """This operation with inputs renamed in its refusals (``v="vectors"``); the compiled loops are shared."""
         other = copy.copy(self)
         other.inputs = tuple(dataclasses.replace(i, name=names.get(i.name, i.name)) for i in self.inputs)
+        return other
+
+    def refusing(self, message: str) -> ArrayOperation:
+        """This operation with ``message`` as its refusal of an overflowing result; the compiled loops are shared."""
+        other = copy.copy(self)
+        other.overflow = message
         return other
 
     def _checked(self, arrays: list[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
@@ -279,12 +293,17 @@ REGISTRY: dict[str, ArrayOperation] = {}
 
 
 def declare(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...], parameters: Sequence[Parameter] = (),
-            name: str | None = None) -> ArrayOperation:
-    """Declare an array operation (registered in :data:`REGISTRY` under ``name``, by default the kernel's)."""
+            name: str | None = None, singular: bool = False) -> ArrayOperation:
+    """Declare an array operation (registered in :data:`REGISTRY` under ``name``, by default the kernel's).
+
+    ``singular``: the kernel returns NaN where its result is undefined (a
+    coordinate singularity that the caller reports), which is then a result,
+    not a refusal; only infinite results are refused.
+    """
     name = name or kernel.py_func.__name__.lstrip("_")
     if name in REGISTRY:
         raise ValueError(f"an array operation named {name} is declared already")
-    operation = REGISTRY[name] = ArrayOperation(name, kernel, inputs, output, parameters)
+    operation = REGISTRY[name] = ArrayOperation(name, kernel, inputs, output, parameters, singular)
     return operation
 
 
@@ -354,5 +373,5 @@ def uses(operation: ArrayOperation) -> Callable[[Callable[..., Any]], Callable[.
 
 
 __all__ = ["ArrayOperation", "Input", "Kind", "PARALLEL_THRESHOLD", "Parameter", "REGISTRY", "declare",
-           "elementwise", "finite_condition", "kernel", "uses"]
+           "elementwise", "finite_condition", "kernel", "not_infinite_condition", "uses"]
 
