@@ -5,7 +5,7 @@ formulas (Theory §3.5 Bortz equation with the same small-angle series; the
 chapter's explicit ZXZ body inverse of §3.6 and the aerospace ZYX body inverse),
 with the same NaN at gimbal lock. Each reference is checked against kreisel
 before timing. kreisel's times include its input validation. "one core"
-forces the serial gufunc; the default uses both cores for large batches.
+forces the serial loop; the default uses both cores for large batches.
 
 Run: python bench/bench_kinematics.py  (writes bench/results/kinematics.md)
 """
@@ -17,7 +17,7 @@ from _common import header, load_average, markdown_table, median_time, write_res
 
 import kreisel as kr
 from kreisel._compiled.series import BORTZ_SERIES, BORTZ_SERIES_BELOW
-from kreisel._compiled import gufunc as _gufunc
+from kreisel._compiled import elementwise
 
 N = 1_000_000
 TOL = 1e-8
@@ -57,12 +57,12 @@ def zyx_body_numpy(angles, w):
 
 def single_core(fn):
     def run():
-        saved = _gufunc.PARALLEL_THRESHOLD
-        _gufunc.PARALLEL_THRESHOLD = 1 << 62
+        saved = elementwise.PARALLEL_THRESHOLD
+        elementwise.PARALLEL_THRESHOLD = 1 << 62
         try:
             return fn()
         finally:
-            _gufunc.PARALLEL_THRESHOLD = saved
+            elementwise.PARALLEL_THRESHOLD = saved
 
     return run
 
