@@ -17,7 +17,7 @@ from _common import header, load_average, markdown_table, median_time, write_res
 
 import kreisel as kr
 from kreisel._compiled.series import BORTZ_SERIES, BORTZ_SERIES_BELOW
-from kreisel._compiled import elementwise as _elementwise
+from kreisel._compiled import elementwise
 
 N = 1_000_000
 TOL = 1e-8
@@ -57,12 +57,12 @@ def zyx_body_numpy(angles, w):
 
 def single_core(fn):
     def run():
-        saved = _elementwise.PARALLEL_THRESHOLD
-        _elementwise.PARALLEL_THRESHOLD = 1 << 62
+        saved = elementwise.PARALLEL_THRESHOLD
+        elementwise.PARALLEL_THRESHOLD = 1 << 62
         try:
             return fn()
         finally:
-            _elementwise.PARALLEL_THRESHOLD = saved
+            elementwise.PARALLEL_THRESHOLD = saved
 
     return run
 

@@ -230,9 +230,14 @@ class out_of_range:
                 self.refuse()
         return values[0] if len(values) == 1 else values
 
+    @property
+    def message(self) -> str:
+        """The refusal's words (also for an array operation's refusal of an overflowing result)."""
+        return f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)"
+
     def refuse(self) -> NoReturn:
         """Raise the refusal, for a result found out of range some other way (a lower layer's own refusal)."""
-        raise ValueError(f"{self.names} are out of range: {self.what} exceeds the largest double (1.8e308)")
+        raise ValueError(self.message)
 
 
 def checked_callable(fn: Callable[..., Any], name: str) -> Callable[..., NDArray[np.float64]]:

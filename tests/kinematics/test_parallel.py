@@ -1,7 +1,8 @@
-"""The multi-core loops of the rate maps agree bit for bit with the per-element gufuncs.
+"""The multi-core loops of the rate maps agree bit for bit with the serial ones.
 
-Lowering ``PARALLEL_THRESHOLD`` sends a small batch through the parallel
-loops (shared kernel code, frame sign and tolerance included).
+Lowering ``PARALLEL_THRESHOLD`` and ``PIECE`` sends a small batch through
+the parallel loops in several pieces (shared kernel code, frame sign and
+tolerance included).
 """
 
 import warnings
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 import kreisel as kr
-from kreisel._compiled import gufunc as _gufunc
+from kreisel._compiled import elementwise
 
 N = 37
 
@@ -41,7 +42,8 @@ def test_parallel_matches_serial(name, data, monkeypatch):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", kr.KinematicSingularityWarning)
         serial = CASES[name](*data)
-        monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
+        monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+        monkeypatch.setattr(elementwise, "PIECE", 5)
         parallel = CASES[name](*data)
         strided = CASES[name](*(np.asfortranarray(x) for x in data))
     np.testing.assert_array_equal(parallel, serial)
@@ -50,7 +52,8 @@ def test_parallel_matches_serial(name, data, monkeypatch):
 
 def test_parallel_keeps_leading_shape_and_warns(data, monkeypatch):
     angles, _, w = data
-    monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PIECE", 5)
     with pytest.warns(kr.GimbalLockWarning):
         rates = kr.euler_rates("ZXZ", angles[:36].reshape(4, 9, 3), w[:36].reshape(4, 9, 3))
     assert rates.shape == (4, 9, 3)

@@ -1,7 +1,8 @@
 """Kernels of the exponential map's differential: the SO(3) Jacobians and the rate maps.
 
-The scalar kernels take and return plain floats and tuples so that gufunc
-loops (and integrators in higher layers) can call them without allocating.
+The scalar kernels take and return plain floats and tuples so that the loops
+of the declared array operations (:mod:`.elementwise`) and the integrators of
+higher layers can call them without allocating.
 The SO(3) Jacobians ``J = 1 + sign A hat(ψ) + B hat(ψ)²`` (sign +1: left,
 −1: right) and their inverses are also broadcast here over batches
 (:data:`apply_jacobian`, :data:`jacobian_matrix`, ...), because three
@@ -15,11 +16,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import prange
+from numba import types
 from numpy.typing import NDArray
 
 from .._validation import ROTVEC_RANGE
-from . import cached, generic, kernels, parallel
+from . import cached, generic, kernels
+from .checks import ROTVEC, VECTOR
+from .elementwise import Input, Parameter, declare, kernel
 from .gufunc import gufunc
 from .series import (
     BORTZ_SERIES,
@@ -33,11 +36,6 @@ from .series import (
     SINE_REMAINDER_SLOPE_SERIES,
     SLOPE_SERIES_BELOW,
 )
-
-#: An Euler sequence for :func:`euler_columns`: ``(a, b, c, extrinsic, body)``, (a, b, c) the axes 0, 1, 2 of the
-#: equivalent intrinsic sequence, the flags 0 or 1.
-EulerCode = tuple[int, int, int, int, int]
-
 
 @generic
 def horner(coefficients: tuple[float, ...], x: float) -> float:
@@ -172,7 +170,7 @@ def _plus_cross_terms(ux: float, uy: float, uz: float, v0: float, v1: float, v2:
     return v0 + linear * cx + quadratic * ccx, v1 + linear * cy + quadratic * ccy, v2 + linear * cz + quadratic * ccz
 
 
-@cached
+@kernel
 def jacobian_times(x: float, y: float, z: float, v0: float, v1: float, v2: float, sign: float) -> tuple[float, float, float]:
     """``J v = v + sign A ψ×v + B ψ×(ψ×v)``: sign +1 is J_l (ψ̇ -> ω), −1 is J_r (ψ̇ -> ω′)."""
     ux, uy, uz, angle = axis_angle(x, y, z)
@@ -180,7 +178,7 @@ def jacobian_times(x: float, y: float, z: float, v0: float, v1: float, v2: float
     return _plus_cross_terms(ux, uy, uz, v0, v1, v2, sign * a, b)
 
 
-@cached
+@kernel
 def jacobian_inverse_times(x: float, y: float, z: float, w0: float, w1: float, w2: float, sign: float,
                            tol: float) -> tuple[float, float, float]:
     """``J⁻¹ w = w − (sign/2) ψ×w + f ψ×(ψ×w)``, NaN at the poles |ψ| = 2πk (:func:`rotvec_singular`)."""
@@ -190,7 +188,7 @@ def jacobian_inverse_times(x: float, y: float, z: float, w0: float, w1: float, w
     return _plus_cross_terms(ux, uy, uz, w0, w1, w2, -0.5 * sign * angle, bortz_times_square(angle))
 
 
-@cached
+@kernel
 def jacobian_rate_times(x: float, y: float, z: float, v0: float, v1: float, v2: float, a0: float, a1: float, a2: float,
                         sign: float) -> tuple[float, float, float]:
     """``d/dt (J(ψ) ψ̇) = J ψ̈ + J̇ ψ̇`` for ψ̇ = v, ψ̈ = a: the angular acceleration of Theory §3.9.
@@ -228,37 +226,16 @@ def write_jacobian(ux: float, uy: float, uz: float, linear: float, quadratic: fl
     out[2, 1] = quadratic * uy * uz + linear * ux
 
 
-@parallel
-def _apply_jacobian_parallel(psi: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
-    for i in prange(psi.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = jacobian_times(psi[i, 0], psi[i, 1], psi[i, 2], v[i, 0], v[i, 1], v[i, 2], sign)
-
-
-@parallel
-def _apply_jacobian_inverse_parallel(psi: NDArray[np.float64], w: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
-    for i in prange(psi.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = jacobian_inverse_times(
-            psi[i, 0], psi[i, 1], psi[i, 2], w[i, 0], w[i, 1], w[i, 2], sign, tol
-        )
-
-
-@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(3),(3),()->(3)", parallel=_apply_jacobian_parallel, shared=(2,))
-def apply_jacobian(psi: NDArray[np.float64], v: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
-    """``J(ψ) v`` for validated ``(..., 3)`` batches; ``sign`` +1.0 (left) or −1.0 (right)."""
-    out[0], out[1], out[2] = jacobian_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], sign)
-
-
-@gufunc(["void(f8[:], f8[:], f8, f8, f8[:])"], "(3),(3),(),()->(3)", parallel=_apply_jacobian_inverse_parallel,
-        shared=(2, 3))
-def apply_jacobian_inverse(psi: NDArray[np.float64], w: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
-    """``J(ψ)⁻¹ w``, NaN where |sin(|ψ|/2)| <= ``tol`` and |ψ| > π."""
-    out[0], out[1], out[2] = jacobian_inverse_times(psi[0], psi[1], psi[2], w[0], w[1], w[2], sign, tol)
-
-
-@gufunc(["void(f8[:], f8[:], f8[:], f8, f8[:])"], "(3),(3),(3),()->(3)")
-def apply_jacobian_rate(psi: NDArray[np.float64], v: NDArray[np.float64], acc: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
-    """``d/dt (J(ψ) ψ̇)`` for validated batches of ψ, ψ̇ = ``v`` and ψ̈ = ``acc``."""
-    out[0], out[1], out[2] = jacobian_rate_times(psi[0], psi[1], psi[2], v[0], v[1], v[2], acc[0], acc[1], acc[2], sign)
+_PSI, _V = Input("psi", (3,), VECTOR), Input("v", (3,), VECTOR)
+_SIGN = Parameter("sign", types.float64)
+#: ``J(ψ) v``; ``sign`` +1.0 (left) or −1.0 (right).
+apply_jacobian = declare(jacobian_times, [_PSI, _V], (3,), [_SIGN], name="apply_jacobian")
+#: ``J(ψ)⁻¹ w`` of rotation vectors within ``ROTVEC_RANGE``, NaN where |sin(|ψ|/2)| <= ``tol`` and |ψ| > π.
+apply_jacobian_inverse = declare(jacobian_inverse_times, [Input("psi", (3,), ROTVEC), Input("w", (3,), VECTOR)], (3,),
+                                 [_SIGN, Parameter("tol", types.float64)], name="apply_jacobian_inverse", singular=True)
+#: ``d/dt (J(ψ) ψ̇)`` of ψ, ψ̇ = ``v`` and ψ̈ = ``acc``.
+apply_jacobian_rate = declare(jacobian_rate_times, [_PSI, _V, Input("acc", (3,), VECTOR)], (3,), [_SIGN],
+                              name="apply_jacobian_rate")
 
 
 @gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
@@ -299,27 +276,27 @@ def unit(k: int) -> tuple[float, float, float]:
 
 
 @cached
-def euler_columns(x0: float, x1: float, x2: float, code: EulerCode) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float]:
+def euler_columns(x0: float, x1: float, x2: float, a: int, b: int, c: int, extrinsic: int,
+                  body: int) -> tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float], float]:
     """Columns of the Euler-rate matrix M (ω = M · rates) and det M.
 
-    ``(x0, x1, x2)`` are the angles in the user's order and
-    ``code = (a, b, c, extrinsic, body)`` with (a, b, c) the axes of the
-    intrinsic sequence equivalent to the user's one (an extrinsic "abc"
-    with angles (α, β, γ) is the intrinsic "CBA" with (γ, β, α)); columns
-    are returned in that intrinsic order. Theory §3.6 for ZXZ, generally:
+    ``(x0, x1, x2)`` are the angles in the user's order, (a, b, c) the axes
+    0, 1, 2 of the intrinsic sequence equivalent to the user's one (an
+    extrinsic "abc" with angles (α, β, γ) is the intrinsic "CBA" with
+    (γ, β, α)), ``extrinsic`` and ``body`` 0 or 1; columns are returned in
+    that intrinsic order. Theory §3.6 for ZXZ, generally:
     space  ω  = e_a α̇ + R_a(α) e_b β̇ + R_a(α) R_b(β) e_c γ̇,
     body   ω′ = R_c(γ)ᵀ R_b(β)ᵀ e_a α̇ + R_c(γ)ᵀ e_b β̇ + e_c γ̇.
     det M = c0·(c1×c2) is −sin β for proper Euler sequences and
     ε_abc cos β for Tait–Bryan ones, in either frame (det R = 1).
     """
-    a, b, c = code[0], code[1], code[2]
-    if code[3]:
+    if extrinsic:
         first, middle, last = x2, x1, x0
     else:
         first, middle, last = x0, x1, x2
     cb = math.cos(middle)
     sb = math.sin(middle)
-    if code[4]:
+    if body:
         cg = math.cos(last)
         sg = math.sin(last)
         ex, ey, ez = unit(a)

@@ -1,21 +1,21 @@
-"""Argument checks shared by the kinematics functions (raised before any work)."""
+"""Argument checks shared by the kinematics functions (raised before any work).
+
+Types, trailing shapes and batch shapes are checked here, naming the
+arguments; what the values must hold (finite, a rotation, a nonzero
+quaternion) is checked by the array operation, in the pass that computes it.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled.gufunc import finite_array, matrix_array
 from .._validation import as_float_array, check_frame
 
 
 def vectors(x: ArrayLike, name: str, length: int = 3) -> NDArray[np.float64]:
-    """Finite float64 array of shape ``(..., length)`` (one compiled pass, no temporaries).
-
-    C-contiguous, so that a strided view gives bit for bit the result of a plain array (numpy's
-    reductions sum in another order over other layouts).
-    """
-    return np.ascontiguousarray(finite_array(x, name, (length,)))
+    """Float64 array of shape ``(..., length)``."""
+    return as_float_array(x, name, (length,), finite=False)
 
 
 def batch_shape(*items: tuple[str, NDArray[np.float64], int]) -> tuple[int, ...]:
@@ -36,19 +36,13 @@ def same_batch(core_ndim: int, **arrays: NDArray[np.float64]) -> tuple[NDArray[n
 
 
 def vector_batch(length: int = 3, **named: ArrayLike) -> tuple[NDArray[np.float64], ...]:
-    """Finite ``(..., length)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
+    """``(..., length)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
     return same_batch(1, **{name: vectors(x, name, length) for name, x in named.items()})
 
 
-def rotation_batch(R: ArrayLike, **derivatives: ArrayLike) -> tuple[NDArray[np.float64], ...]:
-    """``R`` as rotation matrices and its ``derivatives`` as float ``(..., 3, 3)`` arrays, with broadcastable batch shapes.
-
-    ``R`` is checked like every rotation matrix of kreisel (orthogonal to
-    within ``ORTHOGONALITY_TOLERANCE``, det > 0): a scaled matrix or a
-    reflection would silently scale or flip the angular velocity.
-    """
-    return same_batch(2, R=matrix_array(R, "R"), **{name: as_float_array(x, name, (3, 3))
-                                                    for name, x in derivatives.items()})
+def matrix_batch(**named: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+    """``(..., 3, 3)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
+    return same_batch(2, **{name: as_float_array(x, name, (3, 3), finite=False) for name, x in named.items()})
 
 
 def frame_sign(frame: str) -> float:

@@ -7,18 +7,17 @@ vanishes because hat(ω)ᵀω = 0), so ``ε′ = dω′/dt`` as well.
 from __future__ import annotations
 
 import numpy as np
+from numba import types
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import dexp
-from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import quaternion_array
+from .._compiled import dexp, kernels
+from .._compiled.checks import QUATERNION, VECTOR, finite_array
+from .._compiled.elementwise import Input, Parameter, declare, kernel, uses
+from .._compiled.outputs import takes_out
 from .._validation import check_frame, out_of_range
-from ..so3 import quat_conjugate, quat_multiply
-from .._norms import norm
-from ..so3.euler import parse_sequence
-from ._checks import batch_shape, frame_sign, rotation_batch, same_batch, vector_batch, vectors
-from .euler import _angles, euler_rate_matrix
-from .rates import _skew_part_vee
+from ._checks import batch_shape, frame_sign, matrix_batch, vector_batch
+from .euler import SEQUENCE, _angles, _code
+from .rates import skew_vee
 
 __all__ = [
     "angular_acceleration",
@@ -28,6 +27,60 @@ __all__ = [
 ]
 
 
+@kernel
+def _quat_acceleration(q0: float, q1: float, q2: float, q3: float, d0: float, d1: float, d2: float, d3: float,
+                       a0: float, a1: float, a2: float, a3: float, sign: float) -> tuple[float, float, float]:
+    # q = m u with m the largest |component|: q⁻¹ = u*/k, k = |u|² m, |u|² in [1, 4], and with r = q̇ u*,
+    # c = q̈ u* (u* q̇, u* q̈ in body components) ε = 2 vec(c/k − (r/k)²) = 2 (c⃗/k − 2 (r₀/k)(r⃗/k)):
+    # no intermediate over- or underflows unless ε does (|q|² would beyond ~1e±154)
+    m = kernels.largest_component(q0, q1, q2, q3)
+    u0, u1, u2, u3 = q0 / m, -q1 / m, -q2 / m, -q3 / m
+    k = (u0 * u0 + u1 * u1 + u2 * u2 + u3 * u3) * m
+    if sign > 0.0:
+        r0, r1, r2, r3 = kernels.quat_product(d0, d1, d2, d3, u0, u1, u2, u3)
+        _, c1, c2, c3 = kernels.quat_product(a0, a1, a2, a3, u0, u1, u2, u3)
+    else:
+        r0, r1, r2, r3 = kernels.quat_product(u0, u1, u2, u3, d0, d1, d2, d3)
+        _, c1, c2, c3 = kernels.quat_product(u0, u1, u2, u3, a0, a1, a2, a3)
+    s = 2.0 * (r0 / k)
+    return 2.0 * (c1 / k - s * (r1 / k)), 2.0 * (c2 / k - s * (r2 / k)), 2.0 * (c3 / k - s * (r3 / k))
+
+
+@kernel
+def _euler_acceleration(x0: float, x1: float, x2: float, r0: float, r1: float, r2: float, e0: float, e1: float,
+                        e2: float, a: int, b: int, c: int, extrinsic: int, body: int) -> tuple[float, float, float]:
+    # ε = Σ r̈ᵢ cᵢ + r₀ r₁ c₀×c₁ + r₂ (r₀ c₀ + r₁ c₁)×c₂ in the intrinsic order
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, a, b, c, extrinsic, body)
+    if extrinsic:
+        r0, r2, e0, e2 = r2, r0, e2, e0
+    p0, p1, p2 = dexp.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
+    s0, s1, s2 = dexp.cross(r0 * c0[0] + r1 * c1[0], r0 * c0[1] + r1 * c1[1], r0 * c0[2] + r1 * c1[2],
+                            c2[0], c2[1], c2[2])
+    r01 = r0 * r1
+    return (
+        e0 * c0[0] + e1 * c1[0] + e2 * c2[0] + r01 * p0 + r2 * s0,
+        e0 * c0[1] + e1 * c1[1] + e2 * c2[1] + r01 * p1 + r2 * s1,
+        e0 * c0[2] + e1 * c1[2] + e2 * c2[2] + r01 * p2 + r2 * s2,
+    )
+
+
+_from_matrices = skew_vee.renamed(Rdot="Rddot")
+_from_quat = declare(_quat_acceleration, [Input("q", (4,), QUATERNION), Input("qdot", (4,), VECTOR),
+                                          Input("qddot", (4,), VECTOR)], (3,), [Parameter("sign", types.float64)],
+                     name="angular_acceleration_from_quat").refusing(
+    "q, qdot and qddot are out of range: the angular acceleration (of size |qddot|/|q| + |qdot|²/|q|²) exceeds "
+    "the largest float (~1.8e308)")
+# quadratic in ψ̇: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
+_from_rotvec = dexp.apply_jacobian_rate.renamed(v="psidot", acc="psiddot").refusing(
+    out_of_range("psidot and psiddot", "the angular acceleration").message)
+# products of rates: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
+_from_euler = declare(_euler_acceleration, [Input("angles", (3,), VECTOR), Input("rates", (3,), VECTOR),
+                                            Input("accelerations", (3,), VECTOR)], (3,), SEQUENCE,
+                      name="angular_acceleration_from_euler").refusing(
+    out_of_range("rates and accelerations", "the angular acceleration").message)
+
+
+@uses(_from_matrices)
 @takes_out
 def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame: str = "space", *,
                          out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -63,11 +116,12 @@ def angular_acceleration(R: ArrayLike, Rdot: ArrayLike, Rddot: ArrayLike, frame:
     array([0., 0., 1.])
     """
     body = check_frame(frame)
-    R, Rdot, Rddot = rotation_batch(R, Rdot=Rdot, Rddot=Rddot)
-    Rt = np.swapaxes(R, -1, -2)
-    return deliver(_skew_part_vee(Rt @ Rddot if body else Rddot @ Rt), out)
+    R, Rdot, Rddot = matrix_batch(R=R, Rdot=Rdot, Rddot=Rddot)
+    finite_array(Rdot, "Rdot", (3, 3))
+    return _from_matrices(R, Rddot, int(body), out=out)
 
 
+@uses(_from_quat)
 @takes_out
 def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLike, frame: str = "space", *,
                                    out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -95,28 +149,12 @@ def angular_acceleration_from_quat(q: ArrayLike, qdot: ArrayLike, qddot: ArrayLi
     >>> angular_acceleration_from_quat([1.0, 0, 0, 0], [0.0, 0, 0, 0], [0.0, 0.5, 0, 0])
     array([1., 0., 0.])
     """
-    body = check_frame(frame)
-    q, qdot, qddot = same_batch(
-        1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4), qddot=vectors(qddot, "qddot", 4)
-    )
-    # q = |q| u with u a unit quaternion: q⁻¹ = u*/|q|, so ε = 2 vec(q̈ u*)/|q| − 2 vec((q̇ u*)²)/|q|²
-    # (space); the powers of |q| are divided out last, so no intermediate over- or underflows
-    # unless ε does (|q|² itself would beyond ~1e±154).
-    size = norm(q, keepdims=True)
-    u_inv = quat_conjugate(q / size)
-    if body:
-        rate, curvature = quat_multiply(u_inv, qdot), quat_multiply(u_inv, qddot)
-    else:
-        rate, curvature = quat_multiply(qdot, u_inv), quat_multiply(qddot, u_inv)
-    # vec(r²) = 2 r₀ r⃗ for a quaternion r
-    with np.errstate(over="ignore", invalid="ignore"):
-        eps = 2.0 * (curvature[..., 1:] / size - 2.0 * (rate[..., :1] / size) * (rate[..., 1:] / size))
-    if not np.isfinite(eps).all():
-        raise ValueError("q, qdot and qddot are out of range: the angular acceleration (of size "
-                         "|qddot|/|q| + |qdot|²/|q|²) exceeds the largest float (~1.8e308)")
-    return deliver(eps, out)
+    sign = frame_sign(frame)
+    q, qdot, qddot = vector_batch(4, q=q, qdot=qdot, qddot=qddot)
+    return _from_quat(q, qdot, qddot, sign, out=out)
 
 
+@uses(_from_rotvec)
 @takes_out
 def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot: ArrayLike, frame: str = "space", *,
                                      out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -146,12 +184,10 @@ def angular_acceleration_from_rotvec(psi: ArrayLike, psidot: ArrayLike, psiddot:
     """
     sign = frame_sign(frame)
     psi, psidot, psiddot = vector_batch(psi=psi, psidot=psidot, psiddot=psiddot)
-    with out_of_range("psidot and psiddot", "the angular acceleration") as guard:
-        # quadratic in ψ̇: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
-        epsilon: NDArray[np.float64] = guard.check(dexp.apply_jacobian_rate(psi, psidot, psiddot, sign, out=out))
-    return epsilon
+    return _from_rotvec(psi, psidot, psiddot, sign, out=out)
 
 
+@uses(_from_euler)
 @takes_out
 def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLike, accelerations: ArrayLike,
                                     frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -183,21 +219,9 @@ def angular_acceleration_from_euler(seq: str, angles: ArrayLike, rates: ArrayLik
     >>> angular_acceleration_from_euler("ZXZ", [0.0, 0.5, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], frame="body")
     array([0., 0., 1.])
     """
-    _, intrinsic = parse_sequence(seq)
-    M = euler_rate_matrix(seq, angles, frame=frame, degrees=degrees)
+    code = _code(seq, frame)
+    angles = _angles(angles, degrees)
     rates = _angles(rates, degrees, "rates")
     accelerations = _angles(accelerations, degrees, "accelerations")
-    batch_shape(("angles", M, 2), ("rates", rates, 1), ("accelerations", accelerations, 1))
-    order = slice(None) if intrinsic else slice(None, None, -1)
-    c = np.swapaxes(M, -1, -2)[..., order, :]
-    r = rates[..., order]
-    c0, c1, c2 = c[..., 0, :], c[..., 1, :], c[..., 2, :]
-    r0, r1, r2 = r[..., 0:1], r[..., 1:2], r[..., 2:3]
-    with out_of_range("rates and accelerations", "the angular acceleration") as guard:
-        # products of rates: rates beyond ~1e154 rad/s give an acceleration beyond the largest double
-        epsilon = guard.check(
-            np.einsum("...ij,...i->...j", M.swapaxes(-1, -2), accelerations)
-            + r0 * r1 * np.cross(c0, c1)
-            + r2 * np.cross(r0 * c0 + r1 * c1, c2)
-        )
-    return deliver(epsilon, out)
+    batch_shape(("angles", angles, 1), ("rates", rates, 1), ("accelerations", accelerations, 1))
+    return _from_euler(angles, rates, accelerations, *code, out=out)

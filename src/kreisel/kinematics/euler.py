@@ -24,15 +24,14 @@ from __future__ import annotations
 
 import math
 
-from typing import cast
-
 import numpy as np
+from numba import types
 from numpy.typing import ArrayLike, NDArray
-from numba import prange
 
-from .._compiled import cached, dexp, parallel
+from .._compiled import dexp
+from .._compiled.checks import VECTOR, vector_array
+from .._compiled.elementwise import Input, Parameter, declare, kernel, uses
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import gufunc
 from .._validation import check_flag, check_frame, check_tolerance, warn_if_any
 from ..so3.euler import parse_sequence
 from ._checks import same_batch, vectors
@@ -47,29 +46,21 @@ __all__ = [
 ]
 
 
-def _code(seq: str, frame: str) -> NDArray[np.int64]:
-    """Kernel code ``(a, b, c, extrinsic, body)``, (a, b, c) the equivalent intrinsic axes."""
+def _code(seq: str, frame: str) -> tuple[int, int, int, int, int]:
+    """The kernels' sequence parameters ``(a, b, c, extrinsic, body)``, (a, b, c) the equivalent intrinsic axes."""
     body = check_frame(frame)
     axes, intrinsic = parse_sequence(seq)
     if not intrinsic:
         axes = axes[::-1]
-    return np.array([*axes, not intrinsic, body], dtype=np.int64)
+    return axes[0], axes[1], axes[2], int(not intrinsic), int(body)
 
 
-# The element kernels take and return scalars and the kernel code as a tuple:
-# passing arrays into a compiled call costs about as much as the kernel
-# itself, and in the parallel loops every thread would update the reference
-# count of the one shared code array.
-@cached
-def _code_tuple(code: NDArray[np.int64]) -> dexp.EulerCode:
-    return code[0], code[1], code[2], code[3], code[4]
-
-
-@cached
-def _omega_element(x0: float, x1: float, x2: float, r0: float, r1: float, r2: float, code: dexp.EulerCode) -> tuple[float, float, float]:
-    """ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order."""
-    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
-    if code[3]:
+@kernel
+def _omega(x0: float, x1: float, x2: float, r0: float, r1: float, r2: float, a: int, b: int, c: int, extrinsic: int,
+           body: int) -> tuple[float, float, float]:
+    # ω = M · rates for angles (x0, x1, x2) and rates (r0, r1, r2) in the user's order
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, a, b, c, extrinsic, body)
+    if extrinsic:
         r0, r2 = r2, r0
     return (
         r0 * c0[0] + r1 * c1[0] + r2 * c2[0],
@@ -78,11 +69,11 @@ def _omega_element(x0: float, x1: float, x2: float, r0: float, r1: float, r2: fl
     )
 
 
-@cached
-def _rates_element(x0: float, x1: float, x2: float, w0: float, w1: float, w2: float, code: dexp.EulerCode,
-                   tol: float) -> tuple[float, float, float]:
-    """Rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2)."""
-    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, code)
+@kernel
+def _rates(x0: float, x1: float, x2: float, w0: float, w1: float, w2: float, a: int, b: int, c: int, extrinsic: int,
+           body: int, tol: float) -> tuple[float, float, float]:
+    # rates in the user's order for angles (x0, x1, x2) and ω = (w0, w1, w2); NaN first and third at gimbal lock
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, a, b, c, extrinsic, body)
     middle = c1[0] * w0 + c1[1] * w1 + c1[2] * w2
     if abs(det) <= tol:
         return math.nan, middle, math.nan
@@ -91,68 +82,44 @@ def _rates_element(x0: float, x1: float, x2: float, w0: float, w1: float, w2: fl
     inv = 1.0 / det
     r0 = (a0 * w0 + a1 * w1 + a2 * w2) * inv
     r2 = (b0 * w0 + b1 * w1 + b2 * w2) * inv
-    if code[3]:
+    if extrinsic:
         return r2, middle, r0
     return r0, middle, r2
 
 
-# The kernel code (and the tolerance) are shared by the whole batch; the
-# array is read as ``code[::1]``, numba's layout 'A' as in the gufuncs, so
-# _code_tuple is compiled for one signature.
-
-
-@parallel
-def _omega_from_rates_parallel(angles: NDArray[np.float64], rates: NDArray[np.float64], code: NDArray[np.int64],
-                               out: NDArray[np.float64]) -> None:
-    axes = _code_tuple(code[::1])
-    for i in prange(angles.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _omega_element(
-            angles[i, 0], angles[i, 1], angles[i, 2], rates[i, 0], rates[i, 1], rates[i, 2], axes
-        )
-
-
-@parallel
-def _rates_from_omega_parallel(angles: NDArray[np.float64], w: NDArray[np.float64], code: NDArray[np.int64], tol: float,
-                               out: NDArray[np.float64]) -> None:
-    axes = _code_tuple(code[::1])
-    for i in prange(angles.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _rates_element(
-            angles[i, 0], angles[i, 1], angles[i, 2], w[i, 0], w[i, 1], w[i, 2], axes, tol
-        )
-
-
-@gufunc(["void(f8[:], f8[:], i8[:], f8[:])"], "(3),(3),(5)->(3)", parallel=_omega_from_rates_parallel, shared=(2,))
-def _omega_from_rates(angles: NDArray[np.float64], rates: NDArray[np.float64], code: NDArray[np.int64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2] = _omega_element(angles[0], angles[1], angles[2], rates[0], rates[1], rates[2], _code_tuple(code))
-
-
-@gufunc(["void(f8[:], f8[:], i8[:], f8, f8[:])"], "(3),(3),(5),()->(3)", parallel=_rates_from_omega_parallel, shared=(2, 3))
-def _rates_from_omega(angles: NDArray[np.float64], w: NDArray[np.float64], code: NDArray[np.int64], tol: float, out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2] = _rates_element(angles[0], angles[1], angles[2], w[0], w[1], w[2], _code_tuple(code), tol)
-
-
-@gufunc(["void(f8[:], i8[:], f8[:, :])"], "(3),(5)->(3,3)")
-def _matrix(angles: NDArray[np.float64], code: NDArray[np.int64], out: NDArray[np.float64]) -> None:
-    c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
-    if code[3]:
+@kernel
+def _matrix(x0: float, x1: float, x2: float, a: int, b: int, c: int, extrinsic: int, body: int) -> tuple[float, ...]:
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, a, b, c, extrinsic, body)
+    if extrinsic:
         c0, c2 = c2, c0
-    for i in range(3):
-        out[i, 0] = c0[i]
-        out[i, 1] = c1[i]
-        out[i, 2] = c2[i]
+    return c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2]
 
 
-@gufunc(["void(f8[:], i8[:], f8, f8[:, :])"], "(3),(5),()->(3,3)")
-def _matrix_inverse(angles: NDArray[np.float64], code: NDArray[np.int64], tol: float, out: NDArray[np.float64]) -> None:
-    c0, c1, c2, det = dexp.euler_columns(angles[0], angles[1], angles[2], _code_tuple(code))
-    first, last = (2, 0) if code[3] else (0, 2)
+@kernel
+def _matrix_inverse(x0: float, x1: float, x2: float, a: int, b: int, c: int, extrinsic: int, body: int,
+                    tol: float) -> tuple[float, ...]:
+    # rows (c₁ × c₂)/det, c₁, (c₀ × c₁)/det in the intrinsic order, the outer two swapped for an extrinsic sequence
+    c0, c1, c2, det = dexp.euler_columns(x0, x1, x2, a, b, c, extrinsic, body)
     inv = math.nan if abs(det) <= tol else 1.0 / det
-    a = dexp.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
-    b = dexp.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
-    for i in range(3):
-        out[1, i] = c1[i]
-        out[first, i] = a[i] * inv
-        out[last, i] = b[i] * inv
+    f0, f1, f2 = dexp.cross(c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])
+    l0, l1, l2 = dexp.cross(c0[0], c0[1], c0[2], c1[0], c1[1], c1[2])
+    f0, f1, f2, l0, l1, l2 = f0 * inv, f1 * inv, f2 * inv, l0 * inv, l1 * inv, l2 * inv
+    if extrinsic:
+        return l0, l1, l2, c1[0], c1[1], c1[2], f0, f1, f2
+    return f0, f1, f2, c1[0], c1[1], c1[2], l0, l1, l2
+
+
+#: The sequence parameters of :func:`_code`, shared by every element.
+SEQUENCE = [Parameter(name, types.int64) for name in ("a", "b", "c", "extrinsic", "body")]
+_TOL = Parameter("tol", types.float64)
+_ANGLES = Input("angles", (3,), VECTOR)
+_to_omega = declare(_omega, [_ANGLES, Input("rates", (3,), VECTOR)], (3,), SEQUENCE,
+                    name="angular_velocity_from_euler_rates")
+_to_rates = declare(_rates, [_ANGLES, Input("omega", (3,), VECTOR)], (3,), [*SEQUENCE, _TOL], name="euler_rates",
+                    singular=True)
+_matrices = declare(_matrix, [_ANGLES], (3, 3), SEQUENCE, name="euler_rate_matrix")
+_inverse_matrices = declare(_matrix_inverse, [_ANGLES], (3, 3), [*SEQUENCE, _TOL], name="euler_rate_matrix_inverse",
+                            singular=True)
 
 
 def _angles(angles: ArrayLike, degrees: bool, name: str = "angles") -> NDArray[np.float64]:
@@ -160,6 +127,7 @@ def _angles(angles: ArrayLike, degrees: bool, name: str = "angles") -> NDArray[n
     return np.deg2rad(a) if check_flag(degrees, "degrees") else a
 
 
+@uses(_matrices)
 @takes_out
 def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The 3×3 matrix M of the Euler kinematic equations, ``ω = M · (α̇, β̇, γ̇)`` (Theory §3.6).
@@ -192,9 +160,10 @@ def euler_rate_matrix(seq: str, angles: ArrayLike, frame: str = "space", degrees
            [0., 0., 1.]])
     """
     code = _code(seq, frame)
-    return _matrix(_angles(angles, degrees), code, out=out)
+    return _matrices(_angles(angles, degrees), *code, out=out)
 
 
+@uses(_inverse_matrices)
 @takes_out
 def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space", degrees: bool = False,
                               tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -228,11 +197,12 @@ def euler_rate_matrix_inverse(seq: str, angles: ArrayLike, frame: str = "space",
     """
     code = _code(seq, frame)
     tol = check_tolerance(tol)
-    out = _matrix_inverse(_angles(angles, degrees), code, tol, out=out)
+    out = _inverse_matrices(_angles(angles, degrees), *code, tol, out=out)
     warn_if_any(np.isnan(out[..., 0, 0]), GimbalLockWarning, f"Euler-rate matrix inverse of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out
 
 
+@uses(_to_omega)
 @takes_out
 def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayLike, frame: str = "space",
                                       degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -265,9 +235,10 @@ def angular_velocity_from_euler_rates(seq: str, angles: ArrayLike, rates: ArrayL
     code = _code(seq, frame)
     angles = _angles(angles, degrees)
     angles, rates = same_batch(1, angles=angles, rates=_angles(rates, degrees, "rates"))
-    return _omega_from_rates(angles, rates, code, out=out)
+    return _to_omega(angles, rates, *code, out=out)
 
 
+@uses(_to_rates)
 @takes_out
 def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "space", degrees: bool = False,
                 tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -311,7 +282,7 @@ def euler_rates(seq: str, angles: ArrayLike, omega: ArrayLike, frame: str = "spa
     tol = check_tolerance(tol)
     angles = _angles(angles, degrees)
     angles, omega = same_batch(1, angles=angles, omega=vectors(omega, "omega"))
-    out = _rates_from_omega(angles, omega, code, tol, out=out)
+    out = _to_rates(angles, omega, *code, tol, out=out)
     warn_if_any(np.isnan(out[..., 0]), GimbalLockWarning, f"euler_rates of {seq!r} at gimbal lock")
     return np.rad2deg(out, out=out) if degrees else out
 
@@ -344,6 +315,6 @@ def euler_rates_singular(seq: str, angles: ArrayLike, degrees: bool = False, tol
     """
     axes, _ = parse_sequence(seq)
     tol = check_tolerance(tol)
-    middle = _angles(angles, degrees)[..., 1]
+    middle = _angles(vector_array(angles, "angles"), degrees)[..., 1]
     det = np.sin(middle) if axes[0] == axes[2] else np.cos(middle)
     return deliver(np.abs(det) <= tol, out)

@@ -10,10 +10,13 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from .._compiled.outputs import deliver, takes_out
-from .._validation import out_of_range
 
-from ._checks import vector_batch
+from .._compiled import dexp
+from .._compiled.checks import VECTOR, vector_array
+from .._compiled.elementwise import Input, declare, kernel, uses
+from .._compiled.outputs import takes_out
+from .._validation import out_of_range
+from ._checks import same_batch, vector_batch
 
 __all__ = [
     "point_velocity",
@@ -26,6 +29,37 @@ __all__ = [
 ]
 
 
+@kernel
+def _plus_cross(ax: float, ay: float, az: float, bx: float, by: float, bz: float, cx: float, cy: float,
+                cz: float) -> tuple[float, float, float]:
+    # c + a × b
+    x, y, z = dexp.cross(ax, ay, az, bx, by, bz)
+    return cx + x, cy + y, cz + z
+
+
+@kernel
+def _transport(wx: float, wy: float, wz: float, ex: float, ey: float, ez: float, rx: float, ry: float, rz: float,
+               ax: float, ay: float, az: float) -> tuple[float, float, float]:
+    # a + ε × r + ω × (ω × r)
+    tx, ty, tz = dexp.cross(ex, ey, ez, rx, ry, rz)
+    vx, vy, vz = dexp.cross(wx, wy, wz, rx, ry, rz)
+    cx, cy, cz = dexp.cross(wx, wy, wz, vx, vy, vz)
+    return ax + tx + cx, ay + ty + cy, az + tz + cz
+
+
+# the refusals of an overflow name the arguments of the term-by-term functions, whose sums these are
+_VELOCITY = ("omega, r, relative_velocity and reference_velocity", "the velocity")
+_ACCELERATION = ("omega, epsilon, r, relative_velocity, relative_acceleration and reference_acceleration",
+                 "the acceleration")
+_velocities = declare(_plus_cross, [Input(n, (3,), VECTOR) for n in ("omega", "r", "reference_velocity")], (3,),
+                      name="point_velocity").refusing(out_of_range(*_VELOCITY).message)
+_accelerations = declare(_transport, [Input(n, (3,), VECTOR) for n in ("omega", "epsilon", "r", "reference_acceleration")],
+                         (3,), name="point_acceleration").refusing(out_of_range(*_ACCELERATION).message)
+_relative_derivatives = declare(_plus_cross, [Input(n, (3,), VECTOR) for n in ("omega", "vector", "relative_rate")],
+                                (3,), name="relative_derivative")
+
+
+@uses(_velocities)
 @takes_out
 def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike = 0.0, *,
                    out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -50,9 +84,11 @@ def point_velocity(omega: ArrayLike, r: ArrayLike, reference_velocity: ArrayLike
     >>> point_velocity([0.0, 0.0, 2.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0])
     array([1., 2., 0.])
     """
-    return deliver(three_term_velocity(omega, r, 0.0, reference_velocity).total, out)
+    arrays = vector_batch(omega=omega, r=r, reference_velocity=_as_vector(reference_velocity))
+    return _velocities(*arrays, out=out)
 
 
+@uses(_accelerations)
 @takes_out
 def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, reference_acceleration: ArrayLike = 0.0, *,
                        out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -80,9 +116,11 @@ def point_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, refer
     >>> point_acceleration([0.0, 0.0, 2.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
     array([-4.,  0.,  0.])
     """
-    return deliver(five_term_acceleration(omega, epsilon, r, 0.0, 0.0, reference_acceleration).total, out)
+    arrays = vector_batch(omega=omega, epsilon=epsilon, r=r, reference_acceleration=_as_vector(reference_acceleration))
+    return _accelerations(*arrays, out=out)
 
 
+@uses(_relative_derivatives)
 @takes_out
 def relative_derivative(omega: ArrayLike, vector: ArrayLike, relative_rate: ArrayLike, *,
                         out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -113,8 +151,8 @@ def relative_derivative(omega: ArrayLike, vector: ArrayLike, relative_rate: Arra
     >>> relative_derivative([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0])
     array([0., 1., 0.])
     """
-    omega, a, rate = vector_batch(omega=omega, vector=vector, relative_rate=relative_rate)
-    return deliver(rate + np.cross(omega, a), out)
+    arrays = vector_batch(omega=omega, vector=vector, relative_rate=relative_rate)
+    return _relative_derivatives(*arrays, out=out)
 
 
 class VelocityTerms(NamedTuple):
@@ -172,6 +210,11 @@ def _as_vector(value: ArrayLike) -> ArrayLike:
     return np.broadcast_to(np.asarray(value, dtype=float), (3,)) if np.ndim(value) == 0 else value
 
 
+def _finite_batch(**named: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+    """Finite ``(..., 3)`` arrays of the keyword arguments, in order, with broadcastable batch shapes."""
+    return same_batch(1, **{name: vector_array(x, name) for name, x in named.items()})
+
+
 def three_term_velocity(omega: ArrayLike, r: ArrayLike, relative_velocity: ArrayLike,
                         reference_velocity: ArrayLike = 0.0) -> VelocityTerms:
     """Velocity of a point moving relative to a body: ``v_P = v_C + v_CP + ω × r_CP`` (Theory §4.7).
@@ -198,11 +241,11 @@ def three_term_velocity(omega: ArrayLike, r: ArrayLike, relative_velocity: Array
     >>> terms.rotational, terms.total
     (array([0., 1., 0.]), array([1., 1., 0.]))
     """
-    omega, r, v_rel, v_c = vector_batch(
+    omega, r, v_rel, v_c = _finite_batch(
         omega=omega, r=r, relative_velocity=_as_vector(relative_velocity), reference_velocity=_as_vector(reference_velocity)
     )
     shape = np.broadcast_shapes(omega.shape, r.shape, v_rel.shape, v_c.shape)
-    with out_of_range("omega, r, relative_velocity and reference_velocity", "the velocity") as guard:
+    with out_of_range(*_VELOCITY) as guard:
         rotational = np.cross(omega, r)
         guard.check(rotational, v_c + v_rel + rotational)
     return VelocityTerms(*(np.array(np.broadcast_to(x, shape)) for x in (v_c, v_rel, rotational)))
@@ -241,7 +284,7 @@ def five_term_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, r
     >>> terms.coriolis, terms.centripetal
     (array([0., 4., 0.]), array([-2.,  0.,  0.]))
     """
-    omega, epsilon, r, v_rel, a_rel, a_c = vector_batch(
+    omega, epsilon, r, v_rel, a_rel, a_c = _finite_batch(
         omega=omega,
         epsilon=epsilon,
         r=r,
@@ -250,8 +293,7 @@ def five_term_acceleration(omega: ArrayLike, epsilon: ArrayLike, r: ArrayLike, r
         reference_acceleration=_as_vector(reference_acceleration),
     )
     shape = np.broadcast_shapes(omega.shape, epsilon.shape, r.shape, v_rel.shape, a_rel.shape, a_c.shape)
-    with out_of_range("omega, epsilon, r, relative_velocity, relative_acceleration and reference_acceleration",
-                      "the acceleration") as guard:
+    with out_of_range(*_ACCELERATION) as guard:
         terms = (a_c, np.cross(epsilon, r), np.cross(omega, np.cross(omega, r)), a_rel, 2.0 * np.cross(omega, v_rel))
         guard.check(*terms, sum(terms))
     return AccelerationTerms(*(np.array(np.broadcast_to(x, shape)) for x in terms))

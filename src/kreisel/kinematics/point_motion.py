@@ -8,7 +8,7 @@ from typing import NamedTuple, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled.gufunc import finite_array
+from .._compiled.checks import finite_array
 from .._validation import as_float_array
 from ..so3 import quat_apply
 from ..so3._coercion import RotationLike, as_quaternion

@@ -6,28 +6,47 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
+from numba import types
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels
-from .._compiled.gufunc import gufunc, quaternion_array
-from .._compiled.outputs import deliver, takes_out
+from .._compiled.checks import MATRIX, QUATERNION, VECTOR
+from .._compiled.elementwise import Input, Parameter, declare, kernel, uses
+from .._compiled.outputs import takes_out
 from .._validation import check_frame
-from ._checks import frame_sign, rotation_batch, same_batch, vectors
+from ._checks import frame_sign, matrix_batch, same_batch, vectors
 
 __all__ = ["angular_velocity", "quat_rate", "angular_velocity_from_quat_rate"]
 
 
-def _skew_part_vee(A: NDArray[Any]) -> NDArray[np.float64]:
-    # vee of the antisymmetric part: the least-squares angular velocity when
-    # Ṙ Rᵀ is not exactly antisymmetric (noisy or finite-difference data)
-    return 0.5 * np.stack(
-        [A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1
+@kernel
+def _skew_vee(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
+              r22: float, d00: float, d01: float, d02: float, d10: float, d11: float, d12: float, d20: float,
+              d21: float, d22: float, body: int) -> tuple[float, float, float]:
+    # vee of the antisymmetric part of D Rᵀ (space) or Rᵀ D (body): the least-squares angular
+    # velocity when Ṙ Rᵀ is not exactly antisymmetric (noisy or finite-difference data)
+    if body:
+        return (
+            0.5 * ((r02 * d01 + r12 * d11 + r22 * d21) - (r01 * d02 + r11 * d12 + r21 * d22)),
+            0.5 * ((r00 * d02 + r10 * d12 + r20 * d22) - (r02 * d00 + r12 * d10 + r22 * d20)),
+            0.5 * ((r01 * d00 + r11 * d10 + r21 * d20) - (r00 * d01 + r10 * d11 + r20 * d21)),
+        )
+    return (
+        0.5 * ((d20 * r10 + d21 * r11 + d22 * r12) - (d10 * r20 + d11 * r21 + d12 * r22)),
+        0.5 * ((d00 * r20 + d01 * r21 + d02 * r22) - (d20 * r00 + d21 * r01 + d22 * r02)),
+        0.5 * ((d10 * r00 + d11 * r01 + d12 * r02) - (d00 * r10 + d01 * r11 + d02 * r12)),
     )
 
 
+#: vee of the antisymmetric part of a matrix's product with a rotation's transpose; a rotation ``R``
+#: is checked like every rotation matrix of kreisel (orthogonal to within ``ORTHOGONALITY_TOLERANCE``,
+#: det > 0): a scaled matrix or a reflection would silently scale or flip the angular velocity.
+skew_vee = declare(_skew_vee, [Input("R", (3, 3), MATRIX), Input("Rdot", (3, 3), VECTOR)], (3,),
+                   [Parameter("body", types.int64)], name="angular_velocity")
+
+
+@uses(skew_vee)
 @takes_out
 def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
                      out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -60,44 +79,55 @@ def angular_velocity(R: ArrayLike, Rdot: ArrayLike, frame: str = "space", *,
     array([0., 0., 2.])
     """
     body = check_frame(frame)
-    R, Rdot = rotation_batch(R, Rdot=Rdot)
-    A = np.swapaxes(R, -1, -2) @ Rdot if body else Rdot @ np.swapaxes(R, -1, -2)
-    return deliver(_skew_part_vee(A), out)
+    R, Rdot = matrix_batch(R=R, Rdot=Rdot)
+    return skew_vee(R, Rdot, int(body), out=out)
 
 
-# sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
-# products differ only in the sign of the cross-product term.
-@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(3),()->(4)")
-def _quat_rate(q: NDArray[np.float64], w: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
-    q0, vx, vy, vz = q[0], q[1], q[2], q[3]
-    wx, wy, wz = w[0], w[1], w[2]
+@kernel
+def _quat_rate(q0: float, vx: float, vy: float, vz: float, wx: float, wy: float, wz: float,
+               sign: float) -> tuple[float, float, float, float]:
+    # sign = +1: space (q̇ = ½ ω q), sign = -1: body (q̇ = ½ q ω′); the two
+    # products differ only in the sign of the cross-product term.
     cx = wy * vz - wz * vy
     cy = wz * vx - wx * vz
     cz = wx * vy - wy * vx
-    out[0] = -0.5 * (wx * vx + wy * vy + wz * vz)
-    out[1] = 0.5 * (q0 * wx + sign * cx)
-    out[2] = 0.5 * (q0 * wy + sign * cy)
-    out[3] = 0.5 * (q0 * wz + sign * cz)
+    return (
+        -0.5 * (wx * vx + wy * vy + wz * vz),
+        0.5 * (q0 * wx + sign * cx),
+        0.5 * (q0 * wy + sign * cy),
+        0.5 * (q0 * wz + sign * cz),
+    )
 
 
-# ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
-# for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
-# q is divided by its largest component m first: q̇ q⁻¹ = q̇ (q/m)* / (|q/m|² m),
-# so neither |q|² nor a product of q and q̇ over- or underflows unless ω does.
-@gufunc(["void(f8[:], f8[:], f8, f8[:], f8[:])"], "(4),(4),(),(3)->(3)")
-def _quat_angular_velocity(q: NDArray[np.float64], qd: NDArray[np.float64], sign: float, carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    m = kernels.size(q[0], q[1], q[2], q[3])
-    q0, vx, vy, vz = q[0] / m, q[1] / m, q[2] / m, q[3] / m
-    p0, px, py, pz = qd[0], qd[1], qd[2], qd[3]
+@kernel
+def _quat_angular_velocity(q0: float, q1: float, q2: float, q3: float, p0: float, px: float, py: float, pz: float,
+                           sign: float) -> tuple[float, float, float]:
+    # ω = 2 vec(q̇ q⁻¹) (space) or 2 vec(q⁻¹ q̇) (body), q⁻¹ = q*/|q|²: exact also
+    # for non-unit q, whose rotation R(q/|q|) is what the angular velocity describes.
+    # q is divided by its largest component m first: q̇ q⁻¹ = q̇ (q/m)* / (|q/m|² m),
+    # so neither |q|² nor a product of q and q̇ over- or underflows unless ω does.
+    m = kernels.largest_component(q0, q1, q2, q3)
+    q0, vx, vy, vz = q0 / m, q1 / m, q2 / m, q3 / m
     s = 2.0 / (q0 * q0 + vx * vx + vy * vy + vz * vz)
     cx = py * vz - pz * vy
     cy = pz * vx - px * vz
     cz = px * vy - py * vx
-    out[0] = s * (q0 * px - p0 * vx - sign * cx) / m
-    out[1] = s * (q0 * py - p0 * vy - sign * cy) / m
-    out[2] = s * (q0 * pz - p0 * vz - sign * cz) / m
+    return (
+        s * (q0 * px - p0 * vx - sign * cx) / m,
+        s * (q0 * py - p0 * vy - sign * cy) / m,
+        s * (q0 * pz - p0 * vz - sign * cz) / m,
+    )
 
 
+_SIGN = Parameter("sign", types.float64)
+_ROTATION = Input("q", (4,), QUATERNION)
+_quat_rates = declare(_quat_rate, [_ROTATION, Input("omega", (3,), VECTOR)], (4,), [_SIGN], name="quat_rate")
+_quat_omega = declare(_quat_angular_velocity, [_ROTATION, Input("qdot", (4,), VECTOR)], (3,), [_SIGN],
+                      name="angular_velocity_from_quat_rate").refusing(
+    "q and qdot are out of range: the angular velocity 2|qdot|/|q| exceeds the largest float (~1.8e308)")
+
+
+@uses(_quat_rates)
 @takes_out
 def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion rate from the angular velocity (Theory §3.3).
@@ -126,10 +156,11 @@ def quat_rate(q: ArrayLike, omega: ArrayLike, frame: str = "space", *, out: NDAr
     array([-0.8,  0.6,  0. ,  0. ])
     """
     sign = frame_sign(frame)
-    q, omega = same_batch(1, q=quaternion_array(q), omega=vectors(omega, "omega"))
-    return _quat_rate(q, omega, sign, out=out)
+    q, omega = same_batch(1, q=vectors(q, "q", 4), omega=vectors(omega, "omega"))
+    return _quat_rates(q, omega, sign, out=out)
 
 
+@uses(_quat_omega)
 @takes_out
 def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = "space", *,
                                     out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -157,10 +188,5 @@ def angular_velocity_from_quat_rate(q: ArrayLike, qdot: ArrayLike, frame: str = 
     array([0., 0., 2.])
     """
     sign = frame_sign(frame)
-    q, qdot = same_batch(1, q=quaternion_array(q), qdot=vectors(qdot, "qdot", 4))
-    with np.errstate(over="ignore"):
-        omega = _quat_angular_velocity(q, qdot, sign, out=out)
-    if not np.isfinite(omega).all():
-        raise ValueError("q and qdot are out of range: the angular velocity 2|qdot|/|q| exceeds "
-                         "the largest float (~1.8e308)")
-    return omega
+    q, qdot = same_batch(1, q=vectors(q, "q", 4), qdot=vectors(qdot, "qdot", 4))
+    return _quat_omega(q, qdot, sign, out=out)

@@ -22,19 +22,18 @@ small ψ), so the maps are accurate to a few ulp for all ψ; J⁻¹ has poles at
 
 from __future__ import annotations
 
-from typing import cast
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
+from .._compiled.checks import VECTOR, vector_array
+from .._compiled.elementwise import Input, declare, kernel, uses
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import gufunc
-from .._validation import as_float_array, check_tolerance
+from .._validation import check_tolerance, warn_if_any
 from .._norms import norm
 from ..so3.jacobians import left_jacobian, left_jacobian_inverse, right_jacobian, right_jacobian_inverse  # noqa: F401
-from ..so3.jacobians import check_rotvec_range, singular_or_out_of_range
-from ._checks import frame_sign, vector_batch, vectors
+from ..so3.jacobians import check_rotvec_range
+from ._checks import frame_sign, vector_batch
 from ._singularity import SINGULAR_TOL, RotationVectorSingularityWarning
 
 __all__ = [
@@ -45,11 +44,17 @@ __all__ = [
 ]
 
 
-@gufunc(["void(f8, f8[:])"], "()->()")
-def _bortz(angle: float, out: NDArray[np.float64]) -> None:
-    out[0] = dexp.bortz_coefficient(angle)
+@kernel
+def _bortz(angle: float) -> float:
+    return dexp.bortz_coefficient(abs(angle))
 
 
+_bortz_coefficients = declare(_bortz, [Input("angle", (), VECTOR)], (), name="bortz_coefficient")
+_rates_to_omega = dexp.apply_jacobian.renamed(v="psidot")
+_omega_to_rates = dexp.apply_jacobian_inverse.renamed(w="omega")
+
+
+@uses(_bortz_coefficients)
 @takes_out
 def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64] | float:
     """The Bortz coefficient ``(2 sin ψ − ψ(1 + cos ψ)) / (2ψ² sin ψ)`` (Theory §3.5).
@@ -77,13 +82,11 @@ def bortz_coefficient(angle: ArrayLike, *, out: NDArray[np.float64] | None = Non
     >>> round(float(bortz_coefficient(np.pi)), 15) == round(1 / np.pi**2, 15)
     True
     """
-    a = np.abs(as_float_array(angle, "angle"))
-    if out is not None:
-        return _bortz(a, out=out)
-    value = _bortz(a)
-    return value if value.ndim else float(value)
+    value = _bortz_coefficients(angle, out=out)
+    return value if value.ndim or out is not None else float(value)
 
 
+@uses(_rates_to_omega)
 @takes_out
 def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: str = "space", *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Angular velocity from a rotation vector and its rate, the dexp map (Theory §3.4).
@@ -111,9 +114,10 @@ def angular_velocity_from_rotvec_rate(psi: ArrayLike, psidot: ArrayLike, frame: 
     """
     sign = frame_sign(frame)
     psi, psidot = vector_batch(psi=psi, psidot=psidot)
-    return dexp.apply_jacobian(psi, psidot, sign, out=out)
+    return _rates_to_omega(psi, psidot, sign, out=out)
 
 
+@uses(_omega_to_rates)
 @takes_out
 def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: float = SINGULAR_TOL, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation-vector rate from the angular velocity: dexp⁻¹ (Theory §3.5).
@@ -148,8 +152,8 @@ def rotvec_rate(psi: ArrayLike, omega: ArrayLike, frame: str = "space", tol: flo
     """
     sign = frame_sign(frame)
     psi, omega = vector_batch(psi=psi, omega=omega)
-    out = dexp.apply_jacobian_inverse(psi, omega, sign, check_tolerance(tol), out=out)
-    singular_or_out_of_range(psi, out[..., 0], RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
+    out = _omega_to_rates(psi, omega, sign, check_tolerance(tol), out=out)
+    warn_if_any(np.isnan(out[..., 0]), RotationVectorSingularityWarning, "rotvec_rate at |psi| = 2*pi*k")
     return out
 
 
@@ -174,7 +178,7 @@ def rotvec_rate_singular(psi: ArrayLike, tol: float = SINGULAR_TOL, *, out: NDAr
     >>> rotvec_rate_singular([[0.0, 0.0, 2 * np.pi], [0.0, 0.0, np.pi]]).tolist()
     [True, False]
     """
-    psi = vectors(psi, "psi")
+    psi = vector_array(psi, "psi")
     tol = check_tolerance(tol)
     angle = norm(psi)
     check_rotvec_range(angle, "psi")

@@ -9,15 +9,18 @@ through ``r_A = r_C + ω × v_C / |ω|²`` along ω, and the pitch is
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.checks import VECTOR, vector_array
+from .._compiled.elementwise import Input, declare, kernel, uses
+from .._compiled.outputs import takes_out
 from .._validation import as_float_array, out_of_range
-from .._compiled.outputs import deliver, takes_out
-from ._checks import batch_shape, vectors
+from ._checks import batch_shape
 from .._norms import norm
 
 __all__ = ["ScrewAxis", "screw_axis", "instantaneous_centre", "Centrodes", "centrodes"]
@@ -47,6 +50,12 @@ class ScrewAxis(NamedTuple):
     direction: NDArray[np.float64]  #: unit vector along ω (along v for a translation; NaN at rest)
     pitch: NDArray[np.float64]  #: h = ω·v/|ω|², metres per radian (0 for a rotation, inf for a translation)
     axial_velocity: NDArray[np.float64]  #: velocity of the points on the axis, h ω (v itself for a translation)
+
+
+def _vectors(x: ArrayLike, name: str) -> NDArray[np.float64]:
+    """Finite ``(..., 3)`` float64 array, C-contiguous, so that a strided view gives bit for bit the result of a
+    plain array (numpy's reductions sum in another order over other layouts)."""
+    return np.ascontiguousarray(vector_array(x, name))
 
 
 def screw_axis(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, rtol: float = 1e-12,
@@ -80,9 +89,9 @@ def screw_axis(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, rt
     >>> str(s.kind), s.point.round(15) + 0.0, float(s.pitch)
     ('rotation', array([0., 0., 0.]), 0.0)
     """
-    omega = vectors(omega, "omega")
-    velocity = vectors(velocity, "velocity")
-    point = vectors(np.broadcast_to(np.asarray(point, dtype=float), (3,)) if np.ndim(point) == 0 else point, "point")
+    omega = _vectors(omega, "omega")
+    velocity = _vectors(velocity, "velocity")
+    point = _vectors(np.broadcast_to(np.asarray(point, dtype=float), (3,)) if np.ndim(point) == 0 else point, "point")
     shape = batch_shape(("omega", omega, 1), ("velocity", velocity, 1), ("point", point, 1))
     if not (0.0 <= rtol < 1.0):
         raise ValueError(f"rtol must be in [0, 1), got {rtol!r}")
@@ -114,10 +123,18 @@ def screw_axis(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, rt
     return ScrewAxis(kind, axis_point, direction, pitch, axial)
 
 
-def _planar(x: ArrayLike, name: str, shape_tail: tuple[int, ...]) -> NDArray[np.float64]:
-    return as_float_array(x, name, shape_tail)
+@kernel
+def _centre(w: float, vx: float, vy: float, px: float, py: float) -> tuple[float, float]:
+    # r_C + (−v_y, v_x)/ω; at infinity (NaN) for a translation
+    inv = math.nan if w == 0.0 else 1.0 / w
+    return px + -vy * inv, py + vx * inv
 
 
+_centres = declare(_centre, [Input("omega", (), VECTOR), Input("velocity", (2,), VECTOR), Input("point", (2,), VECTOR)],
+                   (2,), name="instantaneous_centre", singular=True)
+
+
+@uses(_centres)
 @takes_out
 def instantaneous_centre(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike = 0.0, *,
                          out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -147,14 +164,12 @@ def instantaneous_centre(omega: ArrayLike, velocity: ArrayLike, point: ArrayLike
     >>> instantaneous_centre(-2.0, [1.0, 0.0], [3.0, 0.5])
     array([3., 0.])
     """
-    omega = as_float_array(omega, "omega")
-    velocity = _planar(velocity, "velocity", (2,))
-    point = _planar(np.broadcast_to(np.asarray(point, dtype=float), (2,)) if np.ndim(point) == 0 else point, "point", (2,))
+    omega = as_float_array(omega, "omega", finite=False)
+    velocity = as_float_array(velocity, "velocity", (2,), finite=False)
+    point = as_float_array(np.broadcast_to(np.asarray(point, dtype=float), (2,)) if np.ndim(point) == 0 else point,
+                           "point", (2,), finite=False)
     batch_shape(("omega", omega, 0), ("velocity", velocity, 1), ("point", point, 1))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = np.where(omega != 0.0, 1.0 / np.where(omega != 0.0, omega, 1.0), np.nan)
-    perp = np.stack([-velocity[..., 1], velocity[..., 0]], axis=-1)
-    return deliver(point + perp * inv[..., None], out)
+    return _centres(omega, velocity, point, out=out)
 
 
 class Centrodes(NamedTuple):

@@ -53,7 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from numba import prange
 
 from .._compiled import cached, kernels, parallel
-from .._compiled.gufunc import PARALLEL_THRESHOLD
+from .._compiled.elementwise import PARALLEL_THRESHOLD, PIECE
 from .._validation import as_float_array
 
 __all__ = ["align_vectors"]
@@ -289,15 +289,19 @@ def _sensitivity(B: NDArray[np.float64], w: NDArray[np.float64], i: int, q0: flo
 
 
 @cached
-def _solve_serial(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64], out: NDArray[np.float64]) -> None:
-    for i in range(a.shape[0]):
+def _solve_range(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64],
+                 out: NDArray[np.float64], start: int, stop: int) -> None:
+    for i in range(start, stop):
         _solve(a, b, w, i, primary[i], out)
 
 
 @parallel
-def _solve_parallel(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64], out: NDArray[np.float64]) -> None:
-    for i in prange(a.shape[0]):
-        _solve(a, b, w, i, primary[i], out)
+def _solve_pieces(a: NDArray[np.float64], b: NDArray[np.float64], w: NDArray[np.float64], primary: NDArray[np.int64],
+                  out: NDArray[np.float64], piece: int) -> None:
+    # the problems in pieces of about PIECE vectors, on all cores
+    m = a.shape[0]
+    for c in prange((m + piece - 1) // piece):
+        _solve_range(a, b, w, primary, out, c * piece, min(m, (c + 1) * piece))
 
 
 def _problems(a: ArrayLike, b: ArrayLike,
@@ -395,8 +399,10 @@ def align_vectors(a: ArrayLike, b: ArrayLike, weights: ArrayLike | None = None,
         if not (pa > 0).all() or not (pb > 0).all():
             raise ValueError("a and b must not have zero-length primary vectors (infinite weight or single pair)")
     out = np.full((a.shape[0], _WIDTH), np.nan)
-    solve = _solve_parallel if a.shape[0] * n >= PARALLEL_THRESHOLD else _solve_serial
-    solve(a, b, w, primary, out)
+    if a.shape[0] * n >= PARALLEL_THRESHOLD:
+        _solve_pieces(a, b, w, primary, out, max(1, PIECE // n))
+    else:
+        _solve_range(a, b, w, primary, out, 0, a.shape[0])
     if return_sensitivity and np.isnan(out[:, 5]).any():
         raise ValueError("a and b do not determine the rotation (the vectors of a problem are all parallel): "
                          "its sensitivity matrix is undefined")

@@ -26,13 +26,13 @@ import math
 from typing import TypeAlias, cast
 
 import numpy as np
+from numba import types
 from numpy.typing import ArrayLike, NDArray
-from numba import prange
 
-from .._compiled import cached, parallel
-from .._compiled.outputs import deliver, takes_out
 from .._compiled import kernels
-from .._compiled.gufunc import finite_array, gufunc, quaternion_array
+from .._compiled.checks import QUATERNION, VECTOR
+from .._compiled.elementwise import Input, Parameter, declare, kernel, uses
+from .._compiled.outputs import deliver, takes_out
 from .._validation import as_float_array, check_flag
 from . import euler as _euler
 from .quaternion import quat_multiply
@@ -72,13 +72,14 @@ def _setup(axes: ArrayLike, order: str) -> _Setup:
 _SETUPS: dict[tuple[bytes, tuple[int, ...], str], _Setup] = {}
 
 
-@cached
-def _angles_of(q0: float, q1: float, q2: float, q3: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int,
-               reverse: int) -> tuple[float, float, float]:
-    """Three Davenport angles of q: XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch."""
+@kernel
+def _davenport_angles(q0: float, q1: float, q2: float, q3: float, f0: float, f1: float, f2: float, f3: float,
+                      g0: float, g1: float, g2: float, g3: float, lam: float, other: int,
+                      reverse: int) -> tuple[float, float, float]:
+    # XYX Euler angles of conj(f) q g, shifted by λ, on scipy's branch
     q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
-    a0, a1, a2, a3 = kernels.quat_product(f[0], -f[1], -f[2], -f[3], q0, q1, q2, q3)
-    e0, e1, e2, e3 = kernels.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+    a0, a1, a2, a3 = kernels.quat_product(f0, -f1, -f2, -f3, q0, q1, q2, q3)
+    e0, e1, e2, e3 = kernels.quat_product(a0, a1, a2, a3, g0, g1, g2, g3)
     first, b, third = _euler._euler_angles(e0, e1, e2, e3, 0, 1, 0, 0)
     # scipy's branch: the middle angle in [λ, λ + π] when n₁·(n₃ × n₂) >= 0, else
     # in [λ - π, λ], from the other set (α + π, -b, γ + π) of the Euler angles.
@@ -91,52 +92,24 @@ def _angles_of(q0: float, q1: float, q2: float, q3: float, f: NDArray[np.float64
     return first, middle, third
 
 
-@cached
-def _quat_of(x: float, y: float, z: float, f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int) -> tuple[float, float, float, float]:
-    """Quaternion f ⊗ q_XYX(α, β - λ, γ) ⊗ g of three Davenport angles."""
+@kernel
+def _davenport_quat(x: float, y: float, z: float, f0: float, f1: float, f2: float, f3: float, g0: float, g1: float,
+                    g2: float, g3: float, lam: float, reverse: int) -> tuple[float, float, float, float]:
+    # f ⊗ q_XYX(α, β - λ, γ) ⊗ g
     if reverse:
         x, z = z, x
     e0, e1, e2, e3 = _euler._euler_quat(x, y - lam, z, 0, 1, 0, 0)
-    a0, a1, a2, a3 = kernels.quat_product(f[0], f[1], f[2], f[3], e0, e1, e2, e3)
-    return kernels.quat_product(a0, a1, a2, a3, g[0], g[1], g[2], g[3])
+    a0, a1, a2, a3 = kernels.quat_product(f0, f1, f2, f3, e0, e1, e2, e3)
+    return kernels.quat_product(a0, a1, a2, a3, g0, g1, g2, g3)
 
 
-@parallel
-def _to_angles_parallel(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int, out: NDArray[np.float64]) -> None:
-    for i in prange(q.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _angles_of(q[i, 0], q[i, 1], q[i, 2], q[i, 3], f, g, lam, other, reverse)
-
-
-@parallel
-def _to_quat_parallel(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int, out: NDArray[np.float64]) -> None:
-    for i in prange(angles.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _quat_of(angles[i, 0], angles[i, 1], angles[i, 2], f, g, lam, reverse)
-
-
-@gufunc(["void(f8[:], f8[:], f8[:], f8, i8, i8, f8[:], f8[:])"], "(4),(4),(4),(),(),(),(3)->(3)",
-        parallel=_to_angles_parallel, shared=(1, 2, 3, 4, 5))  # fmt: skip
-def _to_angles(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int, carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
-
-
-@gufunc(["void(f8[:], f8[:], f8[:], f8, i8, f8[:])"], "(3),(4),(4),(),()->(4)",
-        parallel=_to_quat_parallel, shared=(1, 2, 3, 4))  # fmt: skip
-def _to_quat(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int, out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
-
-
-@cached
-def _one_angles(q: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, other: int, reverse: int) -> NDArray[np.float64]:
-    out = np.empty(3)
-    out[0], out[1], out[2] = _angles_of(q[0], q[1], q[2], q[3], f, g, lam, other, reverse)
-    return out
-
-
-@cached
-def _one_quat(angles: NDArray[np.float64], f: NDArray[np.float64], g: NDArray[np.float64], lam: float, reverse: int) -> NDArray[np.float64]:
-    out = np.empty(4)
-    out[0], out[1], out[2], out[3] = _quat_of(angles[0], angles[1], angles[2], f, g, lam, reverse)
-    return out
+#: The fixed factors of :func:`_setup` (``q = f ⊗ q_euler ⊗ g``) and λ, shared by every element.
+_FACTORS = [Parameter(name, types.float64) for name in ("f0", "f1", "f2", "f3", "g0", "g1", "g2", "g3", "lam")]
+_REVERSE = Parameter("reverse", types.int64)
+_quats = declare(_davenport_quat, [Input("angles", (3,), VECTOR)], (4,), [*_FACTORS, _REVERSE],
+                 name="davenport_to_quat")
+_angles = declare(_davenport_angles, [Input("q", (4,), QUATERNION)], (3,),
+                  [*_FACTORS, Parameter("other", types.int64), _REVERSE], name="quat_to_davenport")
 
 
 def _parse(axes: ArrayLike, order: str) -> tuple[NDArray[np.float64], bool]:
@@ -181,6 +154,7 @@ def _conjugate(q: NDArray[np.float64]) -> NDArray[np.float64]:
     return cast("NDArray[np.float64]", q * np.array([1.0, -1.0, -1.0, -1.0]))
 
 
+@uses(_quats)
 @takes_out
 def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternions of Davenport angles about ``axes`` (scipy's ``Rotation.from_davenport``).
@@ -212,12 +186,8 @@ def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: b
     count, reverse, seq, lam, before, after, _, _ = _setup(axes, order)
     degrees = check_flag(degrees, "degrees")
     if count == 3:
-        a = finite_array(angles, "angles", (3,))
-        if degrees:
-            a = np.deg2rad(a)
-        if a.shape == (3,) and a.flags.writeable:
-            return deliver(_one_quat(a, before, after, lam, int(reverse)), out)
-        return deliver(_to_quat(a, before, after, lam, int(reverse)), out)
+        a = as_float_array(angles, "angles", (3,), finite=False)
+        return _quats(np.deg2rad(a) if degrees else a, *before, *after, lam, int(reverse), out=out)
     angles = _euler._short_angles(angles, count, degrees)[..., :count]
     if reverse:
         angles = angles[..., ::-1]
@@ -225,6 +195,7 @@ def davenport_to_quat(axes: ArrayLike, order: str, angles: ArrayLike, degrees: b
     return deliver(quat_multiply(quat_multiply(before, _euler.euler_to_quat(seq, angles)), after), out)
 
 
+@uses(_angles)
 @takes_out
 def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Davenport angles about ``axes`` of rotations ``q`` (scipy's ``Rotation.as_davenport``).
@@ -255,11 +226,8 @@ def quat_to_davenport(axes: ArrayLike, order: str, q: ArrayLike, degrees: bool =
     count, reverse, seq, lam, before, _, inverse_after, other = _setup(axes, order)
     degrees = check_flag(degrees, "degrees")
     if count == 3:
-        if type(q) is np.ndarray and q.shape == (4,) and q.dtype == np.float64 and q.flags.writeable and np.isfinite(q).all() and q.any():
-            angles = _one_angles(q, before, inverse_after, lam, int(other), int(reverse))
-        else:
-            angles = _to_angles(quaternion_array(q, "q"), before, inverse_after, lam, int(other), int(reverse))
-        return deliver(np.rad2deg(angles) if degrees else angles, out)
+        angles = _angles(q, *before, *inverse_after, lam, int(other), int(reverse), out=out)
+        return np.rad2deg(angles, out=angles) if degrees else angles
     angles = _euler.quat_to_euler(seq, quat_multiply(quat_multiply(_conjugate(before), q), inverse_after))
     if reverse:
         angles = np.ascontiguousarray(angles[..., ::-1])

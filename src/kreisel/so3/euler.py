@@ -30,14 +30,15 @@ import math
 from collections.abc import Callable
 
 import numpy as np
-from numba import prange
+from numba import types
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import cached, kernels, parallel
+from .._compiled import kernels
+from .._compiled.checks import MATRIX, QUATERNION, VECTOR, finite_array, quaternion_array
+from .._compiled.elementwise import ArrayOperation, Input, Parameter, declare, kernel, uses
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import LazyGufunc, finite_array, gufunc, matrix_array, quaternion_array
-from .._validation import AXES as _AXES, check_flag, parse_sequence
-from . import matrix as _matrix
+from .._validation import AXES as _AXES, as_float_array, check_flag, parse_sequence
+from .matrix import matrix_to_quat
 from .._norms import unit
 
 __all__ = [
@@ -131,28 +132,26 @@ def _short_sequence_angles(seq: str, axes: tuple[int, ...], intrinsic: bool, q: 
     return np.where(angles > np.pi, angles - 2.0 * np.pi, np.where(angles < -np.pi, angles + 2.0 * np.pi, angles))
 
 
-def _intrinsic_axes(seq: str) -> tuple[NDArray[np.int64], int]:
-    """Axes of the equivalent intrinsic sequence and whether angles are reversed."""
+def _intrinsic_axes(seq: str) -> tuple[int, int, int, int]:
+    """The kernels' sequence parameters: the axes of the equivalent intrinsic sequence and whether angles are reversed.
+
+    Extrinsic sequences run as the equivalent intrinsic ones with the first
+    and third angles swapped (``reverse`` = 1).
+    """
     axes, intrinsic = parse_sequence(seq)
     if intrinsic:
-        return np.array(axes, dtype=np.int64), 0
-    return np.array(axes[::-1], dtype=np.int64), 1
+        return axes[0], axes[1], axes[2], 0
+    return axes[2], axes[1], axes[0], 1
 
 
-# Extrinsic sequences run as the equivalent intrinsic ones with the first and
-# third angles swapped (``reverse`` = 1), read and written in place of a
-# reversed copy. The axis indices and ``reverse`` are shared by the whole
-# batch (``shared=(1, 2)``).
-
-
-@cached
+@kernel
 def _elementary(angle: float, axis: int) -> tuple[float, float, float, float]:
     h = 0.5 * angle
     s = math.sin(h)
     return math.cos(h), s if axis == 0 else 0.0, s if axis == 1 else 0.0, s if axis == 2 else 0.0
 
 
-@cached
+@kernel
 def _euler_quat(alpha: float, beta: float, gamma: float, axis0: int, axis1: int, axis2: int,
                 reverse: int) -> tuple[float, float, float, float]:
     # Intrinsic product q_A(α) q_B(β) q_C(γ) of elementary half-angle quaternions.
@@ -165,72 +164,28 @@ def _euler_quat(alpha: float, beta: float, gamma: float, axis0: int, axis1: int,
     return kernels.quat_product(r0, r1, r2, r3, c0, c1, c2, c3)
 
 
-@cached
+@kernel
+def _euler_matrix(alpha: float, beta: float, gamma: float, axis0: int, axis1: int, axis2: int,
+                  reverse: int) -> tuple[float, ...]:
+    q0, q1, q2, q3 = _euler_quat(alpha, beta, gamma, axis0, axis1, axis2, reverse)
+    return kernels.quat_matrix(q0, q1, q2, q3)
+
+
+@kernel
+def _quat_euler(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1: int, axis2: int,
+                reverse: int) -> tuple[float, float, float]:
+    q0, q1, q2, q3 = kernels.squarable(q0, q1, q2, q3)
+    return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
+
+
+@kernel
 def _matrix_euler(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
                   r22: float, axis0: int, axis1: int, axis2: int, reverse: int) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
 
 
-@parallel
-def _euler_to_quat_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    a0, a1, a2 = axes[0], axes[1], axes[2]
-    for i in prange(angles.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = _euler_quat(
-            angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse
-        )
-
-
-@parallel
-def _euler_to_matrix_parallel(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    a0, a1, a2 = axes[0], axes[1], axes[2]
-    for i in prange(angles.shape[0]):
-        q0, q1, q2, q3 = _euler_quat(angles[i, 0], angles[i, 1], angles[i, 2], a0, a1, a2, reverse)
-        kernels.write_matrix_at(out, i, q0, q1, q2, q3)
-
-
-@parallel
-def _quat_to_euler_parallel(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    a0, a1, a2 = axes[0], axes[1], axes[2]
-    for i in prange(q.shape[0]):
-        q0, q1, q2, q3 = kernels.squarable(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
-        out[i, 0], out[i, 1], out[i, 2] = _euler_angles(q0, q1, q2, q3, a0, a1, a2, reverse)
-
-
-@parallel
-def _matrix_to_euler_parallel(R: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    a0, a1, a2 = axes[0], axes[1], axes[2]
-    for i in prange(R.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _matrix_euler(
-            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2],
-            a0, a1, a2, reverse,
-        )  # fmt: skip
-
-
-@gufunc(["void(f8[:], i8[:], i8, f8[:], f8[:])"], "(3),(3),(),(4)->(4)", parallel=_euler_to_quat_parallel, shared=(1, 2))
-def _euler_to_quat(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2], out[3] = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
-
-
-@gufunc(["void(f8[:], i8[:], i8, f8[:, :])"], "(3),(3),()->(3,3)", parallel=_euler_to_matrix_parallel, shared=(1, 2))
-def _euler_to_matrix(angles: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    q0, q1, q2, q3 = _euler_quat(angles[0], angles[1], angles[2], axes[0], axes[1], axes[2], reverse)
-    kernels.write_matrix(q0, q1, q2, q3, out)
-
-
-@gufunc(["void(f8[:], i8[:], i8, f8[:])"], "(4),(3),()->(3)", parallel=_quat_to_euler_parallel, shared=(1, 2))
-def _quat_to_euler(q: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    q0, q1, q2, q3 = kernels.squarable(q[0], q[1], q[2], q[3])
-    out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
-
-
-@gufunc(["void(f8[:, :], i8[:], i8, f8[:])"], "(3,3),(3),()->(3)", parallel=_matrix_to_euler_parallel, shared=(1, 2))
-def _matrix_to_euler(R: NDArray[np.float64], axes: NDArray[np.int64], reverse: int, out: NDArray[np.float64]) -> None:
-    q0, q1, q2, q3 = kernels.matrix_quat(R)
-    out[0], out[1], out[2] = _euler_angles(q0, q1, q2, q3, axes[0], axes[1], axes[2], reverse)
-
-
-@cached
+@kernel
 def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1: int, axis2: int,
                   reverse: int) -> tuple[float, float, float]:
     # Bernardes & Viollet's method is written for extrinsic sequences; the
@@ -274,7 +229,7 @@ def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1:
     return _wrap(first), beta, _wrap(third)
 
 
-@cached
+@kernel
 def _pair_norm(a: float, b: float) -> float:
     # The pairs come from a quaternion whose largest entry is of unit size
     # (kernels.squarable), so a² + b² cannot overflow; only below ~1e-150 can
@@ -286,7 +241,7 @@ def _pair_norm(a: float, b: float) -> float:
     return math.hypot(a, b)
 
 
-@cached
+@kernel
 def _wrap(x: float) -> float:
     if x > math.pi:
         return x - 2.0 * math.pi
@@ -295,16 +250,26 @@ def _wrap(x: float) -> float:
     return x
 
 
+#: The sequence parameters of :func:`_intrinsic_axes`, shared by every element.
+SEQUENCE = [Parameter(name, types.int64) for name in ("axis0", "axis1", "axis2", "reverse")]
+_ANGLES = Input("angles", (3,), VECTOR)
+_quats = declare(_euler_quat, [_ANGLES], (4,), SEQUENCE, name="euler_to_quat")
+_matrices = declare(_euler_matrix, [_ANGLES], (3, 3), SEQUENCE, name="euler_to_matrix")
+_quat_angles = declare(_quat_euler, [Input("q", (4,), QUATERNION)], (3,), SEQUENCE, name="quat_to_euler")
+_matrix_angles = declare(_matrix_euler, [Input("R", (3, 3), MATRIX)], (3,), SEQUENCE, name="matrix_to_euler")
+
+
 def _angles_array(seq: str, angles: ArrayLike, degrees: bool) -> tuple[str, NDArray[np.float64]]:
     """The sequence and angles ``(..., 3)`` in radians; short sequences are padded."""
     degrees = check_flag(degrees, "degrees")
     short = _short_sequence(seq)
     if short is not None:
         return _padded(seq), _short_angles(angles, len(seq), degrees)
-    a = finite_array(angles, "angles", (3,))
+    a = as_float_array(angles, "angles", (3,), finite=False)
     return seq, (np.deg2rad(a) if degrees else a)
 
 
+@uses(_quats)
 @takes_out
 def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of Euler angles in any of the 24 conventions (Theory §2.3).
@@ -332,10 +297,10 @@ def euler_to_quat(seq: str, angles: ArrayLike, degrees: bool = False, *, out: ND
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
     seq, angles = _angles_array(seq, angles, degrees)
-    axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_quat(angles, axes, reverse, out=out)
+    return _quats(angles, *_intrinsic_axes(seq), out=out)
 
 
+@uses(_matrices)
 @takes_out
 def euler_to_matrix(seq: str, angles: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix of Euler angles, e.g. the chapter's ``R_z(φ) R_x(θ) R_z(ψ)`` for ``"ZXZ"``.
@@ -349,27 +314,25 @@ def euler_to_matrix(seq: str, angles: ArrayLike, degrees: bool = False, *, out: 
            [ 0.,  0.,  1.]])
     """
     seq, angles = _angles_array(seq, angles, degrees)
-    axes, reverse = _intrinsic_axes(seq)
-    return _euler_to_matrix(angles, axes, reverse, out=out)
+    return _matrices(angles, *_intrinsic_axes(seq), out=out)
 
 
 def _finish(angles: NDArray[np.float64], degrees: bool) -> NDArray[np.float64]:
     return np.rad2deg(angles, out=angles) if degrees else angles
 
 
-def _angles_of(seq: str, x: NDArray[np.float64], angles: LazyGufunc,
-               quaternions: Callable[[NDArray[np.float64]], NDArray[np.float64]], degrees: bool,
-               out: NDArray[np.float64] | None) -> NDArray[np.float64]:
-    """The angles of ``seq`` of quaternions or matrices ``x``: the compiled ``angles`` for three axes, the
-    quaternions of ``x`` for one or two."""
+def _angles_of(seq: str, x: ArrayLike, angles: ArrayOperation, quaternions: Callable[[ArrayLike], NDArray[np.float64]],
+               degrees: bool, out: NDArray[np.float64] | None) -> NDArray[np.float64]:
+    """The angles of ``seq`` of quaternions or matrices ``x``: the operation ``angles`` for three axes, the
+    unit quaternions of ``x`` for one or two."""
     degrees = check_flag(degrees, "degrees")
     short = _short_sequence(seq)
     if short is not None:
         return deliver(_finish(_short_sequence_angles(seq, *short, quaternions(x)), degrees), out)
-    axes, reverse = _intrinsic_axes(seq)
-    return _finish(angles(x, axes, reverse, out=out), degrees)
+    return _finish(angles(x, *_intrinsic_axes(seq), out=out), degrees)
 
 
+@uses(_quat_angles)
 @takes_out
 def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of nonzero quaternions (direct half-angle method).
@@ -406,9 +369,10 @@ def quat_to_euler(seq: str, q: ArrayLike, degrees: bool = False, *, out: NDArray
     >>> np.round(quat_to_euler("ZX", euler_to_quat("ZX", [0.3, -2.0])), 12)
     array([ 0.3, -2. ])
     """
-    return _angles_of(seq, quaternion_array(q, "q"), _quat_to_euler, lambda q: q, degrees, out)
+    return _angles_of(seq, q, _quat_angles, lambda q: quaternion_array(q, "q"), degrees, out)
 
 
+@uses(_matrix_angles)
 @takes_out
 def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler angles of rotation matrices, exact through gimbal lock.
@@ -438,7 +402,7 @@ def matrix_to_euler(seq: str, R: ArrayLike, degrees: bool = False, *, out: NDArr
     >>> np.round(matrix_to_euler("ZXZ", R), 12)
     array([0.3, 0.2, 0.1])
     """
-    return _angles_of(seq, matrix_array(R, "R"), _matrix_to_euler, _matrix._matrix_to_quat, degrees, out)
+    return _angles_of(seq, R, _matrix_angles, matrix_to_quat, degrees, out)
 
 
 @takes_out

@@ -25,14 +25,15 @@ from __future__ import annotations
 from typing import Literal, overload
 
 import numpy as np
-from numba import prange
+from numba import types
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import cached, dexp, kernels, parallel
-from .._compiled.gufunc import PARALLEL_THRESHOLD, finite_array
-from .._compiled.outputs import check_out, takes_out
+from .._compiled import dexp, kernels
+from .._compiled.checks import VECTOR, finite_array
+from .._compiled.elementwise import Input, Parameter, declare, kernel
+from .._compiled.outputs import takes_out
 from .._norms import norm
-from .._validation import check_frame, refuse_long_angle
+from .._validation import check_frame, out_of_range, refuse_long_angle
 from .rotation import Rotation
 
 __all__ = ["RotationSpline", "Slerp"]
@@ -41,23 +42,33 @@ __all__ = ["RotationSpline", "Slerp"]
 _BODY = -1.0  # the sign of the right Jacobian J_r, which maps ψ̇ to ω′
 
 
-@cached
-def _evaluate_one(i: int, t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
-                  out: NDArray[np.float64]) -> None:
-    s = index[i]
-    tau = t[i] - times[s]
-    c0x, c0y, c0z = coeff[s, 0, 0], coeff[s, 0, 1], coeff[s, 0, 2]
-    c1x, c1y, c1z = coeff[s, 1, 0], coeff[s, 1, 1], coeff[s, 1, 2]
-    c2x, c2y, c2z = coeff[s, 2, 0], coeff[s, 2, 1], coeff[s, 2, 2]
-    x = ((c0x * tau + c1x) * tau + c2x) * tau
-    y = ((c0y * tau + c1y) * tau + c2y) * tau
-    z = ((c0z * tau + c1z) * tau + c2z) * tau
-    q0, q1, q2, q3 = quats[s, 0], quats[s, 1], quats[s, 2], quats[s, 3]
+# A segment of the curve, gathered per time: its start time, the coefficients c₀, c₁, c₂ of
+# ψ(τ) = ((c₀ τ + c₁) τ + c₂) τ and the knot's quaternion (14 numbers).
+
+
+@kernel
+def _psi(tau: float, c0x: float, c0y: float, c0z: float, c1x: float, c1y: float, c1z: float, c2x: float, c2y: float,
+         c2z: float) -> tuple[float, float, float]:
+    return ((c0x * tau + c1x) * tau + c2x) * tau, ((c0y * tau + c1y) * tau + c2y) * tau, ((c0z * tau + c1z) * tau + c2z) * tau
+
+
+@kernel
+def _attitude(t: float, ts: float, c0x: float, c0y: float, c0z: float, c1x: float, c1y: float, c1z: float, c2x: float,
+              c2y: float, c2z: float, q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
+    # R_i exp(ψ(τ))
+    x, y, z = _psi(t - ts, c0x, c0y, c0z, c1x, c1y, c1z, c2x, c2y, c2z)
     e0, e1, e2, e3 = kernels.rotvec_quat(x, y, z)
     r0, r1, r2, r3 = kernels.quat_product(q0, q1, q2, q3, e0, e1, e2, e3)
-    if order == 0:
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.quat_unit(r0, r1, r2, r3)
-        return
+    return kernels.quat_unit(r0, r1, r2, r3)
+
+
+@kernel
+def _rate(t: float, ts: float, c0x: float, c0y: float, c0z: float, c1x: float, c1y: float, c1z: float, c2x: float,
+          c2y: float, c2z: float, q0: float, q1: float, q2: float, q3: float, order: int,
+          space: int) -> tuple[float, float, float]:
+    # the body rate J_r(ψ) ψ̇ (order 1) or its derivative (order 2), turned by R_i exp(ψ(τ)) for space components
+    tau = t - ts
+    x, y, z = _psi(tau, c0x, c0y, c0z, c1x, c1y, c1z, c2x, c2y, c2z)
     vx = (3.0 * c0x * tau + 2.0 * c1x) * tau + c2x
     vy = (3.0 * c0y * tau + 2.0 * c1y) * tau + c2y
     vz = (3.0 * c0z * tau + 2.0 * c1z) * tau + c2z
@@ -68,22 +79,16 @@ def _evaluate_one(i: int, t: NDArray[np.float64], times: NDArray[np.float64], in
             x, y, z, vx, vy, vz, 6.0 * c0x * tau + 2.0 * c1x, 6.0 * c0y * tau + 2.0 * c1y, 6.0 * c0z * tau + 2.0 * c1z, _BODY
         )
     if space:
+        e0, e1, e2, e3 = kernels.rotvec_quat(x, y, z)
+        r0, r1, r2, r3 = kernels.quat_product(q0, q1, q2, q3, e0, e1, e2, e3)
         wx, wy, wz = kernels.rotated(r0, r1, r2, r3, wx, wy, wz)
-    out[i, 0], out[i, 1], out[i, 2] = wx, wy, wz
+    return wx, wy, wz
 
 
-@cached
-def _evaluate_serial(t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
-                     out: NDArray[np.float64]) -> None:
-    for i in range(t.shape[0]):
-        _evaluate_one(i, t, times, index, coeff, quats, order, space, out)
-
-
-@parallel
-def _evaluate_parallel(t: NDArray[np.float64], times: NDArray[np.float64], index: NDArray[np.intp], coeff: NDArray[np.float64], quats: NDArray[np.float64], order: int, space: bool,
-                       out: NDArray[np.float64]) -> None:
-    for i in prange(t.shape[0]):
-        _evaluate_one(i, t, times, index, coeff, quats, order, space, out)
+_SEGMENT = [Input("times", (), VECTOR), Input("segments", (14,), VECTOR)]
+_attitudes = declare(_attitude, _SEGMENT, (4,), name="rotation_spline")
+_rates = declare(_rate, _SEGMENT, (3,), [Parameter("order", types.int64), Parameter("space", types.int64)],
+                 name="rotation_spline_rates").refusing(out_of_range("times", "the angular rate").message)
 
 
 def _block_tridiagonal(lower: NDArray[np.float64], upper: NDArray[np.float64], diagonal: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -149,6 +154,15 @@ def _knot_times(times: ArrayLike, count: int) -> NDArray[np.float64]:
     return t
 
 
+def _check_extrapolation(t: NDArray[np.float64], segments: NDArray[np.float64]) -> None:
+    """Refuse ``times`` whose extrapolated rotation vector ψ(τ) is longer than ``ROTVEC_RANGE`` (1e8 rad)."""
+    tau = (t - segments[..., 0])[..., None]
+    with np.errstate(over="ignore", invalid="ignore"):
+        psi = ((segments[..., 1:4] * tau + segments[..., 4:7]) * tau + segments[..., 7:10]) * tau
+        longest = float(np.max(norm(psi), initial=0.0)) if np.isfinite(psi).all() else np.inf
+    refuse_long_angle(longest, "times", "the extrapolated |psi|")
+
+
 class RotationSpline:
     """C² attitude spline through rotations at given times (scipy's ``RotationSpline``).
 
@@ -203,8 +217,7 @@ class RotationSpline:
         coeff[:, 0] = (-2.0 * rotvecs + dt * rates + dt * rotvecs_dot) / dt**3
         coeff[:, 1] = (3.0 * rotvecs - 2.0 * dt * rates - dt * rotvecs_dot) / dt**2
         coeff[:, 2] = rates
-        self._coeff = coeff
-        self._quats = np.ascontiguousarray(q)
+        self._segments = np.concatenate([self.times[:-1, None], coeff.reshape(-1, 9), q[:-1]], axis=1)
 
     @overload
     def __call__(self, times: ArrayLike, order: Literal[0] = 0, frame: str | None = None, *, out: None = None) -> Rotation: ...
@@ -259,33 +272,13 @@ class RotationSpline:
             raise ValueError("out is for the angular rates (order 1 or 2); order 0 returns a new Rotation")
         space = order > 0 and not check_frame(frame)
         t = finite_array(times, "times", None)
-        shape = (*t.shape, 4 if order == 0 else 3)
-        if out is not None:
-            check_out(out, shape)
-        flat = np.ascontiguousarray(t.reshape(-1))
-        index = np.clip(np.searchsorted(self.times, flat, side="right") - 1, 0, len(self.times) - 2)
-        if flat.size and (flat.min() < self.times[0] or flat.max() > self.times[-1]):
-            self._check_extrapolation(flat, index)
-        # the loop writes each row after reading its time: out must not overlap the times it reads
-        direct = out is not None and out.flags.c_contiguous and not np.may_share_memory(out, flat)
-        result = out if out is not None and direct else np.empty(shape)
-        run = _evaluate_parallel if flat.size >= PARALLEL_THRESHOLD else _evaluate_serial
-        run(flat, self.times, index, self._coeff, self._quats, order, space, result.reshape(flat.size, shape[-1]))
+        index = np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, len(self.times) - 2)
+        segments = self._segments[index]
+        if t.size and (t.min() < self.times[0] or t.max() > self.times[-1]):
+            _check_extrapolation(t, segments)
         if order == 0:
-            return Rotation._wrap(result)
-        if out is not None and not direct:
-            out[...] = result
-            return out
-        return result
-
-    def _check_extrapolation(self, t: NDArray[np.float64], index: NDArray[np.intp]) -> None:
-        """Refuse ``times`` whose extrapolated rotation vector ψ(τ) is longer than ``ROTVEC_RANGE`` (1e8 rad)."""
-        tau = (t - self.times[index])[:, None]
-        coeff = self._coeff[index]
-        with np.errstate(over="ignore", invalid="ignore"):
-            psi = ((coeff[:, 0] * tau + coeff[:, 1]) * tau + coeff[:, 2]) * tau
-            longest = float(np.max(norm(psi), initial=0.0)) if np.isfinite(psi).all() else np.inf
-        refuse_long_angle(longest, "times", "the extrapolated |psi|")
+            return Rotation._wrap(_attitudes(t, segments))
+        return _rates(t, segments, order, int(space), out=out)
 
 
 class Slerp:
