@@ -13,15 +13,14 @@ import math
 import numpy as np
 
 from .._compiled import cached
-from .._compiled.kernels import qmul, qnormalize, rotvec_to_quat
+from .._compiled.kernels import qmul, qnormalize, rotvec_quat
 
 
 @cached
 def _buffer():
     """A scratch 4-vector (or 3-vector in its first slots) with numba's layout 'A'.
 
-    so3's gufuncs pass 'A' arrays to the shared kernels (qmul, qnormalize,
-    rotvec_to_quat); buffers of the same layout here keep each of those
+    Buffers of one layout keep the shared kernels (qmul, qnormalize)
     compiled, and cached on disk, for one signature only.
     """
     return np.empty((1, 4))[0, ::1]
@@ -85,7 +84,7 @@ def integrate_increments(q0, dtheta, k, out):
             phi[0] = s0 + (w1 * l2 - w2 * l1)
             phi[1] = s1 + (w2 * l0 - w0 * l2)
             phi[2] = s2 + (w0 * l1 - w1 * l0)
-            rotvec_to_quat(phi, dq)
+            dq[0], dq[1], dq[2], dq[3] = rotvec_quat(phi[0], phi[1], phi[2])
             qmul(q, dq, qn)
             _advance(qn, q, out, b, j + 1)
 
@@ -163,7 +162,7 @@ def integrate_rates(q0, t, omega, use_bortz, out):
                 _bortz_rate(ys, e0, e1, e2, k4)
                 for c in range(3):
                     ys[c] = h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
-                rotvec_to_quat(ys, dq)
+                dq[0], dq[1], dq[2], dq[3] = rotvec_quat(ys[0], ys[1], ys[2])
                 qmul(y, dq, qn)
             else:
                 _quat_derivative(y, a0, a1, a2, k1)
