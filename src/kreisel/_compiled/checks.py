@@ -168,6 +168,9 @@ def rotation_vector(what: str = "|psi|") -> Kind:
 
 #: Rotation vectors, refused as ``|psi|``.
 ROTVEC = rotation_vector()
+#: Packed poses ``[q, t]`` ``(7,)`` held by a ``RigidTransform``, which checked them when it made them: no
+#: condition in the loop (a pose costs its 7 tests there otherwise), finite in the full check.
+POSE = Kind(lambda names: "True", lambda a, name: finite_array(a, name, None))
 #: Twists ``(ω, v)``: finite, with rotation parts at most 1e8 rad long.
 TWIST = Kind(_twist_condition, twist_array)
 #: Homogeneous matrices ``(4, 4)`` of poses, to within ``ORTHOGONALITY_TOLERANCE`` (Shepperd's
@@ -177,6 +180,6 @@ POSE_MATRIX = _within(_pose_matrix_condition, 16, "rigid: bottom row (0, 0, 0, 1
 #: Unit dual quaternions ``(8,)``, to within ``ORTHOGONALITY_TOLERANCE``.
 UNIT_DUAL_QUATERNION = _within(_unit_dual_condition, 8, "unit dual quaternions: |q_r| = 1 and q_r·q_d = 0")
 
-__all__ = ["ANY_QUATERNION", "MATRIX", "POSE_MATRIX", "QUATERNION", "ROTVEC", "TWIST", "UNIT_DUAL_QUATERNION", "VECTOR",
-           "finite_array", "matrix_array", "quaternion_array", "refuse_nonfinite", "rotation_vector", "rotvec_array",
-           "twist_array", "vector_array"]
+__all__ = ["ANY_QUATERNION", "MATRIX", "POSE", "POSE_MATRIX", "QUATERNION", "ROTVEC", "TWIST", "UNIT_DUAL_QUATERNION",
+           "VECTOR", "finite_array", "matrix_array", "quaternion_array", "refuse_nonfinite", "rotation_vector",
+           "rotvec_array", "twist_array", "vector_array"]
