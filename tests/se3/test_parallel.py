@@ -1,21 +1,21 @@
-"""The multi-core paths of RigidTransform agree bit for bit with the per-pose gufuncs and refuse the same inputs.
+"""The multi-core loops of RigidTransform agree bit for bit with the serial ones and refuse the same inputs.
 
-Lowering ``PARALLEL_THRESHOLD`` (and the piece lengths) sends small batches
+Lowering ``PARALLEL_THRESHOLD`` (and the piece length) sends small batches
 through the loops that large batches take, without allocating 10^4 poses.
 """
 
 import numpy as np
 import pytest
 
-from kreisel._compiled import gufunc as _gufunc
+from kreisel._compiled import elementwise
 from kreisel.se3 import RigidTransform
 
-N = 37  # odd, so the pieces of the checked loops end raggedly
+N = 37  # odd, so the pieces of the multi-core loops end raggedly
 
 
 def _parallel(monkeypatch):
-    monkeypatch.setattr(_gufunc, "PARALLEL_THRESHOLD", 1)
-    monkeypatch.setattr(_gufunc, "CHECKED_CHUNK", 5)
+    monkeypatch.setattr(elementwise, "PARALLEL_THRESHOLD", 1)
+    monkeypatch.setattr(elementwise, "PIECE", 5)
 
 
 @pytest.fixture(scope="module")
@@ -45,11 +45,11 @@ def test_parallel_matches_serial(poses, monkeypatch):
 
 
 def test_composition_inverse_and_from_matrix_store_plain_arrays(poses, monkeypatch):
-    # The next multi-core call reads them without copying strided views first.
+    # The next operation reads the packed poses without copying strided views first.
     _parallel(monkeypatch)
     a, b, _ = poses
     for t in (a * b, a.inv(), RigidTransform.from_matrix(a.as_matrix())):
-        assert t.as_quat().flags.c_contiguous and t._q.flags.c_contiguous and t._translation.flags.c_contiguous
+        assert t.as_quat().flags.c_contiguous and t._pose.flags.c_contiguous and t._pose.base is None
 
 
 @pytest.mark.parametrize("position", [0, N // 2, N - 1])

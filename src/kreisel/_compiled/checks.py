@@ -11,7 +11,7 @@ slow path of a refusal (or before writing into ``out=``).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -90,17 +90,65 @@ def _rotvec_condition(names: Sequence[str]) -> str:
     return f"({' + '.join(f'{n} * {n}' for n in names)} <= {ROTVEC_RANGE_SQUARED!r})"
 
 
-def _matrix_condition(names: Sequence[str]) -> str:
-    # orthonormal to rounding with det > 0; a NaN fails every comparison
+def _matrix_condition(names: Sequence[str], defect: float = ROUNDING_DEFECT) -> str:
+    # orthonormal to within defect with det > 0; a NaN fails every comparison
     a, b, c, d, e, f, g, h, i = names
     columns = [(a, d, g), (b, e, h), (c, f, i)]
     terms = []
     for k in range(3):
         for m in range(k, 3):
             dot = " + ".join(f"{x} * {y}" for x, y in zip(columns[k], columns[m]))
-            terms.append(f"(abs({dot}{' - 1.0' if k == m else ''}) <= {ROUNDING_DEFECT!r})")
+            terms.append(f"(abs({dot}{' - 1.0' if k == m else ''}) <= {defect!r})")
     det = f"{a} * ({e} * {i} - {f} * {h}) - {b} * ({d} * {i} - {f} * {g}) + {c} * ({d} * {h} - {e} * {g})"
     return " & ".join(terms) + f" & ({det} > 0.0)"
+
+
+def _twist_condition(names: Sequence[str]) -> str:
+    return f"({finite_condition(names)}) & {_rotvec_condition(names[:3])}"
+
+
+def twist_array(xi: ArrayLike, name: str) -> NDArray[np.float64]:
+    """Twists ``(ω, v)``, ``(..., 6)``: finite, the rotation part ω at most ``ROTVEC_RANGE`` long."""
+    a = finite_array(xi, name, (6,))
+    refuse_long_angle(float(np.max(norm(a[..., :3]), initial=0.0)), name, "the rotation part |omega|")
+    return a
+
+
+def _pose_matrix_condition(names: Sequence[str]) -> str:
+    # the bottom row (0, 0, 0, 1) and a rotation block, each to within the tolerance
+    bottom = [f"(abs({n}{' - 1.0' if k == 3 else ''}) <= {ORTHOGONALITY_TOLERANCE!r})" for k, n in enumerate(names[12:])]
+    block = [names[4 * row + column] for row in range(3) for column in range(3)]
+    return " & ".join(bottom) + " & " + _matrix_condition(block, ORTHOGONALITY_TOLERANCE)
+
+
+def _unit_dual_condition(names: Sequence[str]) -> str:
+    # |q_r| = 1 and q_r·q_d = 0 relative to 1 + |q_d|, to within the tolerance
+    real, dual = names[:4], names[4:]
+    length = f"np.sqrt({' + '.join(f'{n} * {n}' for n in real)})"
+    along = " + ".join(f"{r} * {d}" for r, d in zip(real, dual))
+    scale = f"(1.0 + np.sqrt({' + '.join(f'{n} * {n}' for n in dual)}))"
+    return (f"(abs({length} - 1.0) <= {ORTHOGONALITY_TOLERANCE!r}) & "
+            f"(abs({along}) / {scale} <= {ORTHOGONALITY_TOLERANCE!r})")
+
+
+def _within(condition: Callable[[Sequence[str]], str], width: int, refusal: str) -> Kind:
+    """Finite numbers of ``width`` components for which ``condition`` holds, refused as ``"{name} must be {refusal}"``.
+
+    The full check evaluates the loop's own expression on whole columns, so that both draw the
+    line at the same numbers.
+    """
+    names = [f"x{k}" for k in range(width)]
+    expression = compile(condition(names), f"<condition of {refusal}>", "eval")
+
+    def check(a: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+        a = finite_array(a, name, None)
+        with np.errstate(all="ignore"):
+            holds = eval(expression, {"np": np}, dict(zip(names, a.reshape(-1, width).T)))  # noqa: S307
+        if not np.all(holds):
+            raise ValueError(f"{name} must be {refusal}")
+        return a
+
+    return Kind(lambda names: f"({finite_condition(names)}) & ({condition(names)})", check)
 
 
 #: Finite numbers of any shape.
@@ -120,6 +168,18 @@ def rotation_vector(what: str = "|psi|") -> Kind:
 
 #: Rotation vectors, refused as ``|psi|``.
 ROTVEC = rotation_vector()
+#: Packed poses ``[q, t]`` ``(7,)`` held by a ``RigidTransform``, which checked them when it made them: no
+#: condition in the loop (a pose costs its 7 tests there otherwise), finite in the full check.
+POSE = Kind(lambda names: "True", lambda a, name: finite_array(a, name, None))
+#: Twists ``(ω, v)``: finite, with rotation parts at most 1e8 rad long.
+TWIST = Kind(_twist_condition, twist_array)
+#: Homogeneous matrices ``(4, 4)`` of poses, to within ``ORTHOGONALITY_TOLERANCE`` (Shepperd's
+#: quaternion of the block is the nearest rotation's).
+POSE_MATRIX = _within(_pose_matrix_condition, 16, "rigid: bottom row (0, 0, 0, 1) and a rotation block (max |R^T R - 1| "
+                      f"or bottom-row error <= {ORTHOGONALITY_TOLERANCE:g}, det R > 0)")
+#: Unit dual quaternions ``(8,)``, to within ``ORTHOGONALITY_TOLERANCE``.
+UNIT_DUAL_QUATERNION = _within(_unit_dual_condition, 8, "unit dual quaternions: |q_r| = 1 and q_r·q_d = 0")
 
-__all__ = ["ANY_QUATERNION", "MATRIX", "QUATERNION", "ROTVEC", "VECTOR", "finite_array", "matrix_array",
-           "quaternion_array", "refuse_nonfinite", "rotation_vector", "rotvec_array", "vector_array"]
+__all__ = ["ANY_QUATERNION", "MATRIX", "POSE", "POSE_MATRIX", "QUATERNION", "ROTVEC", "TWIST", "UNIT_DUAL_QUATERNION",
+           "VECTOR", "finite_array", "matrix_array", "quaternion_array", "refuse_nonfinite", "rotation_vector",
+           "rotvec_array", "twist_array", "vector_array"]

@@ -212,18 +212,24 @@ def jacobian_rate_times(x: float, y: float, z: float, v0: float, v1: float, v2: 
 
 
 @cached
-def write_jacobian(ux: float, uy: float, uz: float, linear: float, quadratic: float, out: NDArray[np.float64]) -> None:
-    """``out = 1 + linear hat(u) + quadratic hat(u)²``, with ``hat(u)² = uuᵀ − |u|² 1``."""
+def jacobian_entries(ux: float, uy: float, uz: float, linear: float, quadratic: float) -> tuple[float, ...]:
+    """Entries of ``1 + linear hat(u) + quadratic hat(u)²`` row by row, with ``hat(u)² = uuᵀ − |u|² 1``."""
     n2 = ux * ux + uy * uy + uz * uz
-    out[0, 0] = 1.0 + quadratic * (ux * ux - n2)
-    out[1, 1] = 1.0 + quadratic * (uy * uy - n2)
-    out[2, 2] = 1.0 + quadratic * (uz * uz - n2)
-    out[0, 1] = quadratic * ux * uy - linear * uz
-    out[1, 0] = quadratic * ux * uy + linear * uz
-    out[0, 2] = quadratic * ux * uz + linear * uy
-    out[2, 0] = quadratic * ux * uz - linear * uy
-    out[1, 2] = quadratic * uy * uz - linear * ux
-    out[2, 1] = quadratic * uy * uz + linear * ux
+    return (
+        1.0 + quadratic * (ux * ux - n2), quadratic * ux * uy - linear * uz, quadratic * ux * uz + linear * uy,
+        quadratic * ux * uy + linear * uz, 1.0 + quadratic * (uy * uy - n2), quadratic * uy * uz - linear * ux,
+        quadratic * ux * uz - linear * uy, quadratic * uy * uz + linear * ux, 1.0 + quadratic * (uz * uz - n2),
+    )
+
+
+@cached
+def write_jacobian(ux: float, uy: float, uz: float, linear: float, quadratic: float, out: NDArray[np.float64]) -> None:
+    """``out =`` :func:`jacobian_entries`."""
+    (
+        out[0, 0], out[0, 1], out[0, 2],
+        out[1, 0], out[1, 1], out[1, 2],
+        out[2, 0], out[2, 1], out[2, 2],
+    ) = jacobian_entries(ux, uy, uz, linear, quadratic)  # fmt: skip
 
 
 _PSI, _V = Input("psi", (3,), VECTOR), Input("v", (3,), VECTOR)

@@ -5,7 +5,7 @@ re-expresses a displacement about another body point (R unchanged);
 :class:`Screw` carries the Chasles/Mozzi screw of finite displacements;
 ``kreisel.se3.lie`` has twists ``ξ = (ω, v)``, exp/log and the SE(3)
 Jacobians; :func:`sclerp` interpolates along screws. The package builds on
-:mod:`kreisel.so3` only (the SE(3) Jacobians are built on those of :mod:`kreisel.so3.jacobians`).
+:mod:`kreisel.so3` only (the SE(3) Jacobians are built on the kernels of those of :mod:`kreisel.so3.jacobians`).
 """
 
 from .lie import *  # noqa: F401,F403

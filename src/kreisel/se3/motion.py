@@ -8,11 +8,16 @@ from __future__ import annotations
 
 from numpy.typing import ArrayLike
 
+from .._compiled.elementwise import uses
 from .._validation import as_float_array
-from . import lie
+from ..so3.quaternion import check_angle_multiple
+from . import _kernels
 from .transform import RigidTransform
 
 __all__ = ["sclerp"]
+
+#: Powers of the relative poses, refused naming the fraction.
+_scaled = _kernels.power.renamed(p="fraction")
 
 
 def _transform(x: object, name: str) -> RigidTransform:
@@ -21,6 +26,7 @@ def _transform(x: object, name: str) -> RigidTransform:
     return x
 
 
+@uses(_scaled)
 def sclerp(start: RigidTransform, end: RigidTransform, fraction: ArrayLike) -> RigidTransform:
     """Screw linear interpolation ``T(s) = T₀ exp(s log(T₀⁻¹ T₁))`` between poses.
 
@@ -56,6 +62,6 @@ def sclerp(start: RigidTransform, end: RigidTransform, fraction: ArrayLike) -> R
     start = _transform(start, "start")
     end = _transform(end, "end")
     fraction = as_float_array(fraction, "fraction")
-    twist = (start.inv() * end).as_exp_coords()
-    relative = lie.exp(fraction[..., None] * twist, "fraction", "|fraction| times the rotation angle")
-    return start * RigidTransform._from_arrays(*relative)
+    relative = start.inv() * end
+    check_angle_multiple(fraction, lambda: relative._q, "fraction", "|fraction| times the rotation angle")
+    return start * RigidTransform._from_pose(_scaled(relative._pose, fraction))

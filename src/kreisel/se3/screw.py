@@ -15,8 +15,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.checks import finite_array
 from .._validation import as_float_array
-from .._compiled.gufunc import finite_array
 
 __all__ = ["Screw"]
 

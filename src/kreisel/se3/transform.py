@@ -14,21 +14,17 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.checks import finite_array
+from .._compiled.elementwise import uses
+from .._compiled.outputs import deliver, takes_out
 from .._html import html_table, number
-from .._validation import as_float_array, batch_shape
-from ..so3 import (
-    Rotation,
-    quat_multiply,
-    quat_to_matrix,
-    quat_to_rotvec,
-)
+from .._validation import batch_shape, check_flag
+from ..so3 import Rotation, quat_to_rotvec
 from ..so3.interpolation import gather_samples, mean_over
-from ..so3.quaternion import rotate_vectors
+from ..so3.quaternion import check_angle_multiple
 from ..so3._batch import QuaternionBatch
 from ..so3._coercion import ORTHOGONALITY_TOLERANCE, as_quaternion
-from . import _kernels, lie
-from .._compiled.gufunc import finite_array
-from .._compiled.outputs import deliver, takes_out
+from . import _kernels
 from .screw import Screw, screw_parameters, screw_pose
 
 if TYPE_CHECKING:
@@ -38,10 +34,9 @@ __all__ = ["RigidTransform", "change_base_point"]
 
 #: Largest accepted departure from rigidity: |bottom row - (0, 0, 0, 1)| of a
 #: homogeneous matrix, ||q_r| - 1| and the relative q_r·q_d of a dual
-#: quaternion. Inputs within it are projected onto SE(3); others are refused.
+#: quaternion. Inputs within it are projected onto SE(3); others are refused
+#: (the kinds POSE_MATRIX and UNIT_DUAL_QUATERNION of :mod:`kreisel._compiled.checks`).
 RIGIDITY_TOLERANCE = ORTHOGONALITY_TOLERANCE
-
-
 
 
 class RigidTransform(QuaternionBatch):
@@ -76,30 +71,33 @@ class RigidTransform(QuaternionBatch):
            [0., 0., 0., 1.]])
     """
 
-    __slots__ = ("_translation",)
+    __slots__ = ("_pose", "_translation")
     __array_ufunc__ = None  # ndarray * RigidTransform raises instead of looping elementwise
 
+    #: The poses packed, [q, r_C] (..., 7), C-ordered: what the operations of :mod:`._kernels` read.
+    _pose: NDArray[np.float64]
     _translation: NDArray[np.float64]
 
     def __init__(self, rotation: Rotation | ArrayLike, translation: ArrayLike) -> None:
         quat = as_quaternion(rotation, "rotation")
-        self._set(quat, finite_array(translation, "translation"))
+        self._set(_packed(quat, finite_array(translation, "translation")))
 
     # -- construction ------------------------------------------------------------------------
 
-    def _set(self, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> None:
-        # An array holding the whole batch is kept as it is: a (read-only)
-        # broadcast view of it would be copied by every multi-core loop.
-        batch = np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1])
-        self._q = quat if quat.shape[:-1] == batch else np.broadcast_to(quat, batch + (4,))
-        self._translation = translation if translation.shape[:-1] == batch else np.broadcast_to(translation, batch + (3,))
+    def _set(self, pose: NDArray[np.float64]) -> None:
+        self._pose, self._q, self._translation = pose, pose[..., :4], pose[..., 4:]
+
+    @classmethod
+    def _from_pose(cls, pose: NDArray[np.float64]) -> RigidTransform:
+        # A trusted, C-ordered array (unit quaternions, finite translations) of its own: no checks, no copy.
+        obj = cls.__new__(cls)
+        obj._set(pose)
+        return obj
 
     @classmethod
     def _from_arrays(cls, quat: NDArray[np.float64], translation: NDArray[np.float64]) -> RigidTransform:
-        # Trusted arrays (unit quaternions, finite translations): no checks.
-        obj = cls.__new__(cls)
-        obj._set(quat, translation)
-        return obj
+        # Trusted arrays (unit quaternions, finite translations), broadcast against each other: no checks.
+        return cls._from_pose(_packed(quat, translation))
 
     @classmethod
     def from_rotation_translation(cls, rotation: Rotation | ArrayLike, translation: ArrayLike) -> RigidTransform:
@@ -140,14 +138,11 @@ class RigidTransform(QuaternionBatch):
         (3,)
         """
         if isinstance(transforms, RigidTransform):
-            return cls._from_arrays(transforms.as_quat(), transforms.translation)
+            return cls._from_pose(np.array(transforms._pose))
         parts = list(transforms)
         if not parts or not all(isinstance(t, RigidTransform) for t in parts):
             raise TypeError("transforms must be a non-empty sequence of kreisel RigidTransform objects")
-        return cls._from_arrays(
-            np.concatenate([np.atleast_2d(t._q) for t in parts]),
-            np.concatenate([np.atleast_2d(t._translation) for t in parts]),
-        )
+        return cls._from_pose(np.concatenate([np.atleast_2d(t._pose) for t in parts]))
 
     @classmethod
     def from_rotation(cls, rotation: Rotation | ArrayLike) -> RigidTransform:
@@ -224,13 +219,7 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_matrix(m).translation
         array([1., 2., 3.])
         """
-        quat, translation, rigid = _kernels.poses_of_matrices(matrix, RIGIDITY_TOLERANCE)
-        if not rigid:
-            raise ValueError(
-                "matrix must be rigid: bottom row (0, 0, 0, 1) and a rotation block "
-                f"(max |R^T R - 1| or bottom-row error <= {RIGIDITY_TOLERANCE:g}, det R > 0)"
-            )
-        return cls._from_arrays(quat, translation)
+        return cls._from_pose(_kernels.from_matrix(matrix))
 
     @classmethod
     def from_dual_quat(cls, dual_quat: ArrayLike) -> RigidTransform:
@@ -246,20 +235,7 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_dual_quat([1, 0, 0, 0, 0, 0.5, 1.0, 1.5]).translation
         array([1., 2., 3.])
         """
-        d = as_float_array(dual_quat, "dual_quat", (8,))
-        real, dual = d[..., :4], d[..., 4:]
-        norm = np.sqrt(np.sum(real * real, axis=-1))
-        along = np.sum(real * dual, axis=-1)
-        scale = 1.0 + np.sqrt(np.sum(dual * dual, axis=-1))
-        if d.size and not (
-            np.max(np.abs(norm - 1.0)) <= RIGIDITY_TOLERANCE and np.max(np.abs(along) / scale) <= RIGIDITY_TOLERANCE
-        ):
-            raise ValueError("dual_quat must be unit dual quaternions: |q_r| = 1 and q_r·q_d = 0")
-        real = real / norm[..., None]
-        dual = dual / norm[..., None] - (along / norm**2)[..., None] * real
-        conj = real * np.array([1.0, -1.0, -1.0, -1.0])
-        translation = 2.0 * quat_multiply(dual, conj)[..., 1:]
-        return cls._from_arrays(real, translation)
+        return cls._from_pose(_kernels.from_dual_quat(dual_quat))
 
     @classmethod
     def from_exp_coords(cls, exp_coords: ArrayLike) -> RigidTransform:
@@ -277,8 +253,7 @@ class RigidTransform(QuaternionBatch):
         >>> T.translation.round(6) + 0.0                   # (2/π)(1, 1, 0)
         array([0.63662, 0.63662, 0.     ])
         """
-        xi = finite_array(exp_coords, "exp_coords", (6,))
-        return cls._from_arrays(*lie.exp(xi, "exp_coords"))
+        return cls._from_pose(_kernels.exp(exp_coords))
 
     @classmethod
     def from_screw(cls, axis: ArrayLike, point: ArrayLike, angle: ArrayLike, translation: ArrayLike = 0.0) -> RigidTransform:
@@ -361,6 +336,7 @@ class RigidTransform(QuaternionBatch):
         """
         return self.rotation, self.translation
 
+    @uses(_kernels.as_matrix)
     @takes_out
     def as_matrix(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Homogeneous matrices ``[[R, r_C], [0, 0, 0, 1]]``, ``(..., 4, 4)``.
@@ -378,8 +354,9 @@ class RigidTransform(QuaternionBatch):
         >>> bool(np.allclose((T * T).as_matrix(), M @ M))
         True
         """
-        return _kernels.as_matrix(self._q, self._translation, out=out)
+        return _kernels.as_matrix(self._pose, out=out)
 
+    @uses(_kernels.as_dual_quat)
     @takes_out
     def as_dual_quat(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Unit dual quaternions ``[q_r, q_d]``, ``(..., 8)``, with ``q_d = ½ (0, r_C) q_r``.
@@ -392,10 +369,9 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_dual_quat()
         array([1. , 0. , 0. , 0. , 0. , 0.5, 1. , 1.5])
         """
-        pure = np.zeros(self.shape + (4,))
-        pure[..., 1:] = self._translation
-        return deliver(np.concatenate([self._q, 0.5 * quat_multiply(pure, self._q)], axis=-1), out)
+        return _kernels.as_dual_quat(self._pose, out=out)
 
+    @uses(_kernels.log)
     @takes_out
     def as_exp_coords(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Logarithm as twists ``ξ = (ω, v)``, ``(..., 6)``, with ``|ω| <= π``.
@@ -407,7 +383,7 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).as_exp_coords()
         array([0., 0., 0., 1., 2., 3.])
         """
-        return deliver(lie.log(self._q, self._translation), out)
+        return _kernels.log(self._pose, out=out)
 
     def as_screw(self) -> Screw:
         """Chasles/Mozzi screw of each displacement, as a :class:`~kreisel.se3.Screw`.
@@ -426,6 +402,7 @@ class RigidTransform(QuaternionBatch):
         """
         return screw_parameters(self._q, self._translation)
 
+    @uses(_kernels.adjoint)
     @takes_out
     def adjoint(self, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Adjoint matrices ``Ad_T = [[R, 0], [hat(r_C) R, R]]`` acting on twists ``(ω, v)``, ``(..., 6, 6)``.
@@ -445,7 +422,7 @@ class RigidTransform(QuaternionBatch):
         >>> bool(np.allclose((T1 * T2).adjoint(), T1.adjoint() @ T2.adjoint()))
         True
         """
-        return deliver(lie.adjoint(quat_to_matrix(self._q), self._translation), out)
+        return _kernels.adjoint(self._pose, out=out)
 
     def to_scipy(self) -> ScipyRigidTransform:
         """Equivalent ``scipy.spatial.transform.RigidTransform``.
@@ -468,7 +445,7 @@ class RigidTransform(QuaternionBatch):
     def __mul__(self, other: RigidTransform) -> RigidTransform:
         if not isinstance(other, RigidTransform):
             return NotImplemented
-        return RigidTransform._from_arrays(*_kernels.compose(self._q, self._translation, other._q, other._translation))
+        return RigidTransform._from_pose(_kernels.compose(self._pose, other._pose))
 
     def __pow__(self, p: ArrayLike, modulus: None = None) -> RigidTransform:
         """``T ** p = exp(p log T)``: the screw motion scaled by ``p`` (scipy's ``RigidTransform.__pow__``).
@@ -499,8 +476,8 @@ class RigidTransform(QuaternionBatch):
             if exponent == -1.0:
                 return self.inv()
             return RigidTransform.identity(self.shape)
-        xi = lie.log(self._q, self._translation)
-        return RigidTransform._from_arrays(*lie.exp(exponent[..., None] * xi, "p", "|p| times the rotation angle"))
+        check_angle_multiple(exponent, lambda: self._q, "p", "|p| times the rotation angle")
+        return RigidTransform._from_pose(_kernels.power(self._pose, exponent))
 
     def mean(self, weights: ArrayLike | None = None, axis: int | tuple[int, ...] | None = None) -> RigidTransform:
         """Mean pose: chordal L2 mean of the rotations and weighted mean of the translations.
@@ -548,8 +525,9 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_translation([1.0, 2.0, 3.0]).inv().translation
         array([-1., -2., -3.])
         """
-        return RigidTransform._from_arrays(*_kernels.invert(self._q, self._translation))
+        return RigidTransform._from_pose(_kernels.invert(self._pose))
 
+    @uses(_kernels.move)
     @takes_out
     def apply(self, points: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Move points: ``R r + r_C`` (Theory §1.3), or ``Rᵀ (r - r_C)`` with ``inverse=True``.
@@ -573,8 +551,9 @@ class RigidTransform(QuaternionBatch):
         array([[1., 0., 1.],
                [0., 1., 1.]])
         """
-        return _kernels.move(self._q, self._translation, points, inverse, out, "points")
+        return _kernels.move(self._pose, points, check_flag(inverse, "inverse"), out=out)
 
+    @uses(_kernels.turn)
     @takes_out
     def apply_vector(self, vectors: ArrayLike, inverse: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Rotate free vectors (no translation): ``R v``, or ``Rᵀ v`` with ``inverse=True``.
@@ -591,7 +570,7 @@ class RigidTransform(QuaternionBatch):
         >>> RigidTransform.from_translation([5.0, 5.0, 5.0]).apply_vector([1.0, 0.0, 0.0])
         array([1., 0., 0.])
         """
-        return rotate_vectors(self._q, vectors, inverse, out, "vectors")
+        return _kernels.turn(self._pose, vectors, check_flag(inverse, "inverse"), out=out)
 
     def change_base_point(self, offset: ArrayLike) -> RigidTransform:
         """Same displacement about another base point; see :func:`kreisel.se3.change_base_point`.
@@ -620,9 +599,7 @@ class RigidTransform(QuaternionBatch):
         # Index an array of batch positions so that any numpy index (slices,
         # masks, Ellipsis, fancy) acts on the batch axes only.
         index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
-        return RigidTransform._from_arrays(
-            self._q.reshape(-1, 4)[index], self._translation.reshape(-1, 3)[index]
-        )
+        return RigidTransform._from_pose(self._pose.reshape(-1, 7)[index])
 
     def __iter__(self) -> Iterator[RigidTransform]:
         if self.single:
@@ -635,12 +612,11 @@ class RigidTransform(QuaternionBatch):
             raise self._single_error("does not support item assignment")
         if not isinstance(value, RigidTransform):
             raise TypeError(f"value must be a kreisel RigidTransform, got {type(value).__name__}")
-        # Fresh arrays: the stored ones may be broadcast views shared with other transforms.
-        quat, translation = np.array(self._q), np.array(self._translation)
+        # A fresh array: the stored one may be shared with other transforms.
+        pose = np.array(self._pose)
         index = np.arange(int(np.prod(self.shape))).reshape(self.shape)[key]
-        quat.reshape(-1, 4)[index] = value._q
-        translation.reshape(-1, 3)[index] = value._translation
-        self._q, self._translation = quat, translation
+        pose.reshape(-1, 7)[index] = value._pose
+        self._set(pose)
 
     def __repr__(self) -> str:
         def fmt(a: NDArray[np.float64]) -> str:
@@ -702,5 +678,11 @@ def change_base_point(transform: RigidTransform, offset: ArrayLike) -> RigidTran
     """
     if not isinstance(transform, RigidTransform):
         raise TypeError(f"transform must be a RigidTransform, got {type(transform).__name__}")
-    offset = finite_array(offset, "offset")
-    return RigidTransform._from_arrays(transform._q, transform.apply(offset))
+    return RigidTransform._from_pose(_kernels.based_at(transform._pose, offset))
+
+
+def _packed(quat: NDArray[np.float64], translation: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Poses ``[q, t]`` ``(..., 7)`` of quaternions and translations broadcast against each other."""
+    pose = np.empty(np.broadcast_shapes(quat.shape[:-1], translation.shape[:-1]) + (7,))
+    pose[..., :4], pose[..., 4:] = quat, translation
+    return pose
