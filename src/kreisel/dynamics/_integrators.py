@@ -3,18 +3,19 @@
 State ``y = (ω′1, ω′2, ω′3, q0, q1, q2, q3)`` in the principal frame (Theory §4.5,
 principal-axis Euler equations), optionally followed by the centre of mass
 position and velocity ``(r, v)`` in space (13 components, the 6-DOF body).
-Every method is written once for one body; :func:`run` integrates one body
-and :func:`run_batch` many in parallel (``prange``) with the same code.
+Every method is written once for one body: :func:`run_dop853` and
+:func:`fixed_step` integrate one body, :func:`run_dop853_batch` and
+:func:`run_batch` many in parallel (``prange``) with the same code.
 
 Status codes returned by the drivers: 0 success, 1 adaptive step fell below
 round-off, 2 non-finite state, 3 implicit iteration did not converge (step
 too large for the fixed-point iteration), 4 paused.
 
 The drivers take at most ``budget`` steps per call and then return
-:data:`PAUSED` with everything needed to continue in a ``state`` array
-(:func:`new_state`): the Python caller calls again until done, so a long run
-returns to Python often enough to be interrupted (Ctrl-C) and to report
-progress. Continuing is exact: a run gives the same bits for any budget.
+:data:`PAUSED` with everything needed to continue in their state
+(:func:`new_state`; DOP853: :class:`~kreisel._compiled.dop853.Runs`): the
+Python caller calls again until done, so a long run returns to Python often
+enough to be interrupted (Ctrl-C) and to report progress. Continuing is exact: a run gives the same bits for any budget.
 """
 
 from __future__ import annotations
@@ -26,8 +27,7 @@ from numba import prange
 from numpy.typing import NDArray
 
 from .._compiled import cached, generic, inlined, parallel
-from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
-from .._compiled.dop853 import new_state as _dop853_state
+from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, Runs, advance, new_work, no_crossing, no_record
 from .._compiled.kernels import rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
 from ._model_tables import CALLBACK
@@ -412,25 +412,21 @@ def _translation_kick(t, h, mass, frows, y, scratch):
         y[10 + k] += h * scratch[10 + k] / mass
 
 
-def new_state(method: int, y0: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The resumable states of :func:`run` for bodies starting at ``y0 (..., ny)``, one array for all.
+def new_state(y0: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The resumable states of :func:`fixed_step` for bodies starting at ``y0 (..., ny)``, one array for all.
 
-    DOP853 keeps the layout of :func:`kreisel._compiled.dop853.new_state`; a fixed-step
-    method keeps ``[interval, step, pending, m0, m1, m2, y…]`` (interval −1
-    before the first call) along the last axis.
+    Layout ``[interval, step, pending, m0, m1, m2, y…]`` (interval −1 before
+    the first call) along the last axis. (DOP853 runs keep
+    :class:`kreisel._compiled.dop853.Runs`.)
     """
-    if method == DOP853:
-        return _dop853_state(y0)
     state = np.zeros((*y0.shape[:-1], 6 + y0.shape[-1]))
     state[..., 0] = -1.0
     state[..., 6:] = y0
     return state
 
 
-def reached(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64]) -> float:
-    """The earliest time reached by the paused bodies with states ``state (count, size)``."""
-    if method == DOP853:
-        return float(state[:, 0].min())
+def reached(t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64]) -> float:
+    """The earliest time reached by the paused bodies of a fixed-step method with states ``state (count, size)``."""
     k = np.clip(state[:, 0].astype(np.int64), 0, t_out.size - 2)
     span = t_out[k + 1] - t_out[k]
     return float(np.min(t_out[k] + state[:, 1] * span / substeps(span, dt)))
@@ -665,7 +661,9 @@ def _flows_at_output(p, ahead, i0, s):
 
 
 @cached
-def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every):
+def fixed_step(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64],
+               inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, out: NDArray[np.float64],
+               budget: int, every: int) -> int:
     """Fixed-step integration; output interval k is split into the ``grid[1, k]`` steps of size ``grid[0, k]``.
 
     At most ``budget`` steps per call (see the module note). The grid comes
@@ -746,36 +744,44 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
 
 
 @cached
-def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
-    # its own function, not inlined into run: LLVM optimises the stage loop better alone
-    model = (inertia, mass, rows, frows, np.empty(13))
-    return integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget, 3)
+def run_dop853(t_out: NDArray[np.float64], runs: Runs, b: int, inertia: NDArray[np.float64], mass: float, rows: _Rows,
+               frows: _Rows, rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64],
+               budget: int) -> int:
+    """Body ``b`` of ``runs``, at most ``budget`` DOP853 steps on: :func:`kreisel._compiled.dop853.advance`.
 
-
-@cached
-def run(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows,
-        rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], budget: int, every: int) -> int:
-    """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
-
-    ``out[k]`` receives the state at ``t_out[k·every]`` with its attitude as a
-    unit quaternion. DOP853 takes ``every = 1`` and the decimated times
-    instead: its steps depend on the first and last output time only, so
-    ``t_out[::every]`` gives the same steps, hence the same bits.
+    ``out[k]`` receives the state at ``t_out[k]`` with its attitude as a unit
+    quaternion. Decimated output takes the decimated times: the steps depend
+    on the first and last output time only, so ``t_out[::every]`` gives the
+    same steps, hence the same bits.
     """
-    if method == DOP853:
-        return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
-    return fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every)
+    model = (inertia, mass, rows, frows, np.empty(13))
+    return advance(_model_rhs, model, no_crossing, no_record, None, t_out, runs, b, new_work(runs.y.shape[1]), rtol,
+                   atol, np.inf, tables, out, False, budget, 3, True)
 
 
 @parallel
-def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
-              rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], status: NDArray[np.int64], budget: int,
-              every: int) -> None:
-    """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
+def run_dop853_batch(t_out: NDArray[np.float64], runs: Runs, inertia: NDArray[np.float64], mass: NDArray[np.float64],
+                     rows: _Rows, frows: _Rows, rtol: float, atol: NDArray[np.float64], tables: _Tables,
+                     out: NDArray[np.float64], status: NDArray[np.int64], budget: int) -> None:
+    """Many bodies, one per ``prange`` iteration: the same code as :func:`run_dop853`.
+
+    Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
+    """
+    for b in prange(status.size):
+        if status[b] == PAUSED:
+            status[b] = run_dop853(t_out, runs, b, inertia[b], mass[b], rows, frows, rtol, atol[b], tables, out[b],
+                                   budget)
+
+
+@parallel
+def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64],
+              inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
+              out: NDArray[np.float64], status: NDArray[np.int64], budget: int, every: int) -> None:
+    """Many bodies of a fixed-step ``method``, one per ``prange`` iteration: the same code as :func:`fixed_step`.
 
     Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
     """
     for b in prange(state.shape[0]):
         if status[b] == PAUSED:
-            status[b] = run(method, t_out, grid, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
-                            tables, out[b], budget, every)
+            status[b] = fixed_step(method, t_out, grid, state[b], inertia[b], mass[b], rows, frows, out[b], budget,
+                                   every)
