@@ -345,7 +345,8 @@ def no_record(marks, n, t, y):
     return False
 
 
-@cached
+# inlined: a cached kernel would be compiled for each type of ``b`` (a literal, a prange index)
+@generic
 def _keep(runs, b, t, h, j, found, y, f):
     """Store a run's point in row ``b`` of ``runs``: from there :func:`advance` continues."""
     runs.t[b], runs.h[b], runs.sample[b], runs.found[b] = t, h, j, found

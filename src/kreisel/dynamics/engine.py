@@ -272,14 +272,14 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
 
         def step(budget: int) -> bool:
             if count == 1:
-                status[0] = _integrators.fixed_step(code, t, grid, state[0], moments[0], mass[0], rows, frows,
+                status[0] = _integrators.fixed_step(code, t, grid, state, 0, moments[0], mass[0], rows, frows,
                                                     out[0], budget, every)
             else:
                 _integrators.run_batch(code, t, grid, state, moments, mass, rows, frows, out, status, budget, every)
             return not np.any(status == _dop853.PAUSED)
 
         def reached() -> float:
-            return _integrators.reached(t, dt, state[status == _dop853.PAUSED])
+            return _integrators.reached(t, dt, state, status == _dop853.PAUSED)
 
     callbacks = any(r is not None and np.any(r[:, 0] == _model_tables.CALLBACK) for r in (rows, frows))
     run_chunked(step, reached, t[-1], max_steps, 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count), progress)
