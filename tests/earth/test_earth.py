@@ -164,6 +164,33 @@ def test_foucault_rate_measured_in_both_hemispheres(lat):
     assert res.jacobi[1] == pytest.approx(res.jacobi[0], rel=1e-8)
 
 
+def _swing_maxima(budget, room):
+    # the compiled swing of foucault_pendulum, called again and again: budgets of ``budget`` steps, a record
+    # grown by ``room`` columns whenever it is full
+    from kreisel._compiled import dop853
+    from kreisel.earth import foucault
+
+    lat = np.deg2rad(40.0)
+    p = np.array([0.0, FAST * np.cos(lat), FAST * np.sin(lat), 9.80665, 1.0])
+    runs = dop853.new_runs(np.array([[np.sin(0.05), 0.0, -np.cos(0.05), 0.0, 0.0, 0.0]]))
+    record = np.empty((3, room))
+    while (status := foucault._swing(p, runs, 20.0, 1e-10, np.full(6, 1e-12), 0.1, dop853.tableau(), record,
+                                     budget)) == dop853.PAUSED:
+        if runs.found[0] == record.shape[1]:
+            record = np.concatenate([record, np.empty((3, room))], axis=1)
+    assert status == dop853.OK and runs.t[0] == 20.0
+    return record[:, :runs.found[0]], runs.y[0]
+
+
+def test_foucault_maxima_do_not_depend_on_chunks_or_a_full_record():
+    # a run paused by its budget, or before a step whose maximum finds the record full, continues bit for bit
+    whole, end = _swing_maxima(2**40, 64)
+    assert whole.shape[1] > 15
+    for budget, room in ((1, 64), (7, 1), (2**40, 1), (3, 2)):
+        maxima, y = _swing_maxima(budget, room)
+        assert np.array_equal(maxima, whole) and np.array_equal(y, end)
+
+
 def test_foucault_equator_does_not_precess():
     res = E.foucault_pendulum(1.0, 0.0, 200.0, 0.05, omega=FAST)
     # only Airy/anisotropy effects of O(amplitude² ω, ω²/ω0) remain

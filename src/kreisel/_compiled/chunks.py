@@ -117,27 +117,30 @@ def run_chunked(step: Callable[[int], bool], reached: Callable[[], float], t_end
             budget = int(min(8 * budget, max(1.0, budget * CHUNK_SECONDS / max(elapsed, 1e-9))))
 
 
-def run_resumable(advance: Callable[[Any, int], int], state: Any, t_end: float, max_steps: int,
+def run_resumable(advance: Callable[[Any, int], int], runs: Any, t_end: float, max_steps: int,
                   first_budget: int, paused: int, progress: Callable[[float], object] | None = None) -> int:
-    """:func:`run_chunked` for a compiled ``advance(state, budget) -> status`` that resumes from ``state``.
+    """:func:`run_chunked` for a compiled ``advance(runs, budget) -> status`` that resumes from ``runs``.
 
-    ``advance`` returns ``paused`` when it took its budget of steps before the
-    end (``state[0]`` is then the time reached) and any other status when it
-    is done, successfully or not; that final status is returned.
+    ``runs`` is a :class:`kreisel._compiled.dop853.Runs` of one run (or
+    anything whose ``t[0]`` is the time reached); ``advance`` returns
+    ``paused`` when it took its budget of steps before the end and any other
+    status when it is done, successfully or not; that final status is
+    returned.
 
     Examples
     --------
-    >>> def advance(state, budget):  # a clock that ticks to 10
-    ...     state[0] = min(10.0, state[0] + budget)
-    ...     return 4 if state[0] < 10.0 else 0
-    >>> run_resumable(advance, [0.0], 10.0, 100, 3, paused=4)
+    >>> from types import SimpleNamespace
+    >>> def advance(runs, budget):  # a clock that ticks to 10
+    ...     runs.t[0] = min(10.0, runs.t[0] + budget)
+    ...     return 4 if runs.t[0] < 10.0 else 0
+    >>> run_resumable(advance, SimpleNamespace(t=[0.0]), 10.0, 100, 3, paused=4)
     0
     """
     status = [paused]
 
     def step(budget: int) -> bool:
-        status[0] = advance(state, budget)
+        status[0] = advance(runs, budget)
         return status[0] != paused
 
-    run_chunked(step, lambda: state[0], t_end, max_steps, first_budget, progress)
+    run_chunked(step, lambda: float(runs.t[0]), t_end, max_steps, first_budget, progress)
     return status[0]

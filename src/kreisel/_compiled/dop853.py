@@ -11,31 +11,38 @@ The right-hand side is passed in as a compiled function
 ``rhs(t, y, args, dy, offset)`` writing dy/dt into ``dy[offset:offset + y.size]``
 (the stages live in one flat array, stage r at ``r·ny``, so no array views are
 created in the hot loop); ``args`` is whatever the model needs (a tuple, an
-array). Routines that take ``rhs`` are compiled without ``cache=True``: numba
-cannot cache a function whose argument is another compiled function (each
-process would add a new, never reused entry to ``__pycache__``). Callers make
-them cacheable by calling them from a cached kernel with a fixed module-level
-``rhs`` (the kernel's cache then holds the whole compiled loop); only
-user-supplied callables are compiled per call.
+array). Routines that take ``rhs`` (or a hook) are compiled without
+``cache=True``: numba cannot cache a function whose argument is another
+compiled function (each process would add a new, never reused entry to
+``__pycache__``). Callers make them cacheable by calling them from a cached
+kernel with a fixed module-level ``rhs`` (the kernel's cache then holds the
+whole compiled loop); only user-supplied callables are compiled per call.
 
-Status codes: 0 success, 1 the step fell below round-off, 2 non-finite state,
-4 paused: :func:`integrate_steps` took its budget of steps and returns to
-Python (so that a long run can be interrupted and report progress); calling it
-again with the same state continues bit for bit as if it had not stopped.
+All of it is one resumable driver, :func:`advance`: runs (:class:`Runs`,
+any number, one per row) continue where they stopped, through the work
+arrays of one run (:class:`Work`), with an event hook that finds the steps
+across a crossing and locates it in them. Its status codes: 0 success, 1 the
+step fell below round-off, 2 non-finite state, 4 paused: :func:`advance` took
+its budget of steps and returns to Python (so that a long run can be
+interrupted and report progress), or has no room to record a crossing;
+calling it again continues bit for bit as if it had not stopped; 5 stopped
+before a step that crosses an end (a landing).
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
-from . import cached, generic, vectorised
+from . import cached, generic, inlined, vectorised
 from .kernels import SIZE_HIGH, SIZE_LOW, quat_unit
 
 OK, STEP_TOO_SMALL, NOT_FINITE = 0, 1, 2
-PAUSED = 4
+PAUSED, STOPPED = 4, 5
 MESSAGES = {
     STEP_TOO_SMALL: "the adaptive step fell below round-off (the solution is probably singular)",
     NOT_FINITE: "the state became non-finite (step too large or model unbounded)",
@@ -122,68 +129,12 @@ def initial_step(rhs, args, t, y, f, span, rtol, atol, tmp, probe):
     return min(100.0 * h0, h1, span)
 
 
-@generic
-def stages(rhs, args, t, y, h, first, last, tables, k, tmp):
-    """Stages ``first … last-1``: k_s = f(t + c_s h, y + h Σ_r a_sr k_r)."""
-    A, C = tables[0], tables[2]
-    ny = y.size
-    for s in range(first, last):
-        for i in range(ny):
-            acc = 0.0
-            for r in range(s):
-                acc += A[s, r] * k[r * ny + i]
-            tmp[i] = y[i] + h * acc
-        rhs(t + C[s] * h, tmp, args, k, s * ny)
-
-
-@generic
-def attempt(rhs, args, t, y, h, tables, k, tmp, y_new):
-    """One step of size ``h`` from ``(t, y)`` with ``k[:ny] = f(t, y)``: ``y_new`` and its slope (stage 12)."""
-    ny = y.size
-    B = tables[1]
-    stages(rhs, args, t, y, h, 1, N_STAGES, tables, k, tmp)
-    for i in range(ny):
-        acc = 0.0
-        for r in range(N_STAGES):
-            acc += B[r] * k[r * ny + i]
-        y_new[i] = y[i] + h * acc
-    rhs(t + h, y_new, args, k, N_STAGES * ny)
-
-
 @cached
 def combined_error(e5, e3, h, ny):
     """Hairer's error norm ``h e5/√((e5 + 0.01 e3) ny)`` from the sums of squares of the scaled 5th/3rd-order errors."""
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
     return h * e5 / math.sqrt((e5 + 0.01 * e3) * ny)
-
-
-@cached
-def error_norm(y, y_new, h, k, E3, E5, rtol, atol):
-    """Hairer's combined 5th/3rd-order error estimate, scaled RMS; ``inf`` when not finite."""
-    ny = y.size
-    # first with big = 1; if the squares overflow (derivatives ~1e154 times the scale of a component),
-    # again with every ratio divided by the largest: the same norm, big e5/√(e5 + 0.01 e3) of the ratios
-    big = 1.0
-    for attempt in range(2):
-        e5 = 0.0
-        e3 = 0.0
-        largest = 0.0
-        for i in range(ny):
-            scale = (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol) * big
-            a5 = 0.0
-            a3 = 0.0
-            for r in range(N_STAGES + 1):
-                a5 += E5[r] * k[r * ny + i]
-                a3 += E3[r] * k[r * ny + i]
-            e5 += (a5 / scale) ** 2
-            e3 += (a3 / scale) ** 2
-            largest = max(largest, abs(a5 / scale), abs(a3 / scale))
-        err = combined_error(e5, e3, abs(h) * big, ny)
-        if math.isfinite(err) or not 0.0 < largest < np.inf:
-            break
-        big = largest
-    return err if math.isfinite(err) else np.inf
 
 
 @generic
@@ -212,53 +163,11 @@ def next_step(h, err, rejected, clipped, h_natural):
     return max(h * factor, h_natural) if clipped else h * factor
 
 
-@generic
-def advance(rhs, args, t, y, h, t_end, max_step, rtol, atol, tables, k, tmp, y_new):
-    """One accepted step from ``t`` towards ``t_end`` (never past it), trying ``h`` first.
-
-    Returns ``(status, t_new, h_taken, h_next)``; the new state is in
-    ``y_new`` and its slope in stage 12 of ``k``.
-    """
-    rejected = False
-    h = min(h, max_step)
-    h_natural = h
-    while True:
-        if too_small(h, t):
-            return STEP_TOO_SMALL, t, 0.0, h
-        clipped = t + h >= t_end
-        t_new = t_end if clipped else t + h
-        h = t_new - t
-        attempt(rhs, args, t, y, h, tables, k, tmp, y_new)
-        err = error_norm(y, y_new, h, k, tables[3], tables[4], rtol, atol)
-        if err < 1.0:
-            return OK, t_new, h, next_step(h, err, rejected, clipped, h_natural)
-        h = shrunk(h, err)
-        rejected = True
-
-
-@generic
-def dense_coefficients(rhs, args, t, y, y_new, h, tables, k, tmp, dense):
-    """Three extra stages and the (7, ny) coefficients of the 7th-order interpolant of the last step."""
-    ny = y.size
-    D = tables[5]
-    stages(rhs, args, t, y, h, N_STAGES + 1, N_STAGES_EXTENDED, tables, k, tmp)
-    for i in range(ny):
-        dy = y_new[i] - y[i]
-        dense[0, i] = dy
-        dense[1, i] = h * k[i] - dy
-        dense[2, i] = 2.0 * dy - h * (k[N_STAGES * ny + i] + k[i])
-        for p in range(4):
-            acc = 0.0
-            for r in range(N_STAGES_EXTENDED):
-                acc += D[p, r] * k[r * ny + i]
-            dense[3 + p, i] = h * acc
-
-
 @cached
 def interpolated(x, y, d0, d1, d2, d3, d4, d5, d6):
     """One component at the fraction ``x`` ∈ [0, 1] of the last step: ``y`` at its start, ``d`` its column of ``dense``.
 
-    Takes numbers, not arrays: the sample loop of :func:`integrate_steps`
+    Takes numbers, not arrays: the sample loop of :func:`advance`
     then hands no array over per sample (a reference count update each).
     """
     u = 1.0 - x
@@ -353,80 +262,150 @@ def _normalise(block, unit, norm, count):
         block[q3, s] /= n
 
 
-def new_state(y0):
-    """The resumable states of :func:`integrate_steps` for initial states ``y0 (..., ny)``.
+class Runs(NamedTuple):
+    """The resumable states of DOP853 runs, one per row: :func:`advance` continues run ``b`` from row ``b``.
 
-    Layout ``[t, h, j, y (ny), f(t, y) (ny)]`` along the last axis: ``j`` is
-    the next output index, 0 before the first call.
+    Attributes
+    ----------
+    t : (n,) ndarray
+        Time reached.
+    h : (n,) ndarray
+        Step to try next.
+    sample : (n,) ndarray of int64
+        Index of the next output time; 0 before the first call.
+    found : (n,) ndarray of int64
+        Crossings located and recorded so far.
+    y : (n, ny) ndarray
+        State at ``t``.
+    f : (n, ny) ndarray
+        Its slope f(t, y).
     """
-    y0 = np.asarray(y0, dtype=np.float64)
-    ny = y0.shape[-1]
-    state = np.zeros((*y0.shape[:-1], 3 + 2 * ny))
-    state[..., 3:3 + ny] = y0
-    return state
+
+    t: NDArray[np.float64]
+    h: NDArray[np.float64]
+    sample: NDArray[np.int64]
+    found: NDArray[np.int64]
+    y: NDArray[np.float64]
+    f: NDArray[np.float64]
+
+
+@cached
+def new_runs(y0: NDArray[np.float64]) -> Runs:
+    """Runs that start from the rows of ``y0 (n, ny)``, not yet started (see :class:`Runs`)."""
+    n = y0.shape[0]
+    return Runs(np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64), y0.copy(),
+                np.zeros_like(y0))
+
+
+class Work(namedtuple("Work", "k y y_new tmp probe dense block")):
+    """The work arrays of one run of :func:`advance` (:func:`new_work`): what a step leaves behind.
+
+    Attributes
+    ----------
+    k : (16 ny,) ndarray
+        The stages, stage ``r`` at ``r·ny``; stage 0 is the slope at the step's start, stage 12 at its end.
+    y, y_new : (ny,) ndarray
+        The state at the start and at the end of the step.
+    tmp, probe : (ny,) ndarray
+        Stage points; interpolated states.
+    dense : (7, ny) ndarray
+        Coefficients of the 7th-order interpolant of the step.
+    block : (ny + 2, BLOCK) ndarray
+        Samples interpolated together (:func:`interpolate_samples`).
+    """
+
+    __slots__ = ()
+
+
+@cached
+def new_work(ny):
+    """:class:`Work` for states of ``ny`` components."""
+    # views of one allocation: a batch makes one per body and chunk, often for a single step when every step
+    # is stored, and an allocation costs more than a view
+    work = np.empty((N_STAGES_EXTENDED + 11) * ny + (ny + 2) * BLOCK)
+    ends = np.cumsum(np.array([N_STAGES_EXTENDED * ny, ny, ny, ny, ny, 7 * ny]))
+    return Work(work[:ends[0]], work[ends[0]:ends[1]], work[ends[1]:ends[2]], work[ends[2]:ends[3]],
+                work[ends[3]:ends[4]], work[ends[4]:ends[5]].reshape((7, ny)), work[ends[5]:].reshape((ny + 2, BLOCK)))
+
+
+#: What a step crosses, as a crossing hook of :func:`advance` tells: nothing; a crossing to locate and record;
+#: the end of the run (before the step); a step to retry at half its length.
+ONWARD, LOCATE, STOP, RETRY = 0, 1, 2, 3
+
+
+@inlined
+def no_crossing(marks, t, y, t_new, y_new):
+    """The crossing hook of a run without events: every step goes on."""
+    return ONWARD
+
+
+@inlined
+def no_record(marks, n, t, y):
+    """The record hook of a run without events (never called)."""
+    return False
+
+
+# inlined: a cached kernel would be compiled for each type of ``b`` (a literal, a prange index)
+@generic
+def _keep(runs, b, t, h, j, found, y, f):
+    """Store a run's point in row ``b`` of ``runs``: from there :func:`advance` continues."""
+    runs.t[b], runs.h[b], runs.sample[b], runs.found[b] = t, h, j, found
+    for i in range(y.size):
+        runs.y[b, i] = y[i]
+        runs.f[b, i] = f[i]
 
 
 @generic
-def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_outputs):
-    """Write the state at every sorted time ``t_out`` (``t_out[0]`` the initial time) into ``out``.
-
-    :func:`integrate_steps` in one call, without a step budget. Returns a status code.
-    """
-    ny = y0.size
-    state = np.zeros(3 + 2 * ny)
-    for i in range(ny):
-        state[3 + i] = y0[i]
-    return integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs,
-                           2**62)
-
-
-@generic
-def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, land_on_outputs, budget,
-                    unit=-1):
-    """Integrate from ``state`` (see :func:`new_state`) for at most ``budget`` accepted steps.
+def advance(rhs, args, crossing, record, marks, t_out, runs, b, work, rtol, atol, max_step, tables, out,
+            land_on_outputs, budget, unit, adaptive):
+    """Continue run ``b`` of ``runs`` for at most ``budget`` accepted steps: the one DOP853 driver.
 
     Writes the state at every sorted time ``t_out`` (``t_out[0]`` the initial
     time) reached into ``out``. Steps are chosen by the error control; output
     times inside a step are filled by the dense output, or, with
     ``land_on_outputs``, every step is shortened to end on the next output
-    time (more steps on a fine output grid, no interpolation error). Returns a
-    status code: :data:`PAUSED` when the budget ran out before ``t_out[-1]``
-    (``state`` then holds where to continue). With ``unit >= 0``, the four
-    components from ``unit`` of every sample are a quaternion, stored
-    normalised (:func:`kreisel._compiled.kernels.quat_unit`; the state itself
-    is left as it is): the samples of a step are interpolated and normalised
-    together in a small work array (:func:`interpolate_samples`, SIMD over
-    the samples) and then written, not fixed by a second pass over the output.
+    time (more steps on a fine output grid, no interpolation error). With
+    ``unit >= 0``, the four components from ``unit`` of every sample are a
+    quaternion, stored normalised (:func:`kreisel._compiled.kernels.quat_unit`;
+    the state itself is left as it is): the samples of a step are
+    interpolated and normalised together in a small work array
+    (:func:`interpolate_samples`, SIMD over the samples) and then written,
+    not fixed by a second pass over the output.
 
-    The step (:func:`attempt`, as :func:`advance` takes it), the dense
-    output (:func:`dense_coefficients`) and the error norm's sums
-    (:func:`error_norm`, called only when they overflow) are written out in
-    this one loop, a deliberate copy over the work arrays allocated here:
-    every array handed to an inlined helper costs reference counting in the
-    stage loop, which made it ~1.5x slower (same steps, same bits), and a
-    plain call takes a reference to each array argument and gives it back,
-    atomic updates that every thread of a batch makes on the one count of a
-    shared array (the tables, ``atol``): per step, the error norm's cost
-    ~1.3x the dense output's. The interpolation takes work arrays of this
-    body only.
+    Events: every step that passes the error control is shown to
+    ``crossing(marks, t, y, t_new, y_new)``, which returns what it crosses:
+    :data:`ONWARD`, nothing; :data:`LOCATE`, a crossing, located by bisection
+    on the dense output with the same hook (crossed by the point ``(t_m,
+    y_m)`` inside the step unless it returns :data:`ONWARD` for ``(t, y, t_m,
+    y_m)``) and stored by ``record(marks, n, t_c, y_c)`` as crossing number
+    ``n``, which returns False when it has no room (the run then pauses
+    before the step); :data:`STOP`, the run ends before the step (status
+    :data:`STOPPED`; its end stays in ``work``); :data:`RETRY`, the step is
+    taken again at half its length.
+
+    Returns a status code: :data:`PAUSED` when the budget ran out before
+    ``t_out[-1]``. ``runs`` then holds where to continue, and calling again
+    continues bit for bit as if the run had not stopped; at the end, it holds
+    the last point. With ``adaptive`` False, one step of exactly
+    ``runs.h[b]`` (of either sign) is taken from the run's point without
+    error control, the run left where it is and the step's end in ``work``
+    (Newton's method on the length of a step, :func:`step_exactly`).
+
+    Everything a step does is written out in this one loop, over the work
+    arrays taken out of ``work`` once: every array handed to a helper (even
+    an inlined one) costs reference counting per step, atomic updates that
+    every thread of a batch makes on the one count of a shared array (the
+    tables, ``atol``), which made the loop 1.2-1.5x slower.
     """
     A, B, C, E3, E5, D = tables[0], tables[1], tables[2], tables[3], tables[4], tables[5]
-    ny = (state.size - 3) // 2
+    k, y, y_new, tmp, probe, dense, block = work.k, work.y, work.y_new, work.tmp, work.probe, work.dense, work.block
+    ny = y.size
     n_out = t_out.size
-    # the work arrays as views of one allocation: a batch calls this once per body and chunk, often for a
-    # single step when every step is stored, and an allocation costs more than a view
-    work = np.empty((N_STAGES_EXTENDED + 11) * ny + (ny + 2) * BLOCK)
-    k = work[:N_STAGES_EXTENDED * ny]
-    y = work[N_STAGES_EXTENDED * ny:(N_STAGES_EXTENDED + 1) * ny]
-    y_new = work[(N_STAGES_EXTENDED + 1) * ny:(N_STAGES_EXTENDED + 2) * ny]
-    tmp = work[(N_STAGES_EXTENDED + 2) * ny:(N_STAGES_EXTENDED + 3) * ny]
-    probe = work[(N_STAGES_EXTENDED + 3) * ny:(N_STAGES_EXTENDED + 4) * ny]
-    dense = work[(N_STAGES_EXTENDED + 4) * ny:(N_STAGES_EXTENDED + 11) * ny].reshape((7, ny))
-    block = work[(N_STAGES_EXTENDED + 11) * ny:].reshape((ny + 2, BLOCK))
     for i in range(ny):
-        y[i] = state[3 + i]
+        y[i] = runs.y[b, i]
     t_end = t_out[n_out - 1]
-    j = int(state[2])
+    j = runs.sample[b]
+    found = runs.found[b]
     if j == 0:
         for i in range(ny):
             out[0, i] = y[i]
@@ -441,32 +420,30 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
         h = initial_step(rhs, args, t, y, k, min(t_end - t, max_step), rtol, atol, tmp, probe)
         j = 1
     else:
-        t = state[0]
-        h = state[1]
+        t = runs.t[b]
+        h = runs.h[b]
         for i in range(ny):
-            k[i] = state[3 + ny + i]
+            k[i] = runs.f[b, i]
     taken = 0
     while j < n_out:
         if taken >= budget:
-            state[0] = t
-            state[1] = h
-            state[2] = j
-            for i in range(ny):
-                state[3 + i] = y[i]
-                state[3 + ny + i] = k[i]
+            _keep(runs, b, t, h, j, found, y, k)
             return PAUSED
         taken += 1
         target = t_out[j] if land_on_outputs else t_end
+        h_start = h
         rejected = False
         h = min(h, max_step)
         h_natural = h
         while True:
-            if too_small(h, t):
-                return STEP_TOO_SMALL
-            clipped = t + h >= target
-            t_new = target if clipped else t + h
-            h = t_new - t
-            # attempt() written out (the documented stage copy, see the docstring)
+            if adaptive:
+                if too_small(h, t):
+                    return STEP_TOO_SMALL
+                clipped = t + h >= target
+                t_new = target if clipped else t + h
+                h = t_new - t
+            else:
+                t_new = t + h
             for s in range(1, N_STAGES):
                 for i in range(ny):
                     acc = 0.0
@@ -480,84 +457,139 @@ def integrate_steps(rhs, args, t_out, state, rtol, atol, max_step, tables, out, 
                     acc += B[r] * k[r * ny + i]
                 y_new[i] = y[i] + h * acc
             rhs(t + h, y_new, args, k, N_STAGES * ny)
-            # error_norm() written out for the common case, its sums not overflowing (see the docstring)
-            e5 = 0.0
-            e3 = 0.0
-            for i in range(ny):
-                scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-                a5 = 0.0
-                a3 = 0.0
-                for r in range(N_STAGES + 1):
-                    a5 += E5[r] * k[r * ny + i]
-                    a3 += E3[r] * k[r * ny + i]
-                e5 += (a5 / scale) ** 2
-                e3 += (a3 / scale) ** 2
-            err = combined_error(e5, e3, abs(h), ny)
+            if not adaptive:
+                return OK
+            # Hairer's combined 5th/3rd-order error estimate, scaled RMS; first with big = 1, and if the squares
+            # overflow (derivatives ~1e154 times the scale of a component) again with every ratio divided by the
+            # largest: the same norm, big e5/√(e5 + 0.01 e3) of the ratios
+            big = 1.0
+            for _ in range(2):
+                e5 = 0.0
+                e3 = 0.0
+                largest = 0.0
+                for i in range(ny):
+                    scale = (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol) * big
+                    a5 = 0.0
+                    a3 = 0.0
+                    for r in range(N_STAGES + 1):
+                        a5 += E5[r] * k[r * ny + i]
+                        a3 += E3[r] * k[r * ny + i]
+                    e5 += (a5 / scale) ** 2
+                    e3 += (a3 / scale) ** 2
+                    largest = max(largest, abs(a5 / scale), abs(a3 / scale))
+                err = combined_error(e5, e3, abs(h) * big, ny)
+                if math.isfinite(err) or not 0.0 < largest < np.inf:
+                    break
+                big = largest
             if not math.isfinite(err):
-                err = error_norm(y, y_new, h, k, E3, E5, rtol, atol)
+                err = np.inf
             if err < 1.0:
-                break
-            h = shrunk(h, err)
-            rejected = True
+                event = crossing(marks, t, y, t_new, y_new)
+                if event != RETRY:
+                    break
+                h = 0.5 * h
+                rejected = False
+                h_natural = h
+            else:
+                h = shrunk(h, err)
+                rejected = True
+        if event == STOP:
+            _keep(runs, b, t, h_start, j, found, y, k)
+            return STOPPED
         h_taken = h
         h = next_step(h, err, rejected, clipped, h_natural)
-        if t_out[j] <= t_new:
-            # a sample inside the step needs the interpolant; one at its end is y_new itself (the last sample of
-            # an end-state run, every sample of a run that lands on its outputs), which interpolate_samples puts
-            # there whatever ``dense`` holds
-            if t_out[j] < t_new:
-                # dense_coefficients() written out (the documented stage copy, see the docstring)
-                # the stages of index 1 … _LATE - 1 have no weight here: left out of the sums (the same bits: each
-                # left-out term is ±0, and a sum started from +0.0 is never −0.0)
-                for s in range(N_STAGES + 1, N_STAGES_EXTENDED):
-                    for i in range(ny):
-                        acc = 0.0 + A[s, 0] * k[i]
-                        for r in range(_LATE, s):
-                            acc += A[s, r] * k[r * ny + i]
-                        tmp[i] = y[i] + h_taken * acc
-                    rhs(t + C[s] * h_taken, tmp, args, k, s * ny)
-                bad = 0
+        # a sample at the step's end is y_new itself (the last sample of an end-state run, every sample of a
+        # run that lands on its outputs), which interpolate_samples puts there whatever ``dense`` holds
+        if event == LOCATE or t_out[j] < t_new:
+            # the stages of index 1 … _LATE - 1 have no weight here: left out of the sums (the same bits: each
+            # left-out term is ±0, and a sum started from +0.0 is never −0.0)
+            for s in range(N_STAGES + 1, N_STAGES_EXTENDED):
                 for i in range(ny):
-                    dy = y_new[i] - y[i]
-                    dense[0, i] = dy
-                    dense[1, i] = h_taken * k[i] - dy
-                    dense[2, i] = 2.0 * dy - h_taken * (k[N_STAGES * ny + i] + k[i])
-                    # the four sums side by side: each stage value is loaded once, four independent additions
-                    a3 = 0.0 + D[0, 0] * k[i]
-                    a4 = 0.0 + D[1, 0] * k[i]
-                    a5 = 0.0 + D[2, 0] * k[i]
-                    a6 = 0.0 + D[3, 0] * k[i]
-                    for r in range(_LATE, N_STAGES_EXTENDED):
-                        k_r = k[r * ny + i]
-                        a3 += D[0, r] * k_r
-                        a4 += D[1, r] * k_r
-                        a5 += D[2, r] * k_r
-                        a6 += D[3, r] * k_r
-                    dense[3, i] = h_taken * a3
-                    dense[4, i] = h_taken * a4
-                    dense[5, i] = h_taken * a5
-                    dense[6, i] = h_taken * a6
-                    bad += not (math.isfinite(a3) and math.isfinite(a4) and math.isfinite(a5) and math.isfinite(a6))
-                # a non-finite extra stage (13-15) shapes the interpolant only, not the accepted step: refused
-                # here, or it would come out as a non-finite sample of a run that succeeded
-                if bad:
-                    return NOT_FINITE
-            while j < n_out and t_out[j] <= t_new:
-                count = 1
-                while count < BLOCK and j + count < n_out and t_out[j + count] <= t_new:
-                    count += 1
-                for s in range(count):
-                    block[ny, s] = t_out[j + s]
-                # np.int64: a literal ``unit`` would compile the shared kernel once per value
-                interpolate_samples(dense, y, y_new, t, t_new, h_taken, count, np.int64(unit), block)
-                for s in range(count):
-                    for i in range(ny):
-                        out[j + s, i] = block[i, s]
-                j += count
+                    acc = 0.0 + A[s, 0] * k[i]
+                    for r in range(_LATE, s):
+                        acc += A[s, r] * k[r * ny + i]
+                    tmp[i] = y[i] + h_taken * acc
+                rhs(t + C[s] * h_taken, tmp, args, k, s * ny)
+            bad = 0
+            for i in range(ny):
+                dy = y_new[i] - y[i]
+                dense[0, i] = dy
+                dense[1, i] = h_taken * k[i] - dy
+                dense[2, i] = 2.0 * dy - h_taken * (k[N_STAGES * ny + i] + k[i])
+                # the four sums side by side: each stage value is loaded once, four independent additions
+                a3 = 0.0 + D[0, 0] * k[i]
+                a4 = 0.0 + D[1, 0] * k[i]
+                a5 = 0.0 + D[2, 0] * k[i]
+                a6 = 0.0 + D[3, 0] * k[i]
+                for r in range(_LATE, N_STAGES_EXTENDED):
+                    k_r = k[r * ny + i]
+                    a3 += D[0, r] * k_r
+                    a4 += D[1, r] * k_r
+                    a5 += D[2, r] * k_r
+                    a6 += D[3, r] * k_r
+                dense[3, i] = h_taken * a3
+                dense[4, i] = h_taken * a4
+                dense[5, i] = h_taken * a5
+                dense[6, i] = h_taken * a6
+                bad += not (math.isfinite(a3) and math.isfinite(a4) and math.isfinite(a5) and math.isfinite(a6))
+            # a non-finite extra stage (13-15) shapes the interpolant only, not the accepted step: refused
+            # here, or it would come out as a non-finite sample (or crossing) of a run that succeeded
+            if bad:
+                return NOT_FINITE
+        if event == LOCATE:
+            lo, hi = 0.0, 1.0
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                interpolate(dense, y, mid, probe)
+                if crossing(marks, t, y, t + mid * h_taken, probe) == ONWARD:
+                    lo = mid
+                else:
+                    hi = mid
+            interpolate(dense, y, 0.5 * (lo + hi), probe)
+            if not record(marks, found, t + 0.5 * (lo + hi) * h_taken, probe):
+                _keep(runs, b, t, h_start, j, found, y, k)
+                return PAUSED
+            found += 1
+        while j < n_out and t_out[j] <= t_new:
+            count = 1
+            while count < BLOCK and j + count < n_out and t_out[j + count] <= t_new:
+                count += 1
+            for s in range(count):
+                block[ny, s] = t_out[j + s]
+            # np.int64: a literal ``unit`` would compile the shared kernel once per value
+            interpolate_samples(dense, y, y_new, t, t_new, h_taken, count, np.int64(unit), block)
+            for s in range(count):
+                for i in range(ny):
+                    out[j + s, i] = block[i, s]
+            j += count
         for i in range(ny):
             y[i] = y_new[i]
             k[i] = k[N_STAGES * ny + i]
             if not math.isfinite(y[i]):
                 return NOT_FINITE
         t = t_new
+    _keep(runs, b, t, h, j, found, y, k)
     return OK
+
+
+@generic
+def step_exactly(rhs, args, t_out, runs, b, work, tables):
+    """One DOP853 step of exactly ``runs.h[b]`` (of either sign) from the point of run ``b``, without error control.
+
+    Its end is left in ``work`` (``y_new``, its slope in stage 12 of ``k``),
+    the run where it is: Newton's method on the length of the step across an
+    event. ``t_out`` is the run's (only its length is read).
+    """
+    return advance(rhs, args, no_crossing, no_record, None, t_out, runs, b, work, 0.0, work.y, np.inf, tables,
+                   work.dense, False, 1, -1, False)
+
+
+@generic
+def integrate(rhs, args, t_out, y0, rtol, atol, max_step, tables, out, land_on_outputs):
+    """Write the state at every sorted time ``t_out`` (``t_out[0]`` the initial time) into ``out``.
+
+    :func:`advance` of one run from ``y0`` in one call, without a step budget
+    or events. Returns a status code.
+    """
+    return advance(rhs, args, no_crossing, no_record, None, t_out, new_runs(y0.reshape((1, y0.size))), 0,
+                   new_work(y0.size), rtol, atol, max_step, tables, out, land_on_outputs, 2**62, -1, True)

@@ -3,31 +3,32 @@
 State ``y = (ω′1, ω′2, ω′3, q0, q1, q2, q3)`` in the principal frame (Theory §4.5,
 principal-axis Euler equations), optionally followed by the centre of mass
 position and velocity ``(r, v)`` in space (13 components, the 6-DOF body).
-Every method is written once for one body; :func:`run` integrates one body
-and :func:`run_batch` many in parallel (``prange``) with the same code.
+Every method is written once for one body: :func:`run_dop853` and
+:func:`fixed_step` integrate one body, :func:`run_dop853_batch` and
+:func:`run_batch` many in parallel (``prange``) with the same code.
 
 Status codes returned by the drivers: 0 success, 1 adaptive step fell below
 round-off, 2 non-finite state, 3 implicit iteration did not converge (step
 too large for the fixed-point iteration), 4 paused.
 
 The drivers take at most ``budget`` steps per call and then return
-:data:`PAUSED` with everything needed to continue in a ``state`` array
-(:func:`new_state`): the Python caller calls again until done, so a long run
-returns to Python often enough to be interrupted (Ctrl-C) and to report
-progress. Continuing is exact: a run gives the same bits for any budget.
+:data:`PAUSED` with everything needed to continue in their state
+(:class:`Steps`; DOP853: :class:`~kreisel._compiled.dop853.Runs`): the
+Python caller calls again until done, so a long run returns to Python often
+enough to be interrupted (Ctrl-C) and to report progress. Continuing is exact: a run gives the same bits for any budget.
 """
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import prange
 from numpy.typing import NDArray
 
 from .._compiled import cached, generic, inlined, parallel
-from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, integrate_steps
-from .._compiled.dop853 import new_state as _dop853_state
+from .._compiled.dop853 import NOT_FINITE, OK, PAUSED, Runs, advance, new_work, no_crossing, no_record
 from .._compiled.kernels import rotated
 from .._compiled.kernels import quat_product, quat_unit, rotvec_quat
 from ._model_tables import CALLBACK
@@ -412,28 +413,42 @@ def _translation_kick(t, h, mass, frows, y, scratch):
         y[10 + k] += h * scratch[10 + k] / mass
 
 
-def new_state(method: int, y0: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The resumable states of :func:`run` for bodies starting at ``y0 (..., ny)``, one array for all.
+class Steps(NamedTuple):
+    """The resumable states of fixed-step runs (:func:`fixed_step`), one row per body.
 
-    DOP853 keeps the layout of :func:`kreisel._compiled.dop853.new_state`; a fixed-step
-    method keeps ``[interval, step, pending, m0, m1, m2, y…]`` (interval −1
-    before the first call) along the last axis.
+    Attributes
+    ----------
+    interval : (n,) ndarray of int64
+        Output interval in progress; −1 before the first call.
+    step : (n,) ndarray of int64
+        Steps taken in it.
+    pending : (n,) ndarray
+        The deferred flow of a run whose state stays in registers (:func:`_register_run`).
+    registers : (n, 7) ndarray
+        The state of such a run, in the method's own variables.
+    y : (n, ny) ndarray
+        The state of the other runs (ω′, q, …); of every run before the first call.
     """
-    if method == DOP853:
-        return _dop853_state(y0)
-    state = np.zeros((*y0.shape[:-1], 6 + y0.shape[-1]))
-    state[..., 0] = -1.0
-    state[..., 6:] = y0
-    return state
+
+    interval: NDArray[np.int64]
+    step: NDArray[np.int64]
+    pending: NDArray[np.float64]
+    registers: NDArray[np.float64]
+    y: NDArray[np.float64]
 
 
-def reached(method: int, t_out: NDArray[np.float64], dt: float, state: NDArray[np.float64]) -> float:
-    """The earliest time reached by the paused bodies with states ``state (count, size)``."""
-    if method == DOP853:
-        return float(state[:, 0].min())
-    k = np.clip(state[:, 0].astype(np.int64), 0, t_out.size - 2)
+def new_state(y0: NDArray[np.float64]) -> Steps:
+    """The resumable states of :func:`fixed_step` for bodies starting at ``y0 (count, ny)``: one :class:`Steps`."""
+    count = y0.shape[0]
+    return Steps(np.full(count, -1, dtype=np.int64), np.zeros(count, dtype=np.int64), np.zeros(count),
+                 np.zeros((count, 7)), np.array(y0, dtype=np.float64, order="C"))
+
+
+def reached(t_out: NDArray[np.float64], dt: float, state: Steps, paused: NDArray[np.bool_]) -> float:
+    """The earliest time reached by the bodies ``paused`` (a mask) of ``state``."""
+    k = np.clip(state.interval[paused], 0, t_out.size - 2)
     span = t_out[k + 1] - t_out[k]
-    return float(np.min(t_out[k] + state[:, 1] * span / substeps(span, dt)))
+    return float(np.min(t_out[k] + state.step[paused] * span / substeps(span, dt)))
 
 
 def substeps(span: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
@@ -493,7 +508,7 @@ def _finite(s, v):
 
 
 @generic
-def _register_run(steps, at_output, from_omega, params, t_out, grid, state, inertia, out, budget, every):
+def _register_run(steps, at_output, from_omega, params, t_out, grid, state, b, inertia, out, budget, every):
     """:func:`fixed_step` of a torque-free body whose state stays in registers: one loop over numbers.
 
     ``steps(params, n, h, i0, i1, i2, s, pending) -> (s, pending)`` takes
@@ -503,8 +518,7 @@ def _register_run(steps, at_output, from_omega, params, t_out, grid, state, iner
     the last) and returns the sample ``(ω′, q)``; ``from_omega(params, i0,
     i1, i2, s)`` turns ``(ω′, q)`` into the method's state. ``pending``
     is a method's deferred work (see :func:`_splitting_free`). A pause keeps
-    the state's first three components and ``pending`` in ``state[2:6]``
-    (``state[6:9]`` keeps ω′ at the start).
+    the state and ``pending`` in row ``b`` of ``state`` (:class:`Steps`).
 
     No array is handed to a helper in the loop: numba would update its
     reference count per interval, and the output's and the moments' counts
@@ -512,10 +526,12 @@ def _register_run(steps, at_output, from_omega, params, t_out, grid, state, iner
     cores (this cost more than the steps of a dense run).
     """
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
-    k, s0, pending = int(state[0]), int(state[1]), state[2]
-    s = (state[3], state[4], state[5], state[9], state[10], state[11], state[12])
+    k, s0, pending = state.interval[b], state.step[b], state.pending[b]
+    r = state.registers
+    s = (r[b, 0], r[b, 1], r[b, 2], r[b, 3], r[b, 4], r[b, 5], r[b, 6])
     if k < 0:
-        s = (state[6], state[7], state[8], s[3], s[4], s[5], s[6])
+        y = state.y
+        s = (y[b, 0], y[b, 1], y[b, 2], y[b, 3], y[b, 4], y[b, 5], y[b, 6])
         out[0, 0], out[0, 1], out[0, 2], out[0, 3], out[0, 4], out[0, 5], out[0, 6] = _sample(*s)
         s = from_omega(params, i0, i1, i2, s)
         k, pending = 0, 0.0
@@ -524,9 +540,8 @@ def _register_run(steps, at_output, from_omega, params, t_out, grid, state, iner
     taken = 0
     while k < last:
         if taken >= budget:
-            state[0], state[1], state[2] = k, s0, pending
-            state[3], state[4], state[5] = s[0], s[1], s[2]
-            state[9], state[10], state[11], state[12] = s[3], s[4], s[5], s[6]
+            state.interval[b], state.step[b], state.pending[b] = k, s0, pending
+            r[b, 0], r[b, 1], r[b, 2], r[b, 3], r[b, 4], r[b, 5], r[b, 6] = s
             return PAUSED
         h, n_sub = grid[0, k], int(grid[1, k])
         n = min(n_sub - s0, budget - taken)
@@ -588,7 +603,7 @@ def _momentum(params, i0, i1, i2, s):
 
 
 @cached
-def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
+def _splitting_free(weights, t_out, grid, state, b, inertia, out, budget, every):
     """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
 
     Each step is a composition of Strang steps of sizes ``weights·h``.
@@ -608,8 +623,8 @@ def _splitting_free(weights, t_out, grid, state, inertia, out, budget, every):
     bits) take two, evaluated side by side. At the last time the pending
     flow is applied before the sample, as at the end of a run.
     """
-    return _register_run(_strang_steps, _strang_output, _momentum, weights, t_out, grid, state, inertia, out, budget,
-                         every)
+    return _register_run(_strang_steps, _strang_output, _momentum, weights, t_out, grid, state, b, inertia, out,
+                         budget, every)
 
 
 @cached
@@ -631,9 +646,9 @@ def _same(params, i0, i1, i2, s):
 
 
 @cached
-def _rk4_free(t_out, grid, state, inertia, out, budget, every):
+def _rk4_free(t_out, grid, state, b, inertia, out, budget, every):
     """:func:`fixed_step` of ``rk4`` without torque, its state ``(ω′, q)`` in registers."""
-    return _register_run(_rk4_steps, _rk4_output, _same, None, t_out, grid, state, inertia, out, budget, every)
+    return _register_run(_rk4_steps, _rk4_output, _same, None, t_out, grid, state, b, inertia, out, budget, every)
 
 
 # inlined: LLVM kept it out of line, a call per output interval
@@ -665,8 +680,10 @@ def _flows_at_output(p, ahead, i0, s):
 
 
 @cached
-def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every):
-    """Fixed-step integration; output interval k is split into the ``grid[1, k]`` steps of size ``grid[0, k]``.
+def fixed_step(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: Steps, b: int,
+               inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, out: NDArray[np.float64],
+               budget: int, every: int) -> int:
+    """Fixed-step integration of body ``b`` of ``state``; interval k takes ``grid[1, k]`` steps of size ``grid[0, k]``.
 
     At most ``budget`` steps per call (see the module note). The grid comes
     from :func:`step_grid`, and the caller has checked that every step count
@@ -674,20 +691,20 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
     when ``every`` divides ``k`` (decimated output: the same steps, fewer
     samples kept).
     """
-    ny = state.size - 6
+    ny = state.y.shape[1]
     if ny == 7 and rows is None and method == SPLITTING:
-        return _splitting_free((1.0,), t_out, grid, state, inertia, out, budget, every)
+        return _splitting_free((1.0,), t_out, grid, state, b, inertia, out, budget, every)
     if ny == 7 and rows is None and method == SPLITTING4:
-        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, grid, state, inertia, out,
+        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, grid, state, b, inertia, out,
                                budget, every)
     if ny == 7 and rows is None and method == RK4:
-        return _rk4_free(t_out, grid, state, inertia, out, budget, every)
+        return _rk4_free(t_out, grid, state, b, inertia, out, budget, every)
     y = np.empty(ny)
     for i in range(ny):
-        y[i] = state[6 + i]
+        y[i] = state.y[b, i]
     wa, wb, wc, wd, scratch = np.empty(8), np.empty(8), np.empty(28), np.empty(12), np.empty(13)
-    k = int(state[0])
-    s0 = int(state[1])
+    k = state.interval[b]
+    s0 = state.step[b]
     if k < 0:
         for i in range(7, ny):
             out[0, i] = y[i]
@@ -698,10 +715,10 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
     taken = 0
     while k < t_out.size - 1:
         if taken >= budget:
-            state[0] = k
-            state[1] = s0
+            state.interval[b] = k
+            state.step[b] = s0
             for i in range(ny):
-                state[6 + i] = y[i]
+                state.y[b, i] = y[i]
             return PAUSED
         h, n_sub = grid[0, k], int(grid[1, k])
         n = min(n_sub - s0, budget - taken)
@@ -746,36 +763,45 @@ def fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budg
 
 
 @cached
-def _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget):
-    # its own function, not inlined into run: LLVM optimises the stage loop better alone
-    model = (inertia, mass, rows, frows, np.empty(13))
-    return integrate_steps(_model_rhs, model, t_out, state, rtol, atol, np.inf, tables, out, False, budget, 3)
+def run_dop853(t_out: NDArray[np.float64], runs: Runs, b: int, inertia: NDArray[np.float64], mass: float, rows: _Rows,
+               frows: _Rows, rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64],
+               budget: int) -> int:
+    """Body ``b`` of ``runs``, at most ``budget`` DOP853 steps on: :func:`kreisel._compiled.dop853.advance`.
 
-
-@cached
-def run(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows,
-        rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], budget: int, every: int) -> int:
-    """One body, at most ``budget`` steps from ``state``: dispatch to DOP853 or a fixed-step method.
-
-    ``out[k]`` receives the state at ``t_out[k·every]`` with its attitude as a
-    unit quaternion. DOP853 takes ``every = 1`` and the decimated times
-    instead: its steps depend on the first and last output time only, so
-    ``t_out[::every]`` gives the same steps, hence the same bits.
+    ``out[k]`` receives the state at ``t_out[k]`` with its attitude as a unit
+    quaternion. Decimated output takes the decimated times: the steps depend
+    on the first and last output time only, so ``t_out[::every]`` gives the
+    same steps, hence the same bits.
     """
-    if method == DOP853:
-        return _dop853_run(t_out, state, inertia, mass, rows, frows, rtol, atol, tables, out, budget)
-    return fixed_step(method, t_out, grid, state, inertia, mass, rows, frows, out, budget, every)
+    model = (inertia, mass, rows, frows, np.empty(13))
+    return advance(_model_rhs, model, no_crossing, no_record, None, t_out, runs, b, new_work(runs.y.shape[1]), rtol,
+                   atol, np.inf, tables, out, False, budget, 3, True)
 
 
 @parallel
-def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: NDArray[np.float64], inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
-              rtol: float, atol: NDArray[np.float64], tables: _Tables, out: NDArray[np.float64], status: NDArray[np.int64], budget: int,
-              every: int) -> None:
-    """Many bodies, one per ``prange`` iteration: the same code as :func:`run`.
+def run_dop853_batch(t_out: NDArray[np.float64], runs: Runs, inertia: NDArray[np.float64], mass: NDArray[np.float64],
+                     rows: _Rows, frows: _Rows, rtol: float, atol: NDArray[np.float64], tables: _Tables,
+                     out: NDArray[np.float64], status: NDArray[np.int64], budget: int) -> None:
+    """Many bodies, one per ``prange`` iteration: the same code as :func:`run_dop853`.
 
     Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
     """
-    for b in prange(state.shape[0]):
+    for b in prange(status.size):
         if status[b] == PAUSED:
-            status[b] = run(method, t_out, grid, state[b], inertia[b], mass[b], rows, frows, rtol, atol[b],
-                            tables, out[b], budget, every)
+            # np.int64: a prange index is unsigned, and run_dop853 would be compiled again for it
+            status[b] = run_dop853(t_out, runs, np.int64(b), inertia[b], mass[b], rows, frows, rtol, atol[b], tables,
+                                   out[b], budget)
+
+
+@parallel
+def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: Steps,
+              inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
+              out: NDArray[np.float64], status: NDArray[np.int64], budget: int, every: int) -> None:
+    """Many bodies of a fixed-step ``method``, one per ``prange`` iteration: the same code as :func:`fixed_step`.
+
+    Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
+    """
+    for b in prange(status.size):
+        if status[b] == PAUSED:
+            status[b] = fixed_step(method, t_out, grid, state, np.int64(b), inertia[b], mass[b], rows, frows, out[b],
+                                   budget, every)

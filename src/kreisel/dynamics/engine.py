@@ -245,23 +245,37 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     if code == _integrators.DOP853:  # its steps do not depend on the output times in between: same bits
         t, every = np.ascontiguousarray(t[::every]), 1
     out = np.empty((count, (t.size - 1) // every + 1, ny))
-    grid = np.empty((2, 0)) if code == _integrators.DOP853 else _integrators.step_grid(t, dt)
-    # one array for the batch: a state per body would leave an array per body for the garbage collector to scan
-    state = _integrators.new_state(code, y0)
     status = np.full(count, _dop853.PAUSED, dtype=np.int64)
-    tables = _dop853.tableau()
+    # one state for the batch: a state per body would leave an array per body for the garbage collector to scan
+    if code == _integrators.DOP853:
+        runs = _dop853.new_runs(np.ascontiguousarray(y0, dtype=np.float64))
+        tables = _dop853.tableau()
 
-    def step(budget: int) -> bool:
-        if count == 1:
-            status[0] = _integrators.run(code, t, grid, state[0], moments[0], mass[0], rows, frows, rtol, atol[0],
-                                         tables, out[0], budget, every)
-        else:
-            _integrators.run_batch(code, t, grid, state, moments, mass, rows, frows, rtol, atol, tables, out, status,
-                                   budget, every)
-        return not np.any(status == _dop853.PAUSED)
+        def step(budget: int) -> bool:
+            if count == 1:
+                status[0] = _integrators.run_dop853(t, runs, 0, moments[0], mass[0], rows, frows, rtol, atol[0],
+                                                    tables, out[0], budget)
+            else:
+                _integrators.run_dop853_batch(t, runs, moments, mass, rows, frows, rtol, atol, tables, out, status,
+                                              budget)
+            return not np.any(status == _dop853.PAUSED)
 
-    def reached() -> float:
-        return _integrators.reached(code, t, dt, state[status == _dop853.PAUSED])
+        def reached() -> float:
+            return float(runs.t[status == _dop853.PAUSED].min())
+    else:
+        grid = _integrators.step_grid(t, dt)
+        state = _integrators.new_state(y0)
+
+        def step(budget: int) -> bool:
+            if count == 1:
+                status[0] = _integrators.fixed_step(code, t, grid, state, 0, moments[0], mass[0], rows, frows,
+                                                    out[0], budget, every)
+            else:
+                _integrators.run_batch(code, t, grid, state, moments, mass, rows, frows, out, status, budget, every)
+            return not np.any(status == _dop853.PAUSED)
+
+        def reached() -> float:
+            return _integrators.reached(t, dt, state, status == _dop853.PAUSED)
 
     callbacks = any(r is not None and np.any(r[:, 0] == _model_tables.CALLBACK) for r in (rows, frows))
     run_chunked(step, reached, t[-1], max_steps, 64 if callbacks else max(1, _FIRST_CHUNK_STEPS // count), progress)

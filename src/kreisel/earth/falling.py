@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compiled import cached, dop853 as _dop853, generic
+from .._compiled import cached, dop853 as _dop853, generic, inlined
 from .._validation import as_float_array, out_of_range, positive_array
 from ..frames.particle import builtin_parameters, builtin_rhs
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
@@ -74,42 +74,51 @@ def eastward_deflection(height, latitude_deg, g=9.80665, omega=OMEGA_EARTH):
 
 
 @generic
-def _to_ground(rhs, height, p, y, k, tmp, y_new, t_end, rtol, atol, max_step, tables, peak):
-    """Adaptive DOP853 steps from t = 0 until ``height(t, y, p)`` comes down through zero.
+def _landing(height, marks, t, y, t_new, y_new):
+    """The crossing hook of a flight (:func:`kreisel._compiled.dop853.advance`) down to ``height(t, y, p) = 0``.
 
-    Returns ``(status, t, t_new, h_taken)``: the crossing step goes from ``(t, y)``, its slope in
-    ``k[:n]``, to ``(t_new, y_new)``, its slope in stage 12 of ``k``. The steps stop exactly at
-    ``t_end`` on the way (``inf``: nowhere); ``peak`` receives the largest magnitude of each
-    component over the accepted steps.
+    ``marks = (p, peak, ends)``: the run stops before the step that comes
+    down through zero, whose ends ``(t, t_new)`` go to ``ends``; ``peak``
+    receives the largest magnitude of each component over the other steps.
     """
-    n = y.size
-    t = 0.0
-    rhs(t, y, p, k, 0)
-    h = _dop853.initial_step(rhs, p, t, y, k, max_step, rtol, atol, tmp, y_new)
-    while True:
-        status, t_new, h_taken, h_next = _dop853.advance(rhs, p, t, y, h, t_end, max_step, rtol, atol, tables, k,
-                                                         tmp, y_new)
-        if status != _dop853.OK:
-            return status, t, t, 0.0
-        if height(t_new, y_new, p) <= 0.0:
-            if height(t, y, p) > 0.0:
-                return status, t, t_new, h_taken
-            # a launch from the ground that is back below it after one step: shorten
-            h = 0.5 * h_taken
-            continue
-        t = t_new
-        h = h_next
-        for i in range(n):
-            y[i] = y_new[i]
-            k[i] = k[_dop853.N_STAGES * n + i]
-            peak[i] = max(peak[i], abs(y[i]))
-        if t == t_end:
-            t_end = np.inf
+    p, peak, ends = marks
+    if height(t_new, y_new, p) <= 0.0:
+        if height(t, y, p) > 0.0:
+            ends[0], ends[1] = t, t_new
+            return _dop853.STOP
+        # a launch from the ground that is back below it after one step: shorten
+        return _dop853.RETRY
+    for i in range(y_new.size):
+        peak[i] = max(peak[i], abs(y_new[i]))
+    return _dop853.ONWARD
+
+
+@generic
+def _fly(rhs, crossing, p, y0, t_out, rtol, atol, max_step, tables, peak):
+    """Adaptive DOP853 steps of ``rhs`` from ``(0, y0)`` that stop exactly at ``t_out`` on the way, to the landing.
+
+    Returns ``(status, runs, work, ends)``: :data:`kreisel._compiled.dop853.STOPPED`
+    and, when so, the run at the start ``ends[0]`` of the step across the
+    ground, its end ``ends[1]`` in ``work``; ``crossing`` is the hook
+    :func:`_landing` of the height.
+    """
+    n = y0.size
+    runs = _dop853.new_runs(y0.reshape((1, n)))
+    work = _dop853.new_work(n)
+    ends = np.zeros(2)
+    status = _dop853.advance(rhs, p, crossing, _dop853.no_record, (p, peak, ends), t_out, runs, 0, work, rtol, atol,
+                             max_step, tables, np.empty((t_out.size, n)), True, 2**62, -1, True)
+    return status, runs, work, ends
 
 
 @cached
 def _particle_height(t, y, p):
     return y[2]
+
+
+@inlined
+def _particle_landing(marks, t, y, t_new, y_new):
+    return _landing(_particle_height, marks, t, y, t_new, y_new)
 
 
 @cached
@@ -120,20 +129,22 @@ def _land_kernel(p, y0, rtol, atol, max_step, tables):
     loop, then its length is solved for by Newton's method on a single DOP853
     step (dz/dτ = ``y[5]``), so the landing state has the integrator's full order.
     """
-    n = y0.size
-    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
-    y = y0.copy()
-    y_new = np.empty(n)
-    tmp = np.empty(n)
-    status, t, _, h_taken = _to_ground(builtin_rhs, _particle_height, p, y, k, tmp, y_new, np.inf, rtol, atol, max_step,
-                                       tables, np.zeros(n))
-    if status != _dop853.OK:
-        return status, t, y
+    t_out = np.array([0.0, np.inf])
+    status, runs, work, ends = _fly(builtin_rhs, _particle_landing, p, y0, t_out, rtol, atol, max_step, tables,
+                                    np.zeros(y0.size))
+    if status != _dop853.STOPPED:
+        return status, 0.0, y0
+    y, y_new = runs.y[0], work.y_new
+    t, h_taken = ends[0], ends[1] - ends[0]
     # safeguarded Newton (bisection fallback) on the length of the last step
     lo, hi = 0.0, h_taken
     tau = h_taken * y[2] / (y[2] - y_new[2])
-    for _ in range(100):
-        _dop853.attempt(builtin_rhs, p, t, y, tau, tables, k, tmp, y_new)
+    converged = False
+    for iteration in range(101):
+        runs.h[0] = tau
+        _dop853.step_exactly(builtin_rhs, p, t_out, runs, 0, work, tables)
+        if converged or iteration == 100:
+            break
         if y_new[2] > 0.0:
             lo = tau
         else:
@@ -144,9 +155,6 @@ def _land_kernel(p, y0, rtol, atol, max_step, tables):
             new_tau = 0.5 * (lo + hi)
         converged = abs(new_tau - tau) <= 1e-15 * tau
         tau = new_tau
-        if converged:
-            break
-    _dop853.attempt(builtin_rhs, p, t, y, tau, tables, k, tmp, y_new)
     return _dop853.OK, t + tau, y_new
 
 
@@ -273,6 +281,11 @@ def _deviation_height(t, y, p):
     return _scaled_height(t, y[2], p[2], p[6])
 
 
+@inlined
+def _shell_landing(marks, t, y, t_new, y_new):
+    return _landing(_deviation_height, marks, t, y, t_new, y_new)
+
+
 @cached
 def _deviation_kernel(p, rtol, atol, max_step, tables, peak):
     """Integrate :func:`_deviation_rhs` to the landing; returns ``(status, sigma, u_x, u_y)`` there.
@@ -288,27 +301,26 @@ def _deviation_kernel(p, rtol, atol, max_step, tables, peak):
     n = 6
     s, w = p[2], p[6]
     flight = 2.0 * s
-    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
-    y = np.zeros(n)
-    y_new = np.empty(n)
-    tmp = np.empty(n)
-    anchor = np.empty(n)
-    slope = np.empty(n)
-    status, t, t_new, _ = _to_ground(_deviation_rhs, _deviation_height, p, y, k, tmp, y_new, flight, rtol, atol,
-                                     max_step, tables, peak)
-    if status != _dop853.OK:
+    t_out = np.array([0.0, flight, np.inf])
+    status, runs, work, ends = _fly(_deviation_rhs, _shell_landing, p, np.zeros(n), t_out, rtol, atol, max_step,
+                                    tables, peak)
+    if status != _dop853.STOPPED:
         return status, 0.0, 0.0, 0.0
-    # anchor at the end of the crossing step nearest T0 (T0 is one of its ends or outside it)
-    t_anchor = t_new if t_new <= flight else t
+    t, t_new = ends[0], ends[1]
+    y, y_new, k = runs.y[0], work.y_new, work.k
+    # the steps of Newton's method start from the anchor, the end of the crossing step nearest T0 (T0 is one of
+    # its ends or outside it)
+    late_anchor = t_new <= flight
+    t_anchor = t_new if late_anchor else t
     for i in range(n):
-        anchor[i] = y_new[i] if t_new <= flight else y[i]
-        slope[i] = k[_dop853.N_STAGES * n + i] if t_new <= flight else k[i]
+        y[i] = y_new[i] if late_anchor else y[i]
+        runs.f[0, i] = k[_dop853.N_STAGES * n + i] if late_anchor else k[i]
+    runs.t[0] = t_anchor
     lo, hi = t - flight, t_new - flight
     offset = t_anchor - flight
     sigma = offset / w
-    uz, vz = anchor[2], anchor[5]
-    for i in range(n):
-        y_new[i] = anchor[i]
+    uz, vz = y[2], y[5]
+    ux, uy = y[0], y[1]
     for _ in range(100):
         late = w * sigma
         g = uz - sigma * (s + 0.5 * late)
@@ -322,18 +334,15 @@ def _deviation_kernel(p, rtol, atol, max_step, tables, peak):
             new_sigma = 0.5 * (lo + hi) / w
         converged = g == 0.0 or abs(new_sigma - sigma) <= 1e-15 * abs(new_sigma)
         sigma = new_sigma
-        tau = w * sigma - offset
-        if tau == 0.0:
-            for i in range(n):
-                y_new[i] = anchor[i]
+        runs.h[0] = w * sigma - offset
+        if runs.h[0] == 0.0:
+            ux, uy, uz, vz = y[0], y[1], y[2], y[5]
         else:
-            for i in range(n):
-                k[i] = slope[i]
-            _dop853.attempt(_deviation_rhs, p, t_anchor, anchor, tau, tables, k, tmp, y_new)
-        uz, vz = y_new[2], y_new[5]
+            _dop853.step_exactly(_deviation_rhs, p, t_out, runs, 0, work, tables)
+            ux, uy, uz, vz = y_new[0], y_new[1], y_new[2], y_new[5]
         if converged:
             break
-    return _dop853.OK, sigma, y_new[0], y_new[1]
+    return _dop853.OK, sigma, ux, uy
 
 
 #: Smallest turn ω T (rad) of the Earth during a shell's flight T = 2 v sin(e)/g that

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .._compiled import cached, dop853 as _dop853
+from .._compiled import cached, dop853 as _dop853, inlined
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._validation import MAX_TURN, as_float, check_allocation, positive_float
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
@@ -101,86 +101,39 @@ def pendulum_rhs(t, y, p, out, offset):
     out[offset + 5] = (fz - fu * uz) / length - vv * uz
 
 
-# resumable state of _swing: time, next step, s = u_h·u̇_h, maxima found, started?, u and u̇, f(t, y)
-_T, _H, _S, _COUNT, _STARTED, _Y = 0, 1, 2, 3, 4, 5
-_PAUSED = _dop853.PAUSED
+@inlined
+def _swing_maximum(record, t, y, t_new, y_new):
+    """The crossing hook of :func:`_swing`: a maximum of the excursion, where s = u_h·u̇_h falls through zero."""
+    s_old = y[0] * y[3] + y[1] * y[4]
+    s_new = y_new[0] * y_new[3] + y_new[1] * y_new[4]
+    return _dop853.LOCATE if s_old > 0.0 and s_new <= 0.0 else _dop853.ONWARD
 
 
-def _swing_state(y0):
-    state = np.zeros(_Y + 12)
-    state[_Y:_Y + 6] = y0
-    return state
+@inlined
+def _record_maximum(record, n, t, y):
+    """The record hook of :func:`_swing`: (time, azimuth, tilt) of maximum ``n`` into column ``n`` of ``record``."""
+    if n == record.shape[1]:
+        return False
+    record[0, n] = t
+    record[1, n] = math.atan2(y[1], y[0])
+    record[2, n] = math.atan2(math.hypot(y[0], y[1]), -y[2])
+    return True
 
 
 @cached
-def _swing(p, state, duration, rtol, atol, max_step, tables, record, budget):
+def _swing(p, runs, duration, rtol, atol, max_step, tables, record, budget):
     """Integrate to ``duration`` recording each maximum of the horizontal excursion, at most ``budget`` steps.
 
-    A maximum is where s = u_h·u̇_h falls through zero; it is located inside
-    the step by bisection on the integrator's 7th-order dense output, and its
-    (time, azimuth, tilt) is written to the next column of ``record (3, capacity)``.
-    Returns a status of :mod:`kreisel._compiled.dop853`: ``PAUSED`` when the
-    budget ran out or ``record`` is full (``state``, see :func:`_swing_state`,
-    then holds where to continue).
+    Each maximum is located inside its step by bisection on the integrator's
+    7th-order dense output, and its (time, azimuth, tilt) is written to
+    column ``runs.found[0]`` of ``record (3, capacity)``. Returns a status of
+    :func:`kreisel._compiled.dop853.advance`: ``PAUSED`` when the budget ran
+    out or ``record`` is full.
     """
-    capacity = record.shape[1]
-    n = 6
-    k = np.empty(_dop853.N_STAGES_EXTENDED * n)
-    y = state[_Y:_Y + n].copy()
-    y_new = np.empty(n)
-    tmp = np.empty(n)
-    dense = np.empty((7, n))
-    z = np.empty(n)
-    t = state[_T]
-    count = int(state[_COUNT])
-    if state[_STARTED] == 0.0:
-        pendulum_rhs(t, y, p, k, 0)
-        h = _dop853.initial_step(pendulum_rhs, p, t, y, k, min(duration, max_step), rtol, atol, tmp, z)
-        s_old = y[0] * y[3] + y[1] * y[4]
-    else:
-        h = state[_H]
-        s_old = state[_S]
-        for i in range(n):
-            k[i] = state[_Y + n + i]
-    taken = 0
-    while t < duration:
-        if taken >= budget or count == capacity:
-            state[_T], state[_H], state[_S], state[_COUNT], state[_STARTED] = t, h, s_old, count, 1.0
-            for i in range(n):
-                state[_Y + i] = y[i]
-                state[_Y + n + i] = k[i]
-            return _PAUSED
-        taken += 1
-        status, t_new, h_taken, h = _dop853.advance(
-            pendulum_rhs, p, t, y, h, duration, max_step, rtol, atol, tables, k, tmp, y_new
-        )
-        if status != _dop853.OK:
-            return status
-        s_new = y_new[0] * y_new[3] + y_new[1] * y_new[4]
-        if s_old > 0.0 and s_new <= 0.0:
-            _dop853.dense_coefficients(pendulum_rhs, p, t, y, y_new, h_taken, tables, k, tmp, dense)
-            lo, hi = 0.0, 1.0
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                _dop853.interpolate(dense, y, mid, z)
-                if z[0] * z[3] + z[1] * z[4] > 0.0:
-                    lo = mid
-                else:
-                    hi = mid
-            _dop853.interpolate(dense, y, 0.5 * (lo + hi), z)
-            record[0, count] = t + 0.5 * (lo + hi) * h_taken
-            record[1, count] = math.atan2(z[1], z[0])
-            record[2, count] = math.atan2(math.hypot(z[0], z[1]), -z[2])
-            count += 1
-        s_old = s_new
-        t = t_new
-        for i in range(n):
-            y[i] = y_new[i]
-            k[i] = k[_dop853.N_STAGES * n + i]
-    state[_T], state[_COUNT] = t, count
-    for i in range(n):
-        state[_Y + i] = y[i]
-    return _dop853.OK
+    t_out = np.array([0.0, duration])
+    return _dop853.advance(pendulum_rhs, p, _swing_maximum, _record_maximum, record, t_out, runs, 0,
+                           _dop853.new_work(runs.y.shape[1]), rtol, atol, max_step, tables, np.empty((2, 6)), False,
+                           budget, -1, True)
 
 
 class FoucaultSwing:
@@ -336,9 +289,9 @@ def foucault_pendulum(
     rtol = float(rtol)
     record = [np.empty((3, 64))]
 
-    def advance(state, budget):
+    def advance(runs, budget):
         # two maxima a period, at least 16 steps a period: room for all maxima of the chunk
-        count = int(state[_COUNT])
+        count = int(runs.found[0])
         needed = count + budget // 8 + 2
         if needed > record[0].shape[1]:
             size = max(needed, 2 * record[0].shape[1])
@@ -346,17 +299,17 @@ def foucault_pendulum(
             grown = np.empty((3, size))
             grown[:, :count] = record[0][:, :count]
             record[0] = grown
-        return _swing(p, state, duration, rtol, atol, max_step, tables, record[0], budget)
+        return _swing(p, runs, duration, rtol, atol, max_step, tables, record[0], budget)
 
-    state = _swing_state(y0)
-    _dop853.check_status(run_resumable(advance, state, duration, max_steps, 2**14, _PAUSED))
-    count = int(state[_COUNT])
+    runs = _dop853.new_runs(y0[None])
+    _dop853.check_status(run_resumable(advance, runs, duration, max_steps, 2**14, _dop853.PAUSED))
+    count = int(runs.found[0])
     if count == 0:
         raise ValueError(f"duration and length: in {duration:g} s the bob of a {length:g} m pendulum (period "
                          f"{period:.3g} s) reached no excursion after its release, so there is no swing plane to "
                          "measure; simulate for more than half a period")
     times, az, tilt = record[0][:, :count]
-    y_end = state[_Y:_Y + 6].copy()
+    y_end = runs.y[0].copy()
     t = np.concatenate([[0.0], times[:count]])
     raw = np.concatenate([[azimuth], az[:count]])
     # the bob reaches opposite ends of the swing line in turn: unwrap modulo π

@@ -95,9 +95,10 @@ def builtin_parameters(omega, omega_dot=(0.0, 0.0, 0.0), a0=(0.0, 0.0, 0.0), fie
 
 
 @cached
-def _integrate_builtin(p, t, state, rtol, atol, max_step, tables, out, budget):
+def _integrate_builtin(p, t, runs, rtol, atol, max_step, tables, out, budget):
     # a fixed right-hand side makes the whole compiled loop cacheable (see kreisel._compiled.dop853)
-    return _dop853.integrate_steps(builtin_rhs, p, t, state, rtol, atol, max_step, tables, out, True, budget)
+    return _dop853.advance(builtin_rhs, p, _dop853.no_crossing, _dop853.no_record, None, t, runs, 0,
+                           _dop853.new_work(runs.y.shape[1]), rtol, atol, max_step, tables, out, True, budget, -1, True)
 
 
 def _vector(value, name):
@@ -133,8 +134,9 @@ def callback_rhs(t, y, p, out, offset):
 
 
 @cached
-def _integrate_callbacks(p, t, state, rtol, atol, max_step, tables, out, budget):
-    return _dop853.integrate_steps(callback_rhs, p, t, state, rtol, atol, max_step, tables, out, True, budget)
+def _integrate_callbacks(p, t, runs, rtol, atol, max_step, tables, out, budget):
+    return _dop853.advance(callback_rhs, p, _dop853.no_crossing, _dop853.no_record, None, t, runs, 0,
+                           _dop853.new_work(runs.y.shape[1]), rtol, atol, max_step, tables, out, True, budget, -1, True)
 
 
 def _model(omega, omega_dot, a0, force, mass, field, spring):
@@ -320,8 +322,8 @@ def simulate_particle(
         acc0 = _vector(a0, "a0")
         p = builtin_parameters(w, omega_dot=wdot, a0=acc0, field=gravity, spring=spring, t0=t[0])
         status = run_resumable(
-            lambda state, budget: _integrate_builtin(p, t, state, rtol, atol, max_step, tables, y, budget),
-            _dop853.new_state(y0), t[-1], max_steps, 2**14, _dop853.PAUSED)
+            lambda runs, budget: _integrate_builtin(p, t, runs, rtol, atol, max_step, tables, y, budget),
+            _dop853.new_runs(y0[None]), t[-1], max_steps, 2**14, _dop853.PAUSED)
         omega_t = w + wdot * (t - t[0])[:, None]
         a0_t = np.broadcast_to(acc0, (t.size, 3)).copy()
     else:
@@ -337,9 +339,9 @@ def simulate_particle(
         _MODELS[key] = _model(omega, omega_dot, a0, force, mass, gravity.copy(), spring)
         try:
             status = run_resumable(
-                lambda state, budget: _integrate_callbacks(np.array([float(key)]), t, state, rtol, atol, max_step,
-                                                           tables, y, budget),
-                _dop853.new_state(y0), t[-1], max_steps, 64, _dop853.PAUSED)
+                lambda runs, budget: _integrate_callbacks(np.array([float(key)]), t, runs, rtol, atol, max_step,
+                                                          tables, y, budget),
+                _dop853.new_runs(y0[None]), t[-1], max_steps, 64, _dop853.PAUSED)
         finally:
             del _MODELS[key]
         omega_t = _sample(omega, "omega", t)
