@@ -73,8 +73,8 @@ def _vee(m00: float, m01: float, m02: float, m03: float, m10: float, m11: float,
 def _coupling(ux: float, uy: float, uz: float, angle: float, v0: float, v1: float, v2: float) -> tuple[float, ...]:
     """Barfoot's Q(ω, v) for ω = angle u, row by row: the lower-left block of the SE(3) left Jacobian.
 
-    ``Q = ½V + b(WV + VW + WVW) + c(WWV + VWW − 3WVW) + d(WVW W + W WVW)``, W = hat(ω), V = hat(v), is
-    with ``hat(a) hat(b) = b aᵀ − (a·b) 1`` and p = u·v, n = |u|²:
+    ``Q = ½V + b(WV + VW + WVW) + c(WWV + VWW − 3WVW) + d(WVW W + W WVW)``, W = hat(ω), V = hat(v), is,
+    by ``hat(a) hat(b) = b aᵀ − (a·b) 1`` and with p = u·v, n = |u|²,
     ``hat(h) + bθ (u vᵀ + v uᵀ) + 2p (dθ³ n − bθ) 1 − 2 dθ³ p u uᵀ``, h = (½ − cθ² n) v + (2cθ² − bθ²) p u,
     with the coefficients times the matching powers of θ (:func:`~kreisel._compiled.dexp.se3_coupling_coefficients`):
     no entry over- or underflows for any finite ω, and no 3×3 product is formed.
