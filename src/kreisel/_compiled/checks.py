@@ -52,6 +52,14 @@ def quaternion_array(q: ArrayLike, name: str = "q", nonzero: bool = True) -> NDA
     return a
 
 
+def direction_array(v: ArrayLike, name: str) -> NDArray[np.float64]:
+    """Directions ``(..., 3)``: finite nonzero vectors."""
+    a = vector_array(v, name)
+    if a.size and not np.abs(a).max(axis=-1).min() > 0.0:
+        raise ValueError(f"{name} must be nonzero (a zero vector has no direction)")
+    return a
+
+
 def rotvec_array(psi: ArrayLike, name: str, what: str = "|psi|") -> NDArray[np.float64]:
     """Rotation vectors ``(..., 3)``: finite and at most ``ROTVEC_RANGE`` long.
 
@@ -82,12 +90,57 @@ def matrix_array(R: ArrayLike, name: str = "R", tolerance: float = ORTHOGONALITY
     return checked_rotation_matrices(a, name, worst, smallest_det, tolerance)
 
 
+def gibbs_quaternion_array(q: ArrayLike, name: str = "q") -> NDArray[np.float64]:
+    """Rotations ``(..., 4)`` with a finite Gibbs vector ``q_v / q0``: no half turn (q0 = 0)."""
+    a = quaternion_array(q, name)
+    if np.any(a[..., 0] == 0.0):
+        raise ValueError(f"{name} must not be a half-turn (ψ = π): its Gibbs vector is infinite")
+    return a
+
+
+#: How far from unitary with unit determinant an SU(2) input may be.
+SU2_TOLERANCE = 1e-6
+
+
+def su2_array(u: ArrayLike, name: str = "u") -> NDArray[np.float64]:
+    """SU(2) matrices ``[[a, b], [-b*, a*]]`` as real and imaginary parts ``(..., 2, 2, 2)``, |a|² + |b|² = 1.
+
+    Both copies of ``a`` and ``b`` must agree, and ``|(a, b)|`` be 1, within :data:`SU2_TOLERANCE`.
+    """
+    parts = finite_array(u, name, (2, 2, 2))
+    c = parts[..., 0] + 1j * parts[..., 1]
+    mismatch = np.maximum(np.abs(c[..., 0, 0] - c[..., 1, 1].conj()), np.abs(c[..., 0, 1] + c[..., 1, 0].conj()))
+    if mismatch.size and np.max(mismatch) > SU2_TOLERANCE:
+        raise ValueError(f"{name} must have the SU(2) form [[a, b], [-conj(b), conj(a)]]")
+    a = 0.5 * (c[..., 0, 0] + c[..., 1, 1].conj())
+    b = 0.5 * (c[..., 0, 1] - c[..., 1, 0].conj())
+    length = np.linalg.norm(np.stack([a.real, -b.imag, -b.real, -a.imag], axis=-1), axis=-1)
+    if length.size and np.max(np.abs(length - 1.0)) > SU2_TOLERANCE:
+        raise ValueError(f"{name} must be special unitary: |a|² + |b|² = 1 (within {SU2_TOLERANCE:g})")
+    return parts
+
+
 def _nonzero_condition(names: Sequence[str]) -> str:
     return f"({finite_condition(names)}) & (({' | '.join(f'({n} != 0.0)' for n in names)}))"
 
 
 def _rotvec_condition(names: Sequence[str]) -> str:
     return f"({' + '.join(f'{n} * {n}' for n in names)} <= {ROTVEC_RANGE_SQUARED!r})"
+
+
+def _gibbs_condition(names: Sequence[str]) -> str:
+    return f"({finite_condition(names)}) & ({names[0]} != 0.0)"
+
+
+def _su2_condition(names: Sequence[str]) -> str:
+    # the full check's arithmetic: complex moduli as hypot, |q| as the square root of the squares in order
+    r00, i00, r01, i01, r10, i10, r11, i11 = names
+    a_re, a_im = f"(0.5 * ({r00} + {r11}))", f"(0.5 * ({i00} - {i11}))"
+    b_re, b_im = f"(0.5 * ({r01} - {r10}))", f"(0.5 * ({i01} + {i10}))"
+    length = f"np.sqrt({a_re} * {a_re} + {b_im} * {b_im} + {b_re} * {b_re} + {a_im} * {a_im})"
+    return (f"(np.hypot({r00} - {r11}, {i00} + {i11}) <= {SU2_TOLERANCE!r}) & "
+            f"(np.hypot({r01} + {r10}, {i01} - {i10}) <= {SU2_TOLERANCE!r}) & "
+            f"(abs({length} - 1.0) <= {SU2_TOLERANCE!r})")
 
 
 def _matrix_condition(names: Sequence[str], defect: float = ROUNDING_DEFECT) -> str:
@@ -157,8 +210,14 @@ VECTOR = Kind(finite_condition, lambda a, name: finite_array(a, name, None))
 ANY_QUATERNION = Kind(finite_condition, lambda a, name: quaternion_array(a, name, nonzero=False))
 #: Finite nonzero quaternions: rotations, normalised where the formula needs it.
 QUATERNION = Kind(_nonzero_condition, quaternion_array)
+#: Directions: finite nonzero vectors, of any length.
+DIRECTION = Kind(_nonzero_condition, direction_array)
+#: Rotations other than half turns (finite nonzero quaternions with q0 != 0), whose Gibbs vector is finite.
+GIBBS_QUATERNION = Kind(_gibbs_condition, gibbs_quaternion_array)
 #: Rotation matrices: orthonormal to rounding in the loop; projected within the tolerance, else refused.
 MATRIX = Kind(_matrix_condition, matrix_array)
+#: SU(2) matrices as real and imaginary parts, unitary with unit determinant within :data:`SU2_TOLERANCE`.
+SU2 = Kind(_su2_condition, su2_array)
 
 
 def rotation_vector(what: str = "|psi|") -> Kind:
@@ -180,6 +239,7 @@ POSE_MATRIX = _within(_pose_matrix_condition, 16, "rigid: bottom row (0, 0, 0, 1
 #: Unit dual quaternions ``(8,)``, to within ``ORTHOGONALITY_TOLERANCE``.
 UNIT_DUAL_QUATERNION = _within(_unit_dual_condition, 8, "unit dual quaternions: |q_r| = 1 and q_r·q_d = 0")
 
-__all__ = ["ANY_QUATERNION", "MATRIX", "POSE", "POSE_MATRIX", "QUATERNION", "ROTVEC", "TWIST", "UNIT_DUAL_QUATERNION",
-           "VECTOR", "finite_array", "matrix_array", "quaternion_array", "refuse_nonfinite", "rotation_vector",
-           "rotvec_array", "twist_array", "vector_array"]
+__all__ = ["ANY_QUATERNION", "DIRECTION", "GIBBS_QUATERNION", "MATRIX", "POSE", "POSE_MATRIX", "QUATERNION", "ROTVEC",
+           "SU2", "SU2_TOLERANCE", "TWIST", "UNIT_DUAL_QUATERNION", "VECTOR", "direction_array", "finite_array",
+           "gibbs_quaternion_array", "matrix_array", "quaternion_array", "refuse_nonfinite", "rotation_vector",
+           "rotvec_array", "su2_array", "twist_array", "vector_array"]
