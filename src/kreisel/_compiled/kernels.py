@@ -258,6 +258,18 @@ def rotvec_quat(x: float, y: float, z: float) -> tuple[float, float, float, floa
     return rotvec_quat_from(x, y, z, a, sin_half, cos_half)
 
 
+@inlined
+def rotvec_quat_in_range(x: float, y: float, z: float) -> tuple[float, float, float, float]:
+    """:func:`rotvec_quat` of a rotation vector at most ``SINCOS_RANGE`` rad long, to the bit.
+
+    What the rotation-vector checks admit (at most 1e8 rad); longer vectors give meaningless
+    numbers. No libm call and no scaling branch: a loop over it vectorises.
+    """
+    a = math.sqrt(x * x + y * y + z * z)
+    sin_half, cos_half = sincos(0.5 * a)
+    return rotvec_quat_from(x, y, z, a, sin_half, cos_half)
+
+
 @vectorised
 def quat_rotvec(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float]:
     """Logarithm of a nonzero quaternion as a rotation vector with |ψ| <= π.
