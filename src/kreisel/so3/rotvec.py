@@ -7,21 +7,22 @@ displacement) parametrises ``R(ψ) = exp(ψ_j X_j)`` with the generators
 
 from __future__ import annotations
 
+import copy
+import functools
 import math
 from fractions import Fraction
 
 import numpy as np
-from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import cached, kernels, parallel
-from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import (
-    checked_in_one_pass, finite_array, gufunc, in_pieces, matrix_array, piece_results, pieces, quaternion_array,
-    refuse_rotvecs, rotvec_array, rotvec_in_range, vector_array,
+from .._compiled import kernels
+from .._compiled.checks import (
+    DIRECTION, MATRIX, QUATERNION, ROTVEC, VECTOR, rotation_vector, rotvec_array, vector_array,
 )
+from .._compiled.elementwise import ArrayOperation, Input, declare, elementwise, kernel, uses
+from .._compiled.outputs import deliver, takes_out
 from .._validation import as_float_array, check_flag
-from .._norms import norm, unit
+from .._norms import norm
 
 __all__ = [
     "generators",
@@ -39,90 +40,55 @@ __all__ = [
 ]
 
 
-@cached
+@kernel
+def _hat(x: float, y: float, z: float) -> tuple[float, ...]:
+    return 0.0, -z, y, z, 0.0, -x, -y, x, 0.0
+
+
+@kernel
+def _vee(a00: float, a01: float, a02: float, a10: float, a11: float, a12: float, a20: float, a21: float,
+         a22: float) -> tuple[float, float, float]:
+    return 0.5 * (a21 - a12), 0.5 * (a02 - a20), 0.5 * (a10 - a01)
+
+
+@kernel
+def _rotvec_matrix(x: float, y: float, z: float) -> tuple[float, ...]:
+    q0, q1, q2, q3 = kernels.rotvec_quat_in_range(x, y, z)
+    return kernels.quat_matrix(q0, q1, q2, q3)
+
+
+@kernel
 def _matrix_rotvec(r00: float, r01: float, r02: float, r10: float, r11: float, r12: float, r20: float, r21: float,
                    r22: float) -> tuple[float, float, float]:
     q0, q1, q2, q3 = kernels.matrix_entries_quat(r00, r01, r02, r10, r11, r12, r20, r21, r22)
     return kernels.quat_rotvec(q0, q1, q2, q3)
 
 
-#: Rotation vectors per piece of the multi-core exp loops (each piece runs the vectorised block
-#: kernels of :mod:`kreisel._compiled.kernels` over its range).
-_PIECE = 4096
+@kernel
+def _axis_angle_rotvec(x: float, y: float, z: float, angle: float) -> tuple[float, float, float]:
+    # the axis divided by its largest |component| first, so that no square over- or underflows
+    m = max(max(abs(x), abs(y)), abs(z))
+    x, y, z = x / m, y / m, z / m
+    n = math.sqrt(x * x + y * y + z * z)
+    return x / n * angle, y / n * angle, z / n * angle
 
 
-@parallel
-def _rotvec_to_quat_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    in_pieces(kernels.rotvec_quats, psi, out, _PIECE)  # psi checked (at most 1e8 rad long) by the caller
-
-
-@cached
-def _rotvec_quats_checked(psi: NDArray[np.float64], out: NDArray[np.float64], start: int, stop: int) -> bool:
-    # exp of each psi of rows start..stop-1 and whether all were finite and in
-    # range (the caller refuses the batch otherwise): one read of psi for the
-    # check and the result. The kernel turns NaN or inf into NaN without
-    # raising, so it runs unguarded.
-    flat = psi.reshape(psi.size)[3 * start:3 * stop]  # indices from 0 and a known stride: the check vectorises
-    ok = True
-    for i in range(0, flat.size, 3):
-        ok &= rotvec_in_range(flat[i], flat[i + 1], flat[i + 2])
-    kernels.rotvec_quats(psi, out, start, stop)
-    return ok
-
-
-@parallel
-def _rotvec_to_quat_checked(psi: NDArray[np.float64], out: NDArray[np.float64], chunk: int) -> np.bool_:
-    n = psi.shape[0]
-    return piece_results(_rotvec_quats_checked, (psi, out), n, chunk, np.empty(pieces(n, chunk), np.bool_)).all()
-
-
-@parallel
-def _quat_to_rotvec_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(q.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = kernels.quat_rotvec(q[i, 0], q[i, 1], q[i, 2], q[i, 3])
-
-
-@parallel
-def _rotvec_to_matrix_parallel(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    in_pieces(kernels.rotvec_matrices, psi, out, _PIECE)  # psi checked (at most 1e8 rad long) by the caller
-
-
-@parallel
-def _matrix_to_rotvec_parallel(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(R.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2] = _matrix_rotvec(
-            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
-        )
-
-
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(4)->(4)", parallel=_rotvec_to_quat_parallel)
-def _rotvec_to_quat(psi: NDArray[np.float64], carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2], out[3] = kernels.rotvec_quat(psi[0], psi[1], psi[2])
-
-
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(4),(3)->(3)", parallel=_quat_to_rotvec_parallel)
-def _quat_to_rotvec(q: NDArray[np.float64], carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2] = kernels.quat_rotvec(q[0], q[1], q[2], q[3])
-
-
-@gufunc(["void(f8[:], f8[:, :])"], "(3)->(3,3)", parallel=_rotvec_to_matrix_parallel)
-def _rotvec_to_matrix(psi: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    q0, q1, q2, q3 = kernels.rotvec_quat(psi[0], psi[1], psi[2])
-    kernels.write_matrix(q0, q1, q2, q3, out)
-
-
-@gufunc(["void(f8[:, :], f8[:])"], "(3,3)->(3)", parallel=_matrix_to_rotvec_parallel)
-def _matrix_to_rotvec(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    q0, q1, q2, q3 = kernels.matrix_quat(R)
-    out[0], out[1], out[2] = kernels.quat_rotvec(q0, q1, q2, q3)
-
-
-@gufunc(["void(f8[:], f8[:], f8[:])"], "(3),(3)->(3)")
-def _compose_rotvec(a: NDArray[np.float64], b: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    p0, p1, p2, p3 = kernels.rotvec_quat(a[0], a[1], a[2])
-    q0, q1, q2, q3 = kernels.rotvec_quat(b[0], b[1], b[2])
+@kernel
+def _compose(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> tuple[float, float, float]:
+    p0, p1, p2, p3 = kernels.rotvec_quat_in_range(ax, ay, az)
+    q0, q1, q2, q3 = kernels.rotvec_quat_in_range(bx, by, bz)
     r0, r1, r2, r3 = kernels.quat_product(p0, p1, p2, p3, q0, q1, q2, q3)
-    out[0], out[1], out[2] = kernels.quat_rotvec(r0, r1, r2, r3)
+    return kernels.quat_rotvec(r0, r1, r2, r3)
+
+
+@kernel
+def _adjoint(q00: float, q01: float, q02: float, q10: float, q11: float, q12: float, q20: float, q21: float,
+             q22: float, x: float, y: float, z: float) -> tuple[float, float, float]:
+    return q00 * x + q01 * y + q02 * z, q10 * x + q11 * y + q12 * z, q20 * x + q21 * y + q22 * z
+
+
+_PSI = Input("psi", (3,), ROTVEC)
+_R = Input("R", (3, 3), MATRIX)
 
 
 @takes_out(result="Result array of shape (3, 3, 3)")
@@ -141,8 +107,8 @@ def generators(*, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]
     return hat(np.eye(3), out=out)
 
 
-@takes_out
-def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_hat, [Input("v", (3,), VECTOR)], (3, 3))
+def hat(v, *, out=None):
     """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
     Parameters
@@ -162,17 +128,10 @@ def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
            [ 3.,  0., -1.],
            [-2.,  1.,  0.]])
     """
-    v = vector_array(v, "v")
-    A = np.zeros(v.shape + (3,))
-    x, y, z = v[..., 0], v[..., 1], v[..., 2]
-    A[..., 0, 1], A[..., 0, 2] = -z, y
-    A[..., 1, 0], A[..., 1, 2] = z, -x
-    A[..., 2, 0], A[..., 2, 1] = -y, x
-    return deliver(A, out)
 
 
-@takes_out
-def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_vee, [Input("A", (3, 3), VECTOR)], (3,))
+def vee(A, *, out=None):
     """Inverse of :func:`hat`: the vector of the skew part of ``A``.
 
     Uses ``(A - Aᵀ)/2``, so a matrix that is skew up to rounding maps to the
@@ -188,13 +147,10 @@ def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.f
     >>> vee(hat([1.0, 2.0, 3.0]))
     array([1., 2., 3.])
     """
-    A = finite_array(A, "A", (3, 3))
-    v = 0.5 * np.stack([A[..., 2, 1] - A[..., 1, 2], A[..., 0, 2] - A[..., 2, 0], A[..., 1, 0] - A[..., 0, 1]], axis=-1)
-    return deliver(v, out)
 
 
-@takes_out
-def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_rotvec_matrix, [_PSI], (3, 3))
+def rotvec_to_matrix(psi, *, out=None):
     """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
     Evaluated through the half-angle quaternion so that every entry is
@@ -220,11 +176,10 @@ def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) 
            [ 0.,  0., -1.],
            [ 0.,  1.,  0.]])
     """
-    return _rotvec_to_matrix(rotvec_array(psi, "psi"), out=out)
 
 
-@takes_out
-def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_matrix_rotvec, [_R], (3,))
+def matrix_to_rotvec(R, *, out=None):
     """Logarithm ``ψ = log R`` with |ψ| <= π.
 
     Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
@@ -236,9 +191,12 @@ def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     >>> matrix_to_rotvec(np.diag([1.0, -1.0, -1.0]))
     array([3.14159265, 0.        , 0.        ])
     """
-    return _matrix_to_rotvec(matrix_array(R, "R"), out=out)
 
 
+_exp = declare(kernels.rotvec_quat_in_range, [_PSI], (4,), name="rotvec_to_quat")
+
+
+@uses(_exp)
 @takes_out
 def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion exponential ``q = (cos(ψ/2), n sin(ψ/2))`` (Theory §A (4)).
@@ -262,23 +220,24 @@ def rotvec_to_quat(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     >>> np.round(rotvec_to_quat([0.0, 0.0, 2 * np.pi]), 12) + 0.0
     array([-1.,  0.,  0.,  0.])
     """
-    return exp_quat(psi, "psi", out)
+    return _exp(psi, out=out)
 
 
 def exp_quat(psi: ArrayLike, name: str, out: NDArray[np.float64] | None = None, what: str = "|psi|") -> NDArray[np.float64]:
     """:func:`rotvec_to_quat` of the argument ``name``, refused naming it and ``what`` its length is."""
-    a = as_float_array(psi, name, (3,), finite=False)
-    fused = checked_in_one_pass((a,), ((4,),), _rotvec_to_quat_checked) if out is None else None
-    if fused is not None:
-        (quats,), accepted = fused
-        if not accepted:
-            refuse_rotvecs(a, name, what)
-        return quats
-    return _rotvec_to_quat(rotvec_array(a, name, what), out=out)
+    return _exp_refusing(name, what)(psi, out=out)
 
 
-@takes_out
-def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@functools.cache
+def _exp_refusing(name: str, what: str) -> ArrayOperation:
+    """:func:`rotvec_to_quat`'s operation refusing its input as ``name``, its length as ``what``."""
+    operation = copy.copy(_exp)  # the compiled loops shared, as by ArrayOperation.renamed
+    operation.inputs = (Input(name, (3,), rotation_vector(what)),)
+    return operation
+
+
+@elementwise(kernels.quat_rotvec, [Input("q", (4,), QUATERNION)], (3,))
+def quat_to_rotvec(q, *, out=None):
     """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
 
     ``q`` and ``-q`` give the same ψ; ψ = 2 atan2(|v|, |q0|) is accurate at
@@ -294,7 +253,6 @@ def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     >>> quat_to_rotvec([0.0, 0.0, 0.0, 1.0])
     array([0.        , 0.        , 3.14159265])
     """
-    return _quat_to_rotvec(quaternion_array(q, "q"), out=out)
 
 
 def rotvec_to_axis_angle(psi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -321,6 +279,11 @@ def rotvec_to_axis_angle(psi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[n
     return axis, angle
 
 
+_axis_angle = declare(_axis_angle_rotvec, [Input("axis", (3,), DIRECTION), Input("angle", (), VECTOR)], (3,),
+                      name="axis_angle_to_rotvec")
+
+
+@uses(_axis_angle)
 @takes_out
 def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = False, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation vector ψ n from an axis (any nonzero length) and an angle.
@@ -330,15 +293,13 @@ def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = Fals
     >>> axis_angle_to_rotvec([0.0, 0.0, 2.0], 90.0, degrees=True)
     array([0.        , 0.        , 1.57079633])
     """
-    axis = vector_array(axis, "axis")
-    angle = finite_array(angle, "angle", ())
     if check_flag(degrees, "degrees"):
-        angle = np.deg2rad(angle)
-    return deliver(unit(axis, "axis") * angle[..., None], out)
+        angle = np.deg2rad(as_float_array(angle, "angle", (), finite=False))
+    return _axis_angle(axis, angle, out=out)
 
 
-@takes_out
-def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_compose, [Input("a", (3,), ROTVEC), Input("b", (3,), ROTVEC)], (3,))
+def compose_rotvec(a, b, *, out=None):
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
@@ -351,9 +312,6 @@ def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | Non
     >>> np.round(compose_rotvec([np.pi / 2, 0, 0], [0, np.pi / 2, 0]), 4)
     array([1.2092, 1.2092, 1.2092])
     """
-    a = rotvec_array(a, "a")
-    b = rotvec_array(b, "b")
-    return _compose_rotvec(a, b, out=out)
 
 
 def _bernoulli_even(n_max: int) -> list[float]:
@@ -433,8 +391,8 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
     return deliver(np.sum(Z[1:], axis=0), out)
 
 
-@takes_out
-def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_adjoint, [Input("Q", (3, 3), MATRIX), Input("psi", (3,), VECTOR)], (3,))
+def adjoint_action(Q, psi, *, out=None):
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
     Implements the identity of Theory §2.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the
@@ -454,7 +412,3 @@ def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | N
     >>> np.round(adjoint_action(Q, [0.1, 0.0, 0.0]), 12) + 0.0
     array([0. , 0.1, 0. ])
     """
-    # contiguous: einsum sums in another order over a strided Q, and the result would depend on the layout
-    Q = np.ascontiguousarray(matrix_array(Q, "Q"))
-    psi = np.ascontiguousarray(vector_array(psi, "psi"))
-    return deliver(np.einsum("...ij,...j->...i", Q, psi), out)
