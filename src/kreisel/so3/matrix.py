@@ -7,43 +7,19 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import prange
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled import kernels, parallel
+from .._compiled import kernels
+from .._compiled.checks import MATRIX, QUATERNION, finite_array
+from .._compiled.elementwise import Input, elementwise
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import finite_array, gufunc, matrix_array, quaternion_array
 from .._norms import nearest_rotation
 
 __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
-@parallel
-def _quat_to_matrix_parallel(q: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(q.shape[0]):
-        kernels.write_matrix_at(out, i, q[i, 0], q[i, 1], q[i, 2], q[i, 3])
-
-
-@parallel
-def _matrix_to_quat_parallel(R: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    for i in prange(R.shape[0]):
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = kernels.matrix_entries_quat(
-            R[i, 0, 0], R[i, 0, 1], R[i, 0, 2], R[i, 1, 0], R[i, 1, 1], R[i, 1, 2], R[i, 2, 0], R[i, 2, 1], R[i, 2, 2]
-        )
-
-
-@gufunc(["void(f8[:], f8[:], f8[:, :])"], "(4),(3)->(3,3)", parallel=_quat_to_matrix_parallel)
-def _quat_to_matrix(q: NDArray[np.float64], carrier3: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    kernels.write_matrix(q[0], q[1], q[2], q[3], out)
-
-
-@gufunc(["void(f8[:, :], f8[:], f8[:])"], "(3,3),(4)->(4)", parallel=_matrix_to_quat_parallel)
-def _matrix_to_quat(R: NDArray[np.float64], carrier4: NDArray[np.float64], out: NDArray[np.float64]) -> None:
-    out[0], out[1], out[2], out[3] = kernels.matrix_quat(R)
-
-
-@takes_out
-def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(kernels.quat_matrix, [Input("q", (4,), QUATERNION)], (3, 3))
+def quat_to_matrix(q, *, out=None):
     """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
     ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
@@ -68,11 +44,10 @@ def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    return _quat_to_matrix(quaternion_array(q, "q"), out=out)
 
 
-@takes_out
-def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(kernels.matrix_entries_quat, [Input("R", (3, 3), MATRIX)], (4,))
+def matrix_to_quat(R, *, out=None):
     """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
 
     Shepperd's method (largest of q0², q1², q2², q3² taken from the diagonal):
@@ -95,7 +70,6 @@ def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> N
     >>> matrix_to_quat([[-1.0, 0, 0], [0, -1.0, 0], [0, 0, 1.0]])    # π about z
     array([0., 0., 0., 1.])
     """
-    return _matrix_to_quat(matrix_array(R, "R"), out=out)
 
 
 @takes_out
