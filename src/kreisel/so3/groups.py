@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled.gufunc import quaternion_array
+from .._compiled.checks import quaternion_array
 from .._compiled.outputs import deliver, takes_out
 from .quaternion import quat_multiply, quat_normalize
 from .rotvec import rotvec_to_quat

@@ -11,24 +11,34 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import kernels
+from .._compiled.checks import QUATERNION, VECTOR, finite_array, quaternion_array
+from .._compiled.elementwise import Input, declare, kernel, uses
 from .._compiled.outputs import deliver, takes_out
-from .._compiled.gufunc import finite_array, gufunc, quaternion_array
 from .._norms import unit
+from .._validation import as_float_array
 from .quaternion import check_angle_multiple, quat_conjugate, quat_multiply
 
 __all__ = ["quat_slerp", "quat_mean"]
 
 
-@gufunc(["void(f8[:], f8[:], f8, f8[:])"], "(4),(4),()->(4)")
-def _slerp(p: NDArray[np.float64], q: NDArray[np.float64], t: float, out: NDArray[np.float64]) -> None:
-    # p exp(t log(p* q)), the shorter arc; quaternions are taken as unit.
-    p0, p1, p2, p3 = p[0], p[1], p[2], p[3]
-    r0, r1, r2, r3 = kernels.quat_product(p0, -p1, -p2, -p3, q[0], q[1], q[2], q[3])
+@kernel
+def _slerp(p0: float, p1: float, p2: float, p3: float, q0: float, q1: float, q2: float, q3: float,
+           t: float) -> tuple[float, float, float, float]:
+    # p exp(t log(p* q)) of the unit p and q, the shorter arc; |t| times its angle is at most 1e8 rad, as
+    # quat_slerp checks
+    p0, p1, p2, p3 = kernels.quat_unit(p0, p1, p2, p3)
+    q0, q1, q2, q3 = kernels.quat_unit(q0, q1, q2, q3)
+    r0, r1, r2, r3 = kernels.quat_product(p0, -p1, -p2, -p3, q0, q1, q2, q3)
     x, y, z = kernels.quat_rotvec(r0, r1, r2, r3)
-    s0, s1, s2, s3 = kernels.rotvec_quat(t * x, t * y, t * z)
-    out[0], out[1], out[2], out[3] = kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
+    s0, s1, s2, s3 = kernels.rotvec_quat_in_range(t * x, t * y, t * z)
+    return kernels.quat_product(p0, p1, p2, p3, s0, s1, s2, s3)
 
 
+_slerps = declare(_slerp, [Input("p", (4,), QUATERNION), Input("q", (4,), QUATERNION), Input("t", (), VECTOR)], (4,),
+                  name="quat_slerp")
+
+
+@uses(_slerps)
 @takes_out
 def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Spherical linear interpolation from rotation ``p`` (t = 0) to ``q`` (t = 1).
@@ -51,12 +61,12 @@ def quat_slerp(p: ArrayLike, q: ArrayLike, t: ArrayLike, *, out: NDArray[np.floa
     >>> np.round(q, 12)
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
-    p = quaternion_array(p, "p")
-    q = quaternion_array(q, "q")
-    t = finite_array(t, "t", ())
-    p, q = unit(p, "p"), unit(q, "q")
-    check_angle_multiple(t, lambda: quat_multiply(quat_conjugate(p), q), "t", "|t| times the angle from p to q")
-    return _slerp(p, q, t, out=out)
+    t = as_float_array(t, "t", (), finite=False)
+    if np.isfinite(t).all():
+        check_angle_multiple(t, lambda: quat_multiply(quat_conjugate(unit(quaternion_array(p, "p"), "p")),
+                                                      unit(quaternion_array(q, "q"), "q")),
+                             "t", "|t| times the angle from p to q")
+    return _slerps(p, q, t, out=out)
 
 
 @takes_out
