@@ -12,15 +12,14 @@ conversions keep the sign: both are double covers of SO(3).
 
 from __future__ import annotations
 
-from typing import cast
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._compiled.gufunc import quaternion_array
+from .._compiled import kernels
+from .._compiled.checks import QUATERNION, SU2, SU2_TOLERANCE
+from .._compiled.elementwise import Input, declare, elementwise, kernel, uses
 from .._compiled.outputs import deliver, takes_out
 from .._validation import as_float_array
-from .._norms import unit
 
 __all__ = [
     "quat_to_su2",
@@ -32,12 +31,39 @@ __all__ = [
     "euler_parameters_to_matrix",
 ]
 
-#: How far from unitary with unit determinant an SU(2) input may be.
-SU2_TOLERANCE = 1e-6
+
+@kernel
+def _su2(q0: float, q1: float, q2: float, q3: float) -> tuple[float, ...]:
+    # u = [[a, b], [-b*, a*]] of the unit q, a = q0 - i q3, b = -q2 - i q1, as real and imaginary parts
+    q0, q1, q2, q3 = kernels.quat_unit(q0, q1, q2, q3)
+    return q0, -q3, -q2, -q1, q2, -q1, q0, q3
 
 
-def _unit(q: ArrayLike, name: str = "q") -> NDArray[np.float64]:
-    return unit(quaternion_array(q, name), name)
+@kernel
+def _su2_quat(r00: float, i00: float, r01: float, i01: float, r10: float, i10: float, r11: float,
+              i11: float) -> tuple[float, float, float, float]:
+    # a and b averaged over their two copies, then q = (Re a, -Im b, -Re b, -Im a) normalised
+    a_re, a_im = 0.5 * (r00 + r11), 0.5 * (i00 - i11)
+    b_re, b_im = 0.5 * (r01 - r10), 0.5 * (i01 + i10)
+    return kernels.quat_unit(a_re, -b_im, -b_re, -a_im)
+
+
+@kernel
+def _conjugate_unit(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float, float]:
+    q0, q1, q2, q3 = kernels.quat_unit(q0, q1, q2, q3)
+    return q0, -q1, -q2, -q3
+
+
+@kernel
+def _transposed_matrix(e0: float, e1: float, e2: float, e3: float) -> tuple[float, ...]:
+    # the printed matrix of e is R(e*) = R(e)ᵀ
+    return kernels.quat_matrix(e0, -e1, -e2, -e3)
+
+
+_ROTATION = Input("q", (4,), QUATERNION)
+_su2_matrices = declare(_su2, [_ROTATION], (2, 2, 2), name="quat_to_su2")
+_su2_quats = declare(_su2_quat, [Input("u", (2, 2, 2), SU2)], (4,), name="su2_to_quat")
+_euler_parameters = declare(_conjugate_unit, [_ROTATION], (4,), name="quat_to_euler_parameters")
 
 
 def _complex_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> NDArray[np.complex128]:
@@ -51,14 +77,13 @@ def _complex_array(x: ArrayLike, name: str, tail: tuple[int, ...]) -> NDArray[np
     return a
 
 
-def _quat_from_ab(a: NDArray[np.complex128], b: NDArray[np.complex128], name: str) -> NDArray[np.float64]:
-    q = np.stack([a.real, -b.imag, -b.real, -a.imag], axis=-1)
-    norm = np.linalg.norm(q, axis=-1, keepdims=True)
-    if q.size and np.max(np.abs(norm - 1.0)) > SU2_TOLERANCE:
-        raise ValueError(f"{name} must be special unitary: |a|² + |b|² = 1 (within {SU2_TOLERANCE:g})")
-    return cast("NDArray[np.float64]", q / norm)
+def _parts(u: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """The real and imaginary parts of ``u`` along a new last axis (a view where ``u`` is C-ordered)."""
+    u = np.ascontiguousarray(u)
+    return u.view(np.float64).reshape(*u.shape, 2)
 
 
+@uses(_su2_matrices)
 @takes_out
 def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """SU(2) matrix ``u = exp(-i σ·ψ/2)`` of each quaternion (Theory §A (1), (4)).
@@ -79,12 +104,10 @@ def quat_to_su2(q: ArrayLike, *, out: NDArray[np.complex128] | None = None) -> N
     array([[0.877583-0.479426j, 0.      +0.j      ],
            [0.      +0.j      , 0.877583+0.479426j]])
     """
-    q = _unit(q)
-    a = q[..., 0] - 1j * q[..., 3]
-    b = -q[..., 2] - 1j * q[..., 1]
-    return deliver(np.stack([np.stack([a, b], axis=-1), np.stack([-b.conj(), a.conj()], axis=-1)], axis=-2), out)
+    return deliver(_su2_matrices(q).view(np.complex128)[..., 0], out)
 
 
+@uses(_su2_quats)
 @takes_out
 def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion of each SU(2) matrix (inverse of :func:`quat_to_su2`, sign kept).
@@ -97,13 +120,7 @@ def su2_to_quat(u: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     >>> su2_to_quat(np.array([[1j, 0], [0, -1j]])) + 0.0
     array([ 0.,  0.,  0., -1.])
     """
-    u = _complex_array(u, "u", (2, 2))
-    a = 0.5 * (u[..., 0, 0] + u[..., 1, 1].conj())
-    b = 0.5 * (u[..., 0, 1] - u[..., 1, 0].conj())
-    mismatch = np.maximum(np.abs(u[..., 0, 0] - u[..., 1, 1].conj()), np.abs(u[..., 0, 1] + u[..., 1, 0].conj()))
-    if mismatch.size and np.max(mismatch) > SU2_TOLERANCE:
-        raise ValueError("u must have the SU(2) form [[a, b], [-conj(b), conj(a)]]")
-    return deliver(_quat_from_ab(a, b, "u"), out)
+    return _su2_quats(_parts(_complex_array(u, "u", (2, 2))), out=out)
 
 
 @takes_out
@@ -125,6 +142,7 @@ def quat_to_cayley_klein(q: ArrayLike, *, out: NDArray[np.complex128] | None = N
     return deliver(u.reshape(u.shape[:-2] + (4,)), out)
 
 
+@uses(_su2_quats)
 @takes_out
 def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Quaternion from Cayley–Klein parameters ``(α, β, γ, δ)`` (inverse of :func:`quat_to_cayley_klein`).
@@ -135,9 +153,10 @@ def cayley_klein_to_quat(ck: ArrayLike, *, out: NDArray[np.float64] | None = Non
     array([ 1., -0., -0., -0.])
     """
     ck = _complex_array(ck, "ck", (4,))
-    return deliver(su2_to_quat(ck.reshape(ck.shape[:-1] + (2, 2))), out)
+    return _su2_quats.renamed(u="ck")(_parts(ck.reshape(ck.shape[:-1] + (2, 2))), out=out)
 
 
+@uses(_euler_parameters)
 @takes_out
 def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Euler parameters ``(e0, e1, e2, e3)`` as defined in the Theory §A (2).
@@ -157,10 +176,10 @@ def quat_to_euler_parameters(q: ArrayLike, *, out: NDArray[np.float64] | None = 
     >>> quat_to_euler_parameters([0.0, 0.0, 0.0, 1.0])
     array([ 0., -0., -0., -1.])
     """
-    e = _unit(q) * np.array([1.0, -1.0, -1.0, -1.0])
-    return deliver(e, out)
+    return _euler_parameters(q, out=out)
 
 
+@uses(_euler_parameters)
 @takes_out
 def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`quat_to_euler_parameters`: ``q = e*``.
@@ -170,11 +189,11 @@ def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = 
     >>> euler_parameters_to_quat([0.0, 0.0, 0.0, -1.0])
     array([ 0., -0., -0.,  1.])
     """
-    return deliver(_unit(e, "e") * np.array([1.0, -1.0, -1.0, -1.0]), out)
+    return _euler_parameters.renamed(q="e")(e, out=out)
 
 
-@takes_out
-def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_transposed_matrix, [Input("e", (4,), QUATERNION)], (3, 3))
+def euler_parameters_to_matrix(e, *, out=None):
     """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
     ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
@@ -190,13 +209,3 @@ def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None 
            [ 0.564642,  0.825336,  0.      ],
            [ 0.      ,  0.      ,  1.      ]])
     """
-    e0, e1, e2, e3 = np.moveaxis(_unit(e, "e"), -1, 0)
-    matrix = np.stack(
-        [
-            np.stack([e0**2 + e1**2 - e2**2 - e3**2, 2 * (e1 * e2 + e0 * e3), 2 * (e1 * e3 - e0 * e2)], axis=-1),
-            np.stack([2 * (e1 * e2 - e0 * e3), e0**2 - e1**2 + e2**2 - e3**2, 2 * (e2 * e3 + e0 * e1)], axis=-1),
-            np.stack([2 * (e1 * e3 + e0 * e2), 2 * (e2 * e3 - e0 * e1), e0**2 - e1**2 - e2**2 + e3**2], axis=-1),
-        ],
-        axis=-2,
-    )
-    return deliver(matrix, out)
