@@ -9,24 +9,48 @@ other parameters describing rigid-body motion).
 
 from __future__ import annotations
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
-from .._compiled.gufunc import quaternion_array, vector_array
-from .._compiled.outputs import deliver, takes_out
-from .._norms import norm, unit
+from .._compiled import kernels
+from .._compiled.checks import GIBBS_QUATERNION, QUATERNION, VECTOR
+from .._compiled.elementwise import Input, elementwise, kernel
 
 __all__ = ["quat_to_gibbs", "gibbs_to_quat", "quat_to_mrp", "mrp_to_quat"]
 
 
-def _canonical_unit(q: ArrayLike) -> NDArray[np.float64]:
-    q = quaternion_array(q, "q")
-    q = unit(q, "q")
-    return np.where(q[..., :1] < 0.0, -q, q)
+@kernel
+def _gibbs(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float]:
+    # q_v / q0 does not depend on the scale or sign of q
+    return q1 / q0, q2 / q0, q3 / q0
 
 
-@takes_out
-def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@kernel
+def _gibbs_quat(x: float, y: float, z: float) -> tuple[float, float, float, float]:
+    return kernels.quat_unit(1.0, x, y, z)
+
+
+@kernel
+def _mrp(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, float]:
+    q0, q1, q2, q3 = kernels.quat_unit(q0, q1, q2, q3)
+    if q0 < 0.0:
+        q0, q1, q2, q3 = -q0, -q1, -q2, -q3
+    d = 1.0 + q0
+    return q1 / d, q2 / d, q3 / d
+
+
+@kernel
+def _mrp_quat(x: float, y: float, z: float) -> tuple[float, float, float, float]:
+    # |p| > 1 goes through its shadow -p/|p|² (the same rotation, q -> -q): |p|² never overflows
+    length = kernels.norm3(x, y, z)
+    sign = 1.0
+    if length > 1.0:
+        x, y, z = -(x / length) / length, -(y / length) / length, -(z / length) / length
+        sign = -1.0
+    p2 = x * x + y * y + z * z
+    d = 1.0 + p2
+    return sign * ((1.0 - p2) / d), sign * (2.0 * x / d), sign * (2.0 * y / d), sign * (2.0 * z / d)
+
+
+@elementwise(_gibbs, [Input("q", (4,), GIBBS_QUATERNION)], (3,))
+def quat_to_gibbs(q, *, out=None):
     """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
 
     Examples
@@ -35,14 +59,10 @@ def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
     >>> np.round(quat_to_gibbs([np.cos(np.pi / 8), 0, 0, np.sin(np.pi / 8)]), 12)   # 90° about z
     array([0.        , 0.        , 0.41421356])
     """
-    q = _canonical_unit(q)
-    if np.any(q[..., 0] == 0.0):
-        raise ValueError("q must not be a half-turn (ψ = π): its Gibbs vector is infinite")
-    return deliver(q[..., 1:] / q[..., :1], out)
 
 
-@takes_out
-def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_gibbs_quat, [Input("g", (3,), VECTOR)], (4,))
+def gibbs_to_quat(g, *, out=None):
     """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
 
     Parameters
@@ -60,12 +80,10 @@ def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> ND
     >>> gibbs_to_quat([0.0, 0.0, 1.0])
     array([0.70710678, 0.        , 0.        , 0.70710678])
     """
-    g = vector_array(g, "g")
-    return deliver(unit(np.concatenate([np.ones(g.shape[:-1] + (1,)), g], axis=-1), "g"), out)
 
 
-@takes_out
-def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_mrp, [Input("q", (4,), QUATERNION)], (3,))
+def quat_to_mrp(q, *, out=None):
     """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
 
     Examples
@@ -74,12 +92,10 @@ def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     >>> np.round(quat_to_mrp([0.0, 1.0, 0.0, 0.0]), 12)   # half-turn about x
     array([1., 0., 0.])
     """
-    q = _canonical_unit(q)
-    return deliver(q[..., 1:] / (1.0 + q[..., :1]), out)
 
 
-@takes_out
-def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+@elementwise(_mrp_quat, [Input("p", (3,), VECTOR)], (4,))
+def mrp_to_quat(p, *, out=None):
     """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
 
     Parameters
@@ -97,11 +113,3 @@ def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDAr
     >>> mrp_to_quat([1.0, 0.0, 0.0])
     array([0., 1., 0., 0.])
     """
-    p = vector_array(p, "p")
-    # |p| > 1 goes through its shadow -p/|p|² (the same rotation, q -> -q): |p|² never overflows
-    length = norm(p, keepdims=True)
-    shadow = length > 1.0
-    p = np.where(shadow, -(p / np.where(shadow, length, 1.0)) / np.where(shadow, length, 1.0), p)
-    p2 = np.sum(p * p, axis=-1, keepdims=True)
-    q = np.concatenate([1.0 - p2, 2.0 * p], axis=-1) / (1.0 + p2)
-    return deliver(np.where(shadow, -q, q), out)
