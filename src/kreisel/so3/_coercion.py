@@ -21,8 +21,9 @@ from typing import TypeAlias, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.checks import matrix_array
+from .._norms import ORTHOGONALITY_TOLERANCE
 from .._validation import as_float_array
-from .._compiled.gufunc import ORTHOGONALITY_TOLERANCE, matrix_array, quaternion_array
 from .matrix import matrix_to_quat, quat_to_matrix
 from .quaternion import quat_normalize
 from .rotation import Rotation
@@ -40,15 +41,14 @@ def _is_scipy_rotation(obj: object) -> bool:
 
 
 def _array(rotation: RotationLike, name: str) -> NDArray[np.float64]:
+    """Quaternions or matrices ``(..., 3, 3)`` of ``rotation``, by shape; checked by their conversions."""
     if isinstance(rotation, Rotation):
         return rotation.as_quat()
     if _is_scipy_rotation(rotation):
         return rotation.as_quat(scalar_first=True)
     a = as_float_array(rotation, name, finite=False)
-    if a.shape[-2:] == (3, 3):
-        return matrix_array(a, name)
-    if a.shape[-1:] == (4,):
-        return quaternion_array(a, name)
+    if a.shape[-2:] == (3, 3) or a.shape[-1:] == (4,):
+        return a
     raise ValueError(
         f"{name} must be a Rotation, rotation matrices (..., 3, 3) or quaternions (..., 4), got shape {a.shape}"
     )
@@ -66,7 +66,9 @@ def as_quaternion(rotation: RotationLike, name: str = "rotation") -> NDArray[np.
     array([1., 0., 0., 0.])
     """
     a = _array(rotation, name)
-    return matrix_to_quat(a) if a.shape[-2:] == (3, 3) else quat_normalize(a)
+    if a.shape[-2:] == (3, 3):
+        return matrix_to_quat.__operation__.renamed(R=name)(a)
+    return quat_normalize.__operation__.renamed(q=name)(a)
 
 
 def as_rotation_matrix(rotation: RotationLike, name: str = "rotation") -> NDArray[np.float64]:
@@ -81,4 +83,6 @@ def as_rotation_matrix(rotation: RotationLike, name: str = "rotation") -> NDArra
            [ 0.,  0.,  1.]])
     """
     a = _array(rotation, name)
-    return a if a.shape[-2:] == (3, 3) else quat_to_matrix(a)
+    if a.shape[-2:] == (3, 3):
+        return matrix_array(a, name)
+    return quat_to_matrix.__operation__.renamed(q=name)(a)
