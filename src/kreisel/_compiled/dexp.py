@@ -15,15 +15,12 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import types
-from numpy.typing import NDArray
 
 from .._validation import ROTVEC_RANGE
 from . import cached, generic, kernels
 from .checks import ROTVEC, VECTOR
 from .elementwise import Input, Parameter, declare, kernel
-from .gufunc import gufunc
 from .series import (
     BORTZ_SERIES,
     BORTZ_SERIES_BELOW,
@@ -222,16 +219,6 @@ def jacobian_entries(ux: float, uy: float, uz: float, linear: float, quadratic: 
     )
 
 
-@cached
-def write_jacobian(ux: float, uy: float, uz: float, linear: float, quadratic: float, out: NDArray[np.float64]) -> None:
-    """``out =`` :func:`jacobian_entries`."""
-    (
-        out[0, 0], out[0, 1], out[0, 2],
-        out[1, 0], out[1, 1], out[1, 2],
-        out[2, 0], out[2, 1], out[2, 2],
-    ) = jacobian_entries(ux, uy, uz, linear, quadratic)  # fmt: skip
-
-
 _PSI, _V = Input("psi", (3,), VECTOR), Input("v", (3,), VECTOR)
 _SIGN = Parameter("sign", types.float64)
 #: ``J(ψ) v``; ``sign`` +1.0 (left) or −1.0 (right).
@@ -244,22 +231,27 @@ apply_jacobian_rate = declare(jacobian_rate_times, [_PSI, _V, Input("acc", (3,),
                               name="apply_jacobian_rate")
 
 
-@gufunc(["void(f8[:], f8, f8[:, :])"], "(3),()->(3,3)")
-def jacobian_matrix(psi: NDArray[np.float64], sign: float, out: NDArray[np.float64]) -> None:
-    """The matrices ``J(ψ)`` of validated ``(..., 3)`` rotation vectors."""
-    ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
+@kernel
+def _jacobian(x: float, y: float, z: float, sign: float) -> tuple[float, ...]:
+    ux, uy, uz, angle = axis_angle(x, y, z)
     a, b = dexp_coefficients(angle)
-    write_jacobian(ux, uy, uz, sign * a, b, out)
+    return jacobian_entries(ux, uy, uz, sign * a, b)
 
 
-@gufunc(["void(f8[:], f8, f8, f8[:, :])"], "(3),(),()->(3,3)")
-def jacobian_inverse_matrix(psi: NDArray[np.float64], sign: float, tol: float, out: NDArray[np.float64]) -> None:
-    """The matrices ``J(ψ)⁻¹``, all NaN at the poles as in :data:`apply_jacobian_inverse`."""
-    ux, uy, uz, angle = axis_angle(psi[0], psi[1], psi[2])
+@kernel
+def _jacobian_inverse(x: float, y: float, z: float, sign: float, tol: float) -> tuple[float, ...]:
+    ux, uy, uz, angle = axis_angle(x, y, z)
     if rotvec_singular(angle, tol):
-        out[:, :] = math.nan
-        return
-    write_jacobian(ux, uy, uz, -0.5 * sign * angle, bortz_times_square(angle), out)
+        nan = math.nan
+        return nan, nan, nan, nan, nan, nan, nan, nan, nan
+    return jacobian_entries(ux, uy, uz, -0.5 * sign * angle, bortz_times_square(angle))
+
+
+#: The matrices ``J(ψ)`` of rotation vectors ``(..., 3)``, taking ``(psi, sign)``.
+jacobian_matrix = declare(_jacobian, [_PSI], (3, 3), [_SIGN], name="jacobian_matrix")
+#: The matrices ``J(ψ)⁻¹``, taking ``(psi, sign, tol)``; all NaN at the poles as in :data:`apply_jacobian_inverse`.
+jacobian_inverse_matrix = declare(_jacobian_inverse, [Input("psi", (3,), ROTVEC)], (3, 3),
+                                  [_SIGN, Parameter("tol", types.float64)], name="jacobian_inverse_matrix", singular=True)
 
 
 @cached

@@ -28,9 +28,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dexp
-from .._compiled.gufunc import vector_array
+from .._compiled.elementwise import uses
 from .._compiled.outputs import takes_out
-from .._validation import check_tolerance, refuse_long_angle, warn_if_any
+from .._validation import as_float_array, check_tolerance, refuse_long_angle, warn_if_any
 from .._norms import norm
 from .euler import KinematicSingularityWarning
 
@@ -63,13 +63,14 @@ def singular_or_out_of_range(psi: NDArray[np.float64], values: NDArray[np.float6
 
 
 def _inverse(psi: ArrayLike, sign: float, tol: float, out: NDArray[np.float64] | None) -> NDArray[np.float64]:
-    vectors = vector_array(psi, "psi")
+    vectors = as_float_array(psi, "psi", (3,), finite=False)
     out = dexp.jacobian_inverse_matrix(vectors, sign, check_tolerance(tol), out=out)
     singular_or_out_of_range(vectors, out[..., 0, 0], RotationVectorSingularityWarning,
                              "SO(3) Jacobian inverse at |psi| = 2*pi*k")
     return out
 
 
+@uses(dexp.jacobian_matrix)
 @takes_out
 def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Left Jacobian of SO(3), ``J_l(ψ) = (e^{ψ·X} − 1)/(ψ·X)`` (Theory §3.4).
@@ -94,9 +95,10 @@ def left_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> 
            [0., 1., 0.],
            [0., 0., 1.]])
     """
-    return dexp.jacobian_matrix(vector_array(psi, "psi"), _LEFT, out=out)
+    return dexp.jacobian_matrix(psi, _LEFT, out=out)
 
 
+@uses(dexp.jacobian_matrix)
 @takes_out
 def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Right Jacobian of SO(3), ``J_r(ψ) = (1 − e^{−ψ·X})/(ψ·X) = J_l(−ψ) = J_l(ψ)ᵀ``.
@@ -118,9 +120,10 @@ def right_jacobian(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) ->
     >>> np.allclose(right_jacobian([0.1, 0.2, 0.3]), left_jacobian([0.1, 0.2, 0.3]).T)
     True
     """
-    return dexp.jacobian_matrix(vector_array(psi, "psi"), _RIGHT, out=out)
+    return dexp.jacobian_matrix(psi, _RIGHT, out=out)
 
 
+@uses(dexp.jacobian_inverse_matrix)
 @takes_out
 def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
                           out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -150,6 +153,7 @@ def left_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
     return _inverse(psi, _LEFT, tol, out)
 
 
+@uses(dexp.jacobian_inverse_matrix)
 @takes_out
 def right_jacobian_inverse(psi: ArrayLike, tol: float = SINGULAR_TOL, *,
                            out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
