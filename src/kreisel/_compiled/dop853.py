@@ -395,7 +395,7 @@ def advance(rhs, args, crossing, record, marks, t_out, runs, b, work, rtol, atol
     arrays taken out of ``work`` once: every array handed to a helper (even
     an inlined one) costs reference counting per step, atomic updates that
     every thread of a batch makes on the one count of a shared array (the
-    tables, ``atol``), which made the loop 1.2-1.5x slower.
+    tables, ``atol``).
     """
     A, B, C, E3, E5, D = tables[0], tables[1], tables[2], tables[3], tables[4], tables[5]
     k, y, y_new, tmp, probe, dense, block = work.k, work.y, work.y_new, work.tmp, work.probe, work.dense, work.block

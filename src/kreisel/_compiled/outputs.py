@@ -43,7 +43,7 @@ def check_out(out: _Out, shape: tuple[int, ...], dtype: DTypeLike = np.float64, 
 def deliver(result: _Result, out: _Result | None, name: str = "out") -> _Result:
     """``result``, or ``result`` copied into a checked ``out`` of its shape and dtype, which is returned.
 
-    For array functions not built on a gufunc: they compute into a new array
+    For array functions that are not declared operations: they compute into a new array
     first, so ``out`` may share memory with any input.
     """
     if out is None:

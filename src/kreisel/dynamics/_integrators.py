@@ -51,7 +51,7 @@ _Rows = NDArray[np.float64] | None
 _Tables = tuple[NDArray[np.float64], ...]
 
 
-# the right-hand side is inlined into the DOP853 stage loop: a call per stage costs ~2x in that loop
+# inlined into the DOP853 stage loop: a call per stage would pass its arrays through reference counting
 @inlined
 def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, dy: NDArray[np.float64],
         offset: int, scratch: NDArray[np.float64]) -> None:
@@ -60,7 +60,7 @@ def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64],
     Arrays are addressed by index (never sliced) so the hot loops create no
     array views; ``scratch`` (13,) receives the torque in [7:10], force in [10:13].
     ``rows``/``frows`` are None for no torque/force: numba then compiles a
-    specialisation without the model evaluation (measurably faster loops).
+    specialisation without the model evaluation.
     """
     evaluate_torque(rows, t, y, scratch)
     dy[offset], dy[offset + 1], dy[offset + 2], dy[offset + 3], dy[offset + 4], dy[offset + 5], dy[offset + 6] = \
@@ -73,7 +73,7 @@ def rhs(t: float, y: NDArray[np.float64], ny: int, inertia: NDArray[np.float64],
             dy[offset + 10 + k] = scratch[10 + k] / mass
 
 
-# inlined: as a call, LLVM left it out of the DOP853 stage loop (end-state runs 1.5x slower)
+# inlined: as a call, LLVM left it out of the DOP853 stage loop
 @inlined
 def _euler_rates(i0, i1, i2, m0, m1, m2, w0, w1, w2, q0, q1, q2, q3):
     """(ω̇′, q̇) of the principal moments ``i``, the body torque ``m`` and the state ``(ω′, q)``, as numbers."""
@@ -523,7 +523,7 @@ def _register_run(steps, at_output, from_omega, params, t_out, grid, state, b, i
     No array is handed to a helper in the loop: numba would update its
     reference count per interval, and the output's and the moments' counts
     are shared by every body of a parallel batch, hence contended by both
-    cores (this cost more than the steps of a dense run).
+    cores.
     """
     i0, i1, i2 = inertia[0], inertia[1], inertia[2]
     k, s0, pending = state.interval[b], state.step[b], state.pending[b]
@@ -562,8 +562,7 @@ def _register_run(steps, at_output, from_omega, params, t_out, grid, state, b, i
     return OK
 
 
-# inlined, as _strang_output: called once per output interval, the calls and the state passed through the
-# stack cost a third of what a dense run pays over an end-state run
+# inlined, as _strang_output: called once per output interval, a call would pass the state through the stack
 @inlined
 def _strang_steps(weights, n, h, i0, i1, i2, s, pending):
     """``n`` steps of :func:`_splitting_free`, the flows about axis 0 merged; ``pending`` the one not yet applied."""
