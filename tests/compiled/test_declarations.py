@@ -20,6 +20,10 @@ PACKAGE = pathlib.Path(kreisel.__file__).parent
 FORBIDDEN = re.compile(r"\bprange\b|guvectorize|@parallel\b|\bgufunc\b|checked_in_one_pass|piece_results|in_pieces")
 
 
+#: Modules allowed a compiled loop that is not element-wise, and why.
+REDUCTIONS = {"alignment.py": "Wahba's problem sums over each problem's vectors, a core of any length"}
+
+
 def _sources():
     for package in ("so3", "kinematics", "se3"):
         yield from sorted((PACKAGE / package).glob("*.py"))
@@ -52,8 +56,6 @@ NUMPY_EXPRESSIONS = {
     "gimbal_lock": "a boolean test", "davenport_gimbal_lock": "a boolean test",
     "rotvec_rate_singular": "a boolean test", "euler_rates_singular": "a boolean test",
 }
-#: Modules allowed a compiled loop that is not element-wise, and why.
-REDUCTIONS = {"alignment.py": "Wahba's problem sums over each problem's vectors, a core of any length"}
 
 
 def test_every_compiled_array_function_is_a_declared_operation():
