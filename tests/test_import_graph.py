@@ -242,9 +242,9 @@ def test_reaching_into_compiled_internals_is_found(tmp_path):
                                      "kreisel.earth.falling:4: kreisel.so3._kernels.g"]
 
 
-@pytest.mark.parametrize("module", ["kreisel", "kreisel.__main__", "kreisel._compiled.gufunc", "kreisel.tour.runner"])
+@pytest.mark.parametrize("module", ["kreisel", "kreisel.__main__", "kreisel._compiled.elementwise", "kreisel.tour.runner"])
 def test_layer_of_the_facade_private_base_and_user_layers(module):
-    assert layer(module) == {"kreisel._compiled.gufunc": 0}.get(module, len(LAYERS) - 1)
+    assert layer(module) == {"kreisel._compiled.elementwise": 0}.get(module, len(LAYERS) - 1)
 
 
 #: Aliases every reader knows; any other module alias spells out what it stands for.
