@@ -46,7 +46,7 @@ import functools
 import inspect
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, TypeVar, cast
 
 import numpy as np
 from numba import njit, prange, types
@@ -69,6 +69,9 @@ _ZERO, _ONE = np.uint64(0), np.uint64(1)
 kernel = vectorised
 
 _BIG = "1.7976931348623157e308"
+
+#: A stub or public function: the decorators return a function of the same type.
+_F = TypeVar("_F", bound=Callable[..., Any])
 
 
 @dataclasses.dataclass(frozen=True)
@@ -318,7 +321,7 @@ def declare(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...], param
 
 
 def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
-                parameters: Sequence[Parameter] = ()) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+                parameters: Sequence[Parameter] = ()) -> Callable[[_F], _F]:
     """Make a public array function of a signature-and-docstring stub and :func:`declare`.
 
     The stub names the inputs, then the parameters, and takes a keyword-only
@@ -345,7 +348,7 @@ def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
            [ 1.,  0., -2.]])
     """
 
-    def build(stub: Callable[..., Any]) -> Callable[..., Any]:
+    def build(stub: _F) -> _F:
         wanted = [i.name for i in inputs] + [p.name for p in parameters]
         signature = inspect.signature(stub)
         positional = [p.name for p in signature.parameters.values() if p.kind is not p.KEYWORD_ONLY]
@@ -369,15 +372,15 @@ def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
         if function.__doc__ is not None:
             function.__doc__ = with_out_entry(function.__doc__)
         function.__operation__ = operation  # type: ignore[attr-defined]
-        return function
+        return cast(_F, function)  # functools.wraps(stub): the stub's signature, the declaration's work
 
     return build
 
 
-def uses(operation: ArrayOperation) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+def uses(operation: ArrayOperation) -> Callable[[_F], _F]:
     """Mark a public function that prepares its arguments and calls ``operation`` (``__operation__``)."""
 
-    def mark(function: Callable[..., Any]) -> Callable[..., Any]:
+    def mark(function: _F) -> _F:
         function.__operation__ = operation  # type: ignore[attr-defined]
         return function
 

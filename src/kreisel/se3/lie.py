@@ -173,7 +173,7 @@ def _inverse(xi: ArrayLike, sign: float, out: NDArray[np.float64] | None) -> NDA
 
 
 @elementwise(_hat, [Input("xi", (6,), VECTOR)], (4, 4))
-def se3_hat(xi, *, out=None):
+def se3_hat(xi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """4×4 twist matrices ``[[hat ω, v], [0, 0]]`` of twists ``ξ = (ω, v)``.
 
     Parameters
@@ -197,7 +197,7 @@ def se3_hat(xi, *, out=None):
 
 
 @elementwise(_vee, [Input("matrix", (4, 4), VECTOR)], (6,))
-def se3_vee(matrix, *, out=None):
+def se3_vee(matrix: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Twists ``(ω, v)`` of 4×4 twist matrices (inverse of :func:`se3_hat`).
 
     Parameters

@@ -19,7 +19,7 @@ __all__ = ["quat_to_matrix", "matrix_to_quat", "orthonormalize"]
 
 
 @elementwise(kernels.quat_matrix, [Input("q", (4,), QUATERNION)], (3, 3))
-def quat_to_matrix(q, *, out=None):
+def quat_to_matrix(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Rotation matrix ``R(q)`` exactly as in Theory §2.4, for nonzero quaternions.
 
     ``q`` is scaled to unit norm implicitly (``R(q) = R(q/|q|)``), and
@@ -47,7 +47,7 @@ def quat_to_matrix(q, *, out=None):
 
 
 @elementwise(kernels.matrix_entries_quat, [Input("R", (3, 3), MATRIX)], (4,))
-def matrix_to_quat(R, *, out=None):
+def matrix_to_quat(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion with ``q0 >= 0`` of each rotation matrix.
 
     Shepperd's method (largest of q0², q1², q2², q3² taken from the diagonal):

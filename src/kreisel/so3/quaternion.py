@@ -119,7 +119,7 @@ def compose_unit(p: NDArray[np.float64], q: NDArray[np.float64]) -> NDArray[np.f
 
 
 @elementwise(kernels.quat_product, [_P, _Q], (4,))
-def quat_multiply(p, q, *, out=None):
+def quat_multiply(p: ArrayLike, q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Hamilton product ``p q`` (Theory §2.4), broadcasting over leading axes.
 
     ``R(p q) = R(p) R(q)``: the product first applies ``q``, then ``p``.
@@ -143,7 +143,7 @@ def quat_multiply(p, q, *, out=None):
 
 
 @elementwise(_conjugate, [_Q], (4,))
-def quat_conjugate(q, *, out=None):
+def quat_conjugate(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Conjugate ``q* = q0 - q·i`` (Theory §2.4); the inverse rotation for unit ``q``.
 
     Examples
@@ -154,7 +154,7 @@ def quat_conjugate(q, *, out=None):
 
 
 @elementwise(_norm, [_Q], ())
-def quat_norm(q, *, out=None):
+def quat_norm(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Norm ``|q| = sqrt(q* q)``, shape ``(...)``.
 
     Examples
@@ -165,7 +165,7 @@ def quat_norm(q, *, out=None):
 
 
 @elementwise(_inverse, [_ROTATION], (4,))
-def quat_inverse(q, *, out=None):
+def quat_inverse(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse ``q⁻¹ = q* / |q|²`` (Theory §2.4) of nonzero quaternions.
 
     Examples
@@ -176,7 +176,7 @@ def quat_inverse(q, *, out=None):
 
 
 @elementwise(kernels.quat_unit, [_ROTATION], (4,))
-def quat_normalize(q, *, out=None):
+def quat_normalize(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Scale nonzero quaternions to unit norm (the renormalisation of Theory §2.4 (2) ②).
 
     Raises ``ValueError`` for zero or non-finite input rather than returning NaN.

@@ -9,6 +9,9 @@ other parameters describing rigid-body motion).
 
 from __future__ import annotations
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from .._compiled import kernels
 from .._compiled.checks import GIBBS_QUATERNION, QUATERNION, VECTOR
 from .._compiled.elementwise import Input, elementwise, kernel
@@ -50,7 +53,7 @@ def _mrp_quat(x: float, y: float, z: float) -> tuple[float, float, float, float]
 
 
 @elementwise(_gibbs, [Input("q", (4,), GIBBS_QUATERNION)], (3,))
-def quat_to_gibbs(q, *, out=None):
+def quat_to_gibbs(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Gibbs vector ``g = n tan(ψ/2)``; refuses ψ = π (q0 = 0) where it is infinite.
 
     Examples
@@ -62,7 +65,7 @@ def quat_to_gibbs(q, *, out=None):
 
 
 @elementwise(_gibbs_quat, [Input("g", (3,), VECTOR)], (4,))
-def gibbs_to_quat(g, *, out=None):
+def gibbs_to_quat(g: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``(1, g)/sqrt(1 + |g|²)`` of Gibbs vectors.
 
     Parameters
@@ -83,7 +86,7 @@ def gibbs_to_quat(g, *, out=None):
 
 
 @elementwise(_mrp, [Input("q", (4,), QUATERNION)], (3,))
-def quat_to_mrp(q, *, out=None):
+def quat_to_mrp(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Modified Rodrigues parameters ``p = n tan(ψ/4)`` with |p| <= 1.
 
     Examples
@@ -95,7 +98,7 @@ def quat_to_mrp(q, *, out=None):
 
 
 @elementwise(_mrp_quat, [Input("p", (3,), VECTOR)], (4,))
-def mrp_to_quat(p, *, out=None):
+def mrp_to_quat(p: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Unit quaternion ``((1 - |p|²), 2p)/(1 + |p|²)`` of MRPs (any length, shadow set included).
 
     Parameters

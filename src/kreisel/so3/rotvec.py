@@ -108,7 +108,7 @@ def generators(*, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]
 
 
 @elementwise(_hat, [Input("v", (3,), VECTOR)], (3, 3))
-def hat(v, *, out=None):
+def hat(v: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Skew matrix ``v·X`` with ``hat(v) w = v × w`` (the matrix A of Theory §2.2 (3)).
 
     Parameters
@@ -131,7 +131,7 @@ def hat(v, *, out=None):
 
 
 @elementwise(_vee, [Input("A", (3, 3), VECTOR)], (3,))
-def vee(A, *, out=None):
+def vee(A: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Inverse of :func:`hat`: the vector of the skew part of ``A``.
 
     Uses ``(A - Aᵀ)/2``, so a matrix that is skew up to rounding maps to the
@@ -150,7 +150,7 @@ def vee(A, *, out=None):
 
 
 @elementwise(_rotvec_matrix, [_PSI], (3, 3))
-def rotvec_to_matrix(psi, *, out=None):
+def rotvec_to_matrix(psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exponential map ``R(ψ) = exp(ψ·X)`` (Theory §2.2 (3), Rodrigues' formula).
 
     Evaluated through the half-angle quaternion so that every entry is
@@ -179,7 +179,7 @@ def rotvec_to_matrix(psi, *, out=None):
 
 
 @elementwise(_matrix_rotvec, [_R], (3,))
-def matrix_to_rotvec(R, *, out=None):
+def matrix_to_rotvec(R: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm ``ψ = log R`` with |ψ| <= π.
 
     Shepperd's quaternion followed by ψ = 2 atan2(|v|, q0): no loss of
@@ -237,7 +237,7 @@ def _exp_refusing(name: str, what: str) -> ArrayOperation:
 
 
 @elementwise(kernels.quat_rotvec, [Input("q", (4,), QUATERNION)], (3,))
-def quat_to_rotvec(q, *, out=None):
+def quat_to_rotvec(q: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Logarithm of nonzero quaternions as rotation vectors with |ψ| <= π.
 
     ``q`` and ``-q`` give the same ψ; ψ = 2 atan2(|v|, |q0|) is accurate at
@@ -299,7 +299,7 @@ def axis_angle_to_rotvec(axis: ArrayLike, angle: ArrayLike, degrees: bool = Fals
 
 
 @elementwise(_compose, [Input("a", (3,), ROTVEC), Input("b", (3,), ROTVEC)], (3,))
-def compose_rotvec(a, b, *, out=None):
+def compose_rotvec(a: ArrayLike, b: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Exact composition: ψ with ``exp(ψ·X) = exp(a·X) exp(b·X)``, |ψ| <= π.
 
     Rotation vectors do not add (Theory §2.2 (4)); this is the closed form the
@@ -392,7 +392,7 @@ def bch(a: ArrayLike, b: ArrayLike, order: int = 3, *, out: NDArray[np.float64] 
 
 
 @elementwise(_adjoint, [Input("Q", (3, 3), MATRIX), Input("psi", (3,), VECTOR)], (3,))
-def adjoint_action(Q, psi, *, out=None):
+def adjoint_action(Q: ArrayLike, psi: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Adjoint action of a rotation on rotation vectors: ``ψ -> Q ψ``.
 
     Implements the identity of Theory §2.2 (5), ``Q R(ψ n) Qᵀ = R(ψ Q n)``: the

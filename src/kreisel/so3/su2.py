@@ -193,7 +193,7 @@ def euler_parameters_to_quat(e: ArrayLike, *, out: NDArray[np.float64] | None = 
 
 
 @elementwise(_transposed_matrix, [Input("e", (4,), QUATERNION)], (3, 3))
-def euler_parameters_to_matrix(e, *, out=None):
+def euler_parameters_to_matrix(e: ArrayLike, *, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """The matrix printed in Theory §A (2) (Goldstein's ``A``) of Euler parameters.
 
     ``[[e0²+e1²-e2²-e3², 2(e1e2+e0e3), 2(e1e3-e0e2)], …]``. With the chapter's
