@@ -53,7 +53,7 @@ from numba import njit, prange, types
 from numpy.typing import ArrayLike, NDArray
 
 from .._validation import as_float_array
-from . import cache, vectorised
+from . import cache, inlined
 from .outputs import check_out, with_out_entry
 
 #: Batches with at least this many elements run on all cores; below, waking the threads costs more than it saves.
@@ -64,9 +64,10 @@ PIECE = 2**13
 # per access kept LLVM from vectorising the loops.
 _ZERO, _ONE = np.uint64(0), np.uint64(1)
 
-#: Kernel flavour: numpy's error model (a division by zero gives inf or NaN, which the loop's result
-#: check catches, instead of raising).
-kernel = vectorised
+#: Kernel flavour: inlined into the generated loops at numba's level, so that a loop over a kernel too large
+#: for LLVM to inline (an exponential, a logarithm) still vectorises; compiled there with the loops' numpy
+#: error model (a division by zero gives inf or NaN, which the loop's result check catches, instead of raising).
+kernel = inlined
 
 _BIG = "1.7976931348623157e308"
 
