@@ -214,6 +214,13 @@ class ArrayOperation:
     def __call__(self, *args: Any, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """The operation of the inputs, then the parameters, positionally; ``out`` as documented."""
         count = len(self.inputs)
+        if out is None and all(type(x) is np.ndarray and x.dtype == np.float64 and x.shape == i.shape
+                               and x.flags.c_contiguous for x, i in zip(args[:count], self.inputs)):
+            # one element, already float64: the serial loop without broadcasting (a few µs less a call)
+            result = np.empty(self.output)
+            flat = [a for x in args[:count] for a in (x.reshape(-1), _ZERO)]
+            if self._loop("serial")(*flat, *args[count:], result.reshape(-1), _ZERO, _ONE):
+                return result
         arrays: list[NDArray[np.float64]] = []
         for x, item in zip(args[:count], self.inputs):
             try:
