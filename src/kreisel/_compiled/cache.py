@@ -148,7 +148,9 @@ def _save_lock() -> Iterator[None]:
     if fcntl is None:  # pragma: no cover - Windows
         yield
         return
-    with open(cache_root() / LOCK_NAME, "a") as file:
+    root = cache_root()
+    root.mkdir(parents=True, exist_ok=True)  # removed since the process started (a cache clean-up)
+    with open(root / LOCK_NAME, "a") as file:
         fcntl.flock(file, fcntl.LOCK_EX)
         yield
 
