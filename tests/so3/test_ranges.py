@@ -47,6 +47,27 @@ def test_quaternion_inverse_any_size_in_range(scale):
         kr.quat_inverse([1e-320, 0, 0, 0])
 
 
+def test_inverse_of_the_largest_quaternions_is_representable():
+    # [0, -0, -0, -0] once: the scaled branch formed |q/m|² m = 2e308
+    np.testing.assert_array_equal(kr.quat_inverse([1e308, 1e308, 0, 0]), [0.5 / 1e308, -0.5 / 1e308, 0, 0])
+
+
+def test_rotating_the_largest_vectors():
+    """A rotated vector is as long as the vector: finite whenever that fits in a double (scipy on a scaled copy)."""
+    q = np.array([0.7e300, 0.2e300, -0.3e300, 0.5e300])
+    v = np.full(3, 1e308)  # [-inf, 3.3e307, inf] once, with only numba's RuntimeWarning
+    unit = ScipyRotation.from_quat(q / np.linalg.norm(q / 1e300) / 1e300, scalar_first=True)
+    for inverse in (False, True):
+        expected = 2.0**10 * (unit.inv() if inverse else unit).apply(v / 2.0**10)
+        np.testing.assert_allclose(kr.quat_apply(q, v, inverse=inverse), expected, rtol=0, atol=1e-15 * 1e308)
+    # a quaternion of size 1e100 once made |q|² v overflow for |v| beyond 1e108
+    np.testing.assert_allclose(kr.quat_apply(1e100 * Q, [1e250, 0, 0]), 1e250 * kr.quat_to_matrix(Q)[:, 0],
+                               rtol=1e-15)
+    turn = [np.cos(np.pi / 8), 0, 0, np.sin(np.pi / 8)]  # 45° about z: x + y of 1.7e308 each has 2.4e308
+    with pytest.raises(ValueError, match="q and v are out of range for quat_apply: the result overflows"):
+        kr.quat_apply(turn, [1.7e308, 1.7e308, 0])
+
+
 def test_vectors_far_from_unit_size():
     # each of these returned 0, the zero quaternion or inf before
     np.testing.assert_allclose(kr.gibbs_to_quat([1e200, 0, 0]), [1e-200, 1, 0, 0], rtol=1e-15)

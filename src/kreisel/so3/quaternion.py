@@ -63,21 +63,30 @@ def _inverse(q0: float, q1: float, q2: float, q3: float) -> tuple[float, float, 
     return q0 / n2 / d, -q1 / n2 / d, -q2 / n2 / d, -q3 / n2 / d
 
 
+#: Vectors with a larger |component| are scaled by 1/32 (exactly) before they are rotated.
+HUGE_COMPONENT = 1e306
+
+
 @kernel
 def _rotate(q0: float, q1: float, q2: float, q3: float, x: float, y: float, z: float,
             sign: float) -> tuple[float, float, float]:
-    # q v q* / |q|²: R(q/|q|) v for any nonzero q; sign = -1 rotates by the conjugate, R(q)ᵀ v
-    q0, q1, q2, q3 = kernels.squarable(q0, sign * q1, sign * q2, sign * q3)
-    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    # q v q* / |q|²: R(q/|q|) v for any nonzero q; sign = -1 rotates by the conjugate, R(q)ᵀ v.
+    # With q divided by its largest |component| (1 <= |q|² <= 4) no intermediate exceeds 21 max |v_i|:
+    # only vectors near the largest double need scaling, and the result is finite when its size |v| is.
+    m = kernels.largest_component(q0, q1, q2, q3)
+    q0, q1, q2, q3 = q0 / m, sign * q1 / m, sign * q2 / m, sign * q3 / m
+    down = 0.03125 if kernels.largest_component(0.0, x, y, z) > HUGE_COMPONENT else 1.0
+    x, y, z = down * x, down * y, down * z
     c0 = q2 * z - q3 * y
     c1 = q3 * x - q1 * z
     c2 = q1 * y - q2 * x
     d = q1 * x + q2 * y + q3 * z
     s = q0 * q0 - q1 * q1 - q2 * q2 - q3 * q3
+    back = 1.0 / (down * (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3))
     return (
-        (s * x + 2.0 * (d * q1 + q0 * c0)) / n2,
-        (s * y + 2.0 * (d * q2 + q0 * c1)) / n2,
-        (s * z + 2.0 * (d * q3 + q0 * c2)) / n2,
+        (s * x + 2.0 * (d * q1 + q0 * c0)) * back,
+        (s * y + 2.0 * (d * q2 + q0 * c1)) * back,
+        (s * z + 2.0 * (d * q3 + q0 * c2)) * back,
     )
 
 
