@@ -102,3 +102,19 @@ def test_the_loops_are_generated_source_a_reader_can_print():
     source = scaled_rotation.__operation__.source
     assert "def scaled_rotation_serial(" in source and "def scaled_rotation_parallel(" in source
     assert "kernel(x0_0, x0_1, x0_2, x0_3, x1_0, x1_1, x1_2, p0)" in source
+
+
+def test_the_single_element_path_gives_the_batch_bits_and_a_new_array():
+    rng = np.random.default_rng(7)
+    q, v = rng.normal(size=4), rng.normal(size=3)
+    single = scaled_rotation(q, v, 0.5)
+    assert single is not None and single.flags.owndata and single.shape == (3,)
+    np.testing.assert_array_equal(single, scaled_rotation(q[None], v[None], 0.5)[0])
+    # inputs the path does not take (a list, a strided view) go the general way to the same bits
+    np.testing.assert_array_equal(scaled_rotation(list(q), v, 0.5), single)
+    strided = np.empty(8)
+    strided[::2] = q
+    np.testing.assert_array_equal(scaled_rotation(strided[::2], v, 0.5), single)
+    assert scaled_rotation.__operation__.single(strided[::2], v, 0.5) is None
+    with pytest.raises(ValueError, match="q"):
+        scaled_rotation(np.zeros(4), v, 0.5)

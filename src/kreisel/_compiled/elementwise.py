@@ -134,6 +134,7 @@ class ArrayOperation:
         self._width = math.prod(self.output)
         self.source = self._generate()
         self._loops: dict[str, Any] = {}
+        self.single = self._single_element_path()
 
     def _generate(self) -> str:
         """Source of the serial loop over elements ``start..stop-1`` and the multi-core loop over pieces."""
@@ -181,6 +182,40 @@ class ArrayOperation:
             "",
         ])
 
+    def _single_element_path(self) -> Callable[..., NDArray[np.float64] | None]:
+        """``single(inputs..., parameters...)``: the result for one element already in float64, else None.
+
+        Generated like the loops, so that a call on one rotation spends its
+        time in the kernel rather than in generic argument handling: the test
+        of each input is one expression, the loop gets the arrays themselves
+        (a one-dimensional C-contiguous input is its own flat view) and a
+        flat result is returned as it is.
+        """
+        names = [f"x{k}" for k in range(len(self.inputs))]
+        params = [f"p{k}" for k in range(len(self.parameters))]
+        tests = [f"type({n}) is ndarray and {n}.dtype is float64 and {n}.shape == {i.shape!r} "
+                 f"and {n}.flags.c_contiguous" for n, i in zip(names, self.inputs)]
+        flats = [f"{n}, ZERO" if len(i.shape) == 1 else f"{n}.reshape(-1), ZERO" for n, i in zip(names, self.inputs)]
+        result = "result" if len(self.output) == 1 else f"result.reshape({self.output!r})"
+        source = "\n".join([
+            f"def single({', '.join(names + params)}):",
+            f"    if {' and '.join(tests)}:",
+            f"        result = empty({self._width})",
+            f"        if serial({', '.join(flats + params)}, result, ZERO, ONE):",
+            f"            return {result}",
+            "    return None",
+            "",
+            "",
+            "def serial(*args):",  # replaced by the compiled loop on the first call
+            "    loop = namespace['serial'] = compiled()",
+            "    return loop(*args)",
+        ])
+        namespace: dict[str, Any] = {"ndarray": np.ndarray, "float64": np.dtype(np.float64), "empty": np.empty,
+                                     "ZERO": _ZERO, "ONE": _ONE, "compiled": lambda: self._loop("serial")}
+        namespace["namespace"] = namespace
+        exec(compile(source, f"<kreisel single element of {self.name}>", "exec"), namespace)
+        return cast(Callable[..., "NDArray[np.float64] | None"], namespace["single"])
+
     def _loop(self, variant: str) -> Any:
         """The compiled serial or parallel loop (compiled or loaded from the cache on first use)."""
         loop = self._loops.get(variant)
@@ -214,13 +249,10 @@ class ArrayOperation:
     def __call__(self, *args: Any, out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """The operation of the inputs, then the parameters, positionally; ``out`` as documented."""
         count = len(self.inputs)
-        if out is None and all(type(x) is np.ndarray and x.dtype == np.float64 and x.shape == i.shape
-                               and x.flags.c_contiguous for x, i in zip(args[:count], self.inputs)):
-            # one element, already float64: the serial loop without broadcasting (a few µs less a call)
-            result = np.empty(self.output)
-            flat = [a for x in args[:count] for a in (x.reshape(-1), _ZERO)]
-            if self._loop("serial")(*flat, *args[count:], result.reshape(-1), _ZERO, _ONE):
-                return result
+        if out is None and len(args) == count + len(self.parameters):
+            single = self.single(*args)
+            if single is not None:
+                return single
         arrays: list[NDArray[np.float64]] = []
         for x, item in zip(args[:count], self.inputs):
             try:
@@ -366,12 +398,18 @@ def elementwise(kernel: Any, inputs: Sequence[Input], output: tuple[int, ...],
 
         defaults = [signature.parameters[n].default for n in wanted]
 
+        single, count = operation.single, len(wanted)
+
         @functools.wraps(stub)
         def function(*args: Any, out: NDArray[np.float64] | None = None, **keywords: Any) -> NDArray[np.float64]:
-            if keywords or len(args) > len(wanted):
+            if out is None and not keywords and len(args) == count:
+                result = single(*args)
+                if result is not None:
+                    return result
+            if keywords or len(args) > count:
                 bound = signature.bind(*args, out=out, **keywords)
                 args = tuple(bound.arguments.get(n, d) for n, d in zip(wanted, defaults))
-            elif len(args) < len(wanted):
+            elif len(args) < count:
                 if any(d is inspect.Parameter.empty for d in defaults[len(args):]):
                     signature.bind(*args, out=out)
                 args = (*args, *defaults[len(args):])
