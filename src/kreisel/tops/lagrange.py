@@ -312,21 +312,43 @@ class _Quadrature:
         lower = (self.sigma_b / v1, -(w1 - w2) / v1, (2.0 - w2) / v1) if self.sigma_b != 0.0 else (0.0, 0.0, 1.0)
         return upper, lower
 
-    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        t = np.asarray(t, dtype=float)
+    def motion(self, t: NDArray[np.float64], top: LagrangeTop,
+               euler0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """ZXZ angles, their rates, q and body ω at the times t (Theory §6.3).
+
+        φ + ψ takes only the 1/(1 + u) partial fraction and φ − ψ only the 1/(1 − u) one:
+        next to the lower vertical (θ -> π) φ and ψ each turn by about π within a time ~ π − θ
+        and only φ − ψ is well determined, next to the upper vertical only φ + ψ. The quaternion
+        is therefore built from the half sum and difference, weighted by cos(θ/2), sin(θ/2) from
+        1 ± u (relative accuracy at both verticals), and ω3 = J3/I3 is the constant itself,
+        never the difference φ̇ cos θ + ψ̇ of two rates that grow like 1/sin θ.
+        """
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
         _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, self.v1, terms, out)
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
         udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
-        theta = np.arctan2(sin_theta, u)
-        phi = (plus + minus) / (2.0 * self.lam)
-        psi = self.a * (top.I1 / top.I3 - 1.0) * t - (plus - minus) / (2.0 * self.lam)
-        phidot = (self.delta_b + self.a * one_minus_u) / (one_minus_u * one_plus_u)  # (b − a u)/(1 − u²)
+        half_sin, half_cos = np.sqrt(0.5 * one_minus_u), np.sqrt(0.5 * one_plus_u)
+        theta = 2.0 * np.arctan2(half_sin, half_cos)
+        spin_excess = self.a * (top.I1 / top.I3 - 1.0) * t
+        total = euler0[0] + euler0[2] + minus / self.lam + spin_excess  # φ + ψ
+        difference = euler0[0] - euler0[2] + plus / self.lam - spin_excess  # φ − ψ
+        phi, psi = 0.5 * (total + difference), 0.5 * (total - difference)
+        # b − a u = δb + a(1 − u) = σb − a(1 + u): the form whose O(1) terms do not cancel
+        upper = one_minus_u <= one_plus_u
+        numerator = np.where(upper, self.delta_b + self.a * one_minus_u, self.sigma_b - self.a * one_plus_u)
+        phidot = numerator / (one_minus_u * one_plus_u)
         thetadot = -udot / sin_theta
-        psidot = self.a * top.I1 / top.I3 - u * phidot
-        return np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1)
+        omega3 = self.a * top.I1 / top.I3
+        psidot = omega3 - u * phidot
+        q = np.stack([half_cos * np.cos(0.5 * total), half_sin * np.cos(0.5 * difference),
+                      half_sin * np.sin(0.5 * difference), half_cos * np.sin(0.5 * total)], axis=-1)
+        transverse = numerator / sin_theta  # φ̇ sin θ, bounded through the verticals
+        cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+        omega = np.stack([transverse * sin_psi + thetadot * cos_psi, transverse * cos_psi - thetadot * sin_psi,
+                          np.full_like(t, omega3)], axis=-1)
+        return (np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1), q, omega)
 
     def mean_precession_rate(self) -> float:
         """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
@@ -408,8 +430,9 @@ class _PlanarPendulum:
             self.quarter = _elliptic.complete_k(self.m1, self.kc)
             self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, cn0, self.m1, self.kc)
 
-    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        t = np.asarray(t, dtype=float)
+    def motion(self, t: NDArray[np.float64], top: LagrangeTop,
+               euler0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """ZXZ angles, their rates, q and body ω (φ = φ0 and ψ = ψ0 throughout)."""
         out = np.empty((t.size, 4))
         _pendulum_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, out)
         sn, cn, dn, am = out.T
@@ -418,7 +441,10 @@ class _PlanarPendulum:
         else:
             chi, chidot = 2.0 * np.arctan2(self.k * sn, dn), 2.0 * self.k * self.lam * cn
         zeros = np.zeros_like(t)
-        return np.stack([zeros, np.pi - chi, zeros], axis=-1), np.stack([zeros, -chidot, zeros], axis=-1)
+        euler = np.stack([np.full_like(t, euler0[0]), np.pi - chi, np.full_like(t, euler0[2])], axis=-1)
+        rates = np.stack([zeros, -chidot, zeros], axis=-1)
+        q = euler_to_quat("ZXZ", euler)
+        return euler, rates, q, angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
 
     def mean_precession_rate(self) -> float:
         return 0.0
@@ -717,11 +743,6 @@ class LagrangeTop:
         )
 
     # ---- motion -------------------------------------------------------------------
-    def _trajectory(self, t: NDArray[np.float64], euler: NDArray[np.float64], rates: NDArray[np.float64], meta: dict[str, Any]) -> Trajectory:
-        q = euler_to_quat("ZXZ", euler)
-        omega = angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
-        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
-
     def solve(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike) -> Trajectory:
         """Exact motion by quadrature (Theory §6.3): u(t) by sn², φ and ψ by Π.
 
@@ -746,11 +767,9 @@ class LagrangeTop:
         """
         t = sample_times(t)
         quad, euler0, rates0 = self._quadrature(euler0, rates0)
-        euler, rates = quad.angles_and_rates(t, self)
-        euler[:, 0] += euler0[0]
-        euler[:, 2] += euler0[2]
+        euler, rates, q, omega = quad.motion(t, self, euler0)
         meta = {"method": "exact", "body": repr(self), "roots": (quad.u1, quad.u2, quad.u3)}
-        return self._trajectory(t, euler, rates, meta)
+        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
 
     def simulate(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike, method: str | None = None,
                  **options: Any) -> Trajectory:
