@@ -27,6 +27,17 @@ REAL_KINDS = "biufO"
 #: ~1e15 rad the rounding of the angle alone (1e-16 of it) is more than 0.1 rad.
 MAX_TURN = 1e15
 
+
+def refuse_long_turn(turn: float, names: str, what: str, unresolved: str = "fixes its attitude") -> None:
+    """Raise ValueError naming ``names`` if ``turn`` (rad, or NaN/inf) exceeds :data:`MAX_TURN`.
+
+    ``what`` is the subject of the message ("the body turns through up to", "a 2 m pendulum swings
+    through a phase of"), ``unresolved`` what double precision no longer does beyond the limit.
+    """
+    if not turn <= MAX_TURN:
+        raise ValueError(f"{names} are out of range: {what} {turn:.3g} rad, more than {MAX_TURN:g} rad, "
+                         f"where double precision no longer {unresolved}")
+
 #: Longest rotation angle (rad) that kreisel computes a rotation of when the angle is itself the
 #: result of arithmetic: the length |ψ| of a rotation vector (or twist), a power ``p θ``, an
 #: interpolation parameter times an angle. Such an angle carries a rounding error of about

@@ -395,3 +395,13 @@ def test_next_to_a_vertical_agrees_with_a_30_digit_reference(label):
     np.testing.assert_allclose(tr.zxz_angles[:, 1], theta_ref, rtol=0.0, atol=1e-12)
     # ω3 is J3/I3 itself, not a difference of rates that grow like 1/sin θ
     assert np.all(tr.omega[:, 2] == tr.omega[0, 2])
+
+
+def test_refuses_phases_beyond_what_a_double_resolves():
+    # issue 33: two times one ulp apart at 1e17 s gave unrelated attitudes (ψ ≈ 1e18 rad), t = 1e300 finite values
+    for t in ([0.0, 1e17, np.nextafter(1e17, 2e17)], [0.0, 1e300]):
+        with pytest.raises(ValueError, match=r"t, euler0 and rates0 are out of range: .* more than 1e\+15 rad"):
+            TOP.solve(t, [0.0, 1.0, 0.0], [0.3, 0.2, 10.0])
+    with pytest.raises(ValueError, match="more than 1e\\+15 rad"):  # the planar pendulum too
+        TOP.solve([0.0, 1e300], [0.0, 2.0, 0.0], [0.0, 0.1, 0.0])
+    assert np.isfinite(TOP.solve([0.0, 1e12], [0.0, 1.0, 0.0], [0.3, 0.2, 10.0]).q).all()

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._html import html_table, number
-from .._validation import MAX_TURN, as_float, as_float_array, check_principal_moments, sample_times
+from .._validation import as_float, as_float_array, check_principal_moments, refuse_long_turn, sample_times
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
 from .._norms import norm
@@ -546,9 +546,7 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     # |ω| <= |ω0| I_max/I_min: beyond ~1e15 rad a turn's rounding (1e-16 of it) is more than 0.1 rad
     with np.errstate(over="ignore"):
         turn = np.max(np.abs(t), initial=0.0) * norm(omega0) * (np.max(moments, axis=-1) / np.min(moments, axis=-1))
-    if np.any(turn > MAX_TURN):
-        raise ValueError(f"t and omega0 are out of range: the body turns through up to {float(np.max(turn)):.3g} rad "
-                         f"over t, more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+    refuse_long_turn(float(np.max(turn, initial=0.0)), "t and omega0", "the body turns through up to")
     # the motion depends on the moments' ratios only: a power of two (exact) brings the largest to ~1
     scaled = np.ldexp(moments, -np.frexp(np.max(moments, axis=-1, keepdims=True))[1])
     count = int(np.prod(batch, dtype=np.int64))

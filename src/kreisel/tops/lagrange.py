@@ -23,7 +23,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
 from .._html import html_table, number
-from .._validation import as_float, as_float_array, check_principal_moments, positive_array, sample_times
+from .._validation import (as_float, as_float_array, check_principal_moments, positive_array, refuse_long_turn,
+                           sample_times)
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
@@ -219,6 +220,7 @@ class _Quadrature:
 
     def __init__(self, top: LagrangeTop, euler0: NDArray[np.float64], rates0: NDArray[np.float64]) -> None:
         I1 = top.I1
+        self.I1_over_I3 = top.I1 / top.I3
         phidot, thetadot, psidot = (float(x) for x in rates0)
         # 1 ∓ u0 = 2 sin²(θ0/2), 2 cos²(θ0/2) (relative accuracy at both verticals), u0 = cos θ0
         half_sin, half_cos = _dd_sin_cos(0.5 * float(euler0[1]))
@@ -350,6 +352,14 @@ class _Quadrature:
                           np.full_like(t, omega3)], axis=-1)
         return (np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1), q, omega)
 
+    def phase_rate(self) -> float:
+        """Largest mean rate (rad/s) of the phases solve() adds up: the elliptic argument λt, the
+        nutation 2πλ/(2K), each partial fraction of φ ± ψ (|c| Π(n | m)/K) and the spin excess."""
+        fractions = sum(abs(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc))
+                        for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0)
+        return float(max(self.lam, math.pi * self.lam / self.quarter, fractions / self.quarter)
+                     + abs(self.a * (self.I1_over_I3 - 1.0)))
+
     def mean_precession_rate(self) -> float:
         """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
         total = sum(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc)
@@ -445,6 +455,10 @@ class _PlanarPendulum:
         rates = np.stack([zeros, -chidot, zeros], axis=-1)
         q = euler_to_quat("ZXZ", euler)
         return euler, rates, q, angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
+
+    def phase_rate(self) -> float:
+        """Largest rate (rad/s) of the phases: the argument λt and, circulating, the swing 2πλ/K."""
+        return float(self.lam * max(1.0, 2.0 * math.pi / self.quarter))
 
     def mean_precession_rate(self) -> float:
         return 0.0
@@ -767,6 +781,9 @@ class LagrangeTop:
         """
         t = sample_times(t)
         quad, euler0, rates0 = self._quadrature(euler0, rates0)
+        with np.errstate(over="ignore"):
+            turn = float(np.max(np.abs(t), initial=0.0)) * quad.phase_rate()
+        refuse_long_turn(turn, "t, euler0 and rates0", "the top's angles and phases turn through up to")
         euler, rates, q, omega = quad.motion(t, self, euler0)
         meta = {"method": "exact", "body": repr(self), "roots": (quad.u1, quad.u2, quad.u3)}
         return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
