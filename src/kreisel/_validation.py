@@ -285,15 +285,16 @@ def memory_budget() -> int:
         return 2**34
 
 
-def check_allocation(nbytes: float, what: str) -> None:
+def check_allocation(nbytes: float, what: str, remedy: str | None = None) -> None:
     """Refuse, before allocating, a result of ``nbytes`` bytes over :func:`memory_budget`.
 
-    ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``.
+    ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``,
+    ``remedy`` (optional) what the caller can do about it.
     """
     budget = memory_budget()
     if not nbytes <= budget:
         raise ValueError(f"{what} would need {_size(nbytes)}, more than the {_size(budget)} allowed "
-                         "(half of this machine's memory)")
+                         "(half of this machine's memory)" + (f": {remedy}" if remedy else ""))
 
 
 def _size(nbytes: float) -> str:
