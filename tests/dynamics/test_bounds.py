@@ -327,3 +327,24 @@ def test_an_output_that_does_not_fit_names_its_size_and_the_remedy(monkeypatch):
     with pytest.raises(ValueError, match=r"the output \(1 × 100001 samples × 7 states\) would need 5\.6 MB, more than "
                                          r"the 1 MB allowed .*: ask for fewer times in t, or keep every N-th sample"):
         kr.simulate([1, 2, 3], np.linspace(0.0, 1.0, 100001), [0.1, 1, 0.1])
+
+
+def test_kernels_are_compiled_before_the_loop_that_holds_back_ctrl_c(monkeypatch):
+    # issue 33: with an empty cache SIGINT during a first simulate(..., torque=python_function) took effect
+    # 17–25 s later: numba compiled inside the loop that defers Ctrl-C. Nothing is compiled in there now.
+    from kreisel.dynamics import _integrators
+
+    kernels = [_integrators.run_dop853, _integrators.fixed_step, _integrators.run_dop853_batch, _integrators.run_batch]
+    loop = engine.run_chunked
+
+    def checked(*args, **kwargs):
+        before = [len(k.signatures) for k in kernels]
+        loop(*args, **kwargs)
+        assert [len(k.signatures) for k in kernels] == before, "a kernel was compiled inside the chunked loop"
+
+    monkeypatch.setattr(engine, "run_chunked", checked)
+    kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], torque=lambda t, q, w: np.zeros(3))
+    kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01)
+    kr.simulate_batch([[1, 2, 3]] * 2, [0, 1], [0.1, 1, 0.1])
+    kr.simulate_batch([[1, 2, 3]] * 2, [0, 1], [0.1, 1, 0.1], method="splitting", dt=0.01)
+    kr.LagrangeTop(1.0, 0.5, 1.0).simulate([0, 1], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])

@@ -61,7 +61,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
-from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
+from .._compiled.chunks import MAX_STEPS, check_max_steps, compile_ahead, run_chunked
 from .._validation import (as_float_array, check_allocation, check_inertia_tensor, check_principal_moments,
                           checked_callable, float_in_range, positive_float)
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
@@ -254,6 +254,12 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     if code == _integrators.DOP853:
         runs = _dop853.new_runs(np.ascontiguousarray(y0, dtype=np.float64))
         tables = _dop853.tableau()
+        if count == 1:
+            compile_ahead(_integrators.run_dop853, t, runs, 0, moments[0], mass[0], rows, frows, rtol, atol[0], tables,
+                          out[0], 1)
+        else:
+            compile_ahead(_integrators.run_dop853_batch, t, runs, moments, mass, rows, frows, rtol, atol, tables, out,
+                          status, 1)
 
         def step(budget: int) -> bool:
             if count == 1:
@@ -269,6 +275,12 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     else:
         grid = _integrators.step_grid(t, dt)
         state = _integrators.new_state(y0)
+        if count == 1:
+            compile_ahead(_integrators.fixed_step, code, t, grid, state, 0, moments[0], mass[0], rows, frows, out[0], 1,
+                          every)
+        else:
+            compile_ahead(_integrators.run_batch, code, t, grid, state, moments, mass, rows, frows, out, status, 1,
+                          every)
 
         def step(budget: int) -> bool:
             if count == 1:
