@@ -405,3 +405,20 @@ def test_refuses_phases_beyond_what_a_double_resolves():
     with pytest.raises(ValueError, match="more than 1e\\+15 rad"):  # the planar pendulum too
         TOP.solve([0.0, 1e300], [0.0, 2.0, 0.0], [0.0, 0.1, 0.0])
     assert np.isfinite(TOP.solve([0.0, 1e12], [0.0, 1.0, 0.0], [0.3, 0.2, 10.0]).q).all()
+
+
+def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits(monkeypatch):
+    # issue 33: Ctrl-C took 2.6–5 s to stop solve on 1e7 samples (one compiled call); calls of
+    # SAMPLES_PER_CALL samples give Ctrl-C its chance between them and change no bit
+    from kreisel.tops import lagrange
+
+    t = np.linspace(0.0, 30.0, 1001)
+    whole = TOP.solve(t, [0.3, 0.5, 0.2], [-0.6, 0.7, 10.0])
+    monkeypatch.setattr(lagrange, "SAMPLES_PER_CALL", 7)
+    calls = []
+    compiled = lagrange._lagrange_samples
+    monkeypatch.setattr(lagrange, "_lagrange_samples", lambda t, *args: calls.append(t.size) or compiled(t, *args))
+    chunked = TOP.solve(t, [0.3, 0.5, 0.2], [-0.6, 0.7, 10.0])
+    assert len(calls) == 143 and max(calls) == 7
+    np.testing.assert_array_equal(chunked.q, whole.q)
+    np.testing.assert_array_equal(chunked.omega, whole.omega)

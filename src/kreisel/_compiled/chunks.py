@@ -23,13 +23,15 @@ from typing import Any
 import numpy as np
 
 
-__all__ = ["MAX_STEPS", "CHUNK_SECONDS", "StepBudgetExceeded", "check_max_steps", "compile_ahead",
+__all__ = ["MAX_STEPS", "CHUNK_SECONDS", "SAMPLES_PER_CALL", "StepBudgetExceeded", "check_max_steps", "compile_ahead",
            "interrupts_between_chunks", "run_chunked", "run_resumable"]
 
 #: Default step budget of a run: about an hour of the slowest compiled method.
 MAX_STEPS = 10**10
 #: A chunk returns to Python after about this long (checks for Ctrl-C, reports progress).
 CHUNK_SECONDS = 0.05
+#: Samples per compiled call of the exact solutions (a few µs each): Ctrl-C takes effect between calls.
+SAMPLES_PER_CALL = 2**15
 
 
 class StepBudgetExceeded(RuntimeError):

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
+from .._compiled.chunks import SAMPLES_PER_CALL
 from .._html import html_table, number
 from .._validation import (as_float, as_float_array, check_principal_moments, positive_array, refuse_long_turn,
                            sample_times)
@@ -327,7 +328,10 @@ class _Quadrature:
         """
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
-        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, self.v1, terms, out)
+        for s in range(0, t.size, SAMPLES_PER_CALL):  # Ctrl-C takes effect between the calls; same bits
+            e = s + SAMPLES_PER_CALL
+            _lagrange_samples(t[s:e], self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2,
+                              self.v1, terms, out[s:e])
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
         udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
