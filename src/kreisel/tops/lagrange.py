@@ -32,7 +32,7 @@ from ..kinematics import angular_velocity_from_euler_rates
 from ..so3 import euler_to_quat, quat_to_euler
 from . import _elliptic
 from ._free_top import _two_product
-from .euler_top import _check_moments
+from .euler_top import _check_moments, _zxz_quat_from_half_angles
 
 __all__ = ["LagrangeTop", "LagrangeConstants", "FastTop", "larmor_precession_rate"]
 
@@ -348,8 +348,7 @@ class _Quadrature:
         thetadot = -udot / sin_theta
         omega3 = self.a * top.I1 / top.I3
         psidot = omega3 - u * phidot
-        q = np.stack([half_cos * np.cos(0.5 * total), half_sin * np.cos(0.5 * difference),
-                      half_sin * np.sin(0.5 * difference), half_cos * np.sin(0.5 * total)], axis=-1)
+        q = _zxz_quat_from_half_angles(half_cos, half_sin, 0.5 * total, 0.5 * difference)
         transverse = numerator / sin_theta  # φ̇ sin θ, bounded through the verticals
         cos_psi, sin_psi = np.cos(psi), np.sin(psi)
         omega = np.stack([transverse * sin_psi + thetadot * cos_psi, transverse * cos_psi - thetadot * sin_psi,
