@@ -216,3 +216,20 @@ def test_a_bound_may_be_inf_where_asked_and_a_tolerance_is_a_number_in_its_range
         check_tolerance("0.1")
     with pytest.raises(ValueError, match=r"tol must be in \[0, 1\), got 1.0"):
         check_tolerance(1.0)
+
+
+def test_one_long_turn_refusal_for_every_owner():
+    # EulerTop, LagrangeTop, the rotating-frame particle, the Foucault pendulum and the gyro fit share it
+    import pathlib
+    import re
+
+    from kreisel._validation import MAX_TURN, refuse_long_turn
+
+    refuse_long_turn(MAX_TURN, "t", "the body turns through up to")
+    for turn in (np.nextafter(MAX_TURN, np.inf), np.inf, np.nan):
+        with pytest.raises(ValueError, match=r"^t and omega are out of range: the body turns through up to .* rad, "
+                                             r"more than 1e\+15 rad, where double precision no longer fixes"):
+            refuse_long_turn(turn, "t and omega", "the body turns through up to")
+    package = pathlib.Path(kr.__file__).parent
+    owners = [p.relative_to(package).as_posix() for p in package.rglob("*.py") if re.search(r"\bMAX_TURN\b", p.read_text())]
+    assert owners == ["_validation.py"]

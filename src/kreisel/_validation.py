@@ -27,6 +27,17 @@ REAL_KINDS = "biufO"
 #: ~1e15 rad the rounding of the angle alone (1e-16 of it) is more than 0.1 rad.
 MAX_TURN = 1e15
 
+
+def refuse_long_turn(turn: float, names: str, what: str, unresolved: str = "fixes its attitude") -> None:
+    """Raise ValueError naming ``names`` if ``turn`` (rad, or NaN/inf) exceeds :data:`MAX_TURN`.
+
+    ``what`` is the subject of the message ("the body turns through up to", "a 2 m pendulum swings
+    through a phase of"), ``unresolved`` what double precision no longer does beyond the limit.
+    """
+    if not turn <= MAX_TURN:
+        raise ValueError(f"{names} are out of range: {what} {turn:.3g} rad, more than {MAX_TURN:g} rad, "
+                         f"where double precision no longer {unresolved}")
+
 #: Longest rotation angle (rad) that kreisel computes a rotation of when the angle is itself the
 #: result of arithmetic: the length |ψ| of a rotation vector (or twist), a power ``p θ``, an
 #: interpolation parameter times an angle. Such an angle carries a rounding error of about
@@ -274,15 +285,16 @@ def memory_budget() -> int:
         return 2**34
 
 
-def check_allocation(nbytes: float, what: str) -> None:
+def check_allocation(nbytes: float, what: str, remedy: str | None = None) -> None:
     """Refuse, before allocating, a result of ``nbytes`` bytes over :func:`memory_budget`.
 
-    ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``.
+    ``what`` describes the result in the message, e.g. ``"the output (1 × 1000000000 samples × 7 states)"``,
+    ``remedy`` (optional) what the caller can do about it.
     """
     budget = memory_budget()
     if not nbytes <= budget:
         raise ValueError(f"{what} would need {_size(nbytes)}, more than the {_size(budget)} allowed "
-                         "(half of this machine's memory)")
+                         "(half of this machine's memory)" + (f": {remedy}" if remedy else ""))
 
 
 def _size(nbytes: float) -> str:

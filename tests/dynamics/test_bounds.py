@@ -85,7 +85,7 @@ def test_a_free_adaptive_run_out_of_reach_is_refused_before_it_starts(monkeypatc
     monkeypatch.setattr(engine, "_scipy", no_run)
     with pytest.raises(ValueError, match=r"^t = 0 … 1e\+300 is out of reach of the adaptive method .*\|ω\| >= 1\.0\d "
                                          r"rad/s.*needs at least 5\.\d+e\+299 steps, about .* years of computing; "
-                                         r"over the budget max_steps = 1e\+10"):
+                                         r"over the budget max_steps = \d(\.\d+)?e\+0[78] \(by default about 10 minutes of computing"):
         run()
 
 
@@ -294,3 +294,57 @@ def test_ctrl_c_stops_a_long_run_promptly(runs, count):
         if child.poll() is None:
             child.kill()
             child.wait()
+
+
+def test_a_run_estimated_far_beyond_ten_minutes_is_refused_unless_forced(monkeypatch):
+    # issue 34: kr.simulate(body, [0, 1e9], ω) ran over 8 minutes (only 1e11 s was refused)
+    def no_run(*args, **kwargs):
+        raise AssertionError("the integration started")
+
+    monkeypatch.setattr(engine, "_run", no_run)
+    with pytest.raises(ValueError, match=r"^t = 0 … 1e\+09 is out of reach .* at least 5\.0\de\+08 steps, about 12\.\d "
+                                         r"minutes of computing; over the budget max_steps = 4e\+08 \(by default about "
+                                         r"10 minutes .* pass a larger max_steps to run it anyway$"):
+        kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1])
+    # an explicit budget is the documented way to run it anyway: the run starts
+    with pytest.raises(AssertionError, match="the integration started"):
+        kr.simulate([1, 2, 3], [0, 1e9], [0.1, 1, 0.1], max_steps=10**9)
+
+
+def test_a_heavy_top_out_of_reach_is_refused_before_it_starts(monkeypatch):
+    # issue 33: LagrangeTop(1, .5, 1).simulate([0, 1e17], ...) ran 3.5 h before the step budget stopped it;
+    # gravity keeps the spin ω3 about the symmetry axis, a lower bound on |ω| like a free body's 2T/|J|
+    monkeypatch.setattr(engine, "_run", lambda *args, **kwargs: (_ for _ in ()).throw(AssertionError("ran")))
+    with pytest.raises(ValueError, match=r"t = 0 … 1e\+17 is out of reach .* \|ω\| >= 10\.2 rad/s \(the spin about the "
+                                         r"symmetry axis, conserved under gravity\)"):
+        kr.LagrangeTop(1.0, 0.5, 1.0).simulate([0, 1e17], [0.0, 1.0, 0.0], [0.3, 0.2, 10.0])
+
+
+def test_an_output_that_does_not_fit_names_its_size_and_the_remedy(monkeypatch):
+    from kreisel import _validation
+
+    monkeypatch.setattr(_validation, "memory_budget", lambda: 1e6)
+    with pytest.raises(ValueError, match=r"the output \(1 × 100001 samples × 7 states\) would need 5\.6 MB, more than "
+                                         r"the 1 MB allowed .*: ask for fewer times in t, or keep every N-th sample"):
+        kr.simulate([1, 2, 3], np.linspace(0.0, 1.0, 100001), [0.1, 1, 0.1])
+
+
+def test_kernels_are_compiled_before_the_loop_that_holds_back_ctrl_c(monkeypatch):
+    # issue 33: with an empty cache SIGINT during a first simulate(..., torque=python_function) took effect
+    # 17–25 s later: numba compiled inside the loop that defers Ctrl-C. Nothing is compiled in there now.
+    from kreisel.dynamics import _integrators
+
+    kernels = [_integrators.run_dop853, _integrators.fixed_step, _integrators.run_dop853_batch, _integrators.run_batch]
+    loop = engine.run_chunked
+
+    def checked(*args, **kwargs):
+        before = [len(k.signatures) for k in kernels]
+        loop(*args, **kwargs)
+        assert [len(k.signatures) for k in kernels] == before, "a kernel was compiled inside the chunked loop"
+
+    monkeypatch.setattr(engine, "run_chunked", checked)
+    kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], torque=lambda t, q, w: np.zeros(3))
+    kr.simulate([1, 2, 3], [0, 1], [0.1, 1, 0.1], method="rk4", dt=0.01)
+    kr.simulate_batch([[1, 2, 3]] * 2, [0, 1], [0.1, 1, 0.1])
+    kr.simulate_batch([[1, 2, 3]] * 2, [0, 1], [0.1, 1, 0.1], method="splitting", dt=0.01)
+    kr.LagrangeTop(1.0, 0.5, 1.0).simulate([0, 1], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0])

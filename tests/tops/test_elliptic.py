@@ -123,3 +123,43 @@ def test_complete_pi_where_m_and_n_both_approach_one():
             exact = mp.elliprf(0, M1, 1) + n / 3 * mp.elliprj(0, M1, 1, mp.mpf(one_minus_n))
             value = complete_pi(1.0 - one_minus_n, one_minus_n, m1, np.sqrt(m1))
             assert value == pytest.approx(float(exact), rel=4 * EPS), (one_minus_n, m1)
+
+
+@pytest.mark.parametrize("m1", [0.9997, 0.3, 1e-6, 1e-20])
+def test_third_kind_for_characteristics_far_below_zero(m1):
+    # n -> −∞ (a top passing next to the lower vertical): Π ~ π/(2√(1 − n)) is what is left of
+    # F + (n/3) s³ R_J after F cancels; the form with R_C and R_J(q) loses nothing
+    m = _mp_parameter(m1)
+    for n in (-0.5, -1e3, -1e8, -3.1e27, -1e200):
+        P = mp.ellippi(mp.mpf(n), m)
+        assert float(complete_elliptic_pi(n, m1=m1)) == pytest.approx(float(P), rel=8 * EPS), n
+        for phi in (1e-9, 0.3, 1.2, np.pi / 2 - 1e-9, -0.7):
+            P = mp.ellippi(mp.mpf(n), mp.mpf(phi), m)
+            assert float(elliptic_pi(phi, n, m1=m1)) == pytest.approx(float(P), rel=8 * EPS), (phi, n)
+
+
+@pytest.mark.parametrize("m1", [0.9997, 0.3, 1e-6])
+def test_split_phase_third_kind_next_to_n_one(m1):
+    # Π(am(±K + r), n | m) with 1 − n down to 1e-28 (a top passing next to the upper vertical):
+    # the reflected integral r/(1 − n) − (…)/(1 − n)² cancelled to a few digits; the reference is
+    # mpmath's Π at the amplitude am(K + r) (the reflected integral is Π(am(K + r)) − Π(n | m)) at
+    # 80 digits, compared relative to the size of the split's terms
+    from kreisel.tops._elliptic import complete_k, complete_pi, jacobi_near, pi_split
+
+    kc = np.sqrt(m1)
+    K = complete_k(m1, kc)
+    mp.mp.dps = 80
+    m = 1 - mp.mpf(m1)
+    for one_minus_n in (0.1, 1e-12, 1.8e-28):
+        n, N = 1.0 - one_minus_n, 1 - mp.mpf(one_minus_n)
+        complete = complete_pi(n, one_minus_n, m1, kc)
+        exact_complete = mp.ellippi(N, m)
+        for r in (-0.45 * K, -0.1, 1e-9, 0.3, 0.5 * K):
+            s, c, _ = jacobi_near(r, m1, kc)
+            v = mp.ellipk(m) + mp.mpf(r)
+            amplitude = mp.atan2(mp.ellipfun("sn", v, m=m), mp.ellipfun("cn", v, m=m))
+            reflected = mp.ellippi(N, amplitude, m) - exact_complete
+            for quarter in (1, -1, 3):
+                exact = quarter * exact_complete + reflected
+                value = pi_split(quarter, r, s, c, m1, kc, n, one_minus_n, complete)
+                assert abs(value - exact) <= 8 * EPS * (abs(exact) + 3 * abs(complete)), (one_minus_n, r, quarter)

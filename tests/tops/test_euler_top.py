@@ -352,3 +352,24 @@ def test_solve_free_batch_at_extreme_moments_and_turns():
     # more than 1e15 rad over t: rounding alone would leave the attitude undetermined
     with pytest.raises(ValueError, match=r"t and omega0 are out of range: the body turns through up to 6\.06e\+22 rad"):
         kr.tops.solve_free_batch(bodies, t * 1e22, [0.1, 1.0, 0.1])
+
+
+@pytest.mark.parametrize("count", [1, 3])
+def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits(monkeypatch, count):
+    # issue 33: EulerTop(1, 2, 3).solve on 3e7 samples exited 17 s after SIGINT (one compiled call)
+    from kreisel.tops import _free_top, euler_top
+
+    t = np.linspace(0.0, 50.0, 1001)
+    bodies = np.array([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0], [1.0, 2.5, 3.0]])[:count]
+    whole = euler_top.solve_free_batch(bodies, t, [0.3, 0.2, 1.0]) if count > 1 else None
+    single = kr.EulerTop(1.0, 2.0, 3.0).solve(t, [0.3, 0.2, 1.0])
+    monkeypatch.setattr(euler_top, "SAMPLES_PER_CALL", 64)
+    calls = []
+    compiled = _free_top.body_samples
+    monkeypatch.setattr(_free_top, "body_samples", lambda *args: calls.append(args[3].size) or compiled(*args))
+    np.testing.assert_array_equal(kr.EulerTop(1.0, 2.0, 3.0).solve(t, [0.3, 0.2, 1.0]).q, single.q)
+    assert max(calls) == 64 and sum(calls) == t.size
+    if count > 1:
+        chunked = euler_top.solve_free_batch(bodies, t, [0.3, 0.2, 1.0])
+        np.testing.assert_array_equal(chunked.q, whole.q)
+        np.testing.assert_array_equal(chunked.omega, whole.omega)

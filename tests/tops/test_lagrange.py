@@ -345,3 +345,80 @@ def test_refuses_what_doubles_cannot_follow():
     # passing within ~1e-150 rad of the vertical without reaching it: φ turns by π in ~1e-150 s
     with pytest.raises(ValueError, match="passes within 1e-75 rad of the vertical"):
         TOP.solve([0.0, 1.0], [0.0, 1e-74, 0.0], [0.3, 0.1, 1.0])
+
+
+def _rigid_body_reference(euler0, rates0, t, dps=30):
+    """q and body ω at ``dps`` digits: mpmath's Taylor integrator (odefun) on Euler's equations with
+    the gravity torque −mgl e3 × R^T ẑ and q̇ = ½ q ⊗ ω, free of the ZXZ angles' singularity.
+    The initial q and ω come from the exact values of the doubles given."""
+    mp.mp.dps = dps
+    I1, I3, mgl = (mp.mpf(x) for x in (TOP.I1, TOP.I3, TOP.mgl))
+    phi, theta, psi = (mp.mpf(x) for x in euler0)
+    phidot, thetadot, psidot = (mp.mpf(x) for x in rates0)
+    c, s = mp.cos(theta / 2), mp.sin(theta / 2)
+    q0 = [c * mp.cos((phi + psi) / 2), s * mp.cos((phi - psi) / 2), s * mp.sin((phi - psi) / 2),
+          c * mp.sin((phi + psi) / 2)]
+    w0 = [phidot * mp.sin(theta) * mp.sin(psi) + thetadot * mp.cos(psi),
+          phidot * mp.sin(theta) * mp.cos(psi) - thetadot * mp.sin(psi), phidot * mp.cos(theta) + psidot]
+
+    def rhs(_, y):
+        a, b, c, d, w1, w2, w3 = y
+        gx, gy = 2 * (b * d - a * c), 2 * (c * d + a * b)  # R^T ẑ, transverse part
+        return [(-b * w1 - c * w2 - d * w3) / 2, (a * w1 + c * w3 - d * w2) / 2, (a * w2 - b * w3 + d * w1) / 2,
+                (a * w3 + b * w2 - c * w1) / 2, ((I1 - I3) * w2 * w3 + mgl * gy) / I1,
+                ((I3 - I1) * w3 * w1 - mgl * gx) / I1, mp.mpf(0)]
+
+    solution = mp.odefun(rhs, 0, q0 + w0)
+    rows = np.array([[float(x) for x in solution(mp.mpf(x))] for x in t])
+    return rows[:, :4], rows[:, 4:]
+
+
+# the issue's reproducers: spinning (ψ̇ = 10) and precessing (φ̇ ≠ 0) next to either vertical
+NEXT_TO_A_VERTICAL = {
+    "below-1e-8": ([0.0, np.pi - 1e-8, 0.0], [0.3, 0.2, 10.0]),
+    "above-1e-8": ([0.0, 1e-8, 0.0], [0.3, 0.2, 10.0]),
+    "below-3e-9": ([0.4, np.pi - 3e-9, -1.0], [-0.7, -0.1, 6.0]),
+    "above-5e-9": ([-0.2, 5e-9, 2.0], [1.5, 0.05, -8.0]),
+}
+
+
+@pytest.mark.parametrize("label", NEXT_TO_A_VERTICAL)
+def test_next_to_a_vertical_agrees_with_a_30_digit_reference(label):
+    euler0, rates0 = NEXT_TO_A_VERTICAL[label]
+    t = np.linspace(0.0, 5.0, 6)
+    q_ref, omega_ref = _rigid_body_reference(euler0, rates0, t)
+    tr = TOP.solve(t, euler0, rates0)
+    sign = np.sign(np.sum(tr.q * q_ref, axis=1))[:, None]
+    np.testing.assert_allclose(tr.q, sign * q_ref, rtol=0.0, atol=1e-12)
+    np.testing.assert_allclose(tr.omega, omega_ref, rtol=0.0, atol=1e-12)
+    theta_ref = 2.0 * np.arctan2(np.hypot(q_ref[:, 1], q_ref[:, 2]), np.hypot(q_ref[:, 0], q_ref[:, 3]))
+    np.testing.assert_allclose(tr.zxz_angles[:, 1], theta_ref, rtol=0.0, atol=1e-12)
+    # ω3 is J3/I3 itself, not a difference of rates that grow like 1/sin θ
+    assert np.all(tr.omega[:, 2] == tr.omega[0, 2])
+
+
+def test_refuses_phases_beyond_what_a_double_resolves():
+    # issue 33: two times one ulp apart at 1e17 s gave unrelated attitudes (ψ ≈ 1e18 rad), t = 1e300 finite values
+    for t in ([0.0, 1e17, np.nextafter(1e17, 2e17)], [0.0, 1e300]):
+        with pytest.raises(ValueError, match=r"t, euler0 and rates0 are out of range: .* more than 1e\+15 rad"):
+            TOP.solve(t, [0.0, 1.0, 0.0], [0.3, 0.2, 10.0])
+    with pytest.raises(ValueError, match="more than 1e\\+15 rad"):  # the planar pendulum too
+        TOP.solve([0.0, 1e300], [0.0, 2.0, 0.0], [0.0, 0.1, 0.0])
+    assert np.isfinite(TOP.solve([0.0, 1e12], [0.0, 1.0, 0.0], [0.3, 0.2, 10.0]).q).all()
+
+
+def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits(monkeypatch):
+    # issue 33: Ctrl-C took 2.6–5 s to stop solve on 1e7 samples (one compiled call); calls of
+    # SAMPLES_PER_CALL samples give Ctrl-C its chance between them and change no bit
+    from kreisel.tops import lagrange
+
+    t = np.linspace(0.0, 30.0, 1001)
+    whole = TOP.solve(t, [0.3, 0.5, 0.2], [-0.6, 0.7, 10.0])
+    monkeypatch.setattr(lagrange, "SAMPLES_PER_CALL", 7)
+    calls = []
+    compiled = lagrange._lagrange_samples
+    monkeypatch.setattr(lagrange, "_lagrange_samples", lambda t, *args: calls.append(t.size) or compiled(t, *args))
+    chunked = TOP.solve(t, [0.3, 0.5, 0.2], [-0.6, 0.7, 10.0])
+    assert len(calls) == 143 and max(calls) == 7
+    np.testing.assert_array_equal(chunked.q, whole.q)
+    np.testing.assert_array_equal(chunked.omega, whole.omega)

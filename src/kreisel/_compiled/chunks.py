@@ -23,13 +23,15 @@ from typing import Any
 import numpy as np
 
 
-__all__ = ["MAX_STEPS", "CHUNK_SECONDS", "StepBudgetExceeded", "check_max_steps", "interrupts_between_chunks", "run_chunked",
-           "run_resumable"]
+__all__ = ["MAX_STEPS", "CHUNK_SECONDS", "SAMPLES_PER_CALL", "StepBudgetExceeded", "check_max_steps", "compile_ahead",
+           "interrupts_between_chunks", "run_chunked", "run_resumable"]
 
 #: Default step budget of a run: about an hour of the slowest compiled method.
 MAX_STEPS = 10**10
 #: A chunk returns to Python after about this long (checks for Ctrl-C, reports progress).
 CHUNK_SECONDS = 0.05
+#: Samples per compiled call of the exact solutions (a few µs each): Ctrl-C takes effect between calls.
+SAMPLES_PER_CALL = 2**15
 
 
 class StepBudgetExceeded(RuntimeError):
@@ -50,6 +52,25 @@ def check_max_steps(max_steps: object) -> int:
     if max_steps < 1:
         raise ValueError(f"max_steps must be a positive integer, got {max_steps}")
     return int(max_steps)
+
+
+def compile_ahead(function: Any, *args: Any) -> None:
+    """Compile (or load from the cache) the compiled ``function`` for the types of ``args``, without calling it.
+
+    Called before :func:`run_chunked`: a first call's compile takes up to a minute with an empty
+    cache, and inside the loop that holds back Ctrl-C it could not be interrupted.
+
+    Examples
+    --------
+    >>> from numba import njit
+    >>> twice = njit(lambda x: 2.0 * x)
+    >>> compile_ahead(twice, 1.5)
+    >>> [str(types) for types in twice.signatures]
+    ['(float64,)']
+    """
+    from numba import typeof
+
+    function.compile(tuple(typeof(a) for a in args))
 
 
 @contextlib.contextmanager

@@ -33,7 +33,8 @@ into ``ceil(Δt/dt)`` equal steps, so the step never exceeds ``dt`` and the
 requested times are hit exactly (no interpolation).
 
 Every run is bounded and interruptible: a fixed-step run whose step count
-exceeds ``max_steps`` (default ``MAX_STEPS`` = 10¹⁰) is refused before it starts,
+exceeds ``max_steps`` (by default the steps of about ten minutes of computing,
+``DEFAULT_SECONDS``, at most ``MAX_STEPS`` = 10¹⁰) is refused before it starts,
 with its estimated time, and so is a torque-free adaptive run that needs more
 (a free body turns at ``|ω| >= 2T/|J|`` all along, and a DOP853 step turns it
 by a bounded angle: see ``_check_adaptive_span``); any other adaptive run stops
@@ -60,7 +61,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import dop853 as _dop853
-from .._compiled.chunks import MAX_STEPS, check_max_steps, run_chunked
+from .._compiled.chunks import MAX_STEPS, check_max_steps, compile_ahead, run_chunked
 from .._validation import (as_float_array, check_allocation, check_inertia_tensor, check_principal_moments,
                           checked_callable, float_in_range, positive_float)
 from ..so3 import matrix_to_quat, quat_conjugate, quat_multiply
@@ -102,6 +103,9 @@ DEFAULT_RTOL = 1e-12
 # time estimate in the message that refuses a run over its step budget
 _SECONDS_PER_STEP = {"dop853": 1.5e-6, "scipy": 3e-5, "splitting": 3e-7, "splitting4": 1e-6, "dmv": 1e-6, "rkmk4": 6e-7,
                      "midpoint": 5e-7, "rk4": 3.5e-7}
+#: Without an explicit ``max_steps`` a run gets the steps of about this many seconds of computing
+#: (by _SECONDS_PER_STEP), so that a run estimated far beyond reason is refused rather than left running
+DEFAULT_SECONDS = 600.0
 # steps of the first call (shared by the bodies of a batch); later calls adapt to the measured speed
 _FIRST_CHUNK_STEPS = 2**16
 
@@ -250,6 +254,12 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     if code == _integrators.DOP853:
         runs = _dop853.new_runs(np.ascontiguousarray(y0, dtype=np.float64))
         tables = _dop853.tableau()
+        if count == 1:
+            compile_ahead(_integrators.run_dop853, t, runs, 0, moments[0], mass[0], rows, frows, rtol, atol[0], tables,
+                          out[0], 1)
+        else:
+            compile_ahead(_integrators.run_dop853_batch, t, runs, moments, mass, rows, frows, rtol, atol, tables, out,
+                          status, 1)
 
         def step(budget: int) -> bool:
             if count == 1:
@@ -265,6 +275,12 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     else:
         grid = _integrators.step_grid(t, dt)
         state = _integrators.new_state(y0)
+        if count == 1:
+            compile_ahead(_integrators.fixed_step, code, t, grid, state, 0, moments[0], mass[0], rows, frows, out[0], 1,
+                          every)
+        else:
+            compile_ahead(_integrators.run_batch, code, t, grid, state, moments, mass, rows, frows, out, status, 1,
+                          every)
 
         def step(budget: int) -> bool:
             if count == 1:
@@ -284,10 +300,18 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
 
 def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_steps: int | None,
                     every: int = 1) -> int:
-    """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget."""
+    """Refuse, before any work, outputs that do not fit in memory and fixed-step runs over the step budget.
+
+    Returns the step budget: ``max_steps`` as given, or by default the steps of about
+    :data:`DEFAULT_SECONDS` of computing for ``count`` bodies (at most ``MAX_STEPS``).
+    """
+    default = max_steps is None
     max_steps = check_max_steps(max_steps)
+    if default:
+        max_steps = min(max_steps, max(1, int(DEFAULT_SECONDS / (_SECONDS_PER_STEP[method] * count))))
     samples = (t.size - 1) // every + 1
-    check_allocation(count * samples * ny * 8.0, f"the output ({count} × {samples} samples × {ny} states)")
+    check_allocation(count * samples * ny * 8.0, f"the output ({count} × {samples} samples × {ny} states)",
+                     "ask for fewer times in t, or keep every N-th sample with every=N")
     if method in ADAPTIVE:
         return max_steps
     steps = _integrators.substeps(np.diff(t), dt)
@@ -297,7 +321,7 @@ def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_
         per_body = f" per body ({count} bodies)" if count > 1 else ""
         raise ValueError(f"method {method!r} with dt = {dt:g} over t = {t[0]:g} … {t[-1]:g} needs "
                          f"{total:.3g} steps{per_body}, about {_duration(seconds)} of computing; over the "
-                         f"budget max_steps = {max_steps:.3g}: raise dt, or pass a larger max_steps")
+                         f"budget max_steps = {max_steps:.3g}{_BUDGET_NOTE}: raise dt, or pass a larger max_steps to run it anyway")
     if steps.size and not steps.max() < 2.0**62:
         raise ValueError(f"method {method!r} with dt = {dt:g} needs {steps.max():.3g} steps for one output "
                          f"interval: more than can be counted (2^62); raise dt")
@@ -305,7 +329,7 @@ def _check_workload(method: str, t: _Array, dt: float, count: int, ny: int, max_
 
 
 def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array, rtol: float, atol: _Array,
-                         max_steps: int) -> None:
+                         max_steps: int, spin: tuple[float, str] | None = None) -> None:
     """Refuse, before any work, torque-free adaptive runs (one body or a batch) that cannot end within ``max_steps``.
 
     A free body turns at ``|ω| >= 2T/|J|`` all along (``ω·J = 2T``, with T and
@@ -314,7 +338,8 @@ def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array,
     twice the largest step angle of uniform spin (the easiest motion, with
     the longest steps) over ``rtol`` 1e-15 … 0.999 and ``atol`` up to 1e3.
     So the run needs at least ``(t[-1] - t[0]) 2T/|J|`` over that many steps;
-    a body at rest or a short run passes whatever the span.
+    a body at rest or a short run passes whatever the span. ``spin`` = (rate, why) gives another
+    lower bound on |ω| instead (a heavy symmetric top keeps ω3 = J3/I3).
     """
     if method not in ADAPTIVE:
         return
@@ -322,6 +347,8 @@ def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array,
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         two_t = np.sum(scaled * omega * omega, axis=-1)
         rate = np.where(two_t > 0.0, two_t / np.linalg.norm(scaled * omega, axis=-1), 0.0)
+        if spin is not None:
+            rate = np.asarray(spin[0])
         per_step = 40.0 * (rtol + atol[..., 3:7].max(axis=-1)) ** (1.0 / 9.0)
         steps = np.broadcast_to((t[-1] - t[0]) * rate / per_step, rate.shape)
     worst = int(np.argmax(steps))
@@ -330,11 +357,25 @@ def _check_adaptive_span(method: str, t: _Array, moments: _Array, omega: _Array,
         rate, per_step = rate.flat[worst], np.broadcast_to(per_step, rate.shape).flat[worst]
         seconds = steps.flat[worst] * _SECONDS_PER_STEP[method]
         raise ValueError(f"t = {t[0]:g} … {t[-1]:g} is out of reach of the adaptive method {method!r}: the "
-                         f"free body{body} turns at |ω| >= {rate:.3g} rad/s (2T/|J| from omega0 and the moments), "
+                         f"{'body' if spin else 'free body'}{body} turns at |ω| >= {rate:.3g} rad/s "
+                         f"({spin[1] if spin else '2T/|J| from omega0 and the moments'}), "
                          f"through {rate * (t[-1] - t[0]):.3g} rad, and one step at rtol = {rtol:g} turns it by at "
                          f"most {per_step:.2g} rad, so the run needs at least {steps.flat[worst]:.3g} steps, about "
-                         f"{_duration(seconds)} of computing; over the budget max_steps = {max_steps:.3g}: shorten t, "
-                         "or pass a larger max_steps")
+                         f"{_duration(seconds)} of computing; over the budget max_steps = {max_steps:.3g}{_BUDGET_NOTE}: "
+                         "shorten t, or pass a larger max_steps to run it anyway")
+
+
+_BUDGET_NOTE = f" (by default about {DEFAULT_SECONDS / 60:g} minutes of computing, at most 1e+10)"
+
+
+def _conserved_spin(moments: _Array, lever: _Array, omega: _Array) -> float | None:
+    """|ω_k| if the lever lies on principal axis k and the other two moments are equal (a heavy symmetric
+    top: gravity's torque has no component along k and Euler's k-th equation has none either)."""
+    for k in range(3):
+        i, j = (k + 1) % 3, (k + 2) % 3
+        if lever[i] == 0.0 and lever[j] == 0.0 and moments[i] == moments[j]:
+            return float(abs(omega[k]))
+    return None
 
 
 def _duration(seconds: float) -> str:
@@ -468,6 +509,11 @@ def _single(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: Ar
     atol_v = _atol(atol, np.asarray(np.linalg.norm(w_body)), y0.size, rtol)
     if torque is None:  # forces move the centre of mass only: the attitude is still a free body's
         _check_adaptive_span(method, t, moments, w_pr, rtol, atol_v, max_steps)
+    elif isinstance(torque, _torques.GravityTorque):
+        spin = _conserved_spin(moments, torque.lever if axes is None else axes.T @ torque.lever, w_pr)
+        if spin is not None:
+            _check_adaptive_span(method, t, moments, w_pr, rtol, atol_v, max_steps,
+                                 (spin, "the spin about the symmetry axis, conserved under gravity"))
     rows = frows = None
     try:
         rows = _model_rows(torque, "torque", axes, t[0], (q_body, w_body))
@@ -525,7 +571,8 @@ def simulate(body: RigidBody | ArrayLike, t: ArrayLike, omega0: ArrayLike, q0: A
         rule and its tolerance are those of every entry point: user guide,
         "Which inertia input is accepted".
     max_steps : int, optional
-        Step budget (default 10¹⁰): a fixed-step run needing
+        Step budget (default: the steps of about ten minutes of computing,
+        at most 10¹⁰; pass it to run longer): a fixed-step run needing
         more steps is refused before it starts, as is a torque-free adaptive
         run that needs more (at least its turn ``(t[-1] - t[0]) 2T/|J|`` over
         a bound on the angle of one step); another adaptive run is stopped

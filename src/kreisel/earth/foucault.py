@@ -17,7 +17,7 @@ import numpy as np
 
 from .._compiled import cached, dop853 as _dop853, inlined
 from .._compiled.chunks import check_max_steps, run_resumable
-from .._validation import MAX_TURN, as_float, check_allocation, positive_float
+from .._validation import as_float, check_allocation, positive_float, refuse_long_turn
 from .enu import OMEGA_EARTH, angular_velocity_enu, check_omega, latitude_cos_sin
 
 __all__ = ["FoucaultSwing", "foucault_period", "foucault_precession_rate", "foucault_pendulum"]
@@ -277,10 +277,8 @@ def foucault_pendulum(
     )
     period = 2.0 * np.pi * np.sqrt(length / g)
     phase = 2.0 * np.pi * (duration / period)
-    if not phase <= MAX_TURN:
-        raise ValueError(f"length and duration are out of range: a {length:g} m pendulum swings through a phase of "
-                         f"{phase:.3g} rad in {duration:g} s (period {period:.3g} s), more than {MAX_TURN:g} rad, "
-                         "where double precision no longer resolves its steps")
+    refuse_long_turn(phase, "length and duration", f"a {length:g} m pendulum swinging {duration:g} s "
+                     f"(period {period:.3g} s) goes through a phase of", "resolves its steps")
     # several steps per swing keep at most one excursion maximum inside a step
     max_step = period / 16.0
     max_steps = check_max_steps(max_steps)

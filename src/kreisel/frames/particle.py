@@ -14,7 +14,7 @@ from numba import njit, objmode
 from .._compiled import cached, dop853 as _dop853
 from .._compiled.chunks import check_max_steps, run_resumable
 from .._norms import norm
-from .._validation import MAX_TURN, as_float, as_float_array, checked_callable, positive_float
+from .._validation import as_float, as_float_array, checked_callable, positive_float, refuse_long_turn
 from .relative import canonical_momentum, hamiltonian
 
 __all__ = ["ParticleTrajectory", "simulate_particle"]
@@ -366,9 +366,7 @@ def _check_turn(omega, omega_dot, t):
     with np.errstate(over="ignore", invalid="ignore"):
         # |ω(t)| is largest at an end of t, since ω changes linearly
         turn = max(float(norm(omega)), float(norm(omega + omega_dot * span))) * span
-    if not turn <= MAX_TURN:
-        raise ValueError(f"omega and t are out of range: the frame turns through about {turn:.3g} rad over t, "
-                         f"more than {MAX_TURN:g} rad, where double precision no longer resolves its motion")
+    refuse_long_turn(turn, "omega and t", "the frame turns through about", "resolves its motion")
 
 
 def _sample(value, name, t):

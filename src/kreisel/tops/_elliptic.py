@@ -178,19 +178,42 @@ def complete_pi(nu: float, one_minus_nu: float, m1: float, kc: float) -> float:
         else:
             integral = _t_function(nu, 1.0)
         return (k - nu * integral) / one_minus_nu
-    return k + nu / 3.0 * carlson_rj(0.0, m1, 1.0, one_minus_nu)
+    if nu >= 0.0:
+        return k + nu / 3.0 * carlson_rj(0.0, m1, 1.0, one_minus_nu)
+    # ν < 0: the terms of positive sign only (amplitude_integral at φ = π/2, where R_C drops out)
+    return (k - nu * m1 * carlson_rj(0.0, m1, 1.0, m1 / one_minus_nu) / (3.0 * one_minus_nu)) / one_minus_nu
+
+
+@cached
+def _rc(x, y):
+    """R_C(x, y) for x > 0, y > 0 (DLMF 19.2.17, homogeneity of degree −1/2)."""
+    return _rc1(y / x) / math.sqrt(x)
 
 
 @cached
 def amplitude_integral(s: float, c: float, m1: float, nu: float, one_minus_nu: float) -> float:
-    """Π(φ, ν | m) for cos φ = c >= 0, sin φ = s (s² + c² = 1), with δ² = c² + m1 s²."""
+    """Π(φ, ν | m) for cos φ = c >= 0, sin φ = s (s² + c² = 1), with δ² = c² + m1 s².
+
+    ν >= 0: F + (ν/3) s³ R_J(c², δ², 1, p), p = c² + (1 − ν) s² (DLMF 19.25.14), all terms
+    positive. ν < 0 would subtract nearly equal terms as ν → −∞ (Π → 0 like 1/√(1 − ν), the top
+    passing next to the lower vertical), so R_J(p) is traded for R_J(q), q = c² + m1 s²/(1 − ν),
+    by (p − x) R_J(p) + (q − x) R_J(q) = 3 R_F − 3 R_C(δ²/c², pq/c²) (DLMF 19.21.12), which leaves
+    (s R_F − ν s c R_C(δ², pq) − ν m1 s³ R_J(q)/(3(1 − ν))) / (1 − ν), all terms positive.
+    """
     c2 = c * c
     # δ² = 1 − m s² is exact to rounding while m s² <= 1/2 (and 1 − m1 is exact there)
     d2 = c2 + m1 * s * s if m1 < 0.5 else 1.0 - (1.0 - m1) * s * s
     f = s * carlson_rf(c2, d2, 1.0)
     if nu == 0.0 or s == 0.0:
         return f
-    return f + nu / 3.0 * s * s * s * carlson_rj(c2, d2, 1.0, c2 + one_minus_nu * s * s)
+    s2 = s * s
+    if nu > 0.0:
+        return f + nu / 3.0 * s2 * s * carlson_rj(c2, d2, 1.0, c2 + one_minus_nu * s2)
+    q = c2 + m1 * s2 / one_minus_nu
+    total = f - nu * m1 * s2 * s * carlson_rj(c2, d2, 1.0, q) / (3.0 * one_minus_nu)
+    if c != 0.0:
+        total -= nu * s * c * _rc(d2, (c2 + one_minus_nu * s2) * q)
+    return total / one_minus_nu
 
 
 @cached
@@ -312,22 +335,34 @@ def phase_from_sn_cn(sn0: float, cn0: float, m1: float, kc: float) -> tuple[int,
 @cached
 def pi_split(n: int, r: float, sn: float, cn: float, m1: float, kc: float, nu: float, one_minus_nu: float,
              pi_complete: float) -> float:
-    """Π(am u, ν | m) at u = nK + r, from (sn, cn) of r (not of u)."""
+    """Π(am u, ν | m) at u = nK + r, from (sn, cn) of r (not of u).
+
+    Odd n: nΠ(ν | m) plus the reflected integral ∫₀^r dw / (1 − ν cd²w). For ν <= 0 that is
+    r/(1 − ν) − ν m1 s³ R_J(c², δ², 1, q)/(3(1 − ν)²), q = c² + m1 s²/(1 − ν), all terms positive;
+    for ν > 0 the two terms cancel as ν → 1 (the top passing next to the upper vertical), and
+    DLMF 19.21.12 turns it into Π(am r, ν | m) + ν s c R_C(δ², pq)/(1 − ν), p = c² + (1 − ν) s²,
+    again all positive.
+    """
     if n % 2 == 0:
         if nu == 0.0:
             return n * pi_complete + r
-        c2 = cn * cn
-        d2 = c2 + m1 * sn * sn
-        rj = carlson_rj(c2, d2, 1.0, c2 + one_minus_nu * sn * sn)
-        return n * pi_complete + r + nu / 3.0 * sn * sn * sn * rj
-    head = n * pi_complete + r / one_minus_nu
-    # the R_J term is below √k′ relative; beyond k′ = 1e-100 its arguments would underflow
-    if nu == 0.0 or kc < 1e-100 or sn == 0.0:
-        return head
+        return n * pi_complete + amplitude_integral(sn, cn, m1, nu, one_minus_nu)
+    if nu == 0.0 or sn == 0.0:
+        return n * pi_complete + r / one_minus_nu
     c2 = cn * cn
-    d2 = c2 + m1 * sn * sn
-    rj = carlson_rj(c2, d2, 1.0, c2 + m1 * sn * sn / one_minus_nu)
-    return head - nu * m1 * sn * sn * sn * rj / (3.0 * one_minus_nu * one_minus_nu)
+    s2 = sn * sn
+    d2 = c2 + m1 * s2
+    q = c2 + m1 * s2 / one_minus_nu
+    if nu > 0.0:
+        reflected = amplitude_integral(sn, cn, m1, nu, one_minus_nu)
+        if cn != 0.0:
+            reflected += nu * sn * cn * _rc(d2, (c2 + one_minus_nu * s2) * q) / one_minus_nu
+        return n * pi_complete + reflected
+    # the R_J term is below √k′ relative; beyond k′ = 1e-100 its arguments would underflow
+    if kc < 1e-100:
+        return n * pi_complete + r / one_minus_nu
+    return n * pi_complete + r / one_minus_nu - nu * m1 * s2 * sn * carlson_rj(c2, d2, 1.0, q) / (
+        3.0 * one_minus_nu * one_minus_nu)
 
 
 @cached

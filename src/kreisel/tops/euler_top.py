@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._compiled.chunks import SAMPLES_PER_CALL
 from .._html import html_table, number
-from .._validation import MAX_TURN, as_float, as_float_array, check_principal_moments, sample_times
+from .._validation import as_float, as_float_array, check_principal_moments, refuse_long_turn, sample_times
 from ..dynamics.trajectory import Trajectory
 from ..so3._coercion import as_quaternion
 from .._norms import norm
@@ -546,9 +547,7 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     # |ω| <= |ω0| I_max/I_min: beyond ~1e15 rad a turn's rounding (1e-16 of it) is more than 0.1 rad
     with np.errstate(over="ignore"):
         turn = np.max(np.abs(t), initial=0.0) * norm(omega0) * (np.max(moments, axis=-1) / np.min(moments, axis=-1))
-    if np.any(turn > MAX_TURN):
-        raise ValueError(f"t and omega0 are out of range: the body turns through up to {float(np.max(turn)):.3g} rad "
-                         f"over t, more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+    refuse_long_turn(float(np.max(turn, initial=0.0)), "t and omega0", "the body turns through up to")
     # the motion depends on the moments' ratios only: a power of two (exact) brings the largest to ~1
     scaled = np.ldexp(moments, -np.frexp(np.max(moments, axis=-1, keepdims=True))[1])
     count = int(np.prod(batch, dtype=np.int64))
@@ -556,10 +555,18 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
             for a in (scaled, omega0, q0)]
     omega = np.empty((count, t.size, 3))
     quat = np.empty((count, t.size, 4))
-    if count == 1:
-        _free_top.body_samples(flat[0][0], flat[1][0], flat[2][0], t, omega[0], quat[0])
+    # compiled calls of at most SAMPLES_PER_CALL samples (each sample is computed on its own: the
+    # same bits), so that Ctrl-C stops 3e7 samples at once instead of after the whole call
+    if count == 1 or t.size * 2 > SAMPLES_PER_CALL:
+        for b in range(count):
+            for s in range(0, t.size, SAMPLES_PER_CALL):
+                e = s + SAMPLES_PER_CALL
+                _free_top.body_samples(flat[0][b], flat[1][b], flat[2][b], t[s:e], omega[b, s:e], quat[b, s:e])
     else:
-        _free_top.batch_samples(flat[0], flat[1], flat[2], t, omega, quat)
+        group = SAMPLES_PER_CALL // t.size
+        for b in range(0, count, group):
+            _free_top.batch_samples(flat[0][b:b + group], flat[1][b:b + group], flat[2][b:b + group], t,
+                                    omega[b:b + group], quat[b:b + group])
     info = np.empty((count, len(_free_top.INFO_FIELDS)))
     _free_top.setup_info(flat[0], flat[1], info)
     labels = [Regime(int(code)).label for code in info[:, 0]]

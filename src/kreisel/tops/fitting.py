@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._html import html_table, number
-from .._validation import MAX_TURN, as_float, as_float_array
+from .._validation import as_float, as_float_array, refuse_long_turn
 from ..so3 import rotvec_to_matrix
 from .euler_top import EulerTop
 
@@ -546,9 +546,7 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     k = int(np.frexp(np.max(np.abs(omega), initial=0.0))[1])
     with np.errstate(over="ignore"):
         t = np.ldexp(t - t[0], k)
-    if not t[-1] <= MAX_TURN:
-        raise ValueError(f"t and omega are out of range: the body turns through up to {float(t[-1]):.3g} rad over t, "
-                         f"more than {MAX_TURN:g} rad, where double precision no longer fixes its attitude")
+    refuse_long_turn(float(t[-1]), "t and omega", "the body turns through up to")
     omega = np.ldexp(omega, -k)
     scale = np.ldexp(1.0, k)
     _determinable(t, omega, bool(bias))

@@ -22,15 +22,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._compiled import cached
+from .._compiled.chunks import SAMPLES_PER_CALL
 from .._html import html_table, number
-from .._validation import as_float, as_float_array, check_principal_moments, positive_array, sample_times
+from .._validation import (as_float, as_float_array, check_principal_moments, positive_array, refuse_long_turn,
+                           sample_times)
 from ..dynamics import GravityTorque, simulate
 from ..dynamics.trajectory import Trajectory
 from ..kinematics import angular_velocity_from_euler_rates
 from ..so3 import euler_to_quat, quat_to_euler
 from . import _elliptic
 from ._free_top import _two_product
-from .euler_top import _check_moments
+from .euler_top import _check_moments, _zxz_quat_from_half_angles
 
 __all__ = ["LagrangeTop", "LagrangeConstants", "FastTop", "larmor_precession_rate"]
 
@@ -219,6 +221,7 @@ class _Quadrature:
 
     def __init__(self, top: LagrangeTop, euler0: NDArray[np.float64], rates0: NDArray[np.float64]) -> None:
         I1 = top.I1
+        self.I1_over_I3 = top.I1 / top.I3
         phidot, thetadot, psidot = (float(x) for x in rates0)
         # 1 ∓ u0 = 2 sin²(θ0/2), 2 cos²(θ0/2) (relative accuracy at both verticals), u0 = cos θ0
         half_sin, half_cos = _dd_sin_cos(0.5 * float(euler0[1]))
@@ -312,21 +315,53 @@ class _Quadrature:
         lower = (self.sigma_b / v1, -(w1 - w2) / v1, (2.0 - w2) / v1) if self.sigma_b != 0.0 else (0.0, 0.0, 1.0)
         return upper, lower
 
-    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        t = np.asarray(t, dtype=float)
+    def motion(self, t: NDArray[np.float64], top: LagrangeTop,
+               euler0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """ZXZ angles, their rates, q and body ω at the times t (Theory §6.3).
+
+        φ + ψ takes only the 1/(1 + u) partial fraction and φ − ψ only the 1/(1 − u) one:
+        next to the lower vertical (θ -> π) φ and ψ each turn by about π within a time ~ π − θ
+        and only φ − ψ is well determined, next to the upper vertical only φ + ψ. The quaternion
+        is therefore built from the half sum and difference, weighted by cos(θ/2), sin(θ/2) from
+        1 ± u (relative accuracy at both verticals), and ω3 = J3/I3 is the constant itself,
+        never the difference φ̇ cos θ + ψ̇ of two rates that grow like 1/sin θ.
+        """
         out = np.empty((t.size, 9))
         terms = np.array(self._partial_fraction_terms(), dtype=float)
-        _lagrange_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2, self.v1, terms, out)
+        for s in range(0, t.size, SAMPLES_PER_CALL):  # Ctrl-C takes effect between the calls; same bits
+            e = s + SAMPLES_PER_CALL
+            _lagrange_samples(t[s:e], self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2,
+                              self.v1, terms, out[s:e])
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
         udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
-        theta = np.arctan2(sin_theta, u)
-        phi = (plus + minus) / (2.0 * self.lam)
-        psi = self.a * (top.I1 / top.I3 - 1.0) * t - (plus - minus) / (2.0 * self.lam)
-        phidot = (self.delta_b + self.a * one_minus_u) / (one_minus_u * one_plus_u)  # (b − a u)/(1 − u²)
+        half_sin, half_cos = np.sqrt(0.5 * one_minus_u), np.sqrt(0.5 * one_plus_u)
+        theta = 2.0 * np.arctan2(half_sin, half_cos)
+        spin_excess = self.a * (top.I1 / top.I3 - 1.0) * t
+        total = euler0[0] + euler0[2] + minus / self.lam + spin_excess  # φ + ψ
+        difference = euler0[0] - euler0[2] + plus / self.lam - spin_excess  # φ − ψ
+        phi, psi = 0.5 * (total + difference), 0.5 * (total - difference)
+        # b − a u = δb + a(1 − u) = σb − a(1 + u): the form whose O(1) terms do not cancel
+        upper = one_minus_u <= one_plus_u
+        numerator = np.where(upper, self.delta_b + self.a * one_minus_u, self.sigma_b - self.a * one_plus_u)
+        phidot = numerator / (one_minus_u * one_plus_u)
         thetadot = -udot / sin_theta
-        psidot = self.a * top.I1 / top.I3 - u * phidot
-        return np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1)
+        omega3 = self.a * top.I1 / top.I3
+        psidot = omega3 - u * phidot
+        q = _zxz_quat_from_half_angles(half_cos, half_sin, 0.5 * total, 0.5 * difference)
+        transverse = numerator / sin_theta  # φ̇ sin θ, bounded through the verticals
+        cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+        omega = np.stack([transverse * sin_psi + thetadot * cos_psi, transverse * cos_psi - thetadot * sin_psi,
+                          np.full_like(t, omega3)], axis=-1)
+        return (np.stack([phi, theta, psi], axis=-1), np.stack([phidot, thetadot, psidot], axis=-1), q, omega)
+
+    def phase_rate(self) -> float:
+        """Largest mean rate (rad/s) of the phases solve() adds up: the elliptic argument λt, the
+        nutation 2πλ/(2K), each partial fraction of φ ± ψ (|c| Π(n | m)/K) and the spin excess."""
+        fractions = sum(abs(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc))
+                        for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0)
+        return float(max(self.lam, math.pi * self.lam / self.quarter, fractions / self.quarter)
+                     + abs(self.a * (self.I1_over_I3 - 1.0)))
 
     def mean_precession_rate(self) -> float:
         """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
@@ -408,8 +443,9 @@ class _PlanarPendulum:
             self.quarter = _elliptic.complete_k(self.m1, self.kc)
             self.n0, self.r0 = _elliptic.phase_from_sn_cn(sn0, cn0, self.m1, self.kc)
 
-    def angles_and_rates(self, t: ArrayLike, top: LagrangeTop) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        t = np.asarray(t, dtype=float)
+    def motion(self, t: NDArray[np.float64], top: LagrangeTop,
+               euler0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+        """ZXZ angles, their rates, q and body ω (φ = φ0 and ψ = ψ0 throughout)."""
         out = np.empty((t.size, 4))
         _pendulum_samples(t, self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, out)
         sn, cn, dn, am = out.T
@@ -418,7 +454,14 @@ class _PlanarPendulum:
         else:
             chi, chidot = 2.0 * np.arctan2(self.k * sn, dn), 2.0 * self.k * self.lam * cn
         zeros = np.zeros_like(t)
-        return np.stack([zeros, np.pi - chi, zeros], axis=-1), np.stack([zeros, -chidot, zeros], axis=-1)
+        euler = np.stack([np.full_like(t, euler0[0]), np.pi - chi, np.full_like(t, euler0[2])], axis=-1)
+        rates = np.stack([zeros, -chidot, zeros], axis=-1)
+        q = euler_to_quat("ZXZ", euler)
+        return euler, rates, q, angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
+
+    def phase_rate(self) -> float:
+        """Largest rate (rad/s) of the phases: the argument λt and, circulating, the swing 2πλ/K."""
+        return float(self.lam * max(1.0, 2.0 * math.pi / self.quarter))
 
     def mean_precession_rate(self) -> float:
         return 0.0
@@ -717,11 +760,6 @@ class LagrangeTop:
         )
 
     # ---- motion -------------------------------------------------------------------
-    def _trajectory(self, t: NDArray[np.float64], euler: NDArray[np.float64], rates: NDArray[np.float64], meta: dict[str, Any]) -> Trajectory:
-        q = euler_to_quat("ZXZ", euler)
-        omega = angular_velocity_from_euler_rates("ZXZ", euler, rates, frame="body")
-        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
-
     def solve(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike) -> Trajectory:
         """Exact motion by quadrature (Theory §6.3): u(t) by sn², φ and ψ by Π.
 
@@ -746,11 +784,12 @@ class LagrangeTop:
         """
         t = sample_times(t)
         quad, euler0, rates0 = self._quadrature(euler0, rates0)
-        euler, rates = quad.angles_and_rates(t, self)
-        euler[:, 0] += euler0[0]
-        euler[:, 2] += euler0[2]
+        with np.errstate(over="ignore"):
+            turn = float(np.max(np.abs(t), initial=0.0)) * quad.phase_rate()
+        refuse_long_turn(turn, "t, euler0 and rates0", "the top's angles and phases turn through up to")
+        euler, rates, q, omega = quad.motion(t, self, euler0)
         meta = {"method": "exact", "body": repr(self), "roots": (quad.u1, quad.u2, quad.u3)}
-        return self._trajectory(t, euler, rates, meta)
+        return Trajectory(t, q, omega, [self.I1, self.I1, self.I3], meta=meta, zxz_angles=euler, zxz_rates=rates)
 
     def simulate(self, t: ArrayLike, euler0: ArrayLike, rates0: ArrayLike, method: str | None = None,
                  **options: Any) -> Trajectory:
