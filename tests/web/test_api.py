@@ -162,3 +162,13 @@ def test_serve_checks_its_arguments(tmp_path):
         serve(tmp_path / "missing.toml", open_browser=False)
     with pytest.raises(ValueError, match="port"):
         serve(port=70000, open_browser=False)
+
+
+def test_a_scenario_with_an_integer_too_long_to_convert_is_a_400_in_one_line(client):
+    from kreisel.web.presets import preset_text
+
+    text = preset_text("tennis_racket").replace("n_samples = 2001", "n_samples = " + "9" * 5000)
+    response = client.post("/api/scenario", json={"toml": text})
+    assert response.status_code == 400, response.text
+    detail = response.json()["detail"]
+    assert "integration.n_samples: expected a number, got an integer of 5000 digits" in detail and "\n" not in detail
