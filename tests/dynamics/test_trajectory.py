@@ -189,3 +189,46 @@ def test_extra_arrays_may_not_hide_trajectory_attributes():
     for name in ("euler", "energy", "drift", "omega_space"):
         with pytest.raises(ValueError, match=f"extra array '{name}' would hide"):
             kr.Trajectory(*args, **{name: [[0.0] * 3] * 2})
+
+
+def test_a_trajectory_slices_by_sample_and_by_time(trajectory):
+    part = trajectory[10:20]
+    assert isinstance(part, kr.Trajectory) and len(part) == 10 and part.meta == trajectory.meta
+    np.testing.assert_array_equal(part.t, trajectory.t[10:20])
+    np.testing.assert_array_equal(part.q, trajectory.q[10:20])
+    np.testing.assert_array_equal(part.omega_space, trajectory.omega_space[10:20])
+    np.testing.assert_array_equal(trajectory[::5].t, trajectory.t[::5])
+    np.testing.assert_array_equal(trajectory[[3, 1]].omega, trajectory.omega[[3, 1]])
+    window = trajectory.between(2.5, 5.0)
+    np.testing.assert_array_equal(window.t, [2.5, 3.0, 3.5, 4.0, 4.5, 5.0])
+    np.testing.assert_array_equal(window.q, trajectory.q[5:11])
+    with pytest.raises(TypeError, match=r"traj\[3:3 \+ 1\]"):
+        trajectory[3]
+    with pytest.raises(IndexError, match="picks no sample"):
+        trajectory[30:]
+    with pytest.raises(ValueError, match="no sample lies in"):
+        trajectory.between(20.0, 30.0)
+    with pytest.raises(ValueError, match="t0 must be at most t1"):
+        trajectory.between(5.0, 2.0)
+    with pytest.raises(ValueError, match="t1"):
+        trajectory.between(0.0, np.nan)
+
+
+def test_a_sliced_batch_keeps_its_bodies_and_extra_arrays():
+    t = np.linspace(0.0, 1.0, 6)
+    batch = kr.simulate_batch([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]], t, [0.1, 1.0, 0.2])
+    part = batch[2:5]
+    assert part.batch_shape == (2,) and part.q.shape == (2, 3, 4)
+    np.testing.assert_array_equal(part.omega, batch.omega[:, 2:5])
+    six = kr.Trajectory(t, [[1, 0, 0, 0]] * 6, [[0, 0, 1.0]] * 6, [1, 2, 3], position=np.arange(18.0).reshape(6, 3),
+                        angle=np.arange(6.0))
+    np.testing.assert_array_equal(six[1:3].position, [[3, 4, 5], [6, 7, 8]])
+    np.testing.assert_array_equal(six[1:3].angle, [1.0, 2.0])
+
+
+def test_rotation_is_the_attitude_as_a_rotation(trajectory):
+    r = trajectory.rotation
+    assert isinstance(r, kr.Rotation) and len(r) == len(trajectory)
+    ref = Rotation.from_quat(trajectory.q, scalar_first=True)
+    np.testing.assert_allclose(r.apply(trajectory.omega), ref.apply(trajectory.omega), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(r.as_matrix(), ref.as_matrix(), rtol=0, atol=1e-15)
