@@ -111,21 +111,24 @@ def test_a_truncated_csv_file_is_refused_not_read_with_nan(tmp_path, trajectory)
     trajectory.save(path)
     text = path.read_bytes()
     rows = text.splitlines(keepends=True)
-    cut = tmp_path / "cut.csv"
-    cut.write_bytes(text[:len(text) - len(rows[-1]) + 12])  # within the last row's quaternion
+    path.write_bytes(text[:len(text) - len(rows[-1]) + 12])  # within the last row's quaternion
     with pytest.raises(ValueError, match="ends within a row"):
-        kr.Trajectory.load(cut)
-    cut.write_bytes(b"".join(rows[:-3]))  # whole rows lost
+        kr.Trajectory.load(path)
+    path.write_bytes(b"".join(rows[:-3]))  # whole rows lost
     with pytest.raises(ValueError, match="holds 18 of the 21 rows"):
-        kr.Trajectory.load(cut)
-    with pytest.raises(kr.io.ResultError, match="not a readable kreisel trajectory.*truncated"):
-        kr.io.load_trajectory(cut)
+        kr.Trajectory.load(path)
+    with pytest.raises(kr.io.ResultError, match=r"traj\.csv: holds 18 of the 21 rows .*truncated"):
+        kr.io.load_trajectory(path)
 
 
 def _edited(tmp_path, trajectory, line, edit):
-    """A saved CSV trajectory with line ``line`` (1-based) passed through ``edit``."""
+    """A saved CSV trajectory with line ``line`` (1-based; 0: the sidecar's JSON) passed through ``edit``."""
     path = tmp_path / "traj.csv"
     trajectory.save(path)
+    if line == 0:
+        side = tmp_path / "traj.csv.json"
+        side.write_text(edit(side.read_text(encoding="utf-8").strip()), encoding="utf-8")
+        return path
     lines = path.read_text(encoding="utf-8").splitlines()
     lines[line - 1] = edit(lines[line - 1])
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
@@ -137,12 +140,13 @@ def _cell(index, value):
 
 
 @pytest.mark.parametrize(("line", "edit", "match"), [
-    (5, _cell(1, "0.5"), r"traj.csv: columns q0..q3, line 5: quaternion of length 0.6\d+, not a unit quaternion"),
+    (5, _cell(1, "0.5"), r"traj.csv: columns q0..q3, line 5: quaternion of length 0.7\d+, not a unit quaternion"),
     (5, _cell(6, "abc"), r"traj.csv: column 'omega_2', line 5: not a number: 'abc'"),
     (7, _cell(0, "x"), r"traj.csv: column 't', line 7: not a number: 'x'"),
-    (1, lambda line: line[:-3], r"traj.csv: the kreisel header is not valid JSON"),
-    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[1.0, 0.5, 0.0]"), r"traj.csv: header: inertia must be symmetric"),
-    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[-1.0, 0.0, 0.0]"), r"traj.csv: header: inertia: principal moments"),
+    (7, _cell(5, "0.25"), r"traj.csv: the data do not match the SHA-256 checksum in traj.csv.json"),
+    (0, lambda line: line[:-3], r"traj.csv.json: the kreisel header is not valid JSON"),
+    (0, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[1.0, 0.5, 0.0]"), r"traj.csv.json: header: inertia must be symmetric"),
+    (0, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[-1.0, 0.0, 0.0]"), r"traj.csv.json: header: inertia: principal moments"),
 ])
 def test_a_hand_edited_csv_file_is_refused_naming_file_column_and_line(tmp_path, trajectory, line, edit, match):
     with pytest.raises(ValueError, match=match):
@@ -152,8 +156,8 @@ def test_a_hand_edited_csv_file_is_refused_naming_file_column_and_line(tmp_path,
 def test_a_csv_file_saved_again_with_semicolons_is_refused_with_a_hint(tmp_path, trajectory):
     path = tmp_path / "traj.csv"
     trajectory.save(path)
-    header, *table = path.read_text(encoding="utf-8").splitlines()
-    path.write_text("\n".join([header] + [row.replace(",", ";") for row in table]) + "\n", encoding="utf-8")
+    table = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join(row.replace(",", ";") for row in table) + "\n", encoding="utf-8")
     with pytest.raises(ValueError, match=r"column\(s\) q0, q1, q2, q3 not found; .*another separator"):
         kr.Trajectory.load(path)
 

@@ -134,7 +134,7 @@ def test_export_trajectory_and_scenario(client, tmp_path):
     ran = client.post("/api/run", json={"form": TENNIS}).json()
     np.testing.assert_allclose(traj.q, ran["q"], rtol=0, atol=1e-15)
     csv = client.post("/api/export?format=csv", json={"preset": "symmetric_top"})
-    assert csv.status_code == 200 and csv.text.startswith("# kreisel-trajectory")
+    assert csv.status_code == 200 and csv.text.startswith("t,q0,q1,q2,q3,omega_1")  # plain CSV
     assert client.post("/api/export?format=exe", json={"form": TENNIS}).status_code == 422
     assert client.post("/api/export", json={"preset": "foucault"}).status_code == 400
     toml = client.post("/api/scenario", json={"form": TENNIS}).json()["toml"]

@@ -93,6 +93,8 @@ def load_trajectory(path):
         kind = _dataset_kind(path)
         if kind is not None:
             raise ResultError(f"{path}: holds a {kind} result, not a trajectory") from None
+        if isinstance(exc, _trajectory_files.TrajectoryFileError):
+            raise ResultError(str(exc)) from None
         # backends explain themselves over several lines (xarray suggests installing netcdf4): keep the first
         reason = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {reason})") from None
