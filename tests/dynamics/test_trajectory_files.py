@@ -133,7 +133,26 @@ def test_kreisel_csv_is_plain_csv_for_pandas_and_numpy(tmp_path, trajectory):
     np.testing.assert_array_equal(table["omega_2"], trajectory.omega[:, 1])
     meta = json.loads(sidecar(path).read_text(encoding="utf-8"))
     assert meta["csv"] == "traj.csv" and meta["samples"] == 41 and meta["sha256"] == checksum(trajectory)
-    # the pair goes together: without its sidecar the CSV says what is missing
+
+
+def test_a_csv_without_its_sidecar_recovers_the_inertia_from_its_columns_or_says_what_is_missing(tmp_path,
+                                                                                                  trajectory):
+    # the viewer's download is the CSV alone; a tumbling body's ω′ spans the body axes, J′ = I ω′ gives I
+    path = tmp_path / "traj.csv"
+    trajectory.save(path)
     sidecar(path).unlink()
-    with pytest.raises(TrajectoryFileError, match=r"traj\.csv: its sidecar file traj\.csv\.json .* is missing"):
+    with pytest.warns(UserWarning, match=r"traj\.csv without its sidecar traj\.csv\.json: inertia recovered"):
+        back = kr.Trajectory.load(path)
+    np.testing.assert_allclose(back.inertia, trajectory.inertia, rtol=0, atol=1e-13)
+    np.testing.assert_array_equal(back.q, trajectory.q)
+    assert back.meta["torque"] == "unknown"
+    # a steady spin about a principal axis tells only one moment: refused, naming the missing sidecar
+    spin = kr.Trajectory(trajectory.t, trajectory.q, np.tile([0.0, 0.0, 1.0], (41, 1)), [1.0, 2.0, 3.0])
+    spin.save(path)
+    sidecar(path).unlink()
+    with pytest.raises(TrajectoryFileError, match=r"traj\.csv: its sidecar file traj\.csv\.json .* is missing.*"
+                                                  r"does not turn through all three body axes"):
+        kr.Trajectory.load(path)
+    path.write_text("t,q0,q1,q2,q3\n0,1,0,0,0\n", encoding="utf-8")
+    with pytest.raises(TrajectoryFileError, match=r"its sidecar file traj\.csv\.json .* is missing: keep the two"):
         kr.Trajectory.load(path)

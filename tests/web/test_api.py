@@ -135,6 +135,10 @@ def test_export_trajectory_and_scenario(client, tmp_path):
     np.testing.assert_allclose(traj.q, ran["q"], rtol=0, atol=1e-15)
     csv = client.post("/api/export?format=csv", json={"preset": "symmetric_top"})
     assert csv.status_code == 200 and csv.text.startswith("t,q0,q1,q2,q3,omega_1")  # plain CSV
+    (tmp_path / "run.csv").write_bytes(csv.content)  # downloaded alone, without the sidecar kreisel writes
+    with pytest.warns(UserWarning, match="inertia recovered from the J and ω′ columns"):
+        top = load_trajectory(tmp_path / "run.csv")
+    np.testing.assert_allclose(np.linalg.eigvalsh(top.inertia), [1.0, 1.0, 2.0], rtol=1e-12)  # the symmetric top's
     assert client.post("/api/export?format=exe", json={"form": TENNIS}).status_code == 422
     assert client.post("/api/export", json={"preset": "foucault"}).status_code == 400
     toml = client.post("/api/scenario", json={"form": TENNIS}).json()["toml"]

@@ -29,6 +29,7 @@ import hashlib
 import json
 import os
 import pathlib
+import warnings
 from typing import Any, TypeVar
 
 import numpy as np
@@ -193,18 +194,17 @@ def _load_table(cls, path, suffix):
             first_line = 3  # after the JSON header and the column names
         else:
             side = header_file = sidecar(path)
-            if not side.is_file():
-                raise TrajectoryFileError(f"{path}: its sidecar file {side.name} (inertia and metadata, written with "
-                                          "the CSV) is missing: keep the two together, or save as .nc or .parquet, "
-                                          "which hold both in one file")
-            try:
-                text = side.read_text(encoding="utf-8")
-            except UnicodeDecodeError as exc:
-                raise TrajectoryFileError(f"{side}: not UTF-8 text (byte {exc.start}); was the sidecar "
-                                          "edited?") from None
-            header = _header(side, text)
             frame = _read_csv(pd, path, path)
             first_line = 2  # after the column names
+            if side.is_file():
+                try:
+                    text = side.read_text(encoding="utf-8")
+                except UnicodeDecodeError as exc:
+                    raise TrajectoryFileError(f"{side}: not UTF-8 text (byte {exc.start}); was the sidecar "
+                                              "edited?") from None
+                header = _header(side, text)
+            else:
+                header = _without_sidecar(path, side, _Table(path, frame, first_line))
         _check_complete(path, frame, header)
     if len(frame) == 0:
         raise TrajectoryFileError(f"{path}: holds no samples (cut after its column names?)")
@@ -217,6 +217,39 @@ def _load_table(cls, path, suffix):
         extra[name] = table.numbers(columns) if columns[0] in frame else table.numbers([name])[:, 0]
     trajectory = cls(table.times(), q, omega, _inertia(header_file, header), meta=header["meta"], **extra)
     return trajectory, header.get("sha256")
+
+
+def _without_sidecar(path, side, table):
+    """The header of a CSV whose sidecar is missing (the viewer's download), the inertia recovered from its columns.
+
+    J′ = I ω′ at every sample (Theory §4.4), with J′ = Rᵀ J from the ``J_x..z`` and ``q0..q3`` columns: a least-squares
+    fit of the symmetric I, accepted only when ω′ spans all three body axes and every sample agrees to 1e-9.
+    """
+    missing = (f"{path}: its sidecar file {side.name} (inertia and metadata, written with the CSV) is missing: keep "
+               "the two together, or save as .nc or .parquet, which hold both in one file")
+    needed = [f"q{k}" for k in range(4)] + [f"omega_{k + 1}" for k in range(3)] + [f"J_{c}" for c in _AXES]
+    if len(table.frame) == 0 or not set(needed) <= set(table.frame.columns):
+        raise TrajectoryFileError(missing)
+    q, omega, momentum = (table.numbers(needed[:4]), table.numbers(needed[4:7]), table.numbers(needed[7:]))
+    finite = np.isfinite(np.hstack([q, omega, momentum])).all(axis=1)
+    q, omega, momentum = q[finite], omega[finite], momentum[finite]
+    from ..so3 import quat_apply
+
+    body = quat_apply(q / np.linalg.norm(q, axis=-1, keepdims=True), momentum, inverse=True) if len(q) else q[:, :3]
+    spread = np.linalg.svd(omega, compute_uv=False) if len(omega) >= 3 else np.zeros(1)
+    if spread.size < 3 or not spread[-1] > 1e-6 * spread[0]:
+        raise TrajectoryFileError(missing + "; the inertia cannot be recovered from the columns either, since "
+                                  "ω′ does not turn through all three body axes")
+    tensor = np.linalg.lstsq(omega, body, rcond=None)[0]
+    tensor = 0.5 * (tensor + tensor.T)
+    misfit = float(np.max(np.abs(omega @ tensor - body)) / np.max(np.abs(body)))
+    if not misfit <= 1e-9:
+        raise TrajectoryFileError(missing + f"; the J and ω′ columns do not fit one inertia tensor (misfit "
+                                  f"{misfit:.1e}), so it cannot be recovered from them")
+    note = (f"{path.name} without its sidecar {side.name}: inertia recovered from the J and ω′ columns (misfit "
+            f"{misfit:.1e}); method, torque and extra arrays unknown")
+    warnings.warn(note, stacklevel=5)  # at the caller of Trajectory.load
+    return {"inertia": tensor.tolist(), "meta": {"note": note, "torque": "unknown"}}
 
 
 def _read_csv(pd, path, source):

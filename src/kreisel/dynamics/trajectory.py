@@ -412,8 +412,10 @@ class Trajectory:
     def save(self, path: str | os.PathLike[str]) -> None:
         """Write to NetCDF (``.nc``, via xarray's scipy engine), CSV (``.csv``) or Parquet (``.parquet``).
 
-        CSV and Parquet hold one body; they keep the inertia tensor, ``meta``
-        and the names of the extra arrays in a header so :meth:`load` restores
+        CSV and Parquet hold one body; the inertia tensor, ``meta``, the names
+        of the extra arrays and a SHA-256 checksum of the data go to the
+        Parquet file's metadata, and beside a CSV (which stays plain CSV) to
+        the sidecar ``NAME.csv.json``, so :meth:`load` restores and checks
         them. The file is written atomically (complete or untouched); an
         existing file at ``path`` is replaced, as by xarray's and pandas'
         writers (``kreisel simulate -o`` refuses one unless given ``--force``).

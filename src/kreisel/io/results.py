@@ -24,8 +24,8 @@ def save_result(result, path):
     """Write a Trajectory or an ``xarray.Dataset`` to ``path`` (format from the suffix).
 
     NetCDF keeps everything; CSV and Parquet hold one body, with the
-    trajectory's inertia and metadata in the file (CSV header / Parquet
-    key-value metadata) so :func:`load_trajectory` restores it. The file is
+    trajectory's inertia and metadata beside the data (the CSV's sidecar
+    ``NAME.csv.json``, Parquet key-value metadata) so :func:`load_trajectory` restores it. The file is
     written atomically; an existing one is replaced (``kreisel simulate -o``
     refuses one unless given ``--force``).
 
