@@ -156,3 +156,26 @@ def test_a_csv_without_its_sidecar_recovers_the_inertia_from_its_columns_or_says
     path.write_text("t,q0,q1,q2,q3\n0,1,0,0,0\n", encoding="utf-8")
     with pytest.raises(TrajectoryFileError, match=r"its sidecar file traj\.csv\.json .* is missing: keep the two"):
         kr.Trajectory.load(path)
+
+
+def test_kreisel_simulate_csv_output_reads_as_plain_csv(tmp_path):
+    import os
+    import pathlib
+    import subprocess
+    import sys
+
+    import pandas as pd
+
+    src = pathlib.Path(kr.__file__).resolve().parents[1]
+    process = subprocess.run([sys.executable, "-m", "kreisel", "simulate", "tennis_racket", "-o", "x.csv"],
+                             cwd=tmp_path, capture_output=True, text=True, timeout=600,
+                             env=dict(os.environ, PYTHONPATH=str(src)))
+    assert process.returncode == 0, process.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.csv", "x.csv.json"]
+    frame = pd.read_csv(tmp_path / "x.csv")
+    table = np.genfromtxt(tmp_path / "x.csv", delimiter=",", names=True)
+    back = kr.Trajectory.load(tmp_path / "x.csv")
+    assert frame.shape == (2001, 15) and table.shape == (2001,)
+    np.testing.assert_array_equal(frame["t"].to_numpy(), back.t)
+    np.testing.assert_array_equal(table["q3"], back.q[:, 3])
+    assert back.meta["scenario"] == "Tennis racket (Dzhanibekov) flips"
