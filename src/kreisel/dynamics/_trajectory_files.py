@@ -325,7 +325,8 @@ class _Table:
         return self._column("t", pd.Series(self.frame.index))
 
     def check_unit(self, q, name):
-        norm = np.linalg.norm(q, axis=-1)
+        with np.errstate(over="ignore"):  # a damaged value of 1e300 has an infinite norm: refused below
+            norm = np.linalg.norm(q, axis=-1)
         bad = np.flatnonzero(np.abs(norm - 1.0) > UNIT_TOLERANCE)
         if bad.size:
             k = int(bad[0])
