@@ -46,7 +46,7 @@ def usage_error(process, *fragments):
 @pytest.mark.parametrize("attitude, line, key, expected", [
     ('seq = "ZXQ"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "letters x, y, z"),
     ('seq = "ZZX"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "no axis twice in a row"),
-    ("quat = [0, 0, 0, 0]", 7, "initial.attitude.quat", "a nonzero quaternion"),
+    ("quat = [0, 0, 0, 0]", 7, "initial.attitude.quat", "a unit quaternion"),
     ("matrix = [[1, 0, 0], [0, 2, 0], [0, 0, 1]]", 7, "initial.attitude.matrix", "a rotation matrix"),
     ('quat = [1, 0, 0, 0]\nseq = "ZXZ"', 8, "initial.attitude.seq", "only used with euler"),
 ])

@@ -111,21 +111,24 @@ def test_a_truncated_csv_file_is_refused_not_read_with_nan(tmp_path, trajectory)
     trajectory.save(path)
     text = path.read_bytes()
     rows = text.splitlines(keepends=True)
-    cut = tmp_path / "cut.csv"
-    cut.write_bytes(text[:len(text) - len(rows[-1]) + 12])  # within the last row's quaternion
+    path.write_bytes(text[:len(text) - len(rows[-1]) + 12])  # within the last row's quaternion
     with pytest.raises(ValueError, match="ends within a row"):
-        kr.Trajectory.load(cut)
-    cut.write_bytes(b"".join(rows[:-3]))  # whole rows lost
+        kr.Trajectory.load(path)
+    path.write_bytes(b"".join(rows[:-3]))  # whole rows lost
     with pytest.raises(ValueError, match="holds 18 of the 21 rows"):
-        kr.Trajectory.load(cut)
-    with pytest.raises(kr.io.ResultError, match="not a readable kreisel trajectory.*truncated"):
-        kr.io.load_trajectory(cut)
+        kr.Trajectory.load(path)
+    with pytest.raises(kr.io.ResultError, match=r"traj\.csv: holds 18 of the 21 rows .*truncated"):
+        kr.io.load_trajectory(path)
 
 
 def _edited(tmp_path, trajectory, line, edit):
-    """A saved CSV trajectory with line ``line`` (1-based) passed through ``edit``."""
+    """A saved CSV trajectory with line ``line`` (1-based; 0: the sidecar's JSON) passed through ``edit``."""
     path = tmp_path / "traj.csv"
     trajectory.save(path)
+    if line == 0:
+        side = tmp_path / "traj.csv.json"
+        side.write_text(edit(side.read_text(encoding="utf-8").strip()), encoding="utf-8")
+        return path
     lines = path.read_text(encoding="utf-8").splitlines()
     lines[line - 1] = edit(lines[line - 1])
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
@@ -137,12 +140,13 @@ def _cell(index, value):
 
 
 @pytest.mark.parametrize(("line", "edit", "match"), [
-    (5, _cell(1, "0.5"), r"traj.csv: columns q0..q3, line 5: quaternion of length 0.6\d+, not a unit quaternion"),
+    (5, _cell(1, "0.5"), r"traj.csv: columns q0..q3, line 5: quaternion of length 0.7\d+, not a unit quaternion"),
     (5, _cell(6, "abc"), r"traj.csv: column 'omega_2', line 5: not a number: 'abc'"),
     (7, _cell(0, "x"), r"traj.csv: column 't', line 7: not a number: 'x'"),
-    (1, lambda line: line[:-3], r"traj.csv: the kreisel header is not valid JSON"),
-    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[1.0, 0.5, 0.0]"), r"traj.csv: header: inertia must be symmetric"),
-    (1, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[-1.0, 0.0, 0.0]"), r"traj.csv: header: inertia: principal moments"),
+    (7, _cell(5, "0.25"), r"traj.csv: the data do not match the SHA-256 checksum in traj.csv.json"),
+    (0, lambda line: line[:-3], r"traj.csv.json: the kreisel header is not valid JSON"),
+    (0, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[1.0, 0.5, 0.0]"), r"traj.csv.json: header: inertia must be symmetric"),
+    (0, lambda line: line.replace("[[1.0, 0.0, 0.0]", "[[-1.0, 0.0, 0.0]"), r"traj.csv.json: header: inertia: principal moments"),
 ])
 def test_a_hand_edited_csv_file_is_refused_naming_file_column_and_line(tmp_path, trajectory, line, edit, match):
     with pytest.raises(ValueError, match=match):
@@ -152,8 +156,8 @@ def test_a_hand_edited_csv_file_is_refused_naming_file_column_and_line(tmp_path,
 def test_a_csv_file_saved_again_with_semicolons_is_refused_with_a_hint(tmp_path, trajectory):
     path = tmp_path / "traj.csv"
     trajectory.save(path)
-    header, *table = path.read_text(encoding="utf-8").splitlines()
-    path.write_text("\n".join([header] + [row.replace(",", ";") for row in table]) + "\n", encoding="utf-8")
+    table = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join(row.replace(",", ";") for row in table) + "\n", encoding="utf-8")
     with pytest.raises(ValueError, match=r"column\(s\) q0, q1, q2, q3 not found; .*another separator"):
         kr.Trajectory.load(path)
 
@@ -189,3 +193,46 @@ def test_extra_arrays_may_not_hide_trajectory_attributes():
     for name in ("euler", "energy", "drift", "omega_space"):
         with pytest.raises(ValueError, match=f"extra array '{name}' would hide"):
             kr.Trajectory(*args, **{name: [[0.0] * 3] * 2})
+
+
+def test_a_trajectory_slices_by_sample_and_by_time(trajectory):
+    part = trajectory[10:20]
+    assert isinstance(part, kr.Trajectory) and len(part) == 10 and part.meta == trajectory.meta
+    np.testing.assert_array_equal(part.t, trajectory.t[10:20])
+    np.testing.assert_array_equal(part.q, trajectory.q[10:20])
+    np.testing.assert_array_equal(part.omega_space, trajectory.omega_space[10:20])
+    np.testing.assert_array_equal(trajectory[::5].t, trajectory.t[::5])
+    np.testing.assert_array_equal(trajectory[[3, 1]].omega, trajectory.omega[[3, 1]])
+    window = trajectory.between(2.5, 5.0)
+    np.testing.assert_array_equal(window.t, [2.5, 3.0, 3.5, 4.0, 4.5, 5.0])
+    np.testing.assert_array_equal(window.q, trajectory.q[5:11])
+    with pytest.raises(TypeError, match=r"traj\[3:3 \+ 1\]"):
+        trajectory[3]
+    with pytest.raises(IndexError, match="picks no sample"):
+        trajectory[30:]
+    with pytest.raises(ValueError, match="no sample lies in"):
+        trajectory.between(20.0, 30.0)
+    with pytest.raises(ValueError, match="t0 must be at most t1"):
+        trajectory.between(5.0, 2.0)
+    with pytest.raises(ValueError, match="t1"):
+        trajectory.between(0.0, np.nan)
+
+
+def test_a_sliced_batch_keeps_its_bodies_and_extra_arrays():
+    t = np.linspace(0.0, 1.0, 6)
+    batch = kr.simulate_batch([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]], t, [0.1, 1.0, 0.2])
+    part = batch[2:5]
+    assert part.batch_shape == (2,) and part.q.shape == (2, 3, 4)
+    np.testing.assert_array_equal(part.omega, batch.omega[:, 2:5])
+    six = kr.Trajectory(t, [[1, 0, 0, 0]] * 6, [[0, 0, 1.0]] * 6, [1, 2, 3], position=np.arange(18.0).reshape(6, 3),
+                        angle=np.arange(6.0))
+    np.testing.assert_array_equal(six[1:3].position, [[3, 4, 5], [6, 7, 8]])
+    np.testing.assert_array_equal(six[1:3].angle, [1.0, 2.0])
+
+
+def test_rotation_is_the_attitude_as_a_rotation(trajectory):
+    r = trajectory.rotation
+    assert isinstance(r, kr.Rotation) and len(r) == len(trajectory)
+    ref = Rotation.from_quat(trajectory.q, scalar_first=True)
+    np.testing.assert_allclose(r.apply(trajectory.omega), ref.apply(trajectory.omega), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(r.as_matrix(), ref.as_matrix(), rtol=0, atol=1e-15)

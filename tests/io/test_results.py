@@ -22,7 +22,8 @@ def test_round_trip(tmp_path, trajectory, suffix):
     np.testing.assert_allclose(back.q, trajectory.q, rtol=0, atol=1e-16)
     np.testing.assert_allclose(back.omega, trajectory.omega, rtol=0, atol=1e-16)
     np.testing.assert_array_equal(back.inertia, trajectory.inertia)
-    assert [p.name for p in tmp_path.iterdir()] == [f"traj{suffix}"]  # no temporary file left
+    # no temporary file left; a CSV keeps its inertia and metadata in a sidecar
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"traj{suffix}"] + ([f"traj{suffix}.json"] if suffix == ".csv" else [])
 
 
 def test_failed_write_keeps_the_old_file(tmp_path, trajectory):
@@ -46,7 +47,7 @@ def test_unreadable_files_give_one_line_errors(tmp_path):
         load_trajectory(tmp_path / "absent.nc")
     junk = tmp_path / "junk.csv"
     junk.write_text("a,b\n1,2\n")
-    with pytest.raises(ResultError, match="not a readable kreisel trajectory"):
+    with pytest.raises(ResultError, match="junk.csv: its sidecar file junk.csv.json .* is missing"):
         load_trajectory(junk)
     other = tmp_path / "x.txt"
     other.write_text("")

@@ -93,8 +93,8 @@ def test_every_preset_runs(client):
     ({"form": dict(TENNIS, n_samples=MAX_SAMPLES + 1)}, 422, "at most"),
     ({"form": dict(TENNIS, method="rk4", dt=1e-9)}, 422, "steps is too many"),
     ({"form": dict(TENNIS, t_end=1e9)}, 422, "turns"),
-    # an integer past int64 (JSON has no limit): refused by the sample limit, not a server error
-    ({"form": dict(TENNIS, n_samples=10**30)}, 422, "is too many: the viewer allows at most"),
+    # an integer past int64 (JSON has no limit): refused as more than memory holds, not a server error
+    ({"form": dict(TENNIS, n_samples=10**30)}, 400, "integration.n_samples: expected at most"),
     # torques speed the body up: refused before the run instead of after a minute at the step budget
     ({"form": dict(TENNIS, mgl=1e300)}, 422, "turns of the body requested (with gravity's rate)"),
     ({"toml": "[body]\nmoments = [1.0, 2.0, 3.0]\n[initial]\nomega = [0, 0, 1]\n[[torque]]\n"
@@ -134,7 +134,11 @@ def test_export_trajectory_and_scenario(client, tmp_path):
     ran = client.post("/api/run", json={"form": TENNIS}).json()
     np.testing.assert_allclose(traj.q, ran["q"], rtol=0, atol=1e-15)
     csv = client.post("/api/export?format=csv", json={"preset": "symmetric_top"})
-    assert csv.status_code == 200 and csv.text.startswith("# kreisel-trajectory")
+    assert csv.status_code == 200 and csv.text.startswith("t,q0,q1,q2,q3,omega_1")  # plain CSV
+    (tmp_path / "run.csv").write_bytes(csv.content)  # downloaded alone, without the sidecar kreisel writes
+    with pytest.warns(UserWarning, match="inertia recovered from the J and ω′ columns"):
+        top = load_trajectory(tmp_path / "run.csv")
+    np.testing.assert_allclose(np.linalg.eigvalsh(top.inertia), [1.0, 1.0, 2.0], rtol=1e-12)  # the symmetric top's
     assert client.post("/api/export?format=exe", json={"form": TENNIS}).status_code == 422
     assert client.post("/api/export", json={"preset": "foucault"}).status_code == 400
     toml = client.post("/api/scenario", json={"form": TENNIS}).json()["toml"]
@@ -162,3 +166,13 @@ def test_serve_checks_its_arguments(tmp_path):
         serve(tmp_path / "missing.toml", open_browser=False)
     with pytest.raises(ValueError, match="port"):
         serve(port=70000, open_browser=False)
+
+
+def test_a_scenario_with_an_integer_too_long_to_convert_is_a_400_in_one_line(client):
+    from kreisel.web.presets import preset_text
+
+    text = preset_text("tennis_racket").replace("n_samples = 2001", "n_samples = " + "9" * 5000)
+    response = client.post("/api/scenario", json={"toml": text})
+    assert response.status_code == 400, response.text
+    detail = response.json()["detail"]
+    assert "integration.n_samples: expected a number, got an integer of 5000 digits" in detail and "\n" not in detail

@@ -12,8 +12,9 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _display
 from .._html import html_table, number
 from .._optional import require
-from .._validation import as_float_array, check_frame, sample_times
+from .._validation import as_float, as_float_array, check_frame, sample_times
 from ..so3 import quat_apply
+from ..so3.rotation import Rotation
 from . import _trajectory_files
 
 if TYPE_CHECKING:
@@ -78,6 +79,70 @@ class Trajectory:
 
     def __len__(self) -> int:
         return self.t.size
+
+    def __getitem__(self, index: Any) -> Trajectory:
+        """The samples ``index`` picks along time (a slice, integer array or boolean mask) as a Trajectory.
+
+        Batch axes are kept; ``meta`` and the extra arrays come along. A single integer is refused: a
+        sample is not a trajectory (``traj[k:k + 1]`` is one, ``traj.q[..., k, :]`` its attitude).
+
+        Examples
+        --------
+        >>> tr = Trajectory(np.arange(5.0), [[1, 0, 0, 0]] * 5, [[0, 0, 1]] * 5, [1, 2, 3])
+        >>> tr[1:4].t.tolist(), tr[::2].t.tolist(), tr[tr.t > 2.5].t.tolist()
+        ([1.0, 2.0, 3.0], [0.0, 2.0, 4.0], [3.0, 4.0])
+        """
+        if isinstance(index, (int, np.integer)) or (isinstance(index, np.ndarray) and index.ndim == 0):
+            raise TypeError(f"Trajectory index must be a slice, an integer array or a boolean mask, got the integer "
+                            f"{index!r}: traj[{index}:{index} + 1] is a trajectory of that one sample")
+        if isinstance(index, tuple):
+            raise TypeError("Trajectory index picks samples along time only; index the arrays (traj.q[...]) for more")
+        try:
+            picked = np.arange(self.t.size)[index]
+        except (IndexError, TypeError, ValueError) as exc:
+            raise IndexError(f"Trajectory index {index!r} does not pick samples of {self.t.size}: {exc}") from None
+        if picked.ndim != 1:
+            raise IndexError(f"Trajectory index must pick samples along one time axis, got shape {picked.shape}")
+        if picked.size == 0:
+            raise IndexError(f"Trajectory index {index!r} picks no sample of {self.t.size}")
+        extra = {}
+        for name in self._extra:
+            value = np.asarray(getattr(self, name))
+            axis = value.ndim - 2 if value.shape[-1:] == (3,) and value.ndim >= 2 else value.ndim - 1
+            extra[name] = np.take(value, picked, axis=axis)
+        return type(self)(self.t[picked], self.q[..., picked, :], self.omega[..., picked, :], self.inertia,
+                          meta=self.meta, **extra)
+
+    def between(self, t0: float, t1: float) -> Trajectory:
+        """The samples at times ``t0 <= t <= t1`` (in the order held), as a Trajectory.
+
+        Examples
+        --------
+        >>> tr = Trajectory(np.arange(11) / 4, [[1, 0, 0, 0]] * 11, [[0, 0, 1]] * 11, [1, 2, 3])
+        >>> tr.between(0.4, 1.0).t.tolist()
+        [0.5, 0.75, 1.0]
+        """
+        t0, t1 = as_float(t0, "t0"), as_float(t1, "t1")
+        if t0 > t1:
+            raise ValueError(f"t0 must be at most t1, got t0 = {t0!r} > t1 = {t1!r}")
+        inside = (self.t >= t0) & (self.t <= t1)
+        if not inside.any():
+            raise ValueError(f"no sample lies in [t0, t1] = [{t0!r}, {t1!r}]; the trajectory spans "
+                             f"t = {self.t.min()!r} … {self.t.max()!r}")
+        return self[inside]
+
+    @property
+    def rotation(self) -> Rotation:
+        """The attitudes as a :class:`kreisel.Rotation` of shape ``(batch..., n)`` (R maps body to space).
+
+        Examples
+        --------
+        >>> tr = Trajectory([0.0, 1.0], [[1, 0, 0, 0], [np.cos(0.5), 0, 0, np.sin(0.5)]], [[0, 0, 1]] * 2, [1, 2, 3])
+        >>> r = tr.rotation
+        >>> len(r), round(float(r[1].magnitude()), 12)
+        (2, 1.0)
+        """
+        return Rotation.from_quat(self.q)
 
     def __repr__(self) -> str:
         batch = self.q.shape[:-2]
@@ -347,8 +412,10 @@ class Trajectory:
     def save(self, path: str | os.PathLike[str]) -> None:
         """Write to NetCDF (``.nc``, via xarray's scipy engine), CSV (``.csv``) or Parquet (``.parquet``).
 
-        CSV and Parquet hold one body; they keep the inertia tensor, ``meta``
-        and the names of the extra arrays in a header so :meth:`load` restores
+        CSV and Parquet hold one body; the inertia tensor, ``meta``, the names
+        of the extra arrays and a SHA-256 checksum of the data go to the
+        Parquet file's metadata, and beside a CSV (which stays plain CSV) to
+        the sidecar ``NAME.csv.json``, so :meth:`load` restores and checks
         them. The file is written atomically (complete or untouched); an
         existing file at ``path`` is replaced, as by xarray's and pandas'
         writers (``kreisel simulate -o`` refuses one unless given ``--force``).

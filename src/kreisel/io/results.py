@@ -24,8 +24,8 @@ def save_result(result, path):
     """Write a Trajectory or an ``xarray.Dataset`` to ``path`` (format from the suffix).
 
     NetCDF keeps everything; CSV and Parquet hold one body, with the
-    trajectory's inertia and metadata in the file (CSV header / Parquet
-    key-value metadata) so :func:`load_trajectory` restores it. The file is
+    trajectory's inertia and metadata beside the data (the CSV's sidecar
+    ``NAME.csv.json``, Parquet key-value metadata) so :func:`load_trajectory` restores it. The file is
     written atomically; an existing one is replaced (``kreisel simulate -o``
     refuses one unless given ``--force``).
 
@@ -93,6 +93,8 @@ def load_trajectory(path):
         kind = _dataset_kind(path)
         if kind is not None:
             raise ResultError(f"{path}: holds a {kind} result, not a trajectory") from None
+        if isinstance(exc, _trajectory_files.TrajectoryFileError):
+            raise ResultError(str(exc)) from None
         # backends explain themselves over several lines (xarray suggests installing netcdf4): keep the first
         reason = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
         raise ResultError(f"{path}: not a readable kreisel trajectory ({type(exc).__name__}: {reason})") from None

@@ -35,6 +35,9 @@ from __future__ import annotations
 import dataclasses
 import pathlib
 
+import numpy as np
+
+from .._validation import check_allocation, memory_budget
 from ..dynamics.engine import METHODS
 from .bundled import scenario_path
 from .schema import Document, Key, SchemaError, read_text
@@ -52,7 +55,7 @@ _ATTITUDE = {
     "quat": Key("quat", doc="unit quaternion [q0, q1, q2, q3], scalar first"),
     "rotvec": Key("vector3", doc="rotation vector ψ n in radians"),
     "matrix": Key("matrix3", doc="3x3 rotation matrix, body -> space"),
-    "euler": Key("vector3", doc="Euler angles in the sequence `seq`"),
+    "euler": Key("vector3", doc="Euler angles in the sequence `seq`, radians (at most 2π) unless `degrees`"),
     "seq": Key("str", default="ZXZ", doc="Euler sequence, uppercase intrinsic"),
     "degrees": Key("bool", default=False, doc="Euler angles in degrees"),
 }
@@ -92,7 +95,7 @@ _SCHEMA = {
     "integration": Key("table", schema={
         "t_end": Key("number", required=True, positive=True, doc="final time, s"),
         "t_start": Key("number", default=0.0, doc="initial time, s"),
-        "n_samples": Key("int", default=1001, positive=True, doc="output times, evenly spaced"),
+        "n_samples": Key("int", default=1001, minimum=2, doc="output times, evenly spaced from t_start to t_end"),
         "method": Key("str", choices=tuple(METHODS),
                       doc="integrator (default dop853)"),
         "dt": Key("number", positive=True, doc="step of fixed-step methods, s"),
@@ -108,10 +111,19 @@ _SCHEMA = {
         "half_angle_deg": Key("number", required=True, positive=True, doc="half-cone angle below 90, degrees"),
         "rate_hz": Key("number", required=True, positive=True, doc="coning frequency Ω/2π"),
         "sample_time": Key("number", required=True, positive=True, doc="gyro sample interval, s"),
-        "n_samples": Key("int", required=True, positive=True, doc="gyro samples"),
+        "n_samples": Key("int", required=True, positive=True, doc="gyro samples, at least samples_per_update"),
         "samples_per_update": Key("int", default=2, choices=(1, 2, 3, 4), doc="N of the coning correction"),
     }),
 }
+
+#: Largest departure of ``initial.attitude.quat`` from unit length: a quaternion typed to 7 digits passes, one
+#: further off is a mistake (a scalar-last or unnormalised quaternion), not rounding.
+QUAT_TOLERANCE = 1e-6
+
+# Peak memory of a run per output sample, measured with `kreisel simulate` (a rigid body: 175 bytes at 2e6 and
+# 4e6 samples; times, integrator states, q, ω′ and the first integrals of the summary), with a margin. Coning
+# holds time, the motion's q and increments, the estimate, the truth and the error.
+_PEAK_BYTES_PER_SAMPLE = {"rigid_body": 24 * 8, "coning": 30 * 8}
 
 _REQUIRED_TABLES = {"rigid_body": ("body", "initial", "integration"), "foucault": ("foucault",),
                     "coning": ("coning",)}
@@ -225,9 +237,8 @@ def parse_scenario(text, path=None):
         _check_integration(document, data["integration"])
     elif kind == "foucault":
         _check_foucault(document, data["foucault"])
-    elif kind == "coning" and data["coning"]["half_angle_deg"] >= 90.0:
-        document.fail(("coning", "half_angle_deg"),
-                      f"expected a half-angle below 90 degrees, got {data['coning']['half_angle_deg']:g}")
+    elif kind == "coning":
+        _check_coning(document, data["coning"])
     return Scenario(kind, data, pathlib.Path(path) if path is not None else None)
 
 
@@ -263,7 +274,7 @@ def _check_body(document, body, path):
 
 
 _ATTITUDE_EXPECTED = {
-    "quat": "a nonzero quaternion [q0, q1, q2, q3], scalar first (it is normalised)",
+    "quat": "a unit quaternion [q0, q1, q2, q3], scalar first",
     "matrix": "a rotation matrix (orthonormal rows, determinant +1), body -> space",
     "rotvec": "a rotation vector in radians",
     "euler": "Euler angles",
@@ -288,6 +299,17 @@ def _check_attitude(document, attitude):
             document.fail(key + ("seq",), "expected an Euler sequence of 3 letters x, y, z, all uppercase "
                                           "(intrinsic) or all lowercase (extrinsic), no axis twice in a row "
                                           f"(e.g. 'ZXZ', 'xyz'): {_reason(exc)}")
+    if source == "euler" and not attitude["degrees"]:
+        angles = attitude["euler"]
+        if np.any(np.abs(angles) > 2 * np.pi):
+            document.fail(key + ("euler",), f"expected angles in radians, at most 2π = 6.283 in size, got "
+                                            f"{_listed(angles)}: for degrees set degrees = true")
+    if source == "quat":
+        norm = float(np.linalg.norm(attitude["quat"]))
+        if not abs(norm - 1.0) <= QUAT_TOLERANCE:
+            document.fail(key + ("quat",), f"expected a unit quaternion (norm within {QUAT_TOLERANCE:g} of 1), got "
+                                           f"{_listed(attitude['quat'])} of norm {norm:.9g}: divide it by its norm "
+                                           "or give rotvec, matrix or euler")
     try:
         if source == "euler":
             Rotation.from_euler(attitude["seq"], attitude["euler"], degrees=attitude["degrees"])
@@ -301,6 +323,10 @@ def _check_attitude(document, attitude):
         document.fail(key + (source,), f"expected {_ATTITUDE_EXPECTED[source]}: {_reason(exc)}")
 
 
+def _listed(values):
+    return "[" + ", ".join(f"{float(v):g}" for v in values) + "]"
+
+
 def _reason(exc):
     """The library's message without its argument name, which the scenario key replaces."""
     text = str(exc)
@@ -308,8 +334,28 @@ def _reason(exc):
     return rest if rest and first.isidentifier() and rest.startswith(("must", "may", "has", "is")) else text
 
 
+def _check_memory(document, key, count, bytes_per_sample):
+    """Refuse, before any work, a run whose arrays would not fit in memory (``bytes_per_sample`` at its peak)."""
+    try:
+        check_allocation(count * bytes_per_sample, f"{count} samples")
+    except ValueError as exc:
+        document.fail(key, f"expected at most {memory_budget() // bytes_per_sample} samples on this machine: {exc}; "
+                           "lower n_samples, or split the run into consecutive scenarios")
+
+
+def _check_coning(document, spec):
+    if spec["half_angle_deg"] >= 90.0:
+        document.fail(("coning", "half_angle_deg"), f"expected a half-angle below 90 degrees, got {spec['half_angle_deg']:g}")
+    if spec["n_samples"] < spec["samples_per_update"]:
+        document.fail(("coning", "n_samples"), f"expected at least samples_per_update = {spec['samples_per_update']} "
+                                               f"samples, got {spec['n_samples']}")
+    _check_memory(document, ("coning", "n_samples"), spec["n_samples"], _PEAK_BYTES_PER_SAMPLE["coning"])
+
+
 def _check_integration(document, grid):
     from ..dynamics.engine import ADAPTIVE
+
+    _check_memory(document, ("integration", "n_samples"), grid["n_samples"], _PEAK_BYTES_PER_SAMPLE["rigid_body"])
 
     method = grid.get("method", "dop853")
     if method in ADAPTIVE and "dt" in grid:

@@ -34,6 +34,7 @@ import dataclasses
 import math
 import pathlib
 import re
+import sys
 import tomllib
 
 import numpy as np
@@ -183,7 +184,25 @@ class Document:
             raise error(f"{self.label}{where}: TOML syntax error: {what}") from None
         except RecursionError:
             raise error(f"{self.label}: arrays or tables nested too deeply to read") from None
+        except ValueError as exc:
+            # Python refuses to convert decimal integers beyond sys.get_int_max_str_digits() (a guard against
+            # quadratic-time parsing), and tomllib lets that ValueError out without a line
+            self._lines = _key_lines(text)
+            self._too_many_digits(text, exc)
         self._lines = _key_lines(text)
+
+    def _too_many_digits(self, text, exc):
+        """Raise the document's error for an integer literal longer than Python converts, at its key and line."""
+        limit = sys.get_int_max_str_digits()
+        for number, line in enumerate(text.splitlines(), start=1):
+            for match in _DIGITS.finditer(_STRING.sub('""', line).split("#", 1)[0]):
+                digits = len(match[0].replace("_", ""))
+                if limit and digits > limit:
+                    keys = [key for key, at in self._lines.items() if at <= number]
+                    key = max(keys, key=lambda k: (self._lines[k], len(k))) if keys else ()
+                    self.fail(key, f"expected a number, got an integer of {digits} digits "
+                                   f"(at most {limit} can be read)")
+        raise self.error(f"{self.label}: cannot read the TOML: {exc}") from None
 
     def line_of(self, key):
         """Line (from 1) of ``key`` (a path tuple), else of its nearest enclosing key; None if not found."""
@@ -310,6 +329,7 @@ _ARRAY_HEADER = re.compile(rf"\s*\[\[\s*({_DOTTED})\s*\]\]\s*(#.*)?$")
 _HEADER = re.compile(rf"\s*\[\s*({_DOTTED})\s*\]\s*(#.*)?$")
 _ASSIGNMENT = re.compile(rf"\s*({_DOTTED})\s*=")
 _STRING = re.compile(r"""\"(?:[^"\\]|\\.)*"|'[^']*'""")
+_DIGITS = re.compile(r"(?<![\w.])\d[\d_]*")
 
 
 def _key_lines(text):
