@@ -51,7 +51,7 @@ def test_fit_errors_exit_2_with_one_line(tmp_path):
     np.savetxt(short, np.column_stack([np.arange(5.0), np.ones((5, 3))]))
     cases = [
         (("fit", str(tmp_path / "missing.csv")), "cannot read"),
-        (("fit", str(bad)), "line 2: not a number: 'oops'"),
+        (("fit", str(bad)), "bad.csv:2: not a number: 'oops'"),
         (("fit", str(short)), "too few samples"),
         (("fit", "phone_toss", "--start", "9", "--stop", "1"), "t_start < t_stop"),
         (("fit", "phone_toss", "--plot", str(tmp_path / "fit.gif")), "--plot: unsupported output"),

@@ -1,0 +1,295 @@
+"""One table of IMU samples: text or a DataFrame to numbers, then to SI arrays per quantity.
+
+:func:`parse_table` splits the text of a CSV/TSV/whitespace table (``#``
+comments, an optional header line, decimal commas with ``;`` or tab) into a
+numeric array, remembering each row's line in the file; :func:`quantities`
+finds time, gyro, accelerometer and magnetometer columns (header names,
+:mod:`.imu_columns`, or the caller's ``columns``) and converts them to SI
+units. Every error names the file and, where there is one, the line:
+``file:line: what is wrong``.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from .imu_columns import UNITS, Column, known_units, layout, parse_column, unit_scale
+
+__all__ = ["Table", "TableError", "parse_table", "frame_table", "quantities", "check_units", "where"]
+
+_QUANTITIES = ("time", "gyro", "accel", "mag")
+_LABELS = {"time": "time", "gyro": "angular-rate", "increment": "angle-increment", "accel": "acceleration",
+           "mag": "magnetic-field"}
+_DEFAULT_UNITS = {"time": "s", "gyro": "rad/s", "increment": "rad", "accel": "m/s2", "mag": "ut"}
+
+
+class TableError(ValueError):
+    """A table that cannot be read; the message is ``file:line: what``."""
+
+
+def where(source, line=None):
+    """``source:line`` when the line is known, else ``source``."""
+    return f"{source}:{line}" if line is not None else f"{source}"
+
+
+@dataclass(frozen=True, eq=False)
+class Table:
+    """Numbers of a table: ``values`` (n, m) with NaN where a row is short, ``lines`` the file line of each
+    row (None for a DataFrame), the ``header`` cells (or None) and the header's line."""
+
+    values: np.ndarray
+    lines: Optional[list]
+    header: Optional[list]
+    header_line: Optional[int]
+    source: str
+
+
+def _number(cell):
+    try:
+        return float(cell)
+    except ValueError:
+        return None
+
+
+def _cells(line):
+    """Split one line: tab, then semicolon, then comma, else whitespace separated.
+
+    Tab- and semicolon-separated exports may use a decimal comma (phyphox's
+    "decimal comma" formats); inside such cells a comma is the decimal point.
+    """
+    for delimiter in ("\t", ";", ","):
+        if delimiter in line:
+            cells = [cell.strip() for cell in next(csv.reader([line], delimiter=delimiter))]
+            if delimiter != ",":
+                cells = [cell.replace(",", ".") if "." not in cell else cell for cell in cells]
+            break
+    else:
+        cells = [cell.strip("\"'") for cell in line.split()]
+    while cells and cells[-1] == "":
+        cells.pop()  # a trailing separator is not an empty column
+    if any(_number(cell) is None for cell in cells):
+        # a whitespace-aligned table with a stray tab: the tab was not the separator
+        spaced = line.split()
+        if all(_number(cell) is not None for cell in spaced):
+            return spaced
+    return cells
+
+
+def _header_cells(cells, line, width):
+    """Header cells matched to ``width`` data columns: names with spaces in a whitespace-separated header
+    ("time (s)  rate x (deg/s)") are regrouped by wide gaps, or by gluing units and axis letters to the
+    word before them. None when no grouping fits."""
+    if len(cells) == width:
+        return cells
+    wide = [cell for cell in re.split(r"\s{2,}", line) if cell]
+    if len(wide) == width:
+        return wide
+    glued = []
+    for word in line.split():
+        if glued and (word[:1] in "([" or word.lower() in ("x", "y", "z")):
+            glued[-1] += " " + word
+        else:
+            glued.append(word)
+    return glued if len(glued) == width else None
+
+
+def parse_table(text, source):
+    """Numbers, file lines and header of the table in ``text`` (see the module docstring).
+
+    Examples
+    --------
+    >>> table = parse_table("t;wx;wy;wz\\n0,0;1,5;0;0\\n0,5;1,5;0;0\\n", "upload.csv")
+    >>> table.header, table.values[1].tolist(), table.lines
+    (['t', 'wx', 'wy', 'wz'], [0.5, 1.5, 0.0, 0.0], [2, 3])
+    """
+    header = header_line = header_text = None
+    rows, lines = [], []
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        cells = _cells(line)
+        values = [_number(cell) for cell in cells]
+        bad = next((cell for cell, value in zip(cells, values) if value is None), None)
+        if bad is not None:
+            if header is None and not rows and not any(value is not None for value in values):
+                header, header_line, header_text = cells, number, line
+                continue
+            raise TableError(f"{source}:{number}: not a number: {bad!r}")
+        if not all(np.isfinite(values)):
+            raise TableError(f"{source}:{number}: not a finite number in {line!r}")
+        if len(values) < 4:
+            raise TableError(f"{source}:{number}: too few columns ({len(values)}); expected time and the "
+                             "three components of a sensor")
+        rows.append(values)
+        lines.append(number)
+    if not rows:
+        raise TableError(f"{source}: empty (no data rows)")
+    width = max(len(row) for row in rows)
+    table = np.full((len(rows), width), np.nan)
+    for k, row in enumerate(rows):
+        table[k, :len(row)] = row
+    if header is not None:
+        header = _header_cells(header, header_text, width)
+        if header is None:
+            raise TableError(f"{source}:{header_line}: the header's names do not match the {width} columns; "
+                             "separate them by commas or tabs")
+    return Table(table, lines, header, header_line, source)
+
+
+def frame_table(frame, source="DataFrame"):
+    """The :class:`Table` of a pandas DataFrame (column names as the header; rows named by index)."""
+    header = [str(name) for name in frame.columns]
+    if not len(frame):
+        raise TableError(f"{source}: empty (no data rows)")
+    values = np.empty((len(frame), len(header)))
+    for k, name in enumerate(frame.columns):
+        column = frame[name]
+        try:
+            values[:, k] = column.to_numpy(dtype=np.float64)
+        except (TypeError, ValueError):
+            bad = next(i for i, v in enumerate(column) if _number(str(v)) is None)
+            raise TableError(f"{source}: column {name!r}, row {bad}: not a number: {column.iloc[bad]!r}") from None
+    if not np.isfinite(values).all():
+        row, k = np.argwhere(~np.isfinite(values))[0]
+        raise TableError(f"{source}: column {header[k]!r}, row {row}: not a finite number ({values[row, k]!r})")
+    return Table(values, None, header, None, source)
+
+
+def check_units(units):
+    """``units`` (a gyro unit, or a dict by quantity) as a dict ``{quantity: unit}``, checked.
+
+    Examples
+    --------
+    >>> check_units("deg/s"), check_units({"accel": "g", "mag": "nT"})
+    ({'gyro': 'deg/s'}, {'accel': 'g', 'mag': 'nT'})
+    """
+    if units is None:
+        return {}
+    if isinstance(units, str):
+        units = {"gyro": units}
+    if not isinstance(units, dict):
+        raise TypeError(f"units must be a str (the gyro's unit) or a dict by quantity, got {type(units).__name__}")
+    for quantity, unit in units.items():
+        if quantity not in _QUANTITIES:
+            raise ValueError(f"units: keys must be among {', '.join(_QUANTITIES)}, got {quantity!r}")
+        tables = ("gyro", "increment") if quantity == "gyro" else (quantity,)
+        if not isinstance(unit, str) or all(unit_scale(q, unit) is None for q in tables):
+            known = ", ".join(known_units(q) for q in tables)
+            raise ValueError(f"units[{quantity!r}] must be one of {known}; got {unit!r}")
+    return dict(units)
+
+
+def _selected(table, columns, default):
+    """Column indices by quantity: the caller's names, else the header's, else positions."""
+    width = table.values.shape[1]
+    if columns:
+        if table.header is None:
+            raise TableError(f"{table.source}: columns= names header cells, but the table has no header")
+        found = {}
+        for quantity, names in columns.items():
+            names = [names] if quantity == "time" else list(names)
+            missing = [n for n in names if n not in table.header]
+            if missing:
+                raise TableError(f"{where(table.source, table.header_line)}: column(s) "
+                                 f"{', '.join(map(repr, missing))} not found; the table has {table.header}")
+            found[quantity] = [table.header.index(n) for n in names]
+        parsed = [parse_column(name) for name in table.header]
+        try:
+            picked = layout(parsed, table.source, default)
+        except ValueError:  # the header's own reading does not matter where the caller names the columns
+            picked = {"time": 0, default: [1, 2, 3]}
+        found["time"] = found["time"][0] if "time" in found else picked["time"]
+        return {**picked, **found}, parsed
+    if table.header is None:
+        return {"time": 0, default: [1, 2, 3]}, [Column("", None, None, None)] * width
+    parsed = [parse_column(name) for name in table.header]
+    try:
+        return layout(parsed, table.source, default), parsed
+    except ValueError as exc:
+        raise TableError(f"{where(table.source, table.header_line)}{str(exc)[len(table.source):]}") from None
+
+
+def _scale(table, parsed, members, quantity, units):
+    """SI value of one unit of ``quantity``'s columns, and whether the caller or the header stated the unit."""
+    stated = units.get("gyro" if quantity == "increment" else quantity)
+    scale = unit_scale(quantity, stated) if stated is not None else None
+    header_scale = None
+    for k in members:
+        unit = parsed[k].unit
+        if unit is None:
+            continue
+        value = unit_scale(quantity, unit)
+        if value is None and stated is None:
+            raise TableError(f"{where(table.source, table.header_line)}: column {parsed[k].name!r}: unknown "
+                             f"{_LABELS[quantity]} unit {unit!r} (known: {known_units(quantity)}); give the unit "
+                             "with units=")
+        if value is not None and scale is not None and not np.isclose(value, scale, rtol=1e-12, atol=0.0):
+            raise TableError(f"{where(table.source, table.header_line)}: column {parsed[k].name!r} is in {unit}, "
+                             f"but units gives {stated!r}")
+        if value is not None and header_scale is not None and value != header_scale:
+            raise TableError(f"{where(table.source, table.header_line)}: the {_LABELS[quantity]} columns are in "
+                             "different units")
+        header_scale = value if value is not None else header_scale
+    if scale is None and stated is not None:
+        raise TableError(f"{table.source}: units gives {stated!r}, not a {_LABELS[quantity]} unit")
+    if scale is not None:
+        return scale, "units"
+    if header_scale is not None:
+        return header_scale, "header"
+    return UNITS[quantity][_DEFAULT_UNITS[quantity]], "assumed"
+
+
+def quantities(table, *, default="gyro", units=None, columns=None, kind="rate"):
+    """Time (s) and the x, y, z samples of each quantity the table holds, in SI units (µT for the field).
+
+    Parameters
+    ----------
+    table : Table
+    default : {"gyro", "accel", "mag"}
+        The quantity of a table whose header names none (a phyphox ``Accelerometer.csv`` read alone).
+    units : dict
+        From :func:`check_units`: units that override the header's (and the defaults rad/s, m/s², µT, s).
+    columns : dict, optional
+        Header names by quantity: ``{"time": "t", "gyro": ("gx", "gy", "gz"), ...}``.
+    kind : {"rate", "increment"}
+        Gyro columns hold rates or angle increments (rad, deg).
+
+    Returns
+    -------
+    data : dict
+        ``"time"`` (n,) and ``"gyro"``/``"accel"``/``"mag"`` (n, 3) as present.
+    stated : dict
+        ``{quantity: (origin, scale)}``: where the unit came from (``"units"``, ``"header"`` or
+        ``"assumed"``) and the SI value of one unit.
+    """
+    units = units or {}
+    found, parsed = _selected(table, columns, default)
+    members = [k for value in found.values() for k in (value if isinstance(value, list) else [value])]
+    short = np.isnan(table.values[:, members]).any(axis=1)
+    if short.any():
+        k = int(np.argmax(short))
+        width = int(np.sum(~np.isnan(table.values[k])))
+        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: too few columns "
+                         f"({width}); expected {max(members) + 1}")
+    time_scale, _ = _scale(table, parsed, [found["time"]], "time", units)
+    data = {"time": table.values[:, found["time"]] * time_scale}
+    stated = {}
+    for quantity in ("gyro", "accel", "mag"):
+        if quantity in found:
+            unit_table = "increment" if quantity == "gyro" and kind == "increment" else quantity
+            scale, origin = _scale(table, parsed, found[quantity], unit_table, units)
+            stated[quantity] = (origin, scale)
+            data[quantity] = table.values[:, found[quantity]] * scale
+    step = np.diff(data["time"])
+    if np.any(step <= 0.0):
+        k = int(np.flatnonzero(step <= 0.0)[0]) + 1
+        t = table.values[:, found["time"]]
+        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: time not increasing "
+                         f"({float(t[k])!r} after {float(t[k - 1])!r})")
+    return data, stated
