@@ -66,7 +66,8 @@ def test_unit_tokens_not_substrings(tmp_path):
 def test_unknown_units_are_refused_naming_the_column(tmp_path, header, column, unit):
     row = ",".join(str(k) for k in range(header.count(",") + 1))
     path = write(tmp_path / "odd.csv", f"# logger v2\n{header}\n{row}\n")
-    with pytest.raises(GyroFileError, match=rf"odd.csv:2: column {re.escape(repr(column))}: unknown \w+(-\w+)? unit '{unit}'"):
+    message = rf"odd.csv:2: column {re.escape(repr(column))}: unknown \w+(-\w+)? unit '{unit}'"
+    with pytest.raises(GyroFileError, match=message):
         kr.io.read_gyro(path)
 
 
@@ -95,9 +96,10 @@ def deg_file(tmp_path):
 def test_deg_per_second_without_a_unit_is_refused_naming_the_likely_unit(tmp_path):
     """Issue 34: deg/s read as rad/s (a phone gyro saturates near 35 rad/s)."""
     path = deg_file(tmp_path)
-    with pytest.raises(GyroFileError, match=r"deg.csv: the gyro reads up to 6\d\d(\.\d+)? rad/s in rad/s, as no unit "
-                                            r"is given, beyond the ~35 rad/s .* the numbers look like deg/s: read them "
-                                            r"with units='deg/s' \(kreisel fit --units deg/s\)"):
+    with pytest.raises(GyroFileError, match=r"deg.csv: the gyro's \|ω\| reaches 6\d\d(\.\d+)? rad/s \(its numbers "
+                                            r"taken as rad/s: no unit is given\), beyond the ~35 rad/s .* the "
+                                            r"numbers look like deg/s: read them with units='deg/s' "
+                                            r"\(kreisel fit --units deg/s\)"):
         kr.io.read_gyro(path)
     rec = kr.io.read_gyro(path, units="deg/s")
     np.testing.assert_allclose(rec.omega, np.radians(DEG_TOSS), rtol=1e-15)
@@ -111,15 +113,16 @@ def test_deg_per_second_without_a_unit_is_refused_naming_the_likely_unit(tmp_pat
 
 def test_imu_csv_with_deg_per_second_and_g_named_in_the_header(tmp_path):
     """Issue 35: CSV with deg/s and g units named in the header; magnetometer in nT and mT."""
-    header = "Time (ms)\tAccX (g)\tAccY (g)\tAccZ (g)\tGyrX (deg/s)\tGyrY (deg/s)\tGyrZ (deg/s)\tMagX (nT)\tMagY (nT)\t" \
-             "MagZ (nT)"
+    header = "\t".join(["Time (ms)", "AccX (g)", "AccY (g)", "AccZ (g)", "GyrX (deg/s)", "GyrY (deg/s)", "GyrZ (deg/s)",
+                        "MagX (nT)", "MagY (nT)", "MagZ (nT)"])
     rows = ["0\t0,01\t-0,02\t1\t90\t-45\t180\t20000\t0\t-43000", "10\t0\t0\t0,98\t91\t-44\t179\t20100\t1\t-43010"]
     rec = kr.io.read_imu(write(tmp_path / "imu.tsv", "\n".join([header, *rows]) + "\n"))
     np.testing.assert_array_equal(rec.t, [0.0, 0.01])
     np.testing.assert_allclose(rec.omega[0], np.radians([90, -45, 180]), rtol=1e-15)
     np.testing.assert_allclose(rec.accel[:, 2], [G0, 0.98 * G0], rtol=1e-15)
     np.testing.assert_allclose(rec.mag[0], [20.0, 0.0, -43.0], rtol=1e-15)
-    path = write(tmp_path / "mt.csv", "t,gx,gy,gz,mx (mT),my (mT),mz (mT),ax (mg),ay (mg),az (mg)\n0,0,0,0,0.05,0,0,0,0,1000\n")
+    path = write(tmp_path / "mt.csv", "t,gx,gy,gz,mx (mT),my (mT),mz (mT),ax (mg),ay (mg),az (mg)\n"
+                                      "0,0,0,0,0.05,0,0,0,0,1000\n")
     rec = kr.io.read_imu(path)
     np.testing.assert_allclose([rec.mag[0, 0], rec.accel[0, 2]], [50.0, G0], rtol=1e-15)
     rec = kr.io.read_imu(path, units={"accel": "mg", "mag": "mT"})
@@ -215,8 +218,8 @@ def test_phyphox_sensors_that_never_overlap_are_refused(tmp_path):
     folder.mkdir()
     write(folder / "Gyroscope.csv", phyphox_table([0.0, 0.1], np.zeros((2, 3)), "Gyroscope", "rad/s"))
     write(folder / "Accelerometer.csv", phyphox_table([5.0, 5.1], np.zeros((2, 3)), "Acceleration", "m/s^2"))
-    with pytest.raises(GyroFileError, match=r"export: the gyroscope \(0…0.1 s\) and the other sensors \(accelerometer "
-                                            r"5…5.1 s\) do not overlap"):
+    with pytest.raises(GyroFileError, match=r"export: the gyroscope \(0…0.1 s\) and the other sensors "
+                                            r"\(accelerometer 5…5.1 s\) do not overlap"):
         kr.io.read_imu(folder)
     write(folder / "Accelerometer.csv", '"Time (s)","Acceleration x (m/s^2)"\n0,1\n')
     with pytest.raises(GyroFileError, match=r"Accelerometer.csv:2: too few columns \(2\)"):
@@ -257,7 +260,7 @@ def test_broad_layout(tmp_path):
                                  r"\(50, 3\)"),
     ({"gyr": np.full((50, 3), np.nan)}, r"field 'gyr', row 0: not a finite number"),
     ({"sampling_rate": np.array(-1.0)}, r"field 'sampling_rate' must be one positive number \(Hz\)"),
-    ({"gyr": np.full((50, 3), 700.0)}, r"the gyro reads up to 1212 rad/s .* look like deg/s")])
+    ({"gyr": np.full((50, 3), 700.0)}, r"the gyro's \|ω\| reaches 1212 rad/s .* look like deg/s")])
 def test_bad_broad_files(tmp_path, changes, match):
     broad_npz(tmp_path / "bad.npz", **changes)
     with pytest.raises(GyroFileError, match=match):
@@ -316,3 +319,18 @@ def test_rate_recording_attitude(tmp_path):
     np.testing.assert_allclose(angle, np.radians(10.0) * t, atol=1e-15)
     with pytest.raises(ValueError, match="samples_per_update applies to increment gyros"):
         kr.io.read_imu(path).attitude(samples_per_update=2)
+
+
+def test_bad_columns_and_short_headers(tmp_path):
+    path = write(tmp_path / "imu.csv", "t,gx,gy,gz\n0,1,2,3,4,5\n")
+    np.testing.assert_array_equal(kr.io.read_imu(path).omega, [[1, 2, 3]])   # unnamed extra columns
+    with pytest.raises(ValueError, match=r"columns\['gyro'\] must be three header names \(x, y, z\), got 'gx'"):
+        kr.io.read_imu(path, columns={"gyro": "gx"})
+    with pytest.raises(ValueError, match=r"columns: keys must be among time, gyro, accel, mag, got 'acc'"):
+        kr.io.read_imu(path, columns={"acc": ("gx", "gy", "gz")})
+    path = write(tmp_path / "twice.csv", "t,gyro x,gyro x,gyro z\n0,1,2,3\n")
+    with pytest.raises(GyroFileError, match=r"twice.csv:1: the gyro x axis is named by more than one column"):
+        kr.io.read_imu(path)
+    path = write(tmp_path / "two.csv", "t,ax,ay,gx,gy,gz\n0,1,2,3,4,5\n")
+    with pytest.raises(GyroFileError, match=r"two.csv:1: 2 accelerometer column\(s\) \('ax', 'ay'\); expected x, y and z"):
+        kr.io.read_imu(path)

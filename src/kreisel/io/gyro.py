@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import pathlib
+import re
 import zipfile
 from importlib import resources
 
@@ -20,7 +21,7 @@ import numpy as np
 
 from .imu_columns import UNITS
 from .imu_record import ImuRecording
-from .imu_table import TableError, check_units, frame_table, parse_table, quantities
+from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities
 from .phyphox import TABLES, align, member_for
 
 __all__ = ["GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "MAX_RATE", "parse_gyro", "read_gyro",
@@ -38,6 +39,8 @@ _KINDS = ("rate", "increment")
 # what too fast a gyro is most likely in, most common first
 _LIKELY = ("deg/s", "mdeg/s", "mrad/s")
 _BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
+# characters no text table holds (tab, line breaks and form feeds aside)
+_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
 
 class GyroFileError(ValueError):
@@ -60,10 +63,10 @@ def _decode(data, source):
             text = data.decode("utf-8-sig")
         except UnicodeDecodeError as exc:
             text, note = data.decode("latin-1"), f"decoded as Latin-1 ({source}: byte {exc.start} is not UTF-8)"
-    control = next((k for k, c in enumerate(text) if c < " " and c not in "\t\n\r\f\v"), None)
+    control = _CONTROL.search(text)
     if control is not None:
-        raise GyroFileError(f"{source}: not a text file (control character {text[control]!r} at character "
-                            f"{control})")
+        raise GyroFileError(f"{source}: not a text file (control character {control.group()!r} at character "
+                            f"{control.start()})")
     return text.lstrip("\ufeff"), note
 
 
@@ -105,12 +108,12 @@ def _plausible(data, stated, source, kind):
     peak = float(np.max(np.linalg.norm(data["gyro"], axis=1)))
     if peak <= MAX_RATE:
         return
-    read_as = "the header's unit" if origin == "header" else "rad/s, as no unit is given"
+    read_as = "in the header's unit" if origin == "header" else "its numbers taken as rad/s: no unit is given"
     likely = next((u for u in _LIKELY if UNITS["gyro"][u] < scale and peak / scale * UNITS["gyro"][u] <= MAX_RATE),
                   None)
     advice = (f"the numbers look like {likely}: read them with units={likely!r} (kreisel fit --units {likely})"
               if likely else "give the unit with units= (kreisel fit --units)")
-    raise GyroFileError(f"{source}: the gyro reads up to {peak:.4g} rad/s in {read_as}, beyond the ~35 rad/s "
+    raise GyroFileError(f"{source}: the gyro's |ω| reaches {peak:.4g} rad/s ({read_as}), beyond the ~35 rad/s "
                         f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units='rad/s' if the "
                         "rates are real")
 
@@ -238,14 +241,14 @@ def parse_gyro(text, source="<text>", *, units=None, columns=None, kind="rate"):
     """
     if not isinstance(text, str):
         raise TypeError(f"text must be a str, got {type(text).__name__}")
-    units, kind = _options(units, kind)
+    units, columns, kind = _options(units, columns, kind)
     return _record(*_table_data(text, source, units, columns, kind), source, kind, [])
 
 
-def _options(units, kind):
+def _options(units, columns, kind):
     if kind not in _KINDS:
         raise ValueError(f"kind must be 'rate' or 'increment', got {kind!r}")
-    return check_units(units), kind
+    return check_units(units), check_columns(columns), kind
 
 
 def read_imu(source, *, units=None, columns=None, kind="rate"):
@@ -323,7 +326,7 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     >>> (rec.omega[0] / np.pi).tolist(), rec.accel[0].tolist()
     ([0.5, 0.0, 1.0], [0.0, 0.0, 9.80665])
     """
-    units, kind = _options(units, kind)
+    units, columns, kind = _options(units, columns, kind)
     if hasattr(source, "columns") and hasattr(source, "to_numpy"):
         try:
             return _record(*quantities(frame_table(source), units=units, columns=columns, kind=kind), "DataFrame",

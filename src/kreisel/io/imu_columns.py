@@ -55,6 +55,7 @@ _OTHER_WORDS = ("linear", "gravity", "absolute", "abs", "norm", "total", "roll",
                 "orientation", "temperature", "temp", "pressure")
 _WORD_QUANTITY = {word: quantity for quantity, words in _QUANTITY_WORDS.items() for word in words}
 _BRACKETED = re.compile(r"[(\[]\s*([^()\[\]]*?)\s*[)\]]")
+_SENSOR = {"gyro": "gyro", "accel": "accelerometer", "mag": "magnetometer"}
 _SUBSCRIPTS = str.maketrans({"ₓ": "x", "ᵧ": "y", "ᶻ": "z"})
 
 
@@ -172,11 +173,11 @@ def layout(columns, source, default="gyro"):
             for a in range(3):
                 if axes.count(a) > 1:
                     named = [columns[k].name for k, b in zip(members, axes) if b == a]
-                    raise ValueError(f"{source}: the {quantity} {'xyz'[a]} axis is named by more than one column: "
+                    raise ValueError(f"{source}: the {_SENSOR[quantity]} {'xyz'[a]} axis is named by more than one column: "
                                      f"{', '.join(map(repr, named))}")
             members = sorted(members, key=lambda k: columns[k].axis)
         if len(members) != 3:
-            raise ValueError(f"{source}: {len(members)} {quantity} column(s) "
+            raise ValueError(f"{source}: {len(members)} {_SENSOR[quantity]} column(s) "
                              f"({', '.join(repr(columns[k].name) for k in members)}); expected x, y and z")
         found[quantity] = members
     if default not in found:

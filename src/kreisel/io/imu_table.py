@@ -20,7 +20,8 @@ import numpy as np
 
 from .imu_columns import UNITS, Column, known_units, layout, parse_column, unit_scale
 
-__all__ = ["Table", "TableError", "parse_table", "frame_table", "quantities", "check_units", "where"]
+__all__ = ["Table", "TableError", "parse_table", "frame_table", "quantities", "check_units", "check_columns",
+           "where"]
 
 _QUANTITIES = ("time", "gyro", "accel", "mag")
 _LABELS = {"time": "time", "gyro": "angular-rate", "increment": "angle-increment", "accel": "acceleration",
@@ -81,11 +82,11 @@ def _cells(line):
 
 
 def _header_cells(cells, line, width):
-    """Header cells matched to ``width`` data columns: names with spaces in a whitespace-separated header
-    ("time (s)  rate x (deg/s)") are regrouped by wide gaps, or by gluing units and axis letters to the
-    word before them. None when no grouping fits."""
-    if len(cells) == width:
-        return cells
+    """Header cells matched to ``width`` data columns: a short header leaves the last columns unnamed; names
+    with spaces in a whitespace-separated header ("time (s)  rate x (deg/s)") are regrouped by wide gaps, or
+    by gluing units and axis letters to the word before them. None when no grouping fits."""
+    if len(cells) <= width:
+        return cells + [""] * (width - len(cells))
     wide = [cell for cell in re.split(r"\s{2,}", line) if cell]
     if len(wide) == width:
         return wide
@@ -185,6 +186,34 @@ def check_units(units):
     return dict(units)
 
 
+def check_columns(columns):
+    """``columns`` checked: None, or a dict with ``"time"`` (a header name) and ``"gyro"``, ``"accel"``,
+    ``"mag"`` (three header names each, x, y, z).
+
+    Examples
+    --------
+    >>> check_columns({"time": "stamp", "gyro": ["p", "q", "r"]})
+    {'time': 'stamp', 'gyro': ('p', 'q', 'r')}
+    """
+    if columns is None:
+        return None
+    if not isinstance(columns, dict):
+        raise TypeError(f"columns must be a dict of header names by quantity, got {type(columns).__name__}")
+    checked = {}
+    for quantity, names in columns.items():
+        if quantity not in _QUANTITIES:
+            raise ValueError(f"columns: keys must be among {', '.join(_QUANTITIES)}, got {quantity!r}")
+        if quantity == "time":
+            if not isinstance(names, str):
+                raise ValueError(f"columns['time'] must be one header name, got {names!r}")
+            checked[quantity] = names
+            continue
+        if isinstance(names, str) or len(names := tuple(names)) != 3 or not all(isinstance(n, str) for n in names):
+            raise ValueError(f"columns[{quantity!r}] must be three header names (x, y, z), got {names!r}")
+        checked[quantity] = names
+    return checked
+
+
 def _selected(table, columns, default):
     """Column indices by quantity: the caller's names, else the header's, else positions."""
     width = table.values.shape[1]
@@ -193,7 +222,7 @@ def _selected(table, columns, default):
             raise TableError(f"{table.source}: columns= names header cells, but the table has no header")
         found = {}
         for quantity, names in columns.items():
-            names = [names] if quantity == "time" else list(names)
+            names = [names] if quantity == "time" else names
             missing = [n for n in names if n not in table.header]
             if missing:
                 raise TableError(f"{where(table.source, table.header_line)}: column(s) "

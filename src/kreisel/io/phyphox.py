@@ -51,10 +51,13 @@ def align(t, sensors, source):
 
     Examples
     --------
-    >>> t = np.arange(5) * 0.1
-    >>> keep, values, notes = align(t, {"accel": (np.array([0.05, 0.25]), np.array([[0.0, 0, 9], [2, 0, 9]]))}, "x")
+    An accelerometer at 4 Hz spans three of five gyro samples at 8 Hz:
+
+    >>> t = np.arange(5) / 8
+    >>> accel = (np.array([0.125, 0.375]), np.array([[0.0, 0, 9], [2, 0, 9]]))
+    >>> keep, values, notes = align(t, {"accel": accel}, "x")
     >>> keep.tolist(), values["accel"][:, 0].tolist()
-    ([False, True, True, False, False], [0.5, 1.5])
+    ([False, True, True, True, False], [0.0, 1.0, 2.0])
     """
     keep = np.ones(t.size, bool)
     for quantity, (tk, _) in sensors.items():
