@@ -71,12 +71,19 @@ def _decode(data, source):
 
 
 def _read_member(archive, member, path):
-    with archive.open(member) as fh:
-        data = fh.read(MAX_MEMBER_BYTES + 1)
-    if len(data) > MAX_MEMBER_BYTES:
-        raise GyroFileError(f"{path}:{member}: expands beyond {MAX_MEMBER_BYTES // 2**20} MiB; unzip the export "
+    """The bytes of ``member``, refused beyond MAX_MEMBER_BYTES: by its declared size before inflating it, and
+    while inflating, in case the declared size lies."""
+    too_big = GyroFileError(f"{path}:{member}: expands beyond {MAX_MEMBER_BYTES // 2**20} MiB; unzip the export "
                             "and read its folder")
-    return data
+    if archive.getinfo(member).file_size > MAX_MEMBER_BYTES:
+        raise too_big
+    data = bytearray()
+    with archive.open(member) as fh:
+        while chunk := fh.read(2**20):
+            data += chunk
+            if len(data) > MAX_MEMBER_BYTES:
+                raise too_big
+    return bytes(data)
 
 
 def _tables_in_zip(path):
