@@ -259,12 +259,15 @@ def test_broad_layout(tmp_path):
     ({"acc": np.zeros((49, 3))}, r"field 'acc' has shape \(49, 3\) and dtype float64; expected numbers of shape "
                                  r"\(50, 3\)"),
     ({"gyr": np.full((50, 3), np.nan)}, r"field 'gyr', row 0: not a finite number"),
+    ({"gyr": np.zeros((0, 3))}, r"bad.npz: empty \(no samples\)"),
+    ({"t": np.array([0.0, 1.0, 1.0] + list(range(2, 49)))}, r"field 't', row 2: time not increasing"),
     ({"sampling_rate": np.array(-1.0)}, r"field 'sampling_rate' must be one positive number \(Hz\)"),
     ({"gyr": np.full((50, 3), 700.0)}, r"the gyro's \|ω\| reaches 1212 rad/s .* look like deg/s")])
 def test_bad_broad_files(tmp_path, changes, match):
     broad_npz(tmp_path / "bad.npz", **changes)
-    with pytest.raises(GyroFileError, match=match):
+    with pytest.raises(GyroFileError, match=match) as info:
         kr.io.read_imu(tmp_path / "bad.npz")
+    assert str(info.value).count(str(tmp_path)) == 1
     (tmp_path / "cut.npz").write_bytes((tmp_path / "bad.npz").read_bytes()[:100])
     with pytest.raises(GyroFileError, match="cut.npz: not a readable .npz archive"):
         kr.io.read_imu(tmp_path / "cut.npz")

@@ -15,11 +15,12 @@ import os
 import pathlib
 import re
 import zipfile
+import zlib
 from importlib import resources
 
 import numpy as np
 
-from .imu_columns import UNITS
+from .imu_columns import UNITS, unit_scale
 from .imu_record import ImuRecording
 from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities
 from .phyphox import TABLES, align, member_for
@@ -174,53 +175,59 @@ def _field(archive, name, path, width, n=None, finite=True):
     if value.shape != shape or value.dtype.kind not in ("f", "i", "u", "b"):
         raise GyroFileError(f"{path}: field {name!r} has shape {value.shape} and dtype {value.dtype}; expected "
                             f"numbers of shape {shape}")
-    value = value.astype(bool if value.dtype.kind == "b" else np.float64)
-    if finite and value.dtype != bool and not np.isfinite(value).all():
+    value = value.astype(bool if name == "movement" else np.float64)
+    if finite and not np.isfinite(value).all():
         row = int(np.argwhere(~np.isfinite(value))[0][0])
         raise GyroFileError(f"{path}: field {name!r}, row {row}: not a finite number")
     return value
 
 
+def _npz_fields(archive, path):
+    """Time, sensors and the reference of an open BROAD-layout archive."""
+    fields = set(archive.files)
+    if "gyr" not in fields or not fields & {"sampling_rate", "t"}:
+        raise GyroFileError(f"{path}: fields {sorted(fields)}; expected BROAD's layout ({_BROAD_FIELDS}) with at "
+                            "least gyr and sampling_rate")
+    gyr = _field(archive, "gyr", path, 3)
+    n = gyr.shape[0]
+    if not n:
+        raise GyroFileError(f"{path}: empty (no samples)")
+    if "t" in fields:
+        t = _field(archive, "t", path, None, n)
+    else:
+        rate = archive["sampling_rate"]
+        if rate.shape != () or rate.dtype.kind not in "fiu" or not 0 < float(rate) < np.inf:
+            raise GyroFileError(f"{path}: field 'sampling_rate' must be one positive number (Hz), got {rate!r}")
+        t = np.arange(n) / float(rate)
+    data = {"time": t, "gyro": gyr}
+    for quantity, name in (("accel", "acc"), ("mag", "mag")):
+        if name in fields:
+            data[quantity] = _field(archive, name, path, 3, n)
+    extra = {key: _field(archive, name, path, width, n, finite=False)
+             for key, name, width in (("reference", "opt_quat", 4), ("movement", "movement", None)) if name in fields}
+    return data, extra
+
+
 def _from_npz(path, units, kind):
     """BROAD's layout: ``gyr`` (n, 3), optional ``acc``, ``mag``, ``opt_quat``, ``movement``, and
     ``sampling_rate`` (or a time field ``t``)."""
-    try:
-        archive = np.load(path, allow_pickle=False)
-    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
-        raise GyroFileError(f"{path}: not a readable .npz archive ({exc})") from None
-    with archive:
-        fields = set(archive.files)
-        if "gyr" not in fields or not fields & {"sampling_rate", "t"}:
-            raise GyroFileError(f"{path}: fields {sorted(fields)}; expected BROAD's layout ({_BROAD_FIELDS}) with at "
-                                "least gyr and sampling_rate")
+    with open(path, "rb") as fh:
         try:
-            gyr = _field(archive, "gyr", path, 3)
-            n = gyr.shape[0]
-            if "t" in fields:
-                t = _field(archive, "t", path, None, n)
-            else:
-                rate = archive["sampling_rate"]
-                if rate.shape != () or rate.dtype.kind not in "fiu" or not 0 < float(rate) < np.inf:
-                    raise GyroFileError(f"{path}: field 'sampling_rate' must be one positive number (Hz), "
-                                        f"got {rate!r}")
-                t = np.arange(n) / float(rate)
-            data = {"time": t, "gyro": gyr}
-            for quantity, name in (("accel", "acc"), ("mag", "mag")):
-                if name in fields:
-                    data[quantity] = _field(archive, name, path, 3, n)
-            extra = {key: _field(archive, name, path, width, n, finite=False)
-                     for key, name, width in (("reference", "opt_quat", 4), ("movement", "movement", None))
-                     if name in fields}
-        except ValueError as exc:
-            raise GyroFileError(f"{path}: {exc}") from None
-    if n and np.any(np.diff(t) <= 0):
+            with np.load(fh, allow_pickle=False) as archive:
+                data, extra = _npz_fields(archive, path)
+        except GyroFileError:
+            raise
+        except (ValueError, OSError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
+            raise GyroFileError(f"{path}: not a readable .npz archive ({exc})") from None
+    t = data["time"]
+    if np.any(np.diff(t) <= 0):
         raise GyroFileError(f"{path}: field 't', row {int(np.argmax(np.diff(t) <= 0)) + 1}: time not increasing")
     stated = {}
-    for quantity in ("gyro", "accel", "mag"):
+    for quantity in ("time", "gyro", "accel", "mag"):
         if quantity in data:
             unit = units.get(quantity)
             table = "increment" if quantity == "gyro" and kind == "increment" else quantity
-            scale = 1.0 if unit is None else UNITS[table].get(unit)
+            scale = 1.0 if unit is None else unit_scale(table, unit)
             if scale is None:
                 raise GyroFileError(f"{path}: units gives {unit!r}, not a unit of {quantity}")
             data[quantity] = data[quantity] * scale

@@ -38,8 +38,8 @@ _SHOWN = {"time": {"us": "µs"}, "gyro": {"urad/s": "µrad/s", "hz": "Hz"}, "inc
           "mag": {"ut": "µT", "nt": "nT", "mt": "mT", "t": "T", "g": "G", "mg": "mG"}}
 _SPELLINGS = {
     "sec": "s", "secs": "s", "second": "s", "seconds": "s", "msec": "ms", "usec": "us", "nsec": "ns",
-    "radps": "rad/s", "rad/sec": "rad/s", "rads": "rad/s", "s-1": "1/s",
-    "dps": "deg/s", "degps": "deg/s", "deg/sec": "deg/s", "mradps": "mrad/s", "mdps": "mdeg/s",
+    "radps": "rad/s", "rad/sec": "rad/s", "rads": "rad/s", "rads-1": "rad/s", "s-1": "1/s",
+    "dps": "deg/s", "degps": "deg/s", "deg/sec": "deg/s", "degs-1": "deg/s", "mradps": "mrad/s", "mdps": "mdeg/s",
     "deg/hr": "deg/h", "dph": "deg/h", "rev/min": "rpm", "r/min": "rpm", "rps": "rev/s", "r/s": "rev/s",
     "ms-2": "m/s2", "m/s/s": "m/s2", "mps2": "m/s2", "mss": "m/s2", "gs": "g", "gauss": "g", "mgauss": "mg",
     "tesla": "t",

@@ -85,18 +85,16 @@ def _header_cells(cells, line, width):
     """Header cells matched to ``width`` data columns: a short header leaves the last columns unnamed; names
     with spaces in a whitespace-separated header ("time (s)  rate x (deg/s)") are regrouped by wide gaps, or
     by gluing units and axis letters to the word before them. None when no grouping fits."""
-    if len(cells) <= width:
-        return cells + [""] * (width - len(cells))
-    wide = [cell for cell in re.split(r"\s{2,}", line) if cell]
-    if len(wide) == width:
-        return wide
-    glued = []
-    for word in line.split():
-        if glued and (word[:1] in "([" or word.lower() in ("x", "y", "z")):
-            glued[-1] += " " + word
-        else:
-            glued.append(word)
-    return glued if len(glued) == width else None
+    if len(cells) != width and not any(delimiter in line for delimiter in "\t;,"):
+        wide = [cell for cell in re.split(r"\s{2,}", line) if cell]
+        glued = []
+        for word in line.split():
+            if glued and (word[:1] in "([" or word.lower() in ("x", "y", "z")):
+                glued[-1] += " " + word
+            else:
+                glued.append(word)
+        cells = next((grouped for grouped in (wide, glued) if len(grouped) == width), glued)
+    return cells + [""] * (width - len(cells)) if len(cells) <= width else None
 
 
 def parse_table(text, source):
