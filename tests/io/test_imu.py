@@ -7,6 +7,7 @@ import zipfile
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings, strategies as st
 
 import kreisel as kr
 from kreisel.io import GyroFileError
@@ -161,9 +162,13 @@ def test_a_zip_that_expands_to_gigabytes_is_refused_before_it_is_read(tmp_path):
         kr.io.read_gyro(archive)
 
 
-def phyphox_table(t, values, names, unit):
-    header = ",".join(['"Time (s)"', *(f'"{name} {axis} ({unit})"' for name in [names] for axis in "xyz")])
-    rows = [",".join(f"{v:.9E}" for v in (ti, *row)) for ti, row in zip(t, values)]
+ABSOLUTE = {"Gyroscope": "Absolute", "Acceleration": "Absolute acceleration", "Magnetic field": "Absolute field"}
+
+
+def phyphox_table(t, values, name, unit):
+    """A table as phyphox exports it: quoted header with units, the magnitude last, numbers like 4.273100000E+00."""
+    header = ",".join(['"Time (s)"', *(f'"{name} {axis} ({unit})"' for axis in "xyz"), f'"{ABSOLUTE[name]} ({unit})"'])
+    rows = [",".join(f"{v:.9E}" for v in (ti, *row, np.linalg.norm(row))) for ti, row in zip(t, values)]
     return header + "\n" + "\n".join(rows) + "\n"
 
 
@@ -221,7 +226,7 @@ def test_phyphox_sensors_that_never_overlap_are_refused(tmp_path):
     with pytest.raises(GyroFileError, match=r"export: the gyroscope \(0…0.1 s\) and the other sensors "
                                             r"\(accelerometer 5…5.1 s\) do not overlap"):
         kr.io.read_imu(folder)
-    write(folder / "Accelerometer.csv", '"Time (s)","Acceleration x (m/s^2)"\n0,1\n')
+    write(folder / "Accelerometer.csv", '"Time (s)","Acceleration x (m/s^2)"\n0,1\n')  # cut short
     with pytest.raises(GyroFileError, match=r"Accelerometer.csv:2: too few columns \(2\)"):
         kr.io.read_imu(folder)
 
@@ -337,3 +342,30 @@ def test_bad_columns_and_short_headers(tmp_path):
     path = write(tmp_path / "two.csv", "t,ax,ay,gx,gy,gz\n0,1,2,3,4,5\n")
     with pytest.raises(GyroFileError, match=r"two.csv:1: 2 accelerometer column\(s\) \('ax', 'ay'\); expected x, y and z"):
         kr.io.read_imu(path)
+
+
+@settings(max_examples=25, derandomize=True, database=None, deadline=None)
+@given(st.permutations(range(10)))
+def test_any_column_order_reads_the_same(order):
+    """Every order of named columns (time, gyro, accelerometer, magnetometer) gives the same record."""
+    names = ["time (ms)", "gyro x (deg/s)", "gyro y (deg/s)", "gyro z (deg/s)", "acc_x_g", "acc_y_g", "acc_z_g",
+             "Magnetic field x (nT)", "Magnetic field y (nT)", "Magnetic field z (nT)"]
+    values = np.array([[0.0, 1, 2, 3, 4, 5, 6, 7, 8, 9], [10.0, 11, 12, 13, 14, 15, 16, 17, 18, 19]])
+    text = ",".join(names[k] for k in order) + "\n" + "\n".join(",".join(str(v) for v in row[list(order)])
+                                                                for row in values) + "\n"
+    rec = kr.io.parse_gyro(text, "perm.csv")
+    np.testing.assert_array_equal(rec.t, values[:, 0] * 1e-3)
+    np.testing.assert_allclose(rec.omega, np.radians(values[:, 1:4]), rtol=1e-15)
+    np.testing.assert_allclose(rec.accel, values[:, 4:7] * G0, rtol=1e-15)
+    np.testing.assert_allclose(rec.mag, values[:, 7:10] * 1e-3, rtol=1e-15)
+
+
+def test_sensors_on_the_gyro_clock_are_taken_as_they_are(tmp_path):
+    t = np.array([0.0, 0.01, 0.02])
+    folder = tmp_path / "export"
+    folder.mkdir()
+    write(folder / "Gyroscope.csv", phyphox_table(t, np.ones((3, 3)), "Gyroscope", "rad/s"))
+    write(folder / "Magnetometer.csv", phyphox_table(t, np.full((3, 3), 40.0), "Magnetic field", "µT"))
+    rec = kr.io.read_imu(folder)
+    np.testing.assert_array_equal(rec.mag, np.full((3, 3), 40.0))
+    assert rec.accel is None and rec.notes == ("magnetometer on the gyroscope's clock (same time stamps)",)
