@@ -86,7 +86,8 @@ def test_a_deg_per_second_file_is_refused_then_fitted_with_units(tmp_path):
     refused = kreisel("fit", "deg.csv", cwd=tmp_path)
     assert refused.returncode == 2 and "Traceback" not in refused.stderr, refused.stderr
     assert refused.stderr.count("\n") == 1, refused.stderr
-    assert "deg.csv: the gyro's |ω| reaches 691.9 rad/s (its numbers taken as rad/s: no unit is given)" in refused.stderr
+    assert "deg.csv: the gyro's |ω| reaches 691.9 rad/s (its numbers taken as rad/s: no unit is given)" \
+        in refused.stderr
     assert "look like deg/s: read them with units='deg/s' (kreisel fit --units deg/s)" in refused.stderr
     fitted = kreisel("fit", "deg.csv", "--units", "deg/s", "--json", "fit.json", cwd=tmp_path)
     assert fitted.returncode == 0, fitted.stderr

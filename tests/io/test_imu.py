@@ -106,8 +106,9 @@ def test_deg_per_second_without_a_unit_is_refused_naming_the_likely_unit(tmp_pat
     np.testing.assert_allclose(rec.omega, np.radians(DEG_TOSS), rtol=1e-15)
     # a header that says deg/s for millidegrees is refused too; a stated unit is trusted
     path = write(tmp_path / "mdeg.csv", "t,gx (deg/s),gy (deg/s),gz (deg/s)\n0,5000,0,0\n")
-    with pytest.raises(GyroFileError, match="in the header's unit.*look like mdeg/s"):
+    with pytest.raises(GyroFileError, match="in the header's unit.*look like mdeg/s.*or units='deg/s' if the rates"):
         kr.io.read_gyro(path)
+    assert kr.io.read_gyro(path, units="deg/s").omega[0, 0] == pytest.approx(np.radians(5000.0), rel=1e-15)
     rotor = write(tmp_path / "rotor.csv", "t,gx,gy,gz\n0,0,0,300\n")
     assert kr.io.read_gyro(rotor, units="rad/s").omega[0, 2] == 300.0
 
@@ -340,7 +341,8 @@ def test_bad_columns_and_short_headers(tmp_path):
     with pytest.raises(GyroFileError, match=r"twice.csv:1: the gyro x axis is named by more than one column"):
         kr.io.read_imu(path)
     path = write(tmp_path / "two.csv", "t,ax,ay,gx,gy,gz\n0,1,2,3,4,5\n")
-    with pytest.raises(GyroFileError, match=r"two.csv:1: 2 accelerometer column\(s\) \('ax', 'ay'\); expected x, y and z"):
+    with pytest.raises(GyroFileError, match=r"two.csv:1: 2 accelerometer column\(s\) \('ax', 'ay'\); expected x, y "
+                                            r"and z"):
         kr.io.read_imu(path)
 
 

@@ -121,8 +121,9 @@ def _plausible(data, stated, source, kind):
                   None)
     advice = (f"the numbers look like {likely}: read them with units={likely!r} (kreisel fit --units {likely})"
               if likely else "give the unit with units= (kreisel fit --units)")
+    unit = next(u for u, s in UNITS["gyro"].items() if s == scale)
     raise GyroFileError(f"{source}: the gyro's |ω| reaches {peak:.4g} rad/s ({read_as}), beyond the ~35 rad/s "
-                        f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units='rad/s' if the "
+                        f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units={unit!r} if the "
                         "rates are real")
 
 

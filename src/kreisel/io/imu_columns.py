@@ -173,8 +173,8 @@ def layout(columns, source, default="gyro"):
             for a in range(3):
                 if axes.count(a) > 1:
                     named = [columns[k].name for k, b in zip(members, axes) if b == a]
-                    raise ValueError(f"{source}: the {_SENSOR[quantity]} {'xyz'[a]} axis is named by more than one column: "
-                                     f"{', '.join(map(repr, named))}")
+                    raise ValueError(f"{source}: the {_SENSOR[quantity]} {'xyz'[a]} axis is named by more than one "
+                                     f"column: {', '.join(map(repr, named))}")
             members = sorted(members, key=lambda k: columns[k].axis)
         if len(members) != 3:
             raise ValueError(f"{source}: {len(members)} {_SENSOR[quantity]} column(s) "

@@ -264,7 +264,8 @@ def _scale(table, parsed, members, quantity, units):
                              "different units")
         header_scale = value if value is not None else header_scale
     if scale is None and stated is not None:
-        raise TableError(f"{table.source}: units gives {stated!r}, not a {_LABELS[quantity]} unit")
+        raise TableError(f"{table.source}: units gives {stated!r}, which is not among the {_LABELS[quantity]} "
+                         f"units ({known_units(quantity)})")
     if scale is not None:
         return scale, "units"
     if header_scale is not None:
