@@ -92,3 +92,24 @@ def test_sensors_on_the_gyro_clock_are_taken_as_they_are(tmp_path):
     rec = kr.io.read_imu(folder)
     np.testing.assert_array_equal(rec.mag, np.full((3, 3), 40.0))
     assert rec.accel is None and rec.notes == ("magnetometer on the gyroscope's clock (same time stamps)",)
+
+
+def test_sensors_side_by_side_in_one_table_each_on_its_own_time_column(tmp_path):
+    """A phyphox experiment exporting several sensors in one CSV: each buffer with its own "Time (s)", the
+    shorter ones ending in empty cells."""
+    header = ('"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)","Gyroscope z (rad/s)",'
+              '"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"')
+    t_gyro, t_acc = np.arange(7) * 0.005, 0.002 + np.arange(4) * 0.01
+    rows = []
+    for k, t in enumerate(t_gyro):
+        acc = [f"{t_acc[k]:.9E}", f"{2 * t_acc[k]:.9E}", "0", "9.81"] if k < t_acc.size else [""] * 4
+        rows.append(",".join([f"{t:.9E}", "0.1", "0.2", "0.3", *acc]))
+    rec = kr.io.read_imu(write(tmp_path / "Sensors.csv", header + "\n" + "\n".join(rows) + "\n"))
+    inside = (t_gyro >= t_acc[0]) & (t_gyro <= t_acc[-1])
+    np.testing.assert_allclose(rec.t, t_gyro[inside], rtol=1e-15)
+    np.testing.assert_allclose(rec.accel[:, 0], 2 * rec.t, rtol=1e-12)
+    np.testing.assert_allclose(rec.omega, np.tile([0.1, 0.2, 0.3], (inside.sum(), 1)))
+    assert rec.notes[0].startswith("accelerometer (4 samples, 100 Hz) interpolated linearly onto the gyroscope's")
+    broken = rows[:2] + [rows[2].rsplit(",", 2)[0] + ",,"] + rows[3:]
+    with pytest.raises(GyroFileError, match=r"Broken.csv:4: too few columns \(6\); expected 8"):
+        kr.io.read_imu(write(tmp_path / "Broken.csv", header + "\n" + "\n".join(broken) + "\n"))

@@ -139,11 +139,25 @@ def _record(data, stated, source, kind, notes, **extra):
     return ImuRecording(t, gyro, data.get("accel"), data.get("mag"), source, tuple(notes), dtheta, **extra)
 
 
+def _on_one_clock(table, units, columns, kind, default="gyro"):
+    """Data of ``table`` with every sensor on the main clock (the gyro's), and notes saying what was aligned."""
+    try:
+        data, stated = quantities(table, default=default, units=units, columns=columns, kind=kind)
+        clocks = data.pop("clocks", {})
+        if not clocks:
+            return data, stated, []
+        keep, values, notes = align(data["time"], {q: (clocks[q], data.pop(q)) for q in clocks}, table.source)
+    except ValueError as exc:
+        raise GyroFileError(str(exc)) from None
+    return {key: value[keep] for key, value in data.items()} | values, stated, notes
+
+
 def _table_data(text, source, units, columns, kind, default="gyro"):
     try:
-        return quantities(parse_table(text, source), default=default, units=units, columns=columns, kind=kind)
+        table = parse_table(text, source)
     except TableError as exc:
         raise GyroFileError(str(exc)) from None
+    return _on_one_clock(table, units, columns, kind, default)
 
 
 def _from_tables(tables, units, columns, kind, folder):
@@ -154,11 +168,12 @@ def _from_tables(tables, units, columns, kind, folder):
         text, note = _decode(raw, source)
         texts[quantity] = (text, source)
         notes += [note] if note else []
-    data, stated = _table_data(*texts["gyro"], units, columns, kind)
+    data, stated, aligned = _table_data(*texts["gyro"], units, columns, kind)
+    notes += aligned
     sensors = {}
     for quantity in ("accel", "mag"):
         if quantity in texts and quantity not in data:
-            other, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            other, _, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
             sensors[quantity] = (other["time"], other[quantity])
     if sensors:
         try:
@@ -257,7 +272,8 @@ def parse_gyro(text, source="<text>", *, units=None, columns=None, kind="rate"):
     if not isinstance(text, str):
         raise TypeError(f"text must be a str, got {type(text).__name__}")
     units, columns, kind = _options(units, columns, kind)
-    return _record(*_table_data(text, source, units, columns, kind), source, kind, [])
+    data, stated, notes = _table_data(text, source, units, columns, kind)
+    return _record(data, stated, source, kind, notes)
 
 
 def _options(units, columns, kind):
@@ -344,10 +360,11 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     units, columns, kind = _options(units, columns, kind)
     if hasattr(source, "columns") and hasattr(source, "to_numpy"):
         try:
-            return _record(*quantities(frame_table(source), units=units, columns=columns, kind=kind), "DataFrame",
-                           kind, [])
+            table = frame_table(source)
         except TableError as exc:
             raise GyroFileError(str(exc)) from None
+        data, stated, notes = _on_one_clock(table, units, columns, kind)
+        return _record(data, stated, "DataFrame", kind, notes)
     if not isinstance(source, (str, os.PathLike)):
         raise TypeError(f"source must be a file path or a pandas DataFrame, got {type(source).__name__}")
     path = pathlib.Path(source)
@@ -359,7 +376,8 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     if suffix == ".zip":
         return _from_tables(_tables_in_zip(path), units, columns, kind, path)
     text, note = _decode(path.read_bytes(), str(path))
-    return _record(*_table_data(text, str(path), units, columns, kind), str(path), kind, [note] if note else [])
+    data, stated, notes = _table_data(text, str(path), units, columns, kind)
+    return _record(data, stated, str(path), kind, [note] * bool(note) + notes)
 
 
 def read_gyro(path, *, units=None, columns=None, kind="rate"):

@@ -114,16 +114,17 @@ def _fast_values(data):
     return values
 
 
-def _slow_values(data, source):
-    """Rows of ``data`` read line by line: the first bad line is named."""
+def _slow_values(data, source, empty_cells):
+    """Rows of ``data`` read line by line: the first bad line is named. ``empty_cells``: an empty cell is
+    NaN (a sensor's buffer that ended before the others' in a table with several time columns)."""
     rows = []
     for number, line in data:
         cells = _cells(line)
-        values = [_number(cell) for cell in cells]
+        values = [float("nan") if empty_cells and cell == "" else _number(cell) for cell in cells]
         bad = next((cell for cell, value in zip(cells, values) if value is None), None)
         if bad is not None:
             raise TableError(f"{source}:{number}: not a number: {bad!r}")
-        if not all(np.isfinite(values)):
+        if not all(np.isfinite(values) | (np.array(cells) == "")):
             raise TableError(f"{source}:{number}: not a finite number in {line!r}")
         if len(values) < 4:
             raise TableError(f"{source}:{number}: too few columns ({len(values)}); expected time and the "
@@ -155,7 +156,8 @@ def parse_table(text, source):
         raise TableError(f"{source}: empty (no data rows)")
     table = _fast_values(data)
     if table is None:
-        table = _slow_values(data, source)
+        clocks = sum(parse_column(cell).quantity == "time" for cell in header or ())
+        table = _slow_values(data, source, clocks > 1)
     width = table.shape[1]
     if header is not None:
         header = _header_cells(header, header_text, width)
@@ -315,33 +317,66 @@ def quantities(table, *, default="gyro", units=None, columns=None, kind="rate"):
     Returns
     -------
     data : dict
-        ``"time"`` (n,) and ``"gyro"``/``"accel"``/``"mag"`` (n, 3) as present.
+        ``"time"`` (n,) and ``"gyro"``/``"accel"``/``"mag"`` (n, 3) as present; a sensor with its own time
+        column has its times in ``data["clocks"][quantity]`` and as many samples.
     stated : dict
         ``{quantity: (origin, scale)}``: where the unit came from (``"units"``, ``"header"`` or
         ``"assumed"``) and the SI value of one unit.
     """
     units = units or {}
     found, parsed = _selected(table, columns, default)
-    members = [k for value in found.values() for k in (value if isinstance(value, list) else [value])]
-    short = np.isnan(table.values[:, members]).any(axis=1)
-    if short.any():
-        k = int(np.argmax(short))
-        width = int(np.sum(~np.isnan(table.values[k])))
-        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: too few columns "
-                         f"({width}); expected {max(members) + 1}")
+    sensors = [q for q in ("gyro", "accel", "mag") if q in found]
+    clock = _clocks(found, parsed, columns, sensors)
     time_scale, _ = _scale(table, parsed, [found["time"]], "time", units)
-    data = {"time": table.values[:, found["time"]] * time_scale}
-    stated = {}
-    for quantity in ("gyro", "accel", "mag"):
-        if quantity in found:
+    data, stated, main = {}, {}, clock[default]
+    for time in dict.fromkeys(clock[q] for q in (default, *sensors)):
+        on_it = [q for q in sensors if clock[q] == time]
+        rows = _complete_rows(table, [time, *(k for q in on_it for k in found[q])], len(set(clock.values())) > 1)
+        t = table.values[rows, time] * time_scale
+        _increasing(table, t, rows, time)
+        for quantity in on_it:
             unit_table = "increment" if quantity == "gyro" and kind == "increment" else quantity
             scale, origin = _scale(table, parsed, found[quantity], unit_table, units)
             stated[quantity] = (origin, scale)
-            data[quantity] = table.values[:, found[quantity]] * scale
-    step = np.diff(data["time"])
-    if np.any(step <= 0.0):
-        k = int(np.flatnonzero(step <= 0.0)[0]) + 1
-        t = table.values[:, found["time"]]
-        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: time not increasing "
-                         f"({float(t[k])!r} after {float(t[k - 1])!r})")
+            data[quantity] = table.values[np.ix_(rows, found[quantity])] * scale
+            if time != main:
+                data.setdefault("clocks", {})[quantity] = t
+        if time == main:
+            data["time"] = t
     return data, stated
+
+
+def _clocks(found, parsed, columns, sensors):
+    """The time column of each sensor: in a table with several time columns (phyphox exports each sensor's
+    buffers side by side), the last one before the sensor's columns."""
+    times = [k for k, c in enumerate(parsed) if c.quantity == "time"]
+    if len(times) < 2 or (columns and "time" in columns):
+        return {q: found["time"] for q in sensors}
+    return {q: max([k for k in times if k < min(found[q])], default=found["time"]) for q in sensors}
+
+
+def _complete_rows(table, members, several_clocks):
+    """Indices of the rows holding every column of ``members``; with several clocks in the table a sensor's
+    buffer may end before the others (its cells left empty), but no row may hold only part of a sample."""
+    present = ~np.isnan(table.values[:, members])
+    complete = present.all(axis=1)
+    partial = ~complete & (present.any(axis=1) if several_clocks else True)
+    if partial.any():
+        k = int(np.argmax(partial))
+        width = int(np.sum(~np.isnan(table.values[k])))
+        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: too few columns "
+                         f"({width}); expected {max(members) + 1}")
+    rows = np.flatnonzero(complete)
+    if not rows.size:
+        names = [table.header[k] for k in members] if table.header else members
+        raise TableError(f"{table.source}: no row holds all of the columns {names}")
+    return rows
+
+
+def _increasing(table, t, rows, time):
+    step = np.diff(t)
+    if np.any(step <= 0.0):
+        k = rows[int(np.flatnonzero(step <= 0.0)[0]) + 1]
+        previous = rows[int(np.flatnonzero(step <= 0.0)[0])]
+        raise TableError(f"{where(table.source, table.lines[k] if table.lines else None)}: time not increasing "
+                         f"({float(table.values[k, time])!r} after {float(table.values[previous, time])!r})")

@@ -16,7 +16,7 @@ __all__ = ["TABLES", "member_for", "align"]
 
 #: file names (lower case) of the sensor tables in a phyphox export, by quantity
 TABLES = {"gyro": "gyroscope.csv", "accel": "accelerometer.csv", "mag": "magnetometer.csv"}
-_NAMES = {"accel": "accelerometer", "mag": "magnetometer"}
+_NAMES = {"gyro": "gyroscope", "accel": "accelerometer", "mag": "magnetometer"}
 
 
 def member_for(names, quantity):
