@@ -139,17 +139,26 @@ def _record(data, stated, source, kind, notes, **extra):
     return ImuRecording(t, gyro, data.get("accel"), data.get("mag"), source, tuple(notes), dtheta, **extra)
 
 
+def _on_gyro_clock(data, sensors, source):
+    """``data`` with ``sensors`` ``{quantity: (t, values)}`` interpolated onto its times, and notes saying how."""
+    try:
+        keep, values, notes = align(data["time"], sensors, source)
+    except ValueError as exc:
+        raise GyroFileError(str(exc)) from None
+    return {key: value[keep] for key, value in data.items()} | values, notes
+
+
 def _on_one_clock(table, units, columns, kind, default="gyro"):
     """Data of ``table`` with every sensor on the main clock (the gyro's), and notes saying what was aligned."""
     try:
         data, stated = quantities(table, default=default, units=units, columns=columns, kind=kind)
-        clocks = data.pop("clocks", {})
-        if not clocks:
-            return data, stated, []
-        keep, values, notes = align(data["time"], {q: (clocks[q], data.pop(q)) for q in clocks}, table.source)
-    except ValueError as exc:
+    except TableError as exc:
         raise GyroFileError(str(exc)) from None
-    return {key: value[keep] for key, value in data.items()} | values, stated, notes
+    clocks = data.pop("clocks", {})
+    if not clocks:
+        return data, stated, []
+    data, notes = _on_gyro_clock(data, {q: (clocks[q], data.pop(q)) for q in clocks}, table.source)
+    return data, stated, notes
 
 
 def _table_data(text, source, units, columns, kind, default="gyro"):
@@ -176,11 +185,7 @@ def _from_tables(tables, units, columns, kind, folder):
             other, _, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
             sensors[quantity] = (other["time"], other[quantity])
     if sensors:
-        try:
-            keep, values, aligned = align(data["time"], sensors, folder)
-        except ValueError as exc:
-            raise GyroFileError(str(exc)) from None
-        data = {key: value[keep] for key, value in data.items()} | values
+        data, aligned = _on_gyro_clock(data, sensors, folder)
         notes += aligned
     return _record(data, stated, texts["gyro"][1] if not sensors else str(folder), kind, notes)
 
