@@ -98,6 +98,7 @@ class ImuRecording:
         >>> round(float(2 * np.arctan2(q[-1, 3], q[-1, 0])), 12)
         1.0
         """
+        # nav brings the compiled kernels, which reading a file does not need
         from ..nav import attitude_from_increments, attitude_from_rates, coning_coefficients
 
         if self.dtheta is None:
