@@ -39,7 +39,6 @@ from kreisel.kinematics import KinematicSingularityWarning
 PACKAGES = ["so3", "kinematics", "inertia", "dynamics", "tops", "se3", "frames", "earth", "nav"]
 # functions whose arguments are files, callables or kreisel objects are fuzzed where those are made
 ELSEWHERE = {
-    "read_imu_log": "reads a file (tests/nav/test_logs.py)",
     "write_attitude": "writes a file (tests/nav/test_logs.py)",
 }
 # fixed, reproducible examples, no example database: the suite costs the same on every run

@@ -51,7 +51,7 @@ def test_fit_errors_exit_2_with_one_line(tmp_path):
     np.savetxt(short, np.column_stack([np.arange(5.0), np.ones((5, 3))]))
     cases = [
         (("fit", str(tmp_path / "missing.csv")), "cannot read"),
-        (("fit", str(bad)), "line 2: not a number: 'oops'"),
+        (("fit", str(bad)), "bad.csv:2: not a number: 'oops'"),
         (("fit", str(short)), "too few samples"),
         (("fit", "phone_toss", "--start", "9", "--stop", "1"), "t_start < t_stop"),
         (("fit", "phone_toss", "--plot", str(tmp_path / "fit.gif")), "--plot: unsupported output"),
@@ -62,3 +62,49 @@ def test_fit_errors_exit_2_with_one_line(tmp_path):
         assert result.exit_code == 2, (args, result.output)
         assert message in result.output and result.output.strip().count("\n") == 0, result.output
         assert "Traceback" not in result.output
+
+
+def kreisel(*args, cwd):
+    """``python -m kreisel ARGS`` as the user runs it."""
+    import os
+    import pathlib
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(kr.__file__).resolve().parents[1]), COLUMNS="200")
+    return subprocess.run([sys.executable, "-m", "kreisel", *args], cwd=cwd, env=env, capture_output=True, text=True,
+                          timeout=600)
+
+
+def test_a_deg_per_second_file_is_refused_then_fitted_with_units(tmp_path):
+    """Issue 34: `kreisel fit deg.csv` (header time,gx,gy,gz, values in deg/s) fitted ω0 = +692 rad/s."""
+    moments = np.array([0.2, 0.8, 1.0])
+    t = np.linspace(0.0, 0.6, 300)
+    omega = np.degrees(kr.EulerTop(*moments).omega(t, [0.4, 12.0, 0.3]))
+    rows = "\n".join(",".join(f"{v:.17g}" for v in (ti, *w)) for ti, w in zip(t, omega))
+    (tmp_path / "deg.csv").write_text(f"time,gx,gy,gz\n{rows}\n")
+    refused = kreisel("fit", "deg.csv", cwd=tmp_path)
+    assert refused.returncode == 2 and "Traceback" not in refused.stderr, refused.stderr
+    assert refused.stderr.count("\n") == 1, refused.stderr
+    assert "deg.csv: the gyro's |ω| reaches 691.9 rad/s (its numbers taken as rad/s: no unit is given)" \
+        in refused.stderr
+    assert "look like deg/s: read them with units='deg/s' (kreisel fit --units deg/s)" in refused.stderr
+    fitted = kreisel("fit", "deg.csv", "--units", "deg/s", "--json", "fit.json", cwd=tmp_path)
+    assert fitted.returncode == 0, fitted.stderr
+    result = json.loads((tmp_path / "fit.json").read_text())
+    np.testing.assert_allclose(result["moments"], moments, atol=1e-6)
+    np.testing.assert_allclose(result["omega0"], [0.4, 12.0, 0.3], atol=1e-6)
+    bad = kreisel("fit", "deg.csv", "--units", "furlong/s", cwd=tmp_path)
+    assert bad.returncode == 2 and "--units: units['gyro'] must be one of rad/s" in bad.stderr
+
+
+def test_fit_says_how_it_read_the_file(tmp_path):
+    header = "time (s),gyro x (°/s),gyro y (°/s),gyro z (°/s)"
+    t = np.linspace(0.0, 1.0, 300)
+    omega = np.degrees(kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.4, 12.0, 0.3]))
+    rows = "\n".join(",".join(f"{v:.17g}" for v in (ti, *w)) for ti, w in zip(t, omega))
+    path = tmp_path / "latin1.csv"
+    path.write_text(f"{header}\n{rows}\n", encoding="latin-1")
+    result = run("fit", str(path))
+    assert result.exit_code == 0, result.output
+    assert f"{path}: decoded as Latin-1" in result.stdout and "I_x = 0.20000" in result.stdout

@@ -97,7 +97,8 @@ def test_time_units_converted(tmp_path, header, per_second):
 def test_time_unit_that_is_not_a_time_is_refused(tmp_path):
     path = tmp_path / "minutes.csv"
     path.write_text("# a log\ntime (min),gx,gy,gz\n0,0,0,1\n1,0,0,1\n", encoding="utf-8")
-    with pytest.raises(GyroFileError, match=r"line 2: the time column's unit in 'time \(min\)' is not one of"):
+    with pytest.raises(GyroFileError, match=r"minutes.csv:2: column 'time \(min\)': unknown time unit 'min' "
+                                            r"\(known: s, ms, µs, ns\)"):
         kr.io.read_gyro(path)
 
 
@@ -125,14 +126,14 @@ def test_milliseconds_and_named_columns_anywhere_with_accelerometer(tmp_path):
         ("", r"empty \(no data rows\)"),
         ("# only a comment\n\n", "empty"),
         ('"Time (s)","Gyroscope x (rad/s)"\n', "empty"),
-        ("0 1 2 3\n0.1 1 x 3\n", r"line 2: not a number: 'x'"),
-        ("t wx wy wz\n0 1 2 3\nt wx wy wz\n", r"line 3: not a number: 't'"),
-        ("0 1 2 3\n0.1 1 2\n", r"line 2: too few columns \(3\)"),
-        ("0 1 2\n", r"line 1: too few columns"),
-        ("# c\n0 1 2 3\n0.2 1 2 3\n0.1 1 2 3\n", r"line 4: time not increasing \(0.1 after 0.2\)"),
-        ("0 1 2 3\n0 1 2 3\n", r"line 2: time not increasing"),
-        ("0 1 2 3\n0.1 1 nan 3\n", r"line 2: not a finite number"),
-        ("0,1,,3\n", r"line 1: not a number: ''"),
+        ("0 1 2 3\n0.1 1 x 3\n", r":2: not a number: 'x'"),
+        ("t wx wy wz\n0 1 2 3\nt wx wy wz\n", r":3: not a number: 't'"),
+        ("0 1 2 3\n0.1 1 2\n", r":2: too few columns \(3\)"),
+        ("0 1 2\n", r":1: too few columns"),
+        ("# c\n0 1 2 3\n0.2 1 2 3\n0.1 1 2 3\n", r":4: time not increasing \(0.1 after 0.2\)"),
+        ("0 1 2 3\n0 1 2 3\n", r":2: time not increasing"),
+        ("0 1 2 3\n0.1 1 nan 3\n", r":2: not a finite number"),
+        ("0,1,,3\n", r":1: not a number: ''"),
     ],
 )
 def test_bad_files_name_file_and_line(tmp_path, text, match):

@@ -475,6 +475,8 @@ def fit(
     start: Optional[float] = typer.Option(None, "--start", help="Fit from this time on, s (as in the file)."),
     stop: Optional[float] = typer.Option(None, "--stop", help="Fit up to this time, s."),
     bias: bool = typer.Option(False, "--bias", help="Also fit a constant gyroscope offset."),
+    units: Optional[str] = typer.Option(
+        None, "--units", help="The gyroscope's unit when the file does not name it: rad/s, deg/s, mdeg/s, rpm…"),
     align: bool = typer.Option(False, "--align", help="Also fit the rotation from sensor to principal axes."),
     plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Draw data, fit and residuals: fit.png | .svg | .pdf"),
     json_file: Optional[pathlib.Path] = typer.Option(None, "--json", help="Write the results as JSON."),
@@ -497,11 +499,15 @@ def fit(
     if not recording.exists() and str(recording) in RECORDINGS:
         recording = recording_path(str(recording))
     try:
-        data = read_gyro(recording)
+        data = read_gyro(recording, units=units)
     except OSError as exc:
         usage_error(f"cannot read {recording} ({exc.strerror or exc})")
     except GyroFileError as exc:
         usage_error(str(exc))
+    except ValueError as exc:  # the --units value
+        usage_error(f"--units: {exc}")
+    for note in data.notes:
+        say(f"{recording}: {note}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NotFreeRotationWarning)  # the summary reports it
         try:

@@ -1,7 +1,8 @@
-"""Files in and out: scenario TOML files, result files, bundled examples, gyroscope recordings."""
+"""Files in and out: scenario TOML files, result files, bundled examples, IMU (gyroscope) recordings."""
 
 from .bundled import EXAMPLES, copy_example, example_path
-from .gyro import RECORDINGS, GyroFileError, GyroRecording, parse_gyro, read_gyro, recording_path
+from .gyro import (RECORDINGS, GyroFileError, GyroRecording, ImuRecording, parse_gyro, read_gyro, read_imu,
+                   recording_path)
 from .results import ResultError, load_result, load_trajectory, save_result
 from .run import run_scenario, summary
 from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario
@@ -9,4 +10,5 @@ from .schema import SchemaError
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_result", "load_trajectory", "save_result",
            "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
-           "SchemaError", "GyroFileError", "GyroRecording", "RECORDINGS", "parse_gyro", "read_gyro", "recording_path"]
+           "SchemaError", "GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "parse_gyro", "read_gyro",
+           "read_imu", "recording_path"]

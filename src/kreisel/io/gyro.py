@@ -1,151 +1,263 @@
-"""Gyroscope recordings from phones and logging apps (phyphox exports, plain tables).
+"""IMU recordings from phones, logging apps and data sets: one reader, one record.
 
 A phone's gyroscope reports the body angular velocity ω′ in the phone's own
 axes (sensor axes): that is exactly what Euler's equations describe, so a
-recording of a tossed phone is a free-top experiment (Theory §5).
-:func:`read_gyro` turns the files such apps write into arrays; every problem
+recording of a tossed phone is a free-top experiment (Theory §5); with the
+accelerometer and magnetometer it is the input of strapdown navigation
+(Theory §3.5). :func:`read_imu` (and :func:`read_gyro`, its contract name)
+turns the files such apps write into an :class:`ImuRecording`; every problem
 with a file is reported as one :class:`GyroFileError` naming the file and line.
 """
 
 from __future__ import annotations
 
-import csv
+import os
 import pathlib
 import re
 import zipfile
-from dataclasses import dataclass
+import zlib
 from importlib import resources
-from typing import Optional
 
 import numpy as np
 
-__all__ = ["GyroFileError", "GyroRecording", "RECORDINGS", "parse_gyro", "read_gyro", "recording_path"]
+from .imu_columns import UNITS, unit_scale
+from .imu_record import ImuRecording
+from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities
+from .phyphox import TABLES, align, member_for
+
+__all__ = ["GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "MAX_RATE", "parse_gyro", "read_gyro",
+           "read_imu", "recording_path"]
 
 # bundled synthetic recordings (package data), so the fit runs offline: name -> file
 RECORDINGS = {"phone_toss": "phone_toss.csv"}
-
-# phyphox's "Gyroscope" experiment writes this file; its export folder or zip holds it
-GYRO_FILE = "gyroscope.csv"
-# rate units a column header may give, in rad/s; milli-units first: "mdps" also matches "dps"
-_RATE_UNITS = ((re.compile(r"mdps|mdeg\s*/\s*s|m°/s", re.IGNORECASE), np.pi / 180e3),
-               (re.compile(r"deg|°|dps", re.IGNORECASE), np.pi / 180.0),
-               (re.compile(r"mrad\s*/\s*s", re.IGNORECASE), 1e-3))
-# the time column's unit: the first word in brackets, "(ms)", "[ms since boot]", or a "_ms" suffix;
-# phones and loggers stamp samples in ms, µs or ns
-_TIME_UNIT = re.compile(r"[(\[]\s*([^()\[\]\s]+)[^()\[\]]*[)\]]|_(ns|us|µs|μs|ms|s)$", re.IGNORECASE)
-_SECONDS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0, "ms": 1e-3, "us": 1e-6,
-            "µs": 1e-6, "μs": 1e-6, "ns": 1e-9}
+#: rad/s beyond which a gyro reading is taken for a unit mistake: phone and MEMS gyros saturate near 35 rad/s
+#: (2000 °/s)
+MAX_RATE = 40.0
+# a member of a zip archive is read up to this size, so that a small archive cannot expand to gigabytes
+MAX_MEMBER_BYTES = 64 * 2**20
+GyroRecording = ImuRecording
+_KINDS = ("rate", "increment")
+# what too fast a gyro is most likely in, most common first
+_LIKELY = ("deg/s", "mdeg/s", "mrad/s")
+_BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
+# characters no text table holds (tab, line breaks and form feeds aside)
+_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
 
 class GyroFileError(ValueError):
-    """A recording that cannot be read; the message names the file (and line)."""
+    """A recording that cannot be read; the message names the file (and line): ``file:line: what``."""
 
 
-@dataclass(frozen=True)
-class GyroRecording:
-    """Angular velocity measured by a gyroscope, in the sensor's axes.
-
-    Attributes
-    ----------
-    t : (n,) ndarray
-        Sample times in seconds, strictly increasing, as in the file (not shifted).
-    omega : (n, 3) ndarray
-        Body angular velocity ω′ in the sensor's x, y, z axes, rad/s.
-    accel : (n, 3) ndarray or None
-        Accelerometer channel (m/s²) when the file has one, else None.
-    source : str
-        Where the data came from (file, or ``archive.zip:member``).
-
-    Examples
-    --------
-    >>> import pathlib, tempfile
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "spin.txt"
-    >>> _ = path.write_text("# t wx wy wz\\n0.0 0 0 1\\n0.01 0 0 1\\n")
-    >>> rec = read_gyro(path)
-    >>> rec.t.tolist(), rec.omega.shape, rec.accel
-    ([0.0, 0.01], (2, 3), None)
-    """
-
-    t: np.ndarray
-    omega: np.ndarray
-    accel: Optional[np.ndarray]
-    source: str
-
-
-def _cells(line):
-    """Split one line: tab, then semicolon, then comma, else whitespace separated.
-
-    Tab- and semicolon-separated exports may use a decimal comma (phyphox's
-    "decimal comma" formats); inside such cells a comma is the decimal point.
-    """
-    for delimiter in ("\t", ";", ","):
-        if delimiter in line:
-            cells = [cell.strip() for cell in next(csv.reader([line], delimiter=delimiter))]
-            if delimiter != ",":
-                cells = [cell.replace(",", ".") if "." not in cell else cell for cell in cells]
-            break
+def _decode(data, source):
+    """Text of ``data`` and a note when it was not UTF-8: UTF-16 (by its byte-order mark or its zero bytes)
+    or Latin-1 (which decodes every byte; a control character then shows a binary file)."""
+    note = None
+    if data[:2] in (b"\xff\xfe", b"\xfe\xff") or (len(data) > 1 and data.count(0) * 3 > len(data)):
+        encoding = "utf-16" if data[:2] in (b"\xff\xfe", b"\xfe\xff") else \
+            ("utf-16-le" if data[1::2].count(0) > data[0::2].count(0) else "utf-16-be")
+        try:
+            text, note = data.decode(encoding), f"decoded as UTF-16 ({source} is not UTF-8)"
+        except UnicodeDecodeError as exc:
+            raise GyroFileError(f"{source}: not a text file (byte {exc.start} is not UTF-16)") from None
     else:
-        cells = [cell.strip("\"'") for cell in line.split()]
-    while cells and cells[-1] == "":
-        cells.pop()  # a trailing separator is not an empty column
-    if any(_number(cell) is None for cell in cells):
-        # a whitespace-aligned table with a stray tab: the tab was not the separator
-        spaced = line.split()
-        if all(_number(cell) is not None for cell in spaced):
-            return spaced
-    return cells
+        try:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            text, note = data.decode("latin-1"), f"decoded as Latin-1 ({source}: byte {exc.start} is not UTF-8)"
+    control = _CONTROL.search(text)
+    if control is not None:
+        raise GyroFileError(f"{source}: not a text file (control character {control.group()!r} at character "
+                            f"{control.start()})")
+    return text.lstrip("\ufeff"), note
 
 
-def _number(cell):
+def _read_member(archive, member, path):
+    """The bytes of ``member``, refused beyond MAX_MEMBER_BYTES: by its declared size before inflating it, and
+    while inflating, in case the declared size lies."""
+    too_big = GyroFileError(f"{path}:{member}: expands beyond {MAX_MEMBER_BYTES // 2**20} MiB; unzip the export "
+                            "and read its folder")
+    if archive.getinfo(member).file_size > MAX_MEMBER_BYTES:
+        raise too_big
+    data = bytearray()
+    with archive.open(member) as fh:
+        while chunk := fh.read(2**20):
+            data += chunk
+            if len(data) > MAX_MEMBER_BYTES:
+                raise too_big
+    return bytes(data)
+
+
+def _tables_in_zip(path):
+    """``{quantity: (bytes, source)}`` of the phyphox tables in the zip archive ``path``."""
     try:
-        return float(cell)
-    except ValueError:
-        return None
+        with zipfile.ZipFile(path) as archive:
+            names = archive.namelist()
+            members = {q: member_for(names, q) for q in TABLES}
+            if members["gyro"] is None:
+                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv")
+            return {q: (_read_member(archive, m, path), f"{path}:{m}") for q, m in members.items() if m}
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError) as exc:
+        raise GyroFileError(f"{path}: not a readable zip archive ({exc})") from None
 
 
-def _to_rad(name):
-    """rad/s per unit of a rate column headed ``name`` (radians unless the header says otherwise)."""
-    return next((scale for unit, scale in _RATE_UNITS if unit.search(name)), 1.0)
+def _tables_in_folder(path):
+    names = sorted(p.name for p in path.iterdir() if p.is_file())
+    members = {q: member_for(names, q) for q in TABLES}
+    if members["gyro"] is None:
+        raise GyroFileError(f"{path}: the folder has no Gyroscope.csv")
+    return {q: ((path / m).read_bytes(), str(path / m)) for q, m in members.items() if m}
 
 
-def _time_scale(name):
-    """Seconds per unit of a time column headed ``name``; None for a unit that is not a time."""
-    match = _TIME_UNIT.search(name.strip())
-    if match is None:
-        return 1.0
-    return _SECONDS.get((match.group(1) or match.group(2)).lower())
+def _plausible(data, stated, source, kind):
+    """Refuse gyro rates no phone or MEMS gyro measures, naming the unit they look like."""
+    origin, scale = stated["gyro"]
+    if kind != "rate" or origin == "units" or not data["gyro"].size:
+        return
+    peak = float(np.max(np.linalg.norm(data["gyro"], axis=1)))
+    if peak <= MAX_RATE:
+        return
+    read_as = "in the header's unit" if origin == "header" else "its numbers taken as rad/s: no unit is given"
+    likely = next((u for u in _LIKELY if UNITS["gyro"][u] < scale and peak / scale * UNITS["gyro"][u] <= MAX_RATE),
+                  None)
+    advice = (f"the numbers look like {likely}: read them with units={likely!r} (kreisel fit --units {likely})"
+              if likely else "give the unit with units= (kreisel fit --units)")
+    unit = next(u for u, s in UNITS["gyro"].items() if s == scale)
+    raise GyroFileError(f"{source}: the gyro's |ω| reaches {peak:.4g} rad/s ({read_as}), beyond the ~35 rad/s "
+                        f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units={unit!r} if the "
+                        "rates are real")
 
 
-def _layout(header, ncols):
-    """Column indices of ω, acceleration and the unit conversions, from the header.
+def _record(data, stated, source, kind, notes, **extra):
+    _plausible(data, stated, source, kind)
+    t, gyro = data["time"], data["gyro"]
+    dtheta = None
+    if kind == "increment":
+        if t.size < 2:
+            raise GyroFileError(f"{source}: an increment gyro needs at least 2 samples (for the first interval)")
+        dt = np.diff(t, prepend=2 * t[0] - t[1])
+        dtheta, gyro = gyro, gyro / dt[:, None]
+    return ImuRecording(t, gyro, data.get("accel"), data.get("mag"), source, tuple(notes), dtheta, **extra)
 
-    The time scale is None when the time column's header gives a unit that is not a time.
-    """
-    gyro, accel = [1, 2, 3], None
-    to_rad = np.ones(3)
-    time_scale = 1.0
-    if header is None:
-        return gyro, accel, to_rad, time_scale
-    names = [name.lower() for name in header]
-    if len(names) == ncols:
-        found = [i for i, name in enumerate(names) if "gyro" in name]
-        if len(found) >= 3:
-            gyro = found[:3]
-        found = [i for i, name in enumerate(names) if "acc" in name]
-        if len(found) >= 3:
-            accel = found[:3]
-        to_rad = np.array([_to_rad(names[i]) for i in gyro])
-        time_scale = _time_scale(names[0])
+
+def _on_gyro_clock(data, sensors, source):
+    """``data`` with ``sensors`` ``{quantity: (t, values)}`` interpolated onto its times, and notes saying how."""
+    try:
+        keep, values, notes = align(data["time"], sensors, source)
+    except ValueError as exc:
+        raise GyroFileError(str(exc)) from None
+    return {key: value[keep] for key, value in data.items()} | values, notes
+
+
+def _on_one_clock(table, units, columns, kind, default="gyro"):
+    """Data of ``table`` with every sensor on the main clock (the gyro's), and notes saying what was aligned."""
+    try:
+        data, stated = quantities(table, default=default, units=units, columns=columns, kind=kind)
+    except TableError as exc:
+        raise GyroFileError(str(exc)) from None
+    clocks = data.pop("clocks", {})
+    if not clocks:
+        return data, stated, []
+    data, notes = _on_gyro_clock(data, {q: (clocks[q], data.pop(q)) for q in clocks}, table.source)
+    return data, stated, notes
+
+
+def _table_data(text, source, units, columns, kind, default="gyro"):
+    try:
+        table = parse_table(text, source)
+    except TableError as exc:
+        raise GyroFileError(str(exc)) from None
+    return _on_one_clock(table, units, columns, kind, default)
+
+
+def _from_tables(tables, units, columns, kind, folder):
+    """One record from the phyphox tables ``{quantity: (bytes, source)}``; other sensors put on the gyro's clock."""
+    notes = []
+    texts = {}
+    for quantity, (raw, source) in tables.items():
+        text, note = _decode(raw, source)
+        texts[quantity] = (text, source)
+        notes += [note] if note else []
+    data, stated, aligned = _table_data(*texts["gyro"], units, columns, kind)
+    notes += aligned
+    sensors = {}
+    for quantity in ("accel", "mag"):
+        if quantity in texts and quantity not in data:
+            other, _, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            sensors[quantity] = (other["time"], other[quantity])
+    if sensors:
+        data, aligned = _on_gyro_clock(data, sensors, folder)
+        notes += aligned
+    return _record(data, stated, texts["gyro"][1] if not sensors else str(folder), kind, notes)
+
+
+def _field(archive, name, path, width, n=None, finite=True):
+    value = archive[name]
+    shape = (n if n is not None else value.shape[0], width) if width else (n,)
+    if value.shape != shape or value.dtype.kind not in ("f", "i", "u", "b"):
+        raise GyroFileError(f"{path}: field {name!r} has shape {value.shape} and dtype {value.dtype}; expected "
+                            f"numbers of shape {shape}")
+    value = value.astype(bool if name == "movement" else np.float64)
+    if finite and not np.isfinite(value).all():
+        row = int(np.argwhere(~np.isfinite(value))[0][0])
+        raise GyroFileError(f"{path}: field {name!r}, row {row}: not a finite number")
+    return value
+
+
+def _npz_fields(archive, path):
+    """Time, sensors and the reference of an open BROAD-layout archive."""
+    fields = set(archive.files)
+    if "gyr" not in fields or not fields & {"sampling_rate", "t"}:
+        raise GyroFileError(f"{path}: fields {sorted(fields)}; expected BROAD's layout ({_BROAD_FIELDS}) with at "
+                            "least gyr and sampling_rate")
+    gyr = _field(archive, "gyr", path, 3)
+    n = gyr.shape[0]
+    if not n:
+        raise GyroFileError(f"{path}: empty (no samples)")
+    if "t" in fields:
+        t = _field(archive, "t", path, None, n)
     else:
-        # names with spaces in a whitespace-separated header: only the units can be trusted
-        to_rad[:] = _to_rad(" ".join(header))
-        unit = header[1] if len(header) > 1 and header[1][:1] in "([" else ""
-        time_scale = _time_scale(f"{header[0]} {unit}")
-    return gyro, accel, to_rad, time_scale
+        rate = archive["sampling_rate"]
+        if rate.shape != () or rate.dtype.kind not in "fiu" or not 0 < float(rate) < np.inf:
+            raise GyroFileError(f"{path}: field 'sampling_rate' must be one positive number (Hz), got {rate!r}")
+        t = np.arange(n) / float(rate)
+    data = {"time": t, "gyro": gyr}
+    for quantity, name in (("accel", "acc"), ("mag", "mag")):
+        if name in fields:
+            data[quantity] = _field(archive, name, path, 3, n)
+    extra = {key: _field(archive, name, path, width, n, finite=False)
+             for key, name, width in (("reference", "opt_quat", 4), ("movement", "movement", None)) if name in fields}
+    return data, extra
 
 
-def parse_gyro(text, source="<text>"):
-    """Parse the text of a gyroscope recording (any layout :func:`read_gyro` reads from a file).
+def _from_npz(path, units, kind):
+    """BROAD's layout: ``gyr`` (n, 3), optional ``acc``, ``mag``, ``opt_quat``, ``movement``, and
+    ``sampling_rate`` (or a time field ``t``)."""
+    with open(path, "rb") as fh:
+        try:
+            with np.load(fh, allow_pickle=False) as archive:
+                data, extra = _npz_fields(archive, path)
+        except GyroFileError:
+            raise
+        except (ValueError, OSError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
+            raise GyroFileError(f"{path}: not a readable .npz archive ({exc})") from None
+    t = data["time"]
+    if np.any(np.diff(t) <= 0):
+        raise GyroFileError(f"{path}: field 't', row {int(np.argmax(np.diff(t) <= 0)) + 1}: time not increasing")
+    stated = {}
+    for quantity in ("time", "gyro", "accel", "mag"):
+        if quantity in data:
+            unit = units.get(quantity)
+            table = "increment" if quantity == "gyro" and kind == "increment" else quantity
+            scale = 1.0 if unit is None else unit_scale(table, unit)
+            if scale is None:
+                raise GyroFileError(f"{path}: units gives {unit!r}, not a unit of {quantity}")
+            data[quantity] = data[quantity] * scale
+            stated[quantity] = ("units" if unit else "assumed", scale)
+    return _record(data, stated, str(path), kind, [], **extra)
+
+
+def parse_gyro(text, source="<text>", *, units=None, columns=None, kind="rate"):
+    """Parse the text of one IMU table (any table layout :func:`read_imu` reads from a file).
 
     Parameters
     ----------
@@ -153,6 +265,8 @@ def parse_gyro(text, source="<text>"):
         The file's content.
     source : str
         Name used in error messages and kept as ``.source``.
+    units, columns, kind
+        As for :func:`read_imu`.
 
     Examples
     --------
@@ -162,110 +276,117 @@ def parse_gyro(text, source="<text>"):
     """
     if not isinstance(text, str):
         raise TypeError(f"text must be a str, got {type(text).__name__}")
-    header = header_line = None
-    rows, numbers = [], []
-    for number, raw in enumerate(text.splitlines(), start=1):
-        line = raw.strip()
-        if not line or line.startswith("#"):
-            continue
-        cells = _cells(line)
-        values = [_number(cell) for cell in cells]
-        bad = next((cell for cell, value in zip(cells, values) if value is None), None)
-        if bad is not None:
-            if header is None and not rows and not any(value is not None for value in values):
-                header, header_line = cells, number
-                continue
-            raise GyroFileError(f"{source}, line {number}: not a number: {bad!r}")
-        if not all(np.isfinite(values)):
-            raise GyroFileError(f"{source}, line {number}: not a finite number in {line!r}")
-        if len(values) < 4:
-            raise GyroFileError(
-                f"{source}, line {number}: too few columns ({len(values)}); expected time and the "
-                "three angular-velocity components"
-            )
-        rows.append(values)
-        numbers.append(number)
-    if not rows:
-        raise GyroFileError(f"{source}: empty (no data rows)")
-    ncols = min(len(row) for row in rows)
-    gyro, accel, to_rad, time_scale = _layout(header, max(len(row) for row in rows))
-    if time_scale is None:
-        raise GyroFileError(f"{source}, line {header_line}: the time column's unit in {header[0]!r} is not one "
-                            f"of {', '.join(_SECONDS)}")
-    needed = max(gyro + (accel or [])) + 1
-    if ncols < needed:
-        k = next(i for i, row in enumerate(rows) if len(row) < needed)
-        raise GyroFileError(f"{source}, line {numbers[k]}: too few columns ({len(rows[k])}); expected {needed}")
-    table = np.array([row[:needed] for row in rows])
-    t = table[:, 0] * time_scale
-    step = np.diff(t)
-    if np.any(step <= 0.0):
-        k = int(np.flatnonzero(step <= 0.0)[0]) + 1
-        raise GyroFileError(
-            f"{source}, line {numbers[k]}: time not increasing ({float(table[k, 0])!r} after {float(table[k - 1, 0])!r})"
-        )
-    omega = table[:, gyro] * to_rad
-    acc = None if accel is None else table[:, accel]
-    return GyroRecording(t, omega, acc, source)
+    units, columns, kind = _options(units, columns, kind)
+    data, stated, notes = _table_data(text, source, units, columns, kind)
+    return _record(data, stated, source, kind, notes)
 
 
-def _decode(data, source):
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise GyroFileError(f"{source}: not a text file (byte {exc.start} is not UTF-8)") from None
+def _options(units, columns, kind):
+    if kind not in _KINDS:
+        raise ValueError(f"kind must be 'rate' or 'increment', got {kind!r}")
+    return check_units(units), check_columns(columns), kind
 
 
-def _from_zip(path):
-    try:
-        with zipfile.ZipFile(path) as archive:
-            members = [name for name in archive.namelist() if name.lower().rsplit("/", 1)[-1] == GYRO_FILE]
-            if not members:
-                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv")
-            member = min(members, key=len)
-            data = archive.read(member)
-    except zipfile.BadZipFile as exc:
-        raise GyroFileError(f"{path}: not a readable zip archive ({exc})") from None
-    source = f"{path}:{member}"
-    return _decode(data, source), source
-
-
-def read_gyro(path):
-    """Read a gyroscope recording: phyphox export (CSV, folder or zip) or a plain table.
+def read_imu(source, *, units=None, columns=None, kind="rate"):
+    """Read an IMU recording: gyro, and accelerometer and magnetometer when the file has them.
 
     Formats:
 
-    - phyphox CSV exports, comma, tab or semicolon separated (decimal comma
-      accepted with tab and semicolon), with quoted headers such as
-      ``"Time (s)","Gyroscope x (rad/s)"`` and numbers like ``5.048000000E-3``;
-      a phyphox export folder or ``.zip`` (its ``Gyroscope.csv`` is read);
-    - plain numeric tables, whitespace or comma separated, ``#`` comment lines,
-      an optional header line: time, ωx, ωy, ωz, further columns ignored.
+    - phyphox exports: a ``Gyroscope.csv`` (comma, tab or semicolon separated,
+      decimal comma accepted with tab and semicolon, headers such as
+      ``"Time (s)","Gyroscope x (rad/s)"``), or an export folder or ``.zip``
+      holding ``Gyroscope.csv`` and possibly ``Accelerometer.csv`` and
+      ``Magnetometer.csv``, each at its own rate: those are interpolated
+      linearly onto the gyro's time stamps, gyro samples outside their span are
+      dropped, and ``.notes`` says so;
+    - plain CSV/TSV or whitespace tables, ``#`` comment lines, an optional
+      header line; without a header: time, ωx, ωy, ωz, further columns ignored;
+    - BROAD's ``.npz`` layout: ``gyr`` (rad/s), ``acc`` (m/s²), ``mag`` (µT),
+      ``opt_quat`` (kept as ``.reference``), ``movement``, ``sampling_rate``;
+    - a pandas DataFrame (column names as the header).
 
-    Columns headed with ``gyro`` (three of them) are taken as ω wherever they
-    stand, columns headed ``acc`` as the accelerometer; columns whose header
-    gives degrees (``deg/s``, ``°/s``, ``dps``), millidegrees (``mdps``) or
-    milliradians (``mrad/s``) are converted to rad/s, a time header in ``(ms)``,
-    ``(us)``, ``(µs)`` or ``(ns)`` (or ending ``_ms``, ``_us``, ``_ns``) to
-    seconds; a time header with another unit in brackets is refused.
+    Header cells name the quantity (``gyro``, ``ω``, ``gx``, ``acc``, ``ax``,
+    ``mag``, ``Magnetic field``…), the axis (``x``/``y``/``z``, which decides
+    the order; columns without axes keep the file's order) and the unit, in
+    brackets or after the axis (``gyro_x_radps``, ``acc_x_g``). Units are
+    matched as whole tokens and converted: rates rad/s, mrad/s, deg/s, °/s,
+    dps, mdeg/s, mdps, deg/h, rpm, rev/s, Hz; accelerations m/s², g
+    (9.80665 m/s²), mg, cm/s², ft/s²; magnetic fields µT, nT, mT, T, G (gauss),
+    mG; time s, ms, µs, ns. A unit not in these lists is refused, naming the
+    column.
 
     Parameters
     ----------
-    path : str or os.PathLike
-        A file, a phyphox export folder or a zip archive.
+    source : str, os.PathLike or pandas.DataFrame
+        A file, a phyphox export folder, a zip archive, an ``.npz`` file or a DataFrame.
+    units : str or dict, optional
+        The gyro's unit (``"deg/s"``), or units by quantity
+        (``{"gyro": "deg/s", "accel": "g", "mag": "nT", "time": "ms"}``); they
+        override what the header says only where it says nothing (a header
+        that states another unit is an error). Without a unit stated anywhere
+        the gyro is read in rad/s, and rates beyond :data:`MAX_RATE` (40 rad/s,
+        where phone gyros have long saturated) are refused, naming the unit they
+        look like; a stated unit is trusted.
+    columns : dict, optional
+        Header names to use, by quantity: ``{"time": "t", "gyro": ("gx", "gy",
+        "gz"), "accel": (...), "mag": (...)}``.
+    kind : {"rate", "increment"}
+        The gyro gives rates, or angle increments since the previous sample
+        (units rad, mrad, deg, mdeg; kept as ``.dtheta``).
 
     Returns
     -------
-    GyroRecording
-        ``.t`` (n,) s, ``.omega`` (n, 3) rad/s in the sensor axes, ``.accel`` or None.
+    ImuRecording
+        ``.t`` (n,) s, ``.omega`` (n, 3) rad/s, ``.accel`` m/s² or None,
+        ``.mag`` µT or None, in the sensor axes; ``.notes``.
 
     Raises
     ------
     GyroFileError
-        The file is empty, has a cell that is not a number, too few columns or
-        a time that does not increase; the message names the file and line.
+        The file is empty, not text, has a cell that is not a number, too few
+        columns, an unknown unit, implausible rates or a time that does not
+        increase; the message is ``file:line: what``.
     OSError
         The file cannot be opened.
+
+    Examples
+    --------
+    A table with the axes in another order, the gyro in deg/s and the
+    accelerometer in g:
+
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "imu.csv"
+    >>> _ = path.write_text("time (s),gyro z (deg/s),gyro y (deg/s),gyro x (deg/s),acc x (g),acc y (g),acc z (g)\\n"
+    ...                     "0,180,0,90,0,0,1\\n0.01,180,0,90,0,0,1\\n")
+    >>> rec = read_imu(path)
+    >>> (rec.omega[0] / np.pi).tolist(), rec.accel[0].tolist()
+    ([0.5, 0.0, 1.0], [0.0, 0.0, 9.80665])
+    """
+    units, columns, kind = _options(units, columns, kind)
+    if hasattr(source, "columns") and hasattr(source, "to_numpy"):
+        try:
+            table = frame_table(source)
+        except TableError as exc:
+            raise GyroFileError(str(exc)) from None
+        data, stated, notes = _on_one_clock(table, units, columns, kind)
+        return _record(data, stated, "DataFrame", kind, notes)
+    if not isinstance(source, (str, os.PathLike)):
+        raise TypeError(f"source must be a file path or a pandas DataFrame, got {type(source).__name__}")
+    path = pathlib.Path(source)
+    if path.is_dir():
+        return _from_tables(_tables_in_folder(path), units, columns, kind, path)
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        return _from_npz(path, units, kind)
+    if suffix == ".zip":
+        return _from_tables(_tables_in_zip(path), units, columns, kind, path)
+    text, note = _decode(path.read_bytes(), str(path))
+    data, stated, notes = _table_data(text, str(path), units, columns, kind)
+    return _record(data, stated, str(path), kind, [note] * bool(note) + notes)
+
+
+def read_gyro(path, *, units=None, columns=None, kind="rate"):
+    """Read a gyroscope (IMU) recording: :func:`read_imu` under its contract name.
 
     Examples
     --------
@@ -279,17 +400,7 @@ def read_gyro(path):
     >>> rec.t.tolist(), rec.omega[0].tolist()
     ([0.005048, 0.007548], [0.1, -2.5, 0.03])
     """
-    path = pathlib.Path(path)
-    if path.is_dir():
-        matches = sorted(p for p in path.iterdir() if p.name.lower() == GYRO_FILE)
-        if not matches:
-            raise GyroFileError(f"{path}: the folder has no Gyroscope.csv")
-        path = matches[0]
-    if path.suffix.lower() == ".zip":
-        text, source = _from_zip(path)
-    else:
-        text, source = _decode(path.read_bytes(), str(path)), str(path)
-    return parse_gyro(text, source)
+    return read_imu(path, units=units, columns=columns, kind=kind)
 
 
 def recording_path(name):

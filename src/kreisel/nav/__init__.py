@@ -2,14 +2,14 @@
 
 Attitude from angle increments with the optimal coning correction, from
 sampled rates (q̇ = ½ q ω′ or the Bortz equation), the exact coning motion
-that tests them, IMU error models with Allan deviation, and IMU log
-reading/attitude writing.
+that tests them, IMU error models with Allan deviation, and attitude
+writing (IMU files are read by :func:`kreisel.io.read_imu`).
 """
 
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
 from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
                          allan_deviation, gauss_markov_allan_deviation)
-from .logs import ImuLog, convert_attitude_frame, read_imu_log, write_attitude
+from .logs import convert_attitude_frame, write_attitude
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = [
@@ -25,8 +25,6 @@ __all__ = [
     "DEG_PER_SQRT_HOUR",
     "DEG_PER_HOUR",
     "DEG_PER_HOUR_PER_SQRT_HOUR",
-    "ImuLog",
-    "read_imu_log",
     "write_attitude",
     "convert_attitude_frame",
 ]
