@@ -20,18 +20,27 @@ def app_client():
     class Local(TestClient):
         def websocket_connect(self, url, *args, headers=None, **kwargs):
             # the test client names itself "testserver" on WebSockets whatever its base_url
-            return super().websocket_connect(url, *args, headers={"host": "127.0.0.1", **(headers or {})}, **kwargs)
+            return super().websocket_connect(url, *args, headers={"host": "127.0.0.1", **self.token,
+                                                                  **(headers or {})}, **kwargs)
 
     apps = []
 
     def make(*args, limits=RELAXED, **kwargs):
         app = create_app(*args, limits=limits, **kwargs)
         apps.append(app)
-        return Local(app, base_url="http://127.0.0.1")
+        client = Local(app, base_url="http://127.0.0.1", headers=authorization(app))
+        client.token = authorization(app)
+        return client
 
     yield make
     for app in apps:
         app.state.viewer.runner.close()
+
+
+def authorization(app):
+    """The header that gives ``app``'s token, as a script would send it (none when it has no token)."""
+    token = app.state.viewer.token
+    return {"Authorization": f"token {token}"} if token else {}
 
 
 def start_server(app, sock):
@@ -67,4 +76,6 @@ def live_server():
 
 @pytest.fixture(scope="module")
 def live_url(live_server):
-    return live_server[0]
+    """The URL a browser opens: with the server's token, as ``kreisel serve`` prints it."""
+    url, app = live_server
+    return f"{url}?token={app.state.viewer.token}"

@@ -7,11 +7,13 @@ from fastapi.testclient import TestClient
 import kreisel as kr
 from kreisel.web import create_app
 
+from .conftest import authorization
+
 PHONE = kr.io.recording_path("phone_toss")
 
 
 def local(app):
-    return TestClient(app, base_url="http://127.0.0.1")
+    return TestClient(app, base_url="http://127.0.0.1", headers=authorization(app))
 
 
 @pytest.fixture(scope="module")
