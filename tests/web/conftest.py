@@ -1,3 +1,5 @@
+import contextlib
+import socket
 import threading
 import time
 
@@ -43,11 +45,12 @@ def authorization(app):
     return {"Authorization": f"token {token}"} if token else {}
 
 
-def start_server(app, sock):
-    """Run ``app`` with uvicorn on ``sock`` in a background thread; the server and its thread."""
+def start_server(app, sock, **options):
+    """Run ``app`` with uvicorn on ``sock`` in a background thread (``options`` of ``make_server``); the server
+    and its thread."""
     from kreisel.web.server import make_server
 
-    server = make_server(app)
+    server = make_server(app, **options)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     thread.start()
     deadline = time.monotonic() + 60
@@ -56,6 +59,29 @@ def start_server(app, sock):
             raise RuntimeError("uvicorn did not start")
         time.sleep(0.05)
     return server, thread
+
+
+@contextlib.contextmanager
+def served(app, port, **options):
+    """``app`` served by uvicorn on loopback ``port`` (``options`` of ``make_server``): its base URL."""
+    from kreisel.web.server import bind, url_of
+
+    sock = bind("127.0.0.1", port)
+    server, thread = start_server(app, sock, **options)
+    try:
+        yield url_of(sock)
+    finally:
+        server.should_exit = True
+        thread.join(timeout=30)
+        sock.close()
+        app.state.viewer.runner.close()
+
+
+def free_port():
+    """A loopback port nobody listens on now (an app must know its port before it is served)."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
 
 
 @pytest.fixture(scope="module")

@@ -1,5 +1,11 @@
 """The viewer's recording fit: POST /api/fit and the recording given to ``kreisel serve --recording``."""
 
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
@@ -74,3 +80,18 @@ def test_serve_refuses_an_unreadable_recording(tmp_path):
     bad.write_text("0 1 2\n")
     with pytest.raises(ValueError, match="recording: .*too few columns"):
         serve(recording=bad, open_browser=False)
+
+
+def test_kreisel_fit_and_the_viewer_fit_a_recording_alike(tmp_path):
+    # the reproducer: `kreisel serve --recording` fitted the gyro bias and `kreisel fit` did not, so one
+    # recording gave two sets of moments
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(kr.__file__).resolve().parents[1]))
+    for args, name in (((), "default.json"), (("--no-bias",), "no_bias.json")):
+        done = subprocess.run([sys.executable, "-m", "kreisel", "fit", "phone_toss", *args, "--json",
+                               str(tmp_path / name)], cwd=tmp_path, env=env, capture_output=True, text=True,
+                              timeout=300)
+        assert done.returncode == 0, done.stderr
+    cli = json.loads((tmp_path / "default.json").read_text())
+    viewer = local(create_app(recording=kr.io.read_gyro(PHONE))).get("/api/recording").json()["fit"]
+    assert cli["moments"] == viewer["moments"] and cli["bias"] == viewer["bias"] and any(cli["bias"])
+    assert json.loads((tmp_path / "no_bias.json").read_text())["bias"] == [0.0, 0.0, 0.0]
