@@ -69,6 +69,13 @@ def test_initial_recording():
     assert local(create_app()).get("/api/recording").json() is None
     data = local(create_app(recording=kr.io.read_gyro(PHONE))).get("/api/recording").json()
     assert data["fit"]["n_samples"] == len(data["t"]) and data["title"].endswith("phone_toss.csv")
+    # the form shows the fitted body at the window's start, and running it replays the fit exactly
+    form = data["form"]
+    assert data["source"].endswith(PHONE.name) and form["moments"] == np.diag(data["inertia"]).tolist()
+    assert form["omega"] == data["omega"][0] and form["n_samples"] == len(data["t"])
+    client = local(create_app())
+    replay = client.post("/api/run", json={"form": {**form, "n_samples": 101}, "exact": True}).json()
+    np.testing.assert_allclose(replay["q"][-1], data["q"][-1], atol=1e-9)
 
 
 def test_serve_refuses_an_unreadable_recording(tmp_path):
