@@ -276,10 +276,10 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     recording : GyroRecording, optional
         A gyroscope recording (:func:`kreisel.io.read_gyro`) fitted and shown first.
     token : str, optional
-        The secret every request must carry (see :mod:`kreisel.web.guard`); by default a random one
+        The secret every request must carry (see ``kreisel.web.guard``); by default a random one
         (``app.state.viewer.token``), as Jupyter makes; ``""``: none, any local process may use the viewer.
     allow_hosts : sequence of str
-        More names the ``Host`` header may give (:class:`kreisel.web.guard.Guard`).
+        More names the ``Host`` header may give (``kreisel.web.guard.Guard``).
 
     Examples
     --------
