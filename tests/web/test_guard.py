@@ -1,13 +1,19 @@
 """Who reaches the viewer: its token (as Jupyter's), and the Host allow-list on every interface."""
 
 import json
+import os
+import pathlib
+import re
 import socket
+import subprocess
+import sys
 
 import httpx
 import pytest
 from websockets.exceptions import InvalidStatus
 from websockets.sync.client import connect
 
+import kreisel
 from kreisel.web import create_app
 from kreisel.web.guard import Guard, machine_names
 
@@ -113,3 +119,28 @@ def test_the_host_list_on_a_wildcard_names_this_machine_and_no_wildcard():
     assert guard.refusal({"host": "192.0.2.7:80"}, server=("192.0.2.7", 80)) is None
     assert "is not this server" in guard.refusal({"host": "192.0.2.7:80"}, server=("192.0.2.8", 80))
     assert "is not this server" in guard.refusal({"host": "0.0.0.0:80"}, server=("127.0.0.1", 80))
+
+
+def test_kreisel_serve_takes_the_token_and_host_names_it_is_given(interrupt):
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(kreisel.__file__).resolve().parents[1]))
+    both = subprocess.run([sys.executable, "-m", "kreisel", "serve", "--token", "mine", "--no-token", "--no-browser"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert both.returncode == 2 and "give --token or --no-token, not both" in both.stderr
+    server = subprocess.Popen([sys.executable, "-m", "kreisel", "serve", "--port", "0", "--no-browser", "--token",
+                               "my secret", "--allow-host", "lab.example"], env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+    try:
+        url = None
+        for line in server.stdout:
+            found = re.search(r"(http://127\.0\.0\.1:(\d+)/)\?token=my%20secret\s", line)
+            if found:
+                url, port = found.groups()
+                break
+        assert url, "kreisel serve did not print its URL with the token it was given"
+        headers = {"Host": f"lab.example:{port}", "Authorization": "token my secret"}
+        assert httpx.get(url + "api/methods", headers=headers, timeout=60).status_code == 200
+        assert httpx.get(url + "api/methods", params={"token": "my secret"}, timeout=60).status_code == 200
+        assert httpx.get(url + "api/methods", headers={**headers, "Host": f"other.example:{port}"},
+                         timeout=60).status_code == 403
+    finally:
+        interrupt(server, 60)
