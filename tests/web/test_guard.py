@@ -130,13 +130,10 @@ def test_kreisel_serve_takes_the_token_and_host_names_it_is_given(interrupt):
                                "my secret", "--allow-host", "lab.example"], env=env, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True)
     try:
-        url = None
-        for line in server.stdout:
-            found = re.search(r"(http://127\.0\.0\.1:(\d+)/)\?token=my%20secret\s", line)
-            if found:
-                url, port = found.groups()
-                break
-        assert url, "kreisel serve did not print its URL with the token it was given"
+        printed = (re.search(r"(http://127\.0\.0\.1:(\d+)/)\?token=my%20secret\s", line) for line in server.stdout)
+        found = next(filter(None, printed), None)
+        assert found, "kreisel serve did not print its URL with the token it was given"
+        url, port = found.groups()
         headers = {"Host": f"lab.example:{port}", "Authorization": "token my secret"}
         assert httpx.get(url + "api/methods", headers=headers, timeout=60).status_code == 200
         assert httpx.get(url + "api/methods", params={"token": "my secret"}, timeout=60).status_code == 200
