@@ -193,11 +193,13 @@ def test_serve_opens_a_bundled_scenario_by_name(tmp_path, interrupt):
     try:
         url = None
         for line in server.stdout:
-            found = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            found = re.search(r"(http://127\.0\.0\.1:\d+/)(\?token=[\w-]+)", line)
             if found:
-                url = found.group(0)
+                url, token = found.groups()
                 break
         assert url, "kreisel serve did not print its URL"
-        assert 'title = "Tennis racket' in httpx.get(url + "api/initial", timeout=60).json()["toml"]
+        # the printed URL carries the server's token, and nothing is answered without it
+        assert httpx.get(url + "api/initial", timeout=60).status_code == 403
+        assert 'title = "Tennis racket' in httpx.get(url + "api/initial" + token, timeout=60).json()["toml"]
     finally:
         interrupt(server, 60)

@@ -1,3 +1,5 @@
+import contextlib
+import socket
 import threading
 import time
 
@@ -20,25 +22,35 @@ def app_client():
     class Local(TestClient):
         def websocket_connect(self, url, *args, headers=None, **kwargs):
             # the test client names itself "testserver" on WebSockets whatever its base_url
-            return super().websocket_connect(url, *args, headers={"host": "127.0.0.1", **(headers or {})}, **kwargs)
+            return super().websocket_connect(url, *args, headers={"host": "127.0.0.1", **self.token,
+                                                                  **(headers or {})}, **kwargs)
 
     apps = []
 
     def make(*args, limits=RELAXED, **kwargs):
         app = create_app(*args, limits=limits, **kwargs)
         apps.append(app)
-        return Local(app, base_url="http://127.0.0.1")
+        client = Local(app, base_url="http://127.0.0.1", headers=authorization(app))
+        client.token = authorization(app)
+        return client
 
     yield make
     for app in apps:
         app.state.viewer.runner.close()
 
 
-def start_server(app, sock):
-    """Run ``app`` with uvicorn on ``sock`` in a background thread; the server and its thread."""
+def authorization(app):
+    """The header that gives ``app``'s token, as a script would send it (none when it has no token)."""
+    token = app.state.viewer.token
+    return {"Authorization": f"token {token}"} if token else {}
+
+
+def start_server(app, sock, **options):
+    """Run ``app`` with uvicorn on ``sock`` in a background thread (``options`` of ``make_server``); the server
+    and its thread."""
     from kreisel.web.server import make_server
 
-    server = make_server(app)
+    server = make_server(app, **options)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
     thread.start()
     deadline = time.monotonic() + 60
@@ -47,6 +59,29 @@ def start_server(app, sock):
             raise RuntimeError("uvicorn did not start")
         time.sleep(0.05)
     return server, thread
+
+
+@contextlib.contextmanager
+def served(app, port, **options):
+    """``app`` served by uvicorn on loopback ``port`` (``options`` of ``make_server``): its base URL."""
+    from kreisel.web.server import bind, url_of
+
+    sock = bind("127.0.0.1", port)
+    server, thread = start_server(app, sock, **options)
+    try:
+        yield url_of(sock)
+    finally:
+        server.should_exit = True
+        thread.join(timeout=30)
+        sock.close()
+        app.state.viewer.runner.close()
+
+
+def free_port():
+    """A loopback port nobody listens on now (an app must know its port before it is served)."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
@@ -67,4 +102,6 @@ def live_server():
 
 @pytest.fixture(scope="module")
 def live_url(live_server):
-    return live_server[0]
+    """The URL a browser opens: with the server's token, as ``kreisel serve`` prints it."""
+    url, app = live_server
+    return f"{url}?token={app.state.viewer.token}"

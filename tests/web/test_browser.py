@@ -139,4 +139,17 @@ def test_uploaded_recording_is_fitted_and_replayed(page):
     n = min(len(s) for s in plotted)
     measured, fitted = np.array([s[:n] for s in plotted[:3]]), np.array([s[:n] for s in plotted[3:]])
     assert np.sqrt(np.mean((measured - fitted) ** 2)) < 0.1
+    # during the replay the preset box names the recording and the form holds the fitted body
+    shown = page.evaluate("({preset: document.getElementById('preset').selectedOptions[0].text, "
+                          "moments: ['I1', 'I2', 'I3'].map((id) => parseFloat(document.getElementById(id).value)), "
+                          "omega: ['w1', 'w2', 'w3'].map((id) => parseFloat(document.getElementById(id).value)), "
+                          "fitted: window.kreisel.data.form, method: document.getElementById('method').value})")
+    assert shown["preset"] == f"recording: {kr.io.recording_path('phone_toss').name}"
+    np.testing.assert_allclose(shown["moments"], shown["fitted"]["moments"], rtol=1e-9)
+    np.testing.assert_allclose(shown["omega"], shown["fitted"]["omega"], rtol=1e-9)
+    assert shown["method"] == "exact"
+    # the next run is not the recording's: its entry goes
+    page.select_option("#preset", "tennis_racket")
+    page.wait_for_function("window.kreisel.ready && !window.kreisel.data.fit", timeout=240_000)
+    assert page.locator("#preset option[data-recording]").count() == 0
     assert not page.errors, page.errors

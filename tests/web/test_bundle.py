@@ -98,7 +98,7 @@ def installed(tmp_path_factory, repository_copy):
 
 @pytest.fixture(scope="module")
 def served(installed, interrupt):
-    """``kreisel serve`` from the fresh environment, as a user starts it: its URL."""
+    """``kreisel serve`` from the fresh environment, as a user starts it: the URL it prints (with its token)."""
     python, base = installed
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     server = subprocess.Popen([str(python), "-m", "kreisel", "serve", "--port", "0", "--no-browser"], cwd=base,
@@ -110,7 +110,7 @@ def served(installed, interrupt):
             line = server.stdout.readline()
             if not line:
                 break
-            found = re.search(r"http://127\.0\.0\.1:\d+/", line)
+            found = re.search(r"http://127\.0\.0\.1:\d+/\?token=[\w-]+", line)
             url = found.group(0) if found else None
         assert url, "kreisel serve did not print its URL"
         yield url
@@ -121,13 +121,15 @@ def served(installed, interrupt):
 def test_installed_viewer_serves_the_page_and_its_script(served):
     import httpx
 
-    page = httpx.get(served, timeout=60)
-    assert page.status_code == 200 and '<script type="module" src="/static/viewer.js">' in page.text
-    script = httpx.get(served + "static/viewer.js", timeout=60)
-    assert script.status_code == 200 and 'from"./widget.js"' in script.text
-    scene = httpx.get(served + "static/widget.js", timeout=60)
-    assert scene.status_code == 200 and len(scene.content) > 100_000
-    assert httpx.get(served + "favicon.ico", timeout=60).headers["content-type"].startswith("image/svg+xml")
+    base = served.partition("?")[0]
+    with httpx.Client(timeout=60) as browser:  # keeps the cookie the page sets, as a browser does
+        page = browser.get(served)
+        assert page.status_code == 200 and '<script type="module" src="/static/viewer.js">' in page.text
+        script = browser.get(base + "static/viewer.js")
+        assert script.status_code == 200 and 'from"./widget.js"' in script.text
+        scene = browser.get(base + "static/widget.js")
+        assert scene.status_code == 200 and len(scene.content) > 100_000
+        assert browser.get(base + "favicon.ico").headers["content-type"].startswith("image/svg+xml")
 
 
 @pytest.mark.skipif(not pathlib.Path("/usr/bin/chromium").exists(), reason="needs chromium at /usr/bin/chromium")

@@ -1,5 +1,11 @@
 """The viewer's recording fit: POST /api/fit and the recording given to ``kreisel serve --recording``."""
 
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
@@ -7,11 +13,13 @@ from fastapi.testclient import TestClient
 import kreisel as kr
 from kreisel.web import create_app
 
+from .conftest import authorization
+
 PHONE = kr.io.recording_path("phone_toss")
 
 
 def local(app):
-    return TestClient(app, base_url="http://127.0.0.1")
+    return TestClient(app, base_url="http://127.0.0.1", headers=authorization(app))
 
 
 @pytest.fixture(scope="module")
@@ -61,6 +69,13 @@ def test_initial_recording():
     assert local(create_app()).get("/api/recording").json() is None
     data = local(create_app(recording=kr.io.read_gyro(PHONE))).get("/api/recording").json()
     assert data["fit"]["n_samples"] == len(data["t"]) and data["title"].endswith("phone_toss.csv")
+    # the form shows the fitted body at the window's start, and running it replays the fit exactly
+    form = data["form"]
+    assert data["source"].endswith(PHONE.name) and form["moments"] == np.diag(data["inertia"]).tolist()
+    assert form["omega"] == data["omega"][0] and form["n_samples"] == len(data["t"])
+    client = local(create_app())
+    replay = client.post("/api/run", json={"form": {**form, "n_samples": 101}, "exact": True}).json()
+    np.testing.assert_allclose(replay["q"][-1], data["q"][-1], atol=1e-9)
 
 
 def test_serve_refuses_an_unreadable_recording(tmp_path):
@@ -72,3 +87,18 @@ def test_serve_refuses_an_unreadable_recording(tmp_path):
     bad.write_text("0 1 2\n")
     with pytest.raises(ValueError, match="recording: .*too few columns"):
         serve(recording=bad, open_browser=False)
+
+
+def test_kreisel_fit_and_the_viewer_fit_a_recording_alike(tmp_path):
+    # the reproducer: `kreisel serve --recording` fitted the gyro bias and `kreisel fit` did not, so one
+    # recording gave two sets of moments
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(kr.__file__).resolve().parents[1]))
+    for args, name in (((), "default.json"), (("--no-bias",), "no_bias.json")):
+        done = subprocess.run([sys.executable, "-m", "kreisel", "fit", "phone_toss", *args, "--json",
+                               str(tmp_path / name)], cwd=tmp_path, env=env, capture_output=True, text=True,
+                              timeout=300)
+        assert done.returncode == 0, done.stderr
+    cli = json.loads((tmp_path / "default.json").read_text())
+    viewer = local(create_app(recording=kr.io.read_gyro(PHONE))).get("/api/recording").json()["fit"]
+    assert cli["moments"] == viewer["moments"] and cli["bias"] == viewer["bias"] and any(cli["bias"])
+    assert json.loads((tmp_path / "no_bias.json").read_text())["bias"] == [0.0, 0.0, 0.0]

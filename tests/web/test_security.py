@@ -11,7 +11,7 @@ from starlette.websockets import WebSocketDisconnect
 
 from kreisel.web.runner import Limits
 
-from .conftest import RELAXED
+from .conftest import RELAXED, authorization
 
 TENNIS = {"moments": [1.0, 2.0, 3.0], "omega": [0.01, 1.0, 0.01], "t_end": 2.0, "n_samples": 21}
 # a body under stiff damping: decay rate c / I = 1e18 /s, so the explicit adaptive integrator's steps stay
@@ -68,25 +68,32 @@ def test_live_server_refuses_foreign_origin_host_and_port(live_server):
     from websockets.exceptions import InvalidStatus
     from websockets.sync.client import connect
 
-    url, _ = live_server
+    url, app = live_server
+    token = authorization(app)
     port = url.rstrip("/").rsplit(":", 1)[1]
-    assert httpx.get(url + "api/initial", headers={"Origin": url.rstrip("/")}).status_code == 200
-    assert httpx.get(url + "api/initial", headers={"Host": f"rebind.example:{port}"}).status_code == 403
+    assert httpx.get(url + "api/initial", headers={"Origin": url.rstrip("/"), **token}).status_code == 200
+    assert httpx.get(url + "api/initial", headers={"Host": f"rebind.example:{port}", **token}).status_code == 403
     # the right name on another port is another server
-    assert httpx.get(url + "api/initial", headers={"Host": "127.0.0.1:1"}).status_code == 403
+    assert httpx.get(url + "api/initial", headers={"Host": "127.0.0.1:1", **token}).status_code == 403
     stream = url.replace("http", "ws") + "api/stream"
     for origin in FOREIGN:
         with pytest.raises(InvalidStatus) as refused:
-            connect(stream, origin=origin, open_timeout=30)
+            connect(stream, origin=origin, open_timeout=30, additional_headers=token)
         assert refused.value.response.status_code == 403
-    with connect(stream, origin=url.rstrip("/"), open_timeout=30) as ws:
+    with connect(stream, origin=url.rstrip("/"), open_timeout=30, additional_headers=token) as ws:
         ws.send(json.dumps({"preset": "nope"}))
         assert json.loads(ws.recv(timeout=30))["status"] == 404
 
 
-def _raw(url, request, read_body=False):
-    """Send raw bytes to the live server and return the status line and answer, without sending a body."""
+def _raw(url, request, read_body=False, app=None):
+    """Send raw bytes to the live server and return the status line and answer, without sending a body.
+
+    With ``app``, its token is added to the request's headers.
+    """
     host, port = url.split("//")[1].rstrip("/").split(":")
+    if app is not None:
+        line, _, rest = request.partition(b"\r\n")
+        request = line + b"\r\nAuthorization: token " + app.state.viewer.token.encode() + b"\r\n" + rest
     with socket.create_connection((host, int(port)), timeout=30) as sock:
         sock.sendall(request)
         answer = b""
@@ -104,13 +111,13 @@ def test_oversized_bodies_are_refused_before_they_are_read(live_server):
     limit = app.state.viewer.limits.max_body
     # 400 MB announced, none sent: the answer comes at once, so the body was never read
     answer = _raw(url, (f"POST /api/run HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\n"
-                        f"Content-Length: 400000000\r\n\r\n").encode(), read_body=True)
+                        f"Content-Length: 400000000\r\n\r\n").encode(), read_body=True, app=app)
     assert answer.startswith("HTTP/1.1 413") and f"larger than {limit} bytes" in answer
     # a chunked body is counted as it arrives and refused once it passes the limit
     chunk = b"x" * 65536
     chunks = (b"%x\r\n" % len(chunk) + chunk + b"\r\n") * (limit // len(chunk) + 2)
     answer = _raw(url, (f"POST /api/run HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\n"
-                        "Transfer-Encoding: chunked\r\n\r\n").encode() + chunks, read_body=True)
+                        "Transfer-Encoding: chunked\r\n\r\n").encode() + chunks, read_body=True, app=app)
     assert answer.startswith("HTTP/1.1 413")
 
 
@@ -293,6 +300,7 @@ def test_a_run_is_stopped_when_its_http_client_leaves(live_server):
     name, port = host.split(":")
     with socket.create_connection((name, int(port)), timeout=30) as sock:
         sock.sendall(f"POST /api/run HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\n"
+                     f"Authorization: token {app.state.viewer.token}\r\n"
                      f"Content-Length: {len(body)}\r\n\r\n".encode() + body)
         assert _wait_until(lambda: runner.busy, 60)
         pid = next(iter(runner.busy)).process.pid

@@ -106,12 +106,30 @@ function legend(d) {
   $("legend").replaceChildren(...legendRows(d));
 }
 
+// The preset box names what plays: a recording's replay gets an entry of its own, dropped with the next run.
+function showSource(d) {
+  let entry = $("preset").querySelector("option[data-recording]");
+  if (!d.fit) {
+    if (entry) entry.remove();
+    return;
+  }
+  if (!entry) {
+    entry = new Option("", "");
+    entry.dataset.recording = "yes";
+    $("preset").add(entry, 0);
+  }
+  entry.text = `recording: ${d.source.split(/[\\/]/).pop()}`;
+  $("preset").value = "";
+  $("description").textContent = `${d.title}: the fitted free top, the measurement light in the ω′ plot`;
+}
+
 // Start playing `d`, which may hold only the first chunk of a streamed run.
 function show(d) {
   state.data = d;
   state.index = 0;
   state.time = d.t[0];
   state.ready = true;
+  showSource(d);
   if (d.form) fillForm(d.form);
   if (d.method === "exact") $("method").value = "exact";
   if (viewer) viewer.load(d);

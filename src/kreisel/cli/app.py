@@ -474,7 +474,8 @@ def fit(
                   "'phone_toss' is a bundled example."),
     start: Optional[float] = typer.Option(None, "--start", help="Fit from this time on, s (as in the file)."),
     stop: Optional[float] = typer.Option(None, "--stop", help="Fit up to this time, s."),
-    bias: bool = typer.Option(False, "--bias", help="Also fit a constant gyroscope offset."),
+    bias: bool = typer.Option(True, "--bias/--no-bias",
+                              help="Also fit a constant gyroscope offset (as the viewer does; real gyros have one)."),
     units: Optional[str] = typer.Option(
         None, "--units", help="The gyroscope's unit when the file does not name it: rad/s, deg/s, mdeg/s, rpm…"),
     align: bool = typer.Option(False, "--align", help="Also fit the rotation from sensor to principal axes."),
@@ -539,6 +540,11 @@ def serve(
     no_browser: bool = typer.Option(False, "--no-browser", help="Do not open a browser window."),
     recording: Optional[pathlib.Path] = typer.Option(
         None, "--recording", help="Gyroscope recording to fit and replay (see `kreisel fit`); 'phone_toss' is bundled."),
+    token: Optional[str] = typer.Option(
+        None, "--token", help="Secret the viewer's URL carries (default: a random one per server)."),
+    no_token: bool = typer.Option(False, "--no-token", help="No secret: any local user or process may use the viewer."),
+    allow_host: Optional[List[str]] = typer.Option(
+        None, "--allow-host", help="Another name the viewer answers to, e.g. this machine's name on the network (repeatable)."),
 ):
     """Start the interactive 3D viewer in the browser."""
     from ..io.gyro import RECORDINGS, recording_path
@@ -547,7 +553,10 @@ def serve(
     if recording is not None and not recording.exists() and str(recording) in RECORDINGS:
         recording = recording_path(str(recording))
     try:
-        run_server(scenario, host=host, port=port, open_browser=not no_browser, recording=recording)
+        if no_token and token is not None:
+            raise ValueError("give --token or --no-token, not both")
+        run_server(scenario, host=host, port=port, open_browser=not no_browser, recording=recording,
+                   token="" if no_token else token, allow_hosts=allow_host or ())
     except ValueError as exc:
         usage_error(str(exc))
 

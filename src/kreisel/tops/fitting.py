@@ -480,7 +480,9 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     omega : (n, 3) array_like
         Measured angular velocity in the sensor's axes, rad/s.
     bias : bool
-        Also fit a constant offset of each gyroscope axis.
+        Also fit a constant offset of each gyroscope axis. Off by default here, so
+        that the model is the free top alone; ``kreisel fit`` and the viewer fit it
+        by default (``--no-bias`` turns it off), since a real gyroscope has one.
     window : (t_start, t_stop), optional
         Use only the samples with t_start <= t <= t_stop (the free flight; the
         throw and the catch are not free rotation). Either end may be None.

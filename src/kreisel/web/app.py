@@ -14,8 +14,8 @@ Endpoints (all JSON unless noted):
                                      fitted to a gyroscope recording, as a run (:func:`kreisel.web.session.fit`)
 ``GET /api/recording``               the recording given to :func:`serve`, fitted (or null)
 
-Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server are
-refused with 403 and bodies over the size limit with 413, before they are read (:mod:`kreisel.web.guard`).
+Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server, or that
+do not carry the server's token, are refused with 403 and bodies over the size limit with 413, before they are read (:mod:`kreisel.web.guard`).
 Every refusal is a 4xx JSON answer with the reason in ``detail``: 400 for an invalid scenario, 404 for an
 unknown preset, 422 for a malformed request, work over the limits or a run that failed, 503 when all run
 slots are busy. Every body field has a strict type (``"exact": "yes"`` is refused, not read as true).
@@ -41,6 +41,7 @@ from __future__ import annotations
 import asyncio
 import json
 import pathlib
+import secrets
 import tempfile
 import tomllib
 from typing import Annotated, Literal
@@ -165,10 +166,11 @@ async def _until_disconnected(request, gone):
 
 
 class Viewer:
-    """The app's state: the initial scenario, the run limits and the worker pool."""
+    """The app's state: the initial scenario, the run limits, the worker pool and the token (or None)."""
 
-    def __init__(self, scenario_text, chunk_samples, limits):
+    def __init__(self, scenario_text, chunk_samples, limits, token=None):
         self.scenario_text = scenario_text
+        self.token = token
         self.chunk_samples = chunk_samples
         self.limits = limits
         self.runner = Runner(limits)
@@ -229,18 +231,21 @@ class Viewer:
         listener = asyncio.create_task(listen())
         sent = 0
         try:
-            async for message in self.runner.messages("stream", (text, request.exact, self.chunk_samples,
-                                                                 self.limits.max_steps), stop):
-                await websocket.send_json(message)
-                sent += len(message["t"]) if message["type"] == "chunk" else 0
+            try:
+                async for message in self.runner.messages("stream", (text, request.exact, self.chunk_samples,
+                                                                     self.limits.max_steps), stop):
+                    await websocket.send_json(message)
+                    sent += len(message["t"]) if message["type"] == "chunk" else 0
+            except Stopped as stopped:
+                # the client may have left meanwhile (e.g. while waiting for a slot): then nobody hears it
+                await websocket.send_json({"type": "error", "status": stopped.status, "detail": stopped.detail})
+                await websocket.close(code=1011, reason=_reason(stopped.detail))
+                return
             if cancelled:
                 await websocket.send_json({"type": "cancelled", "samples": sent})
             if not stop.is_set() or cancelled:
                 await websocket.close(code=1000)
-        except Stopped as stopped:
-            await websocket.send_json({"type": "error", "status": stopped.status, "detail": stopped.detail})
-            await websocket.close(code=1011, reason=_reason(stopped.detail))
-        except (WebSocketDisconnect, RuntimeError):
+        except (WebSocketDisconnect, RuntimeError, OSError):
             return  # the client left while we were sending
         finally:
             listener.cancel()
@@ -253,7 +258,7 @@ def _reason(detail):
 
 
 def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="127.0.0.1", port=None, limits=None,
-               recording=None):
+               recording=None, token=None, allow_hosts=()):
     """The viewer's FastAPI app; ``scenario_text`` (TOML) is offered as the initial scenario.
 
     Parameters
@@ -270,12 +275,20 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
         Run slots, time limit and body size (``kreisel.web.runner.Limits``).
     recording : GyroRecording, optional
         A gyroscope recording (:func:`kreisel.io.read_gyro`) fitted and shown first.
+    token : str, optional
+        The secret every request must carry (see ``kreisel.web.guard``); by default a random one
+        (``app.state.viewer.token``), as Jupyter makes; ``""``: none, any local process may use the viewer.
+    allow_hosts : sequence of str
+        More names the ``Host`` header may give (``kreisel.web.guard.Guard``).
 
     Examples
     --------
     >>> from fastapi.testclient import TestClient
-    >>> client = TestClient(create_app(), base_url="http://127.0.0.1")
-    >>> client.get("/api/presets").json()[0]["name"]
+    >>> app = create_app()
+    >>> client = TestClient(app, base_url="http://127.0.0.1")
+    >>> client.get("/api/presets").status_code
+    403
+    >>> client.get(f"/api/presets?token={app.state.viewer.token}").json()[0]["name"]
     'tennis_racket'
     >>> client.get("/api/presets", headers={"Origin": "http://evil.example"}).status_code
     403
@@ -285,10 +298,16 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     limits = limits or Limits()
     if not isinstance(limits, Limits):
         raise TypeError(f"limits must be a kreisel.web.runner.Limits, got {type(limits).__name__}")
-    viewer = Viewer(scenario_text, chunk_samples, limits)
+    if token is not None and not isinstance(token, str):
+        raise TypeError(f"token must be a string (\"\": no token), got {type(token).__name__}")
+    if isinstance(allow_hosts, str) or not all(isinstance(name, str) and name for name in allow_hosts):
+        raise TypeError(f"allow_hosts must be a sequence of host names, got {allow_hosts!r}")
+    token = secrets.token_urlsafe(32) if token is None else token or None
+    viewer = Viewer(scenario_text, chunk_samples, limits, token)
     app = FastAPI(title="kreisel viewer", docs_url=None, redoc_url=None, openapi_url=None)
     app.state.viewer = viewer
-    app.add_middleware(Guard, host=host, port=port, max_body=limits.max_body)
+    app.add_middleware(Guard, host=host, port=port, max_body=limits.max_body, token=token,
+                       allow_hosts=tuple(allow_hosts))
 
     @app.exception_handler(RequestValidationError)
     async def invalid(request, exc):

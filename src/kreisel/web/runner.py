@@ -7,6 +7,11 @@ each stopped after ``wall_seconds`` (and, inside the worker, after ``max_steps``
 stop between two chunks and, if it does not answer within ``grace_seconds``, ends its process; a fresh
 worker takes its place. The event loop never runs numerical work.
 
+Waiting costs no thread: a request waiting for a slot polls for it on the event loop, so a flood of
+waiting requests cannot delay the admitted runs or its own refusals. The blocking reads of the workers'
+pipes run in the runner's own small thread pool (one thread per slot and one spare per slot for a
+stopped worker's last reply), never in asyncio's shared default pool.
+
 A job names a function of :mod:`kreisel.web.session` run in the worker: ``"run"`` and ``"export"``
 answer one message, ``"stream"`` one message per chunk. The worker sends ``("message", m)`` for each,
 ``("error", status, detail)`` for a refused or failed run, and ``("end",)`` when the job is over; the
@@ -16,12 +21,17 @@ parent may send ``"stop"`` at any time.
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import multiprocessing
 import threading
+import time
 
 from .limits import Limits
 
 __all__ = ["Limits", "Stopped", "Runner"]
+
+#: How often a request waiting for a slot looks for one, s.
+POLL_SECONDS = 0.05
 
 
 class Stopped(Exception):
@@ -105,6 +115,7 @@ class Runner:
         self.lock = threading.Lock()
         # a thread semaphore, not an asyncio one: requests may come from more than one event loop
         self.slots = threading.BoundedSemaphore(self.limits.slots)
+        self.pipes = concurrent.futures.ThreadPoolExecutor(2 * self.limits.slots, "kreisel-viewer-pipe")
 
     @property
     def workers(self):
@@ -112,18 +123,23 @@ class Runner:
         with self.lock:
             return [w.process.pid for w in self.idle + list(self.busy)]
 
-    async def _acquire(self):
-        if not self.slots.acquire(blocking=False):
-            if not await asyncio.to_thread(self.slots.acquire, timeout=self.limits.queue_seconds):
+    async def _acquire(self, stop):
+        """A worker with a slot; None when ``stop`` is set first; Stopped (503) after ``queue_seconds``."""
+        deadline = time.monotonic() + self.limits.queue_seconds
+        while not self.slots.acquire(blocking=False):
+            if stop is not None and stop.is_set():
+                return None
+            if time.monotonic() >= deadline:
                 raise Stopped(503, f"the viewer is busy with {self.limits.slots} runs; try again when one is "
                                    "done")
+            await asyncio.sleep(POLL_SECONDS)
         with self.lock:
             while self.idle and not self.idle[-1].process.is_alive():
                 self.idle.pop().end()
             worker = self.idle.pop() if self.idle else None
         try:
             if worker is None:
-                worker = await asyncio.to_thread(_Worker, self.context)
+                worker = await asyncio.get_running_loop().run_in_executor(self.pipes, _Worker, self.context)
         except BaseException:
             self.slots.release()
             raise
@@ -146,7 +162,9 @@ class Runner:
         ``stop`` (an :class:`asyncio.Event`) ends the job early: no more messages are yielded. Raises
         :class:`Stopped` for a refused or failed run, when the time limit is reached or no worker is free.
         """
-        worker = await self._acquire()
+        worker = await self._acquire(stop)
+        if worker is None:
+            return
         loop = asyncio.get_running_loop()
         deadline = loop.time() + self.limits.wall_seconds
         healthy = False
@@ -176,7 +194,7 @@ class Runner:
     async def _next(self, worker, deadline, stop):
         """The worker's next reply, or None when ``stop`` is set or the deadline passes first."""
         loop = asyncio.get_running_loop()
-        reply = loop.run_in_executor(None, _receive, worker.conn)
+        reply = loop.run_in_executor(self.pipes, _receive, worker.conn)
         waits = {reply}
         stopper = asyncio.ensure_future(stop.wait()) if stop is not None else None
         if stopper is not None:
@@ -207,7 +225,8 @@ class Runner:
     async def _drain(self, worker):
         pending, worker.pending = worker.pending, None
         while True:
-            reply = await pending if pending is not None else await asyncio.to_thread(_receive, worker.conn)
+            reply = await pending if pending is not None else await asyncio.get_running_loop().run_in_executor(
+                self.pipes, _receive, worker.conn)
             pending = None
             if reply[0] in ("end", "dead"):
                 return reply[0] == "end"
@@ -225,6 +244,7 @@ class Runner:
             self.busy.clear()
         for worker in workers:
             worker.end()
+        self.pipes.shutdown(wait=False)
 
 
 def _receive(conn):

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
-import pathlib
 import socket
 import threading
+import urllib.parse
 import webbrowser
 
 from .._optional import require
+from .connections import HEADER_SECONDS, http_protocol
 from .guard import WILDCARDS
 
 __all__ = ["bind", "websocket_support", "make_server", "url_of", "serve"]
@@ -39,24 +40,33 @@ def websocket_support():
     return any(importlib.util.find_spec(name) is not None for name in ("websockets", "wsproto"))
 
 
-def make_server(app):
+def make_server(app, header_seconds=HEADER_SECONDS, max_connections=None):
     """A uvicorn server for ``app``; run it with ``.run(sockets=[sock])`` on a socket from :func:`bind`.
 
     WebSocket messages are limited to the app's body limit, so a huge run request is refused by uvicorn
-    before it is buffered.
+    before it is buffered. A request's headers must arrive within ``header_seconds``, and at most
+    ``max_connections`` connections are held at once (default
+    :func:`kreisel.web.connections.max_connections`): see :mod:`kreisel.web.connections`.
     """
     uvicorn = require("uvicorn", extra="viewer", feature="the viewer (kreisel serve)")
     limits = getattr(getattr(app.state, "viewer", None), "limits", None)
     size = {"ws_max_size": limits.max_body} if limits is not None else {}
-    return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off", **size))
+    return uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="off",
+                                         http=http_protocol(header_seconds, max_connections), **size))
 
 
-def url_of(sock):
-    host, port = sock.getsockname()[:2]
-    return f"http://{'[' + host + ']' if ':' in host else host}:{port}/"
+def url_of(sock, token=None, host=None):
+    """The viewer's address on ``sock`` (by ``host``, default its address), with ``?token=`` when it has a ``token``.
+
+    A wildcard address is given as the loopback address: a browser on this machine reaches it there.
+    """
+    address, port = sock.getsockname()[:2]
+    host = host or {"0.0.0.0": "127.0.0.1", "::": "::1"}.get(address, address)
+    query = f"?token={urllib.parse.quote(token, safe='')}" if token else ""
+    return f"http://{'[' + host + ']' if ':' in host else host}:{port}/{query}"
 
 
-def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=None):
+def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=None, token=None, allow_hosts=()):
     """Serve the viewer until interrupted; prints its URL and optionally opens a browser.
 
     Parameters
@@ -68,13 +78,18 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
         Interface to listen on; the default keeps the viewer private to this machine. Only requests
         that name this host (or a loopback name) with the server's port, from the server's own pages,
         are answered (``kreisel.web.guard``); a wildcard such as ``0.0.0.0`` makes the viewer
-        reachable from other machines and prints a warning.
+        reachable from other machines (by this machine's names and addresses) and prints a warning.
     port : int
         TCP port; 0 picks a free one.
     open_browser : bool
         Open the default web browser at the URL once the server listens.
     recording : str or path-like, optional
         A gyroscope recording (see :func:`kreisel.io.read_gyro`) fitted and shown first.
+    token : str, optional
+        The secret every request must carry; by default a random one, in the URL printed and opened
+        (the page keeps it in a cookie). ``""``: no token, any local process may use the viewer.
+    allow_hosts : sequence of str
+        More names by which the viewer may be reached (e.g. a name this machine has on the network).
 
     Examples
     --------
@@ -123,14 +138,22 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
         except GyroFileError as exc:
             raise ValueError(f"recording: {exc}") from None
     sock = bind(host, port)
-    url = url_of(sock)
-    app = create_app(text, host=host, port=sock.getsockname()[1], recording=data)
+    try:
+        app = create_app(text, host=host, port=sock.getsockname()[1], recording=data, token=token,
+                         allow_hosts=allow_hosts)
+    except (TypeError, ValueError):
+        sock.close()
+        raise
+    url = url_of(sock, app.state.viewer.token)
     server = make_server(app)
     if host in WILDCARDS:
-        print(f"warning: --host {host} serves the viewer to every machine that can reach this one, and any "
-              "host name is accepted; anyone on the network can run simulations on it. Use the default "
-              "127.0.0.1 unless you mean that.", flush=True)
+        print(f"warning: --host {host} serves the viewer to every machine that can reach this one (by this "
+              "machine's names and addresses, and --allow-host names); "
+              + ("whoever has the URL below" if app.state.viewer.token else "anyone on the network")
+              + " can run simulations on it. Use the default 127.0.0.1 unless you mean that.", flush=True)
     print(f"kreisel viewer at {url}  (Ctrl+C to stop)", flush=True)
+    if host in WILDCARDS:
+        print(f"  from other machines: {url_of(sock, app.state.viewer.token, socket.gethostname())}", flush=True)
     if not websocket_support():
         print("note: runs are not streamed (install the `websockets` package); each comes in one reply of at "
               f"most {MAX_SAMPLES} samples", flush=True)

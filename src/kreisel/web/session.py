@@ -488,7 +488,9 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     The fitted body moves exactly (:meth:`kreisel.tops.EulerTop.solve`) through the recording's own
     sample times, so the viewer plays the body with its inertia ellipsoid and polhode while the ω′ plot
     shows the measurement (``omega_measured``: bias removed, in the fitted principal axes) with the
-    fitted curves; ``fit`` holds :meth:`kreisel.tops.FreeRotationFit.to_dict`.
+    fitted curves; ``fit`` holds :meth:`kreisel.tops.FreeRotationFit.to_dict`, ``source`` the recording's
+    name and ``form`` the fitted body as the viewer's form fields (its moments, ω′ and attitude at the
+    window's start, exact solution), which the page shows during the replay.
 
     Parameters
     ----------
@@ -540,11 +542,16 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     arrays["t"] = result.t
     integrals = IntegralChanges(None)
     integrals.add(traj)
+    title = f"free-top fit of {recording.source}"
+    # the form shows the fitted body from the window's start, so that Run replays it without the data
+    form = {"title": title, "moments": np.diag(traj.inertia).tolist(), "omega": traj.omega[0].tolist(),
+            "euler_deg": [0.0, 0.0, 0.0], "mgl": 0.0, "lever_axis": 2, "method": None,
+            "t_end": float(result.t[-1] - result.t[0]), "n_samples": int(result.t.size), "dt": None}
     return {
-        "kind": "rigid_body", "title": f"free-top fit of {recording.source}", "method": "exact",
+        "kind": "rigid_body", "title": title, "method": "exact", "source": recording.source,
         "inertia": traj.inertia.tolist(), "gravity": None, "analysis": analysis(traj, None), **_lists(arrays),
         "omega_measured": ((result.omega - result.bias) @ result.axes).tolist(),
-        "integrals": integrals.summary(), "fit": result.to_dict(),
+        "integrals": integrals.summary(), "fit": result.to_dict(), "form": form,
     }
 
 
