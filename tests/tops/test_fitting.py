@@ -304,3 +304,12 @@ def test_free_rotation_with_noise_shows_no_trend_and_calibrated_errors():
         assert fit.free_rotation, fit.message
         z += [d["trend_per_s"] / d["trend_stderr_per_s"] for d in fit.integrals_drift().values()]
     assert 0.3 < np.mean(np.square(z)) < 2.5, z  # chi² / dof with 20 dof, T and |J| correlated
+
+
+def test_a_bias_as_large_as_the_rates_is_not_a_free_rotation():
+    """A fast decay fitted with a bias: the fit escaped to a near-sphere spinning at ~1e4 rad/s whose
+    bias cancels the spin, residuals 4 % of the signal; it said "free rotation explains the data"."""
+    t, omega = decaying(-1.0)
+    with pytest.warns(NotFreeRotationWarning, match="fitted bias .* is as large as the measured rates"):
+        fit = kr.fit_free_rotation(t, omega, bias=True)
+    assert not fit.free_rotation and np.linalg.norm(fit.bias) > fit.signal_rms

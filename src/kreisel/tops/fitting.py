@@ -660,6 +660,14 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
                "cannot tell them apart; fit without align)" if align else
                "the body hardly tumbles (toss it spinning about its middle axis)")
         )
+    elif not np.linalg.norm(b) < signal:
+        # a gyroscope's offset is a small fraction of the rates of a toss; one as large as the signal is
+        # the fit's escape into a nearly spherical body spinning fast with an offset that cancels the spin
+        free, message = False, (
+            f"the fitted bias {np.linalg.norm(b):.3g} rad/s is as large as the measured rates (RMS {signal:.3g} "
+            "rad/s): no gyroscope is that far off; the fit traded a fast spin of a nearly round body for it "
+            "(fit without the bias, or cut the free flight with a window)"
+        )
     elif trending is not None:
         free, message = False, trending
     else:
