@@ -94,3 +94,36 @@ def test_heavy_top_sends_gravity_and_its_analysis():
 def test_refuses_bad_gravity(trajectory, bad, match):
     with pytest.raises(ValueError, match=match):
         widget_data(trajectory, gravity=bad)
+
+
+def test_outside_a_widget_frontend_the_player_is_a_summary_and_a_picture(trajectory):
+    """The issue: in a terminal ``traj.show()`` printed ``<…TrajectoryWidget object at 0x…>``."""
+    import base64
+    import io
+
+    from IPython.core.interactiveshell import InteractiveShell
+    from PIL import Image
+
+    widget = trajectory.show(max_samples=200)
+    data, _ = InteractiveShell.instance().display_formatter.format(widget)   # what IPython shows
+    assert "object at 0x" not in data["text/plain"]
+    assert data["text/plain"].startswith("kreisel.show: 3D player of a rigid body, 200 samples, t = 0 … 10 s")
+    assert "application/vnd.jupyter.widget-view+json" in data   # a widget frontend still draws the player
+    image = Image.open(io.BytesIO(base64.b64decode(data["image/png"])))  # a viewer without widgets, this
+    assert image.size[0] > 400 and image.size[1] > 200
+    assert repr(widget) == data["text/plain"]
+
+
+def test_the_static_picture_of_a_heavy_top_is_its_apex_path():
+    top = kr.LagrangeTop(1.0, 0.5, 1.0)
+    widget = kr.show(top.solve(np.linspace(0.0, 5.0, 201), [0.0, 0.5, 0.0], [0.0, 0.0, 10.0]), gravity=(top.mgl, [0, 0, 1]))
+    bundle, _ = widget._repr_mimebundle_()
+    assert bundle["text/plain"].startswith("kreisel.show: 3D player of a heavy top")
+    assert len(bundle["image/png"]) > 1000
+
+
+def test_without_matplotlib_the_fallback_is_the_summary_alone(trajectory, monkeypatch):
+    widget = trajectory.show(max_samples=20)
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    bundle, _ = widget._repr_mimebundle_()
+    assert "image/png" not in bundle and bundle["text/plain"].startswith("kreisel.show: 3D player")

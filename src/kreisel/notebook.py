@@ -12,6 +12,8 @@ Install it with ``pip install "kreisel[notebook]"``.
 from __future__ import annotations
 
 import importlib.resources
+import importlib.util
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -100,13 +102,60 @@ def _widget_class() -> type[AnyWidget]:
     import traitlets
 
     class TrajectoryWidget(anywidget.AnyWidget):
-        """The 3D player of :func:`show`; ``index`` is the sample on screen."""
+        """The 3D player of :func:`show`; ``index`` is the sample on screen.
+
+        Where no widget can be drawn (a terminal, a notebook viewer, an HTML export), its
+        representation falls back to a summary line and, with matplotlib, a static figure:
+        the frontend picks the richest form it can show.
+        """
 
         _esm = (importlib.resources.files("kreisel.web") / "static" / "widget.js").read_text(encoding="utf-8")
         data = traitlets.Dict().tag(sync=True)
         index = traitlets.Int(0).tag(sync=True)
 
+        def __repr__(self) -> str:
+            return _summary(self.data)
+
+        def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+            # anywidget gives (data, metadata), ipywidgets data alone, either None without a view
+            bundle: Any = super()._repr_mimebundle_(**kwargs) or {}
+            data, metadata = bundle if isinstance(bundle, tuple) else (bundle, {})
+            data = {**data, "text/plain": _summary(self.data)}
+            picture = _static_png(self.data)
+            if picture is not None:
+                data["image/png"] = picture
+            return data, metadata
+
     return TrajectoryWidget
+
+
+def _summary(data: dict[str, Any]) -> str:
+    kind = "heavy top" if data.get("gravity") else "rigid body"
+    t = data.get("t") or [0.0]
+    return (f"kreisel.show: 3D player of a {kind}, {data.get('n_samples', len(t))} samples, t = {t[0]:g} … {t[-1]:g} s "
+            "(drawn in a notebook with widgets: JupyterLab, Jupyter Notebook 7, VS Code)")
+
+
+def _static_png(data: dict[str, Any]) -> str | None:
+    """The picture shown where the widget cannot be: base64 PNG of the apex path (heavy top) or of ω′(t).
+
+    None without matplotlib (the notebook extra installs it; the widget needs it not).
+    """
+    if importlib.util.find_spec("matplotlib") is None:
+        return None
+    import base64
+    import io
+
+    from . import plot
+
+    traj = Trajectory(np.asarray(data["t"]), np.asarray(data["q"]), np.asarray(data["omega"]),
+                      data["analysis"]["principal_moments"])
+    # kreisel.plot is not annotated: its figure functions are held as typed callables
+    draw: Callable[[Trajectory], Any] = plot.apex if data.get("gravity") else plot.omega
+    fig = draw(traj)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=90)
+    return base64.b64encode(buffer.getvalue()).decode("ascii")
 
 
 def show(trajectory: Trajectory, max_samples: int = MAX_SAMPLES,

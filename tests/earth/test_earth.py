@@ -326,3 +326,24 @@ def test_shell_deviation_first_order_in_omega_and_exact_zero():
         E.shell_deviation(*case, omega=1e-305)
     # 1.6e-161 m/s once failed inside the integrator (a subnormal range): the deviation underflows to 0
     assert E.shell_deviation(1.6e-161, 45.0, 90.0, 45.0) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("length, omega", [(1e300, 7.29e-5), (1e30, 7.29e-5), (1.0, 1e300), (1.0, 1e10), (1.0, 3.2)])
+def test_foucault_pendulum_refuses_a_frame_turning_as_fast_as_the_swing(length, omega):
+    """Huge lengths or rates gave a ZeroDivisionError or a failed integration; ω²·l >= g has no rest state.
+
+    (1 m under 9.80665 m/s²: √(g/l) = 3.13 rad/s, so ω = 3.2 rad/s is just beyond.)
+    """
+    with pytest.raises(ValueError, match=r"omega and length: .* not slower than the pendulum's own frequency"):
+        kr.earth.foucault_pendulum(length, 45.0, 1e16 if length == 1e30 else 100.0, 0.05, omega=omega)
+
+
+def test_foucault_pendulum_just_inside_the_limit_runs():
+    swing = kr.earth.foucault_pendulum(1.0, 90.0, 20.0, 0.05, omega=0.5)
+    assert np.all(np.isfinite(swing.swing_azimuth)) and swing.t.size > 5
+
+
+def test_foucault_period_of_a_vanishing_rate_blames_omega_not_the_latitude():
+    with pytest.raises(ValueError, match=r"omega = 1e-310 rad/s: .* exceeds the largest float"):
+        kr.earth.foucault_period(45.0, 1e-310)
+    assert kr.earth.foucault_period(45.0, 1e300) == pytest.approx(2 * np.pi / (1e300 * np.sin(np.pi / 4)), rel=1e-15)

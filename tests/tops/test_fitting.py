@@ -246,3 +246,70 @@ def test_fit_at_extreme_rates_is_the_time_scaled_fit():
         np.testing.assert_allclose(fit.predict(fit.t), fit.omega, rtol=0, atol=np.ldexp(1e-9, k))
     with pytest.raises(ValueError, match="t and omega are out of range: the body turns through up to"):
         kr.fit_free_rotation(t * 1e20, omega)
+
+
+def decaying(rate, seed=3, n=260, span=0.65, noise=0.05):
+    """A phone tossed about its middle axis whose tumbling slows (rate < 0) or speeds up: ω(t) e^{rate t}."""
+    rng = np.random.default_rng(seed)
+    t = np.sort(rng.uniform(0.0, span, n))
+    omega = kr.EulerTop(*PHONE).omega(t, [0.45, 13.0, 0.35]) * np.exp(rate * t)[:, None]
+    return t, omega + rng.normal(0.0, noise, omega.shape)
+
+
+def test_energy_falling_along_the_data_is_not_free_rotation():
+    """The issue: T fell 18–24 %/s with the fitted moments and the verdict still said free rotation.
+
+    ω falling as e^{−0.2 t} takes T down 40 %/s; the residuals stay at 5 % of the signal, under the
+    residual test, so only the trend of the first integrals tells.
+    """
+    t, omega = decaying(-0.2)
+    with pytest.warns(NotFreeRotationWarning, match=r"energy T falls .* %/s .* air drag") as caught:
+        fit = kr.fit_free_rotation(t, omega)
+    assert not fit.free_rotation and fit.message == str(caught[0].message)
+    assert "explains the data" not in fit.message and "|J| falls" in fit.message
+    assert fit.rms < 0.1 * fit.signal_rms   # what the verdict looked at before
+    drift = fit.integrals_drift()
+    energy = drift["energy"]
+    assert abs(energy["trend_per_s"] + 0.4) < 3 * energy["trend_stderr_per_s"], energy
+    assert energy["trend_per_s"] < -max(0.05, 3 * energy["trend_stderr_per_s"])
+    assert fit.to_dict()["first_integrals"] == drift
+
+
+def test_energy_rising_along_the_data_names_the_throw():
+    t, omega = decaying(+0.2)
+    with pytest.warns(NotFreeRotationWarning, match=r"energy T rises .* the throw"):
+        fit = kr.fit_free_rotation(t, omega)
+    assert not fit.free_rotation
+
+
+def test_trend_standard_error_is_the_least_squares_one():
+    from scipy.stats import linregress
+
+    t, omega = decaying(0.0, seed=8)
+    fit = kr.fit_free_rotation(t, omega)
+    for series, drift in zip(fit.first_integrals(), fit.integrals_drift().values()):
+        reference = linregress(fit.t - fit.t0, series)
+        assert drift["trend_per_s"] == pytest.approx(reference.slope / series.mean(), rel=1e-9)
+        assert drift["trend_stderr_per_s"] == pytest.approx(reference.stderr / series.mean(), rel=1e-9)
+
+
+def test_free_rotation_with_noise_shows_no_trend_and_calibrated_errors():
+    """Under the null (exact free top + white noise) trend/stderr has unit variance and nothing is flagged."""
+    z = []
+    for seed in range(10):
+        t, omega = decaying(0.0, seed=200 + seed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", NotFreeRotationWarning)
+            fit = kr.fit_free_rotation(t, omega, bias=True)
+        assert fit.free_rotation, fit.message
+        z += [d["trend_per_s"] / d["trend_stderr_per_s"] for d in fit.integrals_drift().values()]
+    assert 0.3 < np.mean(np.square(z)) < 2.5, z  # chi² / dof with 20 dof, T and |J| correlated
+
+
+def test_a_bias_as_large_as_the_rates_is_not_a_free_rotation():
+    """A fast decay fitted with a bias: the fit escaped to a near-sphere spinning at ~1e4 rad/s whose
+    bias cancels the spin, residuals 4 % of the signal; it said "free rotation explains the data"."""
+    t, omega = decaying(-1.0)
+    with pytest.warns(NotFreeRotationWarning, match="fitted bias .* is as large as the measured rates"):
+        fit = kr.fit_free_rotation(t, omega, bias=True)
+    assert not fit.free_rotation and np.linalg.norm(fit.bias) > fit.signal_rms

@@ -8,6 +8,7 @@ import ast
 import inspect
 import os
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -46,6 +47,33 @@ def test_text_is_the_section_code_with_its_result_as_last_expression(name):
         # the cell holds the function's statements, not a call of the tour module
         body = ast.parse(inspect.getsource(function).lstrip()).body[0].body
         assert len(tree.body) == len(body) - 1   # all but the docstring
+
+
+@pytest.mark.parametrize("name", list(NOTEBOOKS))
+def test_notebooks_use_public_names_only(name):
+    """The issue: the notebooks imported ``kreisel.tour.free_top._sense``, a private name."""
+    tree = ast.parse(jupytext.reads(notebook_text(name), fmt="py:percent").cells[1].source)
+    imported = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            imported |= {node.module, *(f"{node.module}.{alias.name}" for alias in node.names)}
+        elif isinstance(node, ast.Import):
+            imported |= {alias.name for alias in node.names}
+    assert imported and not [n for n in imported if any(part.startswith("_") for part in n.split("."))], imported
+    for node in ast.walk(ast.parse(notebook_text(name))):
+        assert not (isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__")), \
+            ast.unparse(node)
+
+
+def test_section_ids_are_unique_and_from_the_title():
+    from kreisel.tour.report import Section, render_html
+
+    sections = [Section(title, "§1", "text", []) for title in ("Euler angles: the nodal line", "Gimbal lock")]
+    ids = [re.findall(r"id='([^']+)'", s._repr_html_()) for s in sections]
+    assert ids == [["euler-angles-the-nodal-line"], ["gimbal-lock"]]
+    page = render_html(sections)
+    assert re.findall(r"<section id='([^']+)'", page) == [i[0] for i in ids]
+    assert [f"#{i[0]}" for i in ids] == re.findall(r"href='(#[^']+)'", page)
 
 
 def test_a_section_that_returns_early_is_refused(monkeypatch):
@@ -90,6 +118,7 @@ def test_notebooks_execute_and_every_section_passes(written):
     # the kernel imports the kreisel under test (a source tree on PYTHONPATH or an install)
     env = {**os.environ, "MPLBACKEND": "Agg",
            "PYTHONPATH": os.pathsep.join([str(pathlib.Path(kreisel.__file__).parents[1]), os.environ.get("PYTHONPATH", "")])}
+    ids = []
     for name, functions in NOTEBOOKS.items():
         nb = nbformat.read(written / f"{name}.ipynb", as_version=4)
         nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
@@ -100,3 +129,5 @@ def test_notebooks_execute_and_every_section_passes(written):
         for function, html in zip(functions, shown):
             assert "<b>all checks pass</b>" in html and "class='fail'" not in html, (name, function.__name__)
         assert sum(html.count("data:image/png;base64,") for html in shown) >= len(functions), name
+        ids += [i for html in shown for i in re.findall(r"<section id='([^']+)'", html)]
+    assert len(ids) == len(SECTIONS) == len(set(ids)), ids  # one id per section, none twice

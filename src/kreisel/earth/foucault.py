@@ -70,6 +70,10 @@ def foucault_period(latitude_deg, omega=OMEGA_EARTH):
         if shown == 0.0:
             raise ValueError("latitude_deg: at the equator (latitude 0) the swing plane of a Foucault pendulum "
                              "does not turn, so it has no period; foucault_precession_rate is 0 there")
+        if np.all(np.abs(check_omega(omega)) <= smallest):
+            raise ValueError(f"omega = {float(np.ravel(omega)[0]):g} rad/s: the swing plane turns so slowly that "
+                             f"its period exceeds the largest float ({np.finfo(float).max:.1e} s); "
+                             "foucault_precession_rate gives the rate")
         raise ValueError(f"latitude_deg: at latitude {shown:g}°, this close to the equator, the swing plane turns "
                          f"so slowly that its period exceeds the largest float ({np.finfo(float).max:.1e} s); "
                          "foucault_precession_rate gives the rate")
@@ -246,7 +250,9 @@ def foucault_pendulum(
     ------
     ValueError
         Bad arguments; an amplitude below 1e-150 rad (its squared excursions
-        underflow); a pendulum that swings through more than 1e15 rad of
+        underflow); ``omega`` not below the pendulum's own frequency √(g/l)
+        (the hanging bob is then not a stable rest state: e.g. a 1e300 m
+        string, or ω = 1e300 rad/s); a pendulum that swings through more than 1e15 rad of
         phase in ``duration`` (its steps would be lost in the rounding of t);
         a run that ends before the first excursion after the release (less
         than about half a period), which leaves no swing plane to measure.
@@ -269,6 +275,15 @@ def foucault_pendulum(
         raise ValueError(f"amplitude = {amplitude:g} rad is out of range: below 1e-150 rad the squared excursions "
                          "that locate the swing plane underflow double precision")
     g = positive_float(g, "g")
+    omega = float(check_omega(as_float(omega, "omega")))
+    natural = math.sqrt(g) / math.sqrt(length)  # √(g/l) without overflowing g/l
+    if not omega < natural:
+        # the centrifugal pull ω² × displacement then beats gravity's g/l × displacement across ω: the
+        # hanging bob is not a stable rest state and there is no swing plane to follow
+        raise ValueError(f"omega and length: the frame turns at {omega:.3g} rad/s, not slower than the pendulum's "
+                         f"own frequency √(g/l) = {natural:.3g} rad/s of a {length:g} m pendulum, so the hanging bob "
+                         "is not a stable rest state (ω²·l >= g) and there is no swing plane; a Foucault "
+                         "pendulum needs ω much below √(g/l)")
     latitude = as_float(latitude_deg, "latitude_deg")
     azimuth = np.deg2rad(as_float(azimuth_deg, "azimuth_deg"))
     p = np.concatenate([angular_velocity_enu(latitude, omega), [g, length]])

@@ -19,9 +19,11 @@ norms and the outer ones are sums/differences of two atan2 half angles. In
 gimbal lock (middle angle 0 or π for proper Euler sequences, ±π/2 for
 Tait–Bryan) only the sum or difference of the outer angles is determined;
 the formula still returns a pair whose rotation reproduces the input to
-rounding (~1e-16) at and arbitrarily near the singular angle. Exactly at the
-singularity the third intrinsic angle (the first extrinsic one) is set to 0. :func:`gimbal_lock` reports which
-inputs are within a tolerance of it.
+rounding (~1e-16) at and arbitrarily near the singular angle. At the
+singularity, and within an ulp of it (middle angle within 2⁻⁵¹ rad, where the
+outer angles would be set by rounding noise), the third intrinsic angle (the
+first extrinsic one) is set to 0. :func:`gimbal_lock` reports which inputs are
+within a tolerance of it.
 """
 
 from __future__ import annotations
@@ -185,6 +187,11 @@ def _matrix_euler(r00: float, r01: float, r02: float, r10: float, r11: float, r1
     return _euler_angles(q0, q1, q2, q3, axis0, axis1, axis2, reverse)
 
 
+#: Gimbal lock as the angle code sees it: the half-angle pair that vanishes at
+#: lock is at most this fraction (one ulp of 1) of the other pair.
+LOCK = 2.0**-52
+
+
 @kernel
 def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1: int, axis2: int,
                   reverse: int) -> tuple[float, float, float]:
@@ -212,12 +219,15 @@ def _euler_angles(q0: float, q1: float, q2: float, q3: float, axis0: int, axis1:
     beta = 2.0 * math.atan2(cd, ab)
     half_sum = math.atan2(b, a)
     half_diff = math.atan2(d, c)
-    # At exact gimbal lock the vanishing pair's phase is arbitrary; choosing it
-    # equal to the other phase puts the whole rotation in the first angle and
-    # makes the third one 0.
-    if cd == 0.0:
+    # At gimbal lock the vanishing pair's phase is arbitrary; choosing it equal
+    # to the other phase puts the whole rotation in the first angle and makes
+    # the third one 0. Within LOCK of lock the small pair is rounding noise (a
+    # quaternion integrated through the identity): its phase would make the
+    # outer angles arbitrary, while dropping it moves the quaternion by at most
+    # 2 LOCK, rounding.
+    if cd <= LOCK * ab:
         half_diff = half_sum
-    elif ab == 0.0:
+    elif ab <= LOCK * cd:
         half_sum = half_diff
     first = half_sum + half_diff
     third = half_sum - half_diff

@@ -33,6 +33,11 @@ MARGIN = 10
 # of 1.5e-8 of the parameters) resolve changes down to ~1e-14 of the signal, so a change below this
 # fraction of the largest |ω′| leaves them to rounding
 MIN_CHANGE = 1e-6
+# a linear trend of T or |J| (relative, per second) counts against free rotation when it exceeds both this
+# size and TREND_SIGMAS of its standard error: the size keeps slowly correlated sensor noise and an unfitted
+# bias (about 1 %/s on the bundled toss) from condemning a good fit, the significance keeps noise from it
+TREND_LIMIT = 0.05
+TREND_SIGMAS = 3.0
 
 
 class NotFreeRotationWarning(UserWarning):
@@ -119,8 +124,10 @@ class FreeRotationFit:
         (J² − 2T I_mid)/(2T I_mid): positive above the separatrix (ω circulates
         about the largest axis), negative below it.
     free_rotation : bool
-        False when the residuals are large compared with the signal or the
-        ratios are not determined by the data; ``message`` says why.
+        False when the residuals are large compared with the signal, when T
+        or |J| with the fitted moments trend along the data (see
+        :meth:`integrals_drift`), or when the ratios are not determined by the
+        data; ``message`` says why.
     message : str
         One line on the quality of the fit.
     nfev : int
@@ -238,21 +245,21 @@ class FreeRotationFit:
     def integrals_drift(self):
         """Spread (std/mean) and linear trend (relative, per second) of T and |J| along the data.
 
+        The trend is the least-squares slope divided by the mean, with its standard
+        error (``trend_stderr_per_s``, from the scatter about the line). Free
+        rotation keeps both constant: a trend beyond 5 %/s and 3 standard errors
+        makes the fit's verdict ``free_rotation`` False.
+
         Examples
         --------
         >>> import numpy as np, kreisel as kr
         >>> t = np.linspace(0.0, 1.0, 300)
         >>> fit = kr.fit_free_rotation(t, kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 12.0, 0.3]))
         >>> drift = fit.integrals_drift()
-        >>> sorted(drift), bool(drift["energy"]["spread"] < 1e-6)
-        (['energy', 'momentum'], True)
+        >>> sorted(drift), sorted(drift["energy"]), bool(drift["energy"]["spread"] < 1e-6)
+        (['energy', 'momentum'], ['spread', 'trend_per_s', 'trend_stderr_per_s'], True)
         """
-        result = {}
-        for name, series in zip(("energy", "momentum"), self.first_integrals()):
-            mean = float(np.mean(series))
-            slope = float(np.polyfit(self.t - self.t0, series, 1)[0])
-            result[name] = {"spread": float(np.std(series)) / mean, "trend_per_s": slope / mean}
-        return result
+        return _drift(self.t - self.t0, self.first_integrals())
 
     def to_dict(self):
         """The results as plain JSON-ready numbers (what ``kreisel fit --json`` writes).
@@ -292,6 +299,42 @@ class FreeRotationFit:
             "free_rotation": self.free_rotation,
             "message": self.message,
         }
+
+
+def _drift(tau, integrals):
+    """Spread and least-squares trend, with its standard error, of each series, relative to its mean."""
+    centred = tau - np.mean(tau)
+    result = {}
+    for name, series in zip(("energy", "momentum"), integrals):
+        mean = float(np.mean(series))
+        slope = float(centred @ (series - mean) / (centred @ centred))
+        scatter = series - mean - slope * centred
+        stderr = float(np.sqrt(scatter @ scatter / (tau.size - 2) / (centred @ centred)))
+        result[name] = {"spread": float(np.std(series)) / mean, "trend_per_s": slope / mean,
+                        "trend_stderr_per_s": stderr / mean}
+    return result
+
+
+def _trend_verdict(drift):
+    """The message on a significant trend of T or |J| (see TREND_LIMIT), or None when there is none."""
+    significant = [name for name, d in drift.items()
+                   if abs(d["trend_per_s"]) > max(TREND_LIMIT, TREND_SIGMAS * d["trend_stderr_per_s"])]
+    if not significant:
+        return None
+
+    def told(name, label):
+        d = drift[name]
+        sense = "falls" if d["trend_per_s"] < 0.0 else "rises"
+        return f"{label} {sense} {100 * abs(d['trend_per_s']):.3g} ± {100 * d['trend_stderr_per_s']:.2g} %/s"
+
+    # a torque changes T at the rate ω·τ and |J| at the rate J·τ/|J|: both in the sense of the torque
+    # along the rotation, which drag opposes and the throw drives
+    cause = ("a torque slows the rotation: air drag (a light, flat body tumbling fast) or the hand still "
+             "touching it at the ends of the window (cut the free flight with a window)"
+             if drift[significant[0]]["trend_per_s"] < 0.0 else
+             "a torque drives the rotation: the throw is still acting (start the window after the release)")
+    return (f"free rotation does not explain the data: with the fitted moments {told('energy', 'the energy T')} "
+            f"and {told('momentum', '|J|')} along the data, where free rotation keeps both constant; {cause}")
 
 
 def _json_errors(stderr):
@@ -514,8 +557,11 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     Warns
     -----
     NotFreeRotationWarning
-        The residuals are more than 10 % of the signal, or the data do not
-        determine the ratios (no tumbling): the result is not to be trusted.
+        The residuals are more than 10 % of the signal, the energy T or |J|
+        with the fitted moments trends along the data by more than 5 %/s and
+        3 standard errors (a torque: air drag, the hand, the throw), or the
+        data do not determine the ratios (no tumbling): the result is not to
+        be trusted.
 
     Examples
     --------
@@ -592,6 +638,14 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
     energy, momentum = float(top.energy(w0)), float(top.angular_momentum(w0))
     distance = (momentum**2 - 2.0 * energy * moments[middle]) / (2.0 * energy * moments[middle])
     relative = stderr[:3] / moments
+    # T and |J| along the data from the scaled rates and times (no overflow); relative trends per second
+    # come back multiplied by the time scale
+    body = (omega - b / scale) @ rotation
+    drift = _drift(t, (top.energy(body), top.angular_momentum(body)))
+    for d in drift.values():
+        d["trend_per_s"] *= scale
+        d["trend_stderr_per_s"] *= scale
+    trending = _trend_verdict(drift)
     if rms > NOT_FREE_FRACTION * signal:
         free, message = False, (
             f"residual RMS {rms:.3g} rad/s is {100 * rms / signal:.0f} % of the signal's {signal:.3g} rad/s: "
@@ -606,6 +660,16 @@ def fit_free_rotation(t, omega, *, bias=False, window=None, align=False):
                "cannot tell them apart; fit without align)" if align else
                "the body hardly tumbles (toss it spinning about its middle axis)")
         )
+    elif not np.linalg.norm(b) < signal:
+        # a gyroscope's offset is a small fraction of the rates of a toss; one as large as the signal is
+        # the fit's escape into a nearly spherical body spinning fast with an offset that cancels the spin
+        free, message = False, (
+            f"the fitted bias {np.linalg.norm(b):.3g} rad/s is as large as the measured rates (RMS {signal:.3g} "
+            "rad/s): no gyroscope is that far off; the fit traded a fast spin of a nearly round body for it "
+            "(fit without the bias, or cut the free flight with a window)"
+        )
+    elif trending is not None:
+        free, message = False, trending
     else:
         free, message = True, (
             f"free rotation explains the data: residual RMS {rms:.3g} rad/s, "

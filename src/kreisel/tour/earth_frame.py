@@ -8,27 +8,27 @@ from matplotlib.figure import Figure
 from .. import earth
 from .report import Check, Section, panel
 
-__all__ = ["eastward_deflection", "foucault_pendulum", "SECTIONS"]
+__all__ = ["eastward_deflection", "foucault_pendulum", "SECTIONS", "LATITUDE", "GRAVITY", "EARTH_RATE"]
 
 # the chapter's figures for Hefei
-_LATITUDE, _G, _OMEGA = 31.8584, 9.7947, 7.27221e-5
+LATITUDE, GRAVITY, EARTH_RATE = 31.8584, 9.7947, 7.27221e-5
 
 
 def eastward_deflection(quick):
     """Eastward deflection of a falling body"""
-    analytic = float(earth.eastward_deflection(100.0, _LATITUDE, g=_G, omega=_OMEGA))
-    east, north = earth.simulate_drop(100.0, _LATITUDE, g=_G, omega=_OMEGA)
+    analytic = float(earth.eastward_deflection(100.0, LATITUDE, g=GRAVITY, omega=EARTH_RATE))
+    east, north = earth.simulate_drop(100.0, LATITUDE, g=GRAVITY, omega=EARTH_RATE)
     heights = np.geomspace(1.0, 1000.0, 8 if quick else 20)
-    sim = np.array([earth.simulate_drop(h, _LATITUDE, g=_G, omega=_OMEGA)[0] for h in heights])
+    sim = np.array([earth.simulate_drop(h, LATITUDE, g=GRAVITY, omega=EARTH_RATE)[0] for h in heights])
     slope = np.polyfit(np.log(heights), np.log(sim), 1)[0]
     latitudes = np.linspace(-89.0, 89.0, 60)
     fig = Figure(figsize=(10, 3.8), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
     ax1.loglog(heights, sim, "o", label="simulation (full rotating-frame equations)")
-    ax1.loglog(heights, earth.eastward_deflection(heights, _LATITUDE, g=_G, omega=_OMEGA), label="(2/3) ω cos λ √(2h³/g)")
+    ax1.loglog(heights, earth.eastward_deflection(heights, LATITUDE, g=GRAVITY, omega=EARTH_RATE), label="(2/3) ω cos λ √(2h³/g)")
     ax1.set(xlabel="drop height h (m)", ylabel="eastward deflection (m)", title="Hefei, λ = 31.8584°")
     ax1.legend(fontsize=8)
-    ax2.plot(latitudes, 1e3 * earth.eastward_deflection(100.0, latitudes, g=_G, omega=_OMEGA))
+    ax2.plot(latitudes, 1e3 * earth.eastward_deflection(100.0, latitudes, g=GRAVITY, omega=EARTH_RATE))
     ax2.set(xlabel="latitude (°)", ylabel="deflection of a 100 m drop (mm)", title="largest at the equator, zero at the poles")
     return Section(
         "Eastward deflection of a falling body", "§8.3",
@@ -45,12 +45,12 @@ def eastward_deflection(quick):
 
 def foucault_pendulum(quick):
     """Foucault pendulum"""
-    period = float(earth.foucault_period(_LATITUDE, omega=_OMEGA))
+    period = float(earth.foucault_period(LATITUDE, omega=EARTH_RATE))
     hours, minutes = int(period // 3600), int(round(period % 3600 / 60))
     duration = 1800.0 if quick else 7200.0
-    north = earth.foucault_pendulum(10.0, _LATITUDE, duration, 0.02, g=_G, omega=_OMEGA)
-    south = earth.foucault_pendulum(10.0, -_LATITUDE, duration, 0.02, g=_G, omega=_OMEGA)
-    theory = float(earth.foucault_precession_rate(_LATITUDE, omega=_OMEGA))
+    north = earth.foucault_pendulum(10.0, LATITUDE, duration, 0.02, g=GRAVITY, omega=EARTH_RATE)
+    south = earth.foucault_pendulum(10.0, -LATITUDE, duration, 0.02, g=GRAVITY, omega=EARTH_RATE)
+    theory = float(earth.foucault_precession_rate(LATITUDE, omega=EARTH_RATE))
     fig, ax = panel("t (min)", "swing-plane azimuth change (°)", "10 m pendulum, measured at each maximal excursion")
     for run, label in ((north, "Hefei (north)"), (south, "31.86° S")):
         ax.plot(run.t / 60, np.degrees(run.swing_azimuth - run.swing_azimuth[0]), label=label)

@@ -10,7 +10,7 @@ from ..tops import EulerTop
 from ..tops.symmetric import SymmetricTop
 from .report import Check, Section
 
-__all__ = ["inertia_ellipsoid", "tennis_racket", "poinsot_construction", "symmetric_top_cones"]
+__all__ = ["inertia_ellipsoid", "tennis_racket", "poinsot_construction", "symmetric_top_cones", "cone_sense"]
 
 
 def inertia_ellipsoid(quick):
@@ -169,13 +169,21 @@ def symmetric_top_cones(quick):
         "the same sense; for a prolate top the cones touch outside and turn in opposite senses.",
         [Check.below("closed form vs general elliptic solution, max |Δq|", float(np.max(dq)), 1e-12),
          Check.close("ψ̇ measured (rad/s)", float(psi_rate), chapter_psi_rate, rtol=1e-10, source="Theory §5.7"),
-         Check.equal("oblate: cones", f"{oblate.relation}, {_sense(oblate)}",
+         Check.equal("oblate: cones", f"{oblate.relation}, {cone_sense(oblate)}",
                      "space cone inside body cone, turning in the same sense"),
-         Check.equal("prolate: cones", f"{prolate.relation}, {_sense(prolate)}",
+         Check.equal("prolate: cones", f"{prolate.relation}, {cone_sense(prolate)}",
                      "body cone outside space cone, turning in opposite senses")],
         [(fig, "ω and the symmetry axis during regular precession; J is fixed along z.")],
     )
 
 
-def _sense(cones):
+def cone_sense(cones):
+    """How ω goes round the two cones of :meth:`kreisel.tops.SymmetricTop.cones`, in words.
+
+    Examples
+    --------
+    >>> from kreisel.tops import SymmetricTop
+    >>> cone_sense(SymmetricTop(1.0, 2.0).cones(1.0, 0.3))
+    'turning in the same sense'
+    """
     return "turning in the same sense" if cones.same_sense else "turning in opposite senses"

@@ -11,15 +11,15 @@ from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
 from ..dynamics import simulate
 from .report import Check, Section
 
-__all__ = ["work_precision", "SECTIONS"]
+__all__ = ["work_precision", "SECTIONS", "FIXED_STEP_METHODS", "timed_run"]
 
 # Hairer–Lubich–Wanner's free rigid body (Theory §4.5)
 _MOMENTS = np.array([2.0, 1.0, 2.0 / 3.0])
 _OMEGA0 = np.array([np.cos(1.1), 0.0, np.sin(1.1)]) / _MOMENTS
-_FIXED = ("splitting", "splitting4", "dmv", "rkmk4", "midpoint", "rk4")
+FIXED_STEP_METHODS = ("splitting", "splitting4", "dmv", "rkmk4", "midpoint", "rk4")
 
 
-def _run(t, **options):
+def timed_run(t, **options):
     """Simulate once to compile, then time a second run; return (errors, seconds)."""
     simulate(_MOMENTS, t[:2], _OMEGA0, allow_unphysical=True, **options)
     start = time.perf_counter()
@@ -38,10 +38,10 @@ def work_precision(quick):
     fig = Figure(figsize=(11, 4.2), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
     norm_errors, drift_ratio = {}, {}
-    for k, method in enumerate(_FIXED):
+    for k, method in enumerate(FIXED_STEP_METHODS):
         errs, costs = [], []
         for dt in steps:
-            energy, norm, seconds = _run(t, method=method, dt=dt)
+            energy, norm, seconds = timed_run(t, method=method, dt=dt)
             errs.append(max(float(np.max(energy)), 1e-17))
             costs.append(seconds)
             if dt == 0.1:
@@ -54,7 +54,7 @@ def work_precision(quick):
         ax1.loglog(costs, errs, "o-", color=f"C{k}", label=method)
     errs, costs = [], []
     for rtol in (1e-6, 1e-8, 1e-10, 1e-12):
-        energy, _, seconds = _run(t, method="dop853", rtol=rtol)
+        energy, _, seconds = timed_run(t, method="dop853", rtol=rtol)
         errs.append(max(float(np.max(energy)), 1e-17))
         costs.append(seconds)
     ax1.loglog(costs, errs, "s--", color="k", label="dop853 (adaptive)")
@@ -79,7 +79,7 @@ def work_precision(quick):
         [Check.below("splitting: | |m| − |m0| | relative, h = 0.1", norm_errors["splitting"], 1e-12),
          Check.below("dmv: | |m| − |m0| | relative, h = 0.1", norm_errors["dmv"], 1e-12),
          Check.below("splitting: energy error late / early (no drift)", drift_ratio["splitting"], 2.0),
-         Check.below("midpoint: max energy error, h = 0.1", float(_run(t, method="midpoint", dt=0.1)[0].max()), 1e-13)],
+         Check.below("midpoint: max energy error, h = 0.1", float(timed_run(t, method="midpoint", dt=0.1)[0].max()), 1e-13)],
         [(fig, "Left: accuracy against cost for every method. Right: the energy error along one run.")],
     )
 

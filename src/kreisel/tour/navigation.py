@@ -7,10 +7,10 @@ import numpy as np
 from .. import nav, so3
 from .report import Check, Section, panel
 
-__all__ = ["measured_drift", "coning_drift", "SECTIONS"]
+__all__ = ["measured_drift", "coning_drift", "SECTIONS", "SAMPLES_PER_CONE"]
 
 # per cone period, divisible by N so that updates end on whole cones
-_SAMPLES_PER_CONE = {1: (16, 24, 32, 48, 64), 2: (16, 24, 32, 48), 3: (12, 18, 24, 30)}
+SAMPLES_PER_CONE = {1: (16, 24, 32, 48, 64), 2: (16, 24, 32, 48), 3: (12, 18, 24, 30)}
 
 
 def measured_drift(alpha, rate, samples_per_cone, cones, n):
@@ -32,7 +32,7 @@ def coning_drift(quick):
     cones = 10 if quick else 40
     fig, ax = panel("λ = Ω T_s", "drift rate (rad/s)", "coning α = 1°, Ω = 2π rad/s: N-sample updates", figsize=(7, 4.2))
     checks = []
-    for n, grid in _SAMPLES_PER_CONE.items():
+    for n, grid in SAMPLES_PER_CONE.items():
         drifts, steps = zip(*(measured_drift(alpha, rate, per_cone, cones, n) for per_cone in grid))
         lam = rate * np.array(steps)
         measured = -np.array(drifts)[:, 0]

@@ -6,6 +6,7 @@ import base64
 import dataclasses
 import html
 import io
+import re
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -64,10 +65,21 @@ class Section:
     def ok(self):
         return not self.error and all(c.ok for c in self.checks)
 
+    @property
+    def anchor(self):
+        """The HTML id of the section, from its title: unique within a notebook and the report.
+
+        Examples
+        --------
+        >>> Section("Gimbal lock: the lost degree of freedom", "§2.3", "", []).anchor
+        'gimbal-lock-the-lost-degree-of-freedom'
+        """
+        return "-".join(re.findall(r"\w+", self.title.lower())) or "section"
+
     def _repr_html_(self):
         # in a notebook (the tour's notebooks end each section cell with its Section)
         mark = "all checks pass" if self.ok else "FAIL"
-        return _section_html(self, "section") + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>"
+        return _section_html(self, self.anchor) + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>"
 
 
 def panel(xlabel, ylabel, title, figsize=(7, 3.8)):
@@ -125,12 +137,12 @@ def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
         "kreisel and checks them against the chapter's numbers or an independent reference.</p>",
         "<table><tr><th>section</th><th>theory</th><th>checks</th><th>time</th></tr>",
     ]
-    for i, s in enumerate(sections):
+    for s in sections:
         mark = "<span class='pass'>pass</span>" if s.ok else "<span class='fail'>FAIL</span>"
-        parts.append(f"<tr><td><a href='#s{i}'>{html.escape(s.title)}</a></td><td>{html.escape(s.seed)}</td>"
+        parts.append(f"<tr><td><a href='#{s.anchor}'>{html.escape(s.title)}</a></td><td>{html.escape(s.seed)}</td>"
                      f"<td>{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}</td><td>{s.seconds:.1f} s</td></tr>")
     parts.append("</table>")
-    parts += [_section_html(s, f"s{i}") for i, s in enumerate(sections)]
+    parts += [_section_html(s, s.anchor) for s in sections]
     parts.append("</body></html>")
     return "\n".join(parts)
 

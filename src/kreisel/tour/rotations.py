@@ -11,12 +11,22 @@ from scipy.spatial.transform import Rotation as ScipyRotation
 from .. import kinematics, so3
 from .report import Check, Section, panel
 
-__all__ = ["euler_angles_and_nodal_line", "gimbal_lock", "quaternion_renormalisation", "SECTIONS"]
+__all__ = ["euler_angles_and_nodal_line", "gimbal_lock", "quaternion_renormalisation", "SECTIONS", "ALL_SEQUENCES",
+           "axis_rotation"]
 
-_ALL_SEQUENCES = ("xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz")
+ALL_SEQUENCES = ("xyz", "xzy", "yxz", "yzx", "zxy", "zyx", "xyx", "xzx", "yxy", "yzy", "zxz", "zyz")
 
 
-def _axis_rotation(axis, angle):
+def axis_rotation(axis, angle):
+    """The chapter's elementary rotation matrix about axis 0, 1 or 2 (x, y, z), built by hand.
+
+    Examples
+    --------
+    >>> axis_rotation(2, np.pi / 2).round(12) + 0.0
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
     c, s = np.cos(angle), np.sin(angle)
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
     m = np.eye(3)
@@ -29,13 +39,13 @@ def euler_angles_and_nodal_line(quick):
     """Euler angles and the nodal line"""
     phi, theta, psi = np.deg2rad([40.0, 35.0, 25.0])
     R = so3.euler_to_matrix("ZXZ", [phi, theta, psi])
-    chapter_R = _axis_rotation(2, phi) @ _axis_rotation(0, theta) @ _axis_rotation(2, psi)
+    chapter_R = axis_rotation(2, phi) @ axis_rotation(0, theta) @ axis_rotation(2, psi)
     back = so3.matrix_to_euler("ZXZ", R)
     rng = np.random.default_rng(1)
     angles = rng.uniform(-np.pi, np.pi, (200 if quick else 2000, 3))
     angles[:, 1] = rng.uniform(0.1, np.pi - 0.1, angles.shape[0])
     worst = 0.0
-    for seq in _ALL_SEQUENCES:
+    for seq in ALL_SEQUENCES:
         for s in (seq, seq.upper()):
             ours = so3.euler_to_matrix(s, angles)
             theirs = ScipyRotation.from_euler(s, angles).as_matrix()
@@ -50,7 +60,7 @@ def euler_angles_and_nodal_line(quick):
         b = R[:, k]
         ax.quiver(0, 0, 0, *b, color=f"C{k}", arrow_length_ratio=0.08, linewidth=2)
         ax.text(*(1.1 * b), f"{name}′", color=f"C{k}")
-    node = _axis_rotation(2, phi)[:, 0]
+    node = axis_rotation(2, phi)[:, 0]
     ax.plot(*np.c_[-node, node], "k--", linewidth=1.2)
     ax.text(*(0.55 * node + [0.0, 0.0, 0.08]), "nodal line N", color="k", ha="center")
     ax.set(xlim=(-1.1, 1.1), ylim=(-1.1, 1.1), zlim=(-1.1, 1.1), xlabel="x (space)", ylabel="y (space)",
