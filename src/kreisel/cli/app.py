@@ -16,7 +16,7 @@ from typing import List, Optional
 import typer
 
 from .._optional import MissingExtraError
-from ._output import compile_notice, console, error_line, plain, say, usage_error
+from ._output import compile_notice, console, error_line, note, plain, progress, say, usage_error
 
 __all__ = [
     "app",
@@ -33,6 +33,7 @@ __all__ = [
     "sweep",
     "fit",
     "serve",
+    "compile_kernels",
     "run",
 ]
 
@@ -67,8 +68,8 @@ class _Commands(typer.core.TyperGroup):
 
 
 _SCOPE = "kreisel.scope"
-# commands that load no compiled code: they need not import numba to listen for compilations
-_COMPILING_NOTHING = ("examples",)
+# commands that compile nothing (they need not import numba to listen for compilations), or that are the compilation
+_COMPILING_NOTHING = ("examples", "compile")
 
 
 app = typer.Typer(
@@ -595,6 +596,35 @@ def serve(
         run_server(scenario, host=host, port=port, open_browser=not no_browser, recording=recording)
     except ValueError as exc:
         usage_error(str(exc))
+
+
+@app.command(name="compile")
+def compile_kernels(
+    only: Optional[str] = typer.Option(None, "--only", hidden=True, help="Only the parts whose label holds this text."),
+):
+    """Compile all of kreisel's kernels for this machine now, instead of on their first use."""
+    import time
+
+    from .._compiled.cache import cache_root
+    from .compile import parts
+
+    chosen = [(label, work) for label, work in parts() if only is None or only in label]
+    if not chosen:
+        usage_error(f"--only: no part's label holds {only!r}")
+    start = time.perf_counter()
+    bar = progress()
+    if bar is None:
+        note(f"compiling {len(chosen)} parts of kreisel for this machine (minutes for all of them)")
+    with bar if bar is not None else contextlib.nullcontext():
+        task = bar.add_task("compiling", total=len(chosen)) if bar is not None else None
+        for label, work in chosen:
+            if bar is not None:
+                bar.update(task, description=f"compiling {label}")
+            work()
+            if bar is not None:
+                bar.advance(task)
+    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
+    say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
 
 
 def run():
