@@ -224,8 +224,8 @@ def simulate(
 
 @app.command()
 def plot(
-    trajectory: pathlib.Path = typer.Argument(
-        ..., metavar="FILE", help="Result file written by `kreisel simulate`, or a gyroscope recording "
+    file: pathlib.Path = typer.Argument(
+        ..., help="Result file written by `kreisel simulate`, or a gyroscope recording "
                                   "(as `kreisel fit` reads; 'phone_toss' is bundled)."),
     kind: Optional[str] = typer.Option(
         None, "--kind", "-k", help="Trajectories: omega (default) | energy | euler | polhode | herpolhode | apex; "
@@ -245,7 +245,7 @@ def plot(
     from ..io.results import ResultError, backend_needs, load_result
 
     # matplotlib and the file's readers, named together in one line before any work
-    require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel plot")
+    require_all([("matplotlib", "plot"), *backend_needs(file.suffix)], feature="kreisel plot")
     _check_output("-o", output, force, _FIGURES)
     from .. import plot as plots
     from ..dynamics import Trajectory
@@ -263,12 +263,12 @@ def plot(
         except ValueError as exc:
             usage_error(f"--seq {seq}: {exc} (uppercase: intrinsic, lowercase: extrinsic)")
     try:
-        result = _plottable(trajectory)
+        result = _plottable(file)
         if isinstance(result, GyroRecording):
             kinds = {"rates": lambda recording: plots.gyro_recording(recording, window=(start, stop))}
             what = "a gyroscope recording"
         elif start is not None or stop is not None:
-            usage_error(f"--start and --stop mark the fit window of a gyroscope recording; {trajectory} holds a "
+            usage_error(f"--start and --stop mark the fit window of a gyroscope recording; {file} holds a "
                         "saved result")
         elif isinstance(result, Trajectory):
             kinds, what = plots.KINDS, "a trajectory"
@@ -277,7 +277,7 @@ def plot(
             kinds = plots.DATASET_KINDS.get(result.attrs["kreisel"], {})
         kind = kind or next(iter(kinds))
         if kind not in kinds:
-            usage_error(f"--kind: {trajectory} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
+            usage_error(f"--kind: {file} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
         fig = plots.energy(result, trajectory_integrals(result)) if kind == "energy" else \
             plots.euler(result, seq=seq) if kind == "euler" else kinds[kind](result)
     except (ResultError, ValueError) as exc:
@@ -600,7 +600,9 @@ def serve(
 
 @app.command(name="compile")
 def compile_kernels(
-    only: Optional[str] = typer.Option(None, "--only", hidden=True, help="Only the parts whose label holds this text."),
+    only: Optional[str] = typer.Option(
+        None, "--only", metavar="TEXT",
+        help="Only the parts whose name holds TEXT: 'integrator', 'array operation', 'quat_multiply', ..."),
 ):
     """Compile all of kreisel's kernels for this machine now, instead of on their first use."""
     import time

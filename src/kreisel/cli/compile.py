@@ -64,7 +64,7 @@ def _earth_and_frames():
 
     simulate_drop(100.0, 31.8584)
     shell_deviation(500.0, 45.0, 90.0, 45.0)
-    foucault_pendulum(10.0, 48.0, 1.0, 0.1)
+    foucault_pendulum(1.0, 48.0, 2.0, 0.1)
     simulate_particle([0.0, 0.5], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0])
 
 
