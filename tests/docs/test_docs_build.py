@@ -2,12 +2,15 @@
 citations are links.
 
 The build runs the Makefile's ``docs`` recipe in a copy of the committed tree
-(``git ls-files``), as on a fresh clone, with the test's Python (the
-environment ``make docs`` would install: tests/docs/test_docs_dependencies.py
-checks that its extras cover every import) and the repository's MathJax and
-compiled-code cache (the copy's sources keep their modification times, so
-their source state, and so their cache, is the same). A file the build needs
-but git does not hold fails here. The gallery's examples are the test of the
+(``git ls-files``) in docs/_build/fresh-clone, as on a fresh clone, with the
+test's Python (the environment ``make docs`` would install:
+tests/docs/test_docs_dependencies.py checks that its extras cover every
+import) and the repository's MathJax and compiled-code cache (the copy's
+sources keep their modification times, so their source state, and so their
+cache, is the same). A file the build needs but git does not hold, or one
+that only an earlier build generates, fails here; only the copy's own build
+directory is kept from run to run, so that Sphinx reads again only the pages
+whose sources changed. The gallery's examples are the test of the
 scripts in examples/: every build runs each of them once, in quick mode
 (KREISEL_QUICK=1), and fails if one raises (sphinx-gallery stops the build on
 an example's error).
@@ -26,8 +29,25 @@ from .conftest import DOCS, ROOT
 SCRIPTS = sorted((ROOT / "examples").glob("plot_*.py"))
 
 
+#: Where the fresh copy is made: only its build directory (Sphinx's output and environment) outlives a run, so
+#: that pages whose sources did not change are not read again; everything else is copied anew.
+CLONE = DOCS / "_build" / "fresh-clone"
+
+
 def _fresh_clone(target):
-    """Copy the files git holds (as they are in the working tree) to ``target``, modification times kept."""
+    """Copy the files git holds (as they are in the working tree) to ``target``, modification times kept.
+
+    What ``target`` held is removed first, except ``docs/_build``.
+    """
+    kept = target / "docs" / "_build"
+    for folder in (target, target / "docs"):
+        for child in folder.iterdir() if folder.is_dir() else ():
+            if child == kept or child == target / "docs":
+                continue
+            if child.is_symlink() or not child.is_dir():
+                child.unlink()
+            else:
+                shutil.rmtree(child)
     listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
     for name in filter(None, listed.decode().split("\0")):
         source = ROOT / name
@@ -38,11 +58,12 @@ def _fresh_clone(target):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
+def built():
     if not (DOCS / "node_modules" / "mathjax" / "es5" / "tex-chtml.js").exists():
         subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=DOCS, check=True, capture_output=True,
                        timeout=600)
-    clone = _fresh_clone(tmp_path_factory.mktemp("fresh-clone"))
+    CLONE.mkdir(parents=True, exist_ok=True)
+    clone = _fresh_clone(CLONE)
     (clone / "docs" / "node_modules").symlink_to(DOCS / "node_modules", target_is_directory=True)
     (ROOT / ".numba_cache").mkdir(exist_ok=True)
     (clone / ".numba_cache").symlink_to(ROOT / ".numba_cache", target_is_directory=True)
@@ -57,8 +78,13 @@ def built(tmp_path_factory):
 
 
 def _current_pages(built):
-    """Every page of the build (the copy holds no pages of sources since removed)."""
-    yield from built.rglob("*.html")
+    """Pages of the current sources (the output directory keeps pages of sources since removed)."""
+    docs = built.parents[1]
+    for page in built.rglob("*.html"):
+        relative = page.relative_to(built)
+        if (docs / relative).with_suffix(".rst").exists() or relative.parts[0] == "_modules" or \
+                str(relative) in ("genindex.html", "search.html", "py-modindex.html"):
+            yield page
 
 
 def test_no_page_loads_anything_from_the_internet(built):

@@ -53,7 +53,7 @@ def gyro_fit(fit, title=None):
 
 
 def gyro_recording(recording, window=None, title=None):
-    """A recording's measured rates ωx, ωy, ωz and |ω| against time, with the window a fit would use.
+    """A recording's measured rates ωx, ωy, ωz and their magnitude against time, with the window a fit uses.
 
     Parameters
     ----------
