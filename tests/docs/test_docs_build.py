@@ -1,13 +1,24 @@
-"""The documentation builds with -W and nitpicky references, offline, and its citations are links.
+"""`make docs` works on a fresh clone: the documentation builds with -W and nitpicky references, offline, and its
+citations are links.
 
-The build goes to docs/_build/html as ``make docs`` does, so that a second run is
-incremental, except for the gallery: its examples are the test of the scripts in
-examples/, so every test build runs each of them once, in quick mode (KREISEL_QUICK=1),
-and fails if one raises (sphinx-gallery stops the build on an example's error).
+The build runs the Makefile's ``docs`` recipe in a copy of the committed tree
+(``git ls-files``) in docs/_build/fresh-clone, as on a fresh clone, with the
+test's Python (the environment ``make docs`` would install:
+tests/docs/test_docs_dependencies.py checks that its extras cover every
+import) and the repository's MathJax and compiled-code cache (the copy's
+sources keep their modification times, so their source state, and so their
+cache, is the same). A file the build needs but git does not hold, or one
+that only an earlier build generates, fails here; only the copy's own build
+directory is kept from run to run, so that Sphinx reads again only the pages
+whose sources changed. The gallery's examples are the test of the
+scripts in examples/: every build runs each of them once, in quick mode
+(KREISEL_QUICK=1), and fails if one raises (sphinx-gallery stops the build on
+an example's error).
 """
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -15,8 +26,35 @@ import pytest
 
 from .conftest import DOCS, ROOT
 
-HTML = DOCS / "_build" / "html"
 SCRIPTS = sorted((ROOT / "examples").glob("plot_*.py"))
+
+
+#: Where the fresh copy is made: only its build directory (Sphinx's output and environment) outlives a run, so
+#: that pages whose sources did not change are not read again; everything else is copied anew.
+CLONE = DOCS / "_build" / "fresh-clone"
+
+
+def _fresh_clone(target):
+    """Copy the files git holds (as they are in the working tree) to ``target``, modification times kept.
+
+    What ``target`` held is removed first, except ``docs/_build``.
+    """
+    kept = target / "docs" / "_build"
+    for folder in (target, target / "docs"):
+        for child in folder.iterdir() if folder.is_dir() else ():
+            if child == kept or child == target / "docs":
+                continue
+            if child.is_symlink() or not child.is_dir():
+                child.unlink()
+            else:
+                shutil.rmtree(child)
+    listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+    for name in filter(None, listed.decode().split("\0")):
+        source = ROOT / name
+        if source.is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name, follow_symlinks=False)
+    return target
 
 
 @pytest.fixture(scope="module")
@@ -24,22 +62,27 @@ def built():
     if not (DOCS / "node_modules" / "mathjax" / "es5" / "tex-chtml.js").exists():
         subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=DOCS, check=True, capture_output=True,
                        timeout=600)
-    # sphinx-gallery skips an example whose source checksum is unchanged; kreisel may have changed since
-    for checksum in (DOCS / "auto_examples").glob("*.md5"):
-        checksum.unlink()
-    env = {**os.environ, "KREISEL_QUICK": "1", "MPLBACKEND": "Agg",
-           "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), os.environ.get("PYTHONPATH", "")])}
-    result = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-W", "-n", "--keep-going", "-q",
-                             str(DOCS), str(HTML)], env=env, capture_output=True, text=True, timeout=3000)
-    assert result.returncode == 0, result.stderr[-6000:]
-    return HTML
+    CLONE.mkdir(parents=True, exist_ok=True)
+    clone = _fresh_clone(CLONE)
+    (clone / "docs" / "node_modules").symlink_to(DOCS / "node_modules", target_is_directory=True)
+    (ROOT / ".numba_cache").mkdir(exist_ok=True)
+    (clone / ".numba_cache").symlink_to(ROOT / ".numba_cache", target_is_directory=True)
+    env = {**os.environ, "KREISEL_QUICK": "1",
+           "PYTHONPATH": os.pathsep.join([str(clone / "src"), os.environ.get("PYTHONPATH", "")])}
+    # the recipe as it is, with the installation steps taken as done (this Python is that installation)
+    result = subprocess.run(["make", "docs", f"PY={sys.executable}", "--assume-old=.venv/.installed-docs",
+                             "--assume-old=docs/node_modules/.installed"], cwd=clone, env=env, capture_output=True,
+                            text=True, timeout=3000)
+    assert result.returncode == 0, (result.stdout[-3000:], result.stderr[-6000:])
+    return clone / "docs" / "_build" / "html"
 
 
 def _current_pages(built):
     """Pages of the current sources (the output directory keeps pages of sources since removed)."""
+    docs = built.parents[1]
     for page in built.rglob("*.html"):
         relative = page.relative_to(built)
-        if (DOCS / relative).with_suffix(".rst").exists() or relative.parts[0] == "_modules" or \
+        if (docs / relative).with_suffix(".rst").exists() or relative.parts[0] == "_modules" or \
                 str(relative) in ("genindex.html", "search.html", "py-modindex.html"):
             yield page
 

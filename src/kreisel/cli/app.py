@@ -7,7 +7,6 @@ on standard error and exit with status 2; they never show a traceback.
 from __future__ import annotations
 
 import contextlib
-import functools
 import math
 import os
 import pathlib
@@ -17,6 +16,7 @@ from typing import List, Optional
 import typer
 
 from .._optional import MissingExtraError
+from ._output import compile_notice, console, error_line, note, plain, progress, say, usage_error
 
 __all__ = [
     "app",
@@ -33,6 +33,7 @@ __all__ = [
     "sweep",
     "fit",
     "serve",
+    "compile_kernels",
     "run",
 ]
 
@@ -40,11 +41,35 @@ __all__ = [
 class _Commands(typer.core.TyperGroup):
     """The commands; one whose optional dependencies are not installed names the extra in one line (status 2)."""
 
+    #: Whether a command says so when it compiles (set by :func:`run`: the installed command, not a test's runner)
+    announce_compiling = False
+
     def invoke(self, ctx):
-        try:
-            return super().invoke(ctx)
-        except MissingExtraError as exc:
-            usage_error(str(exc))
+        with contextlib.ExitStack() as scope:
+            ctx.meta[_SCOPE] = scope
+            try:
+                return super().invoke(ctx)
+            except MissingExtraError as exc:
+                usage_error(str(exc))
+
+    def resolve_command(self, ctx, args):
+        name, command, rest = super().resolve_command(ctx, args)
+        if self.announce_compiling and name not in _COMPILING_NOTHING and _SCOPE in ctx.meta:
+            ctx.meta[_SCOPE].enter_context(compile_notice())
+        return name, command, rest
+
+    def format_commands(self, ctx, formatter):
+        """Each command with its whole summary (click cuts it to the width with "...")."""
+        rows = [(name, command.get_short_help_str(limit=10**6)) for name in self.list_commands(ctx)
+                if (command := self.get_command(ctx, name)) is not None and not command.hidden]
+        if rows:
+            with formatter.section("Commands"):
+                formatter.write_dl(rows)
+
+
+_SCOPE = "kreisel.scope"
+# commands that compile nothing (they need not import numba to listen for compilations), or that are the compilation
+_COMPILING_NOTHING = ("examples", "compile")
 
 
 app = typer.Typer(
@@ -64,45 +89,11 @@ _FIGURES = (".png", ".svg", ".pdf")
 _FORCE_HELP = "Replace existing output files (without it, an existing one is refused before any work)."
 
 
-@functools.cache
-def _console(stderr=False):
-    """The rich console of standard output (standard error with ``stderr``), made on first use.
-
-    rich is imported here, not with the module, so that ``kreisel --help`` does not load it.
-    """
-    from rich.console import Console
-
-    return Console(stderr=stderr, highlight=False)
-
-
-def _escape(text):
-    """``text`` with its square brackets escaped, so that rich prints them instead of reading markup."""
-    from rich.markup import escape as rich_escape
-
-    return rich_escape(str(text))
-
-
-def usage_error(message):
-    """Print ``message`` as one line and exit with status 2."""
-    error_line(message)
-    raise typer.Exit(2)
-
-
-def say(text):
-    """Print ``text`` on standard output as it is (brackets are text, not rich markup)."""
-    _console().print(_escape(text), soft_wrap=True)
-
-
-def error_line(message):
-    """Print ``message`` on standard error after a red "error:"; its brackets are text, not rich markup."""
-    _console(stderr=True).print(f"[bold red]error:[/] {_escape(message)}", soft_wrap=True)
-
-
 def _version(value: bool):
     if value:
         from .._version import __version__
 
-        _console().print(f"kreisel {__version__}")
+        say(f"kreisel {__version__}")
         raise typer.Exit()
 
 
@@ -194,9 +185,11 @@ def _read_input(path):
 def simulate(
     scenario: str = typer.Argument(..., help="Scenario TOML file, or the name of a bundled one (`kreisel examples`)."),
     output: Optional[pathlib.Path] = typer.Option(None, "-o", "--output", help="traj.nc | .csv | .parquet"),
-    force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
+    force: bool = typer.Option(
+        False, "--force", help="Replace an existing output file, and run a scenario estimated to take over "
+                               "10 minutes (without it, either is refused)."),
 ):
-    """Run a scenario file and report its first integrals."""
+    """Run a scenario file and report its first integrals (a long run shows its progress)."""
     from ..io.results import SUFFIXES, require_backends, save_result
     from ..io.run import run_scenario, summary
     from ..io.scenario import ScenarioError, load_scenario
@@ -210,14 +203,13 @@ def simulate(
         spec = load_scenario(scenario)
     except ScenarioError as exc:
         usage_error(str(exc))
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    from .watch import RunTooLong, RunWatch
 
-    columns = (TextColumn("simulating {task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f} %"),
-               TimeElapsedColumn())
-    with Progress(*columns, console=_console(stderr=True), transient=True) as bar:
-        task = bar.add_task(_escape(spec.title), total=1.0)
+    with RunWatch(f"simulating {spec.title}", force=force) as watch:
         try:
-            result = run_scenario(spec, progress=lambda done: bar.update(task, completed=done))
+            result = run_scenario(spec, progress=watch)
+        except RunTooLong as exc:
+            usage_error(f"{spec.path or scenario}: {exc}; shorten integration.t_end, or pass --force to run it anyway")
         except (ValueError, TypeError) as exc:
             usage_error(f"{spec.path or scenario}: cannot run: {exc}")
         except RuntimeError as exc:
@@ -232,42 +224,90 @@ def simulate(
 
 @app.command()
 def plot(
-    trajectory: pathlib.Path = typer.Argument(..., help="Result file written by `kreisel simulate`."),
+    file: pathlib.Path = typer.Argument(
+        ..., help="Result file written by `kreisel simulate`, or a gyroscope recording "
+                                  "(as `kreisel fit` reads; 'phone_toss' is bundled)."),
     kind: Optional[str] = typer.Option(
         None, "--kind", "-k", help="Trajectories: omega (default) | energy | euler | polhode | herpolhode | apex; "
-                                   "Foucault results: azimuth; coning results: error."),
+                                   "Foucault results: azimuth; coning results: error; recordings: rates."),
     output: pathlib.Path = typer.Option(..., "-o", "--output", help="fig.png | .svg | .pdf"),
+    seq: Optional[str] = typer.Option(
+        None, "--seq", help="Axis sequence of --kind euler, e.g. ZXZ (uppercase intrinsic, lowercase extrinsic); "
+                            "default: the chapter's ZXZ unless the motion passes near its gimbal lock."),
+    start: Optional[float] = typer.Option(
+        None, "--start", help="Recordings: the fit window's start, s (as in the file)."),
+    stop: Optional[float] = typer.Option(None, "--stop", help="Recordings: the fit window's end, s."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
-    """Plot a saved result: a trajectory, or what a Foucault or coning run holds."""
+    """Plot a saved result (a trajectory, or what a Foucault or coning run holds) or a recording's rates."""
     from .._optional import require_all
+    from .._validation import parse_sequence
     from ..io.results import ResultError, backend_needs, load_result
 
     # matplotlib and the file's readers, named together in one line before any work
-    require_all([("matplotlib", "plot"), *backend_needs(trajectory.suffix)], feature="kreisel plot")
+    require_all([("matplotlib", "plot"), *backend_needs(file.suffix)], feature="kreisel plot")
     _check_output("-o", output, force, _FIGURES)
     from .. import plot as plots
     from ..dynamics import Trajectory
+    from ..io.gyro import GyroRecording
     from ..io.run import trajectory_integrals
 
-    known = set(plots.KINDS).union(*plots.DATASET_KINDS.values())
+    known = set(plots.KINDS).union(*plots.DATASET_KINDS.values(), ["rates"])
     if kind is not None and kind not in known:
         usage_error(f"--kind: unknown plot kind {kind!r}; kinds are {', '.join(sorted(known))}")
+    if seq is not None:
+        if kind != "euler":
+            usage_error(f"--seq: the axis sequence of --kind euler; got --kind {kind or '(default)'}")
+        try:
+            parse_sequence(seq)
+        except ValueError as exc:
+            usage_error(f"--seq {seq}: {exc} (uppercase: intrinsic, lowercase: extrinsic)")
     try:
-        result = load_result(trajectory)
-        if isinstance(result, Trajectory):
+        result = _plottable(file)
+        if isinstance(result, GyroRecording):
+            kinds = {"rates": lambda recording: plots.gyro_recording(recording, window=(start, stop))}
+            what = "a gyroscope recording"
+        elif start is not None or stop is not None:
+            usage_error(f"--start and --stop mark the fit window of a gyroscope recording; {file} holds a "
+                        "saved result")
+        elif isinstance(result, Trajectory):
             kinds, what = plots.KINDS, "a trajectory"
         else:
             what = f"a {result.attrs['kreisel']} result"
             kinds = plots.DATASET_KINDS.get(result.attrs["kreisel"], {})
         kind = kind or next(iter(kinds))
         if kind not in kinds:
-            usage_error(f"--kind: {trajectory} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
-        fig = plots.energy(result, trajectory_integrals(result)) if kind == "energy" else kinds[kind](result)
+            usage_error(f"--kind: {file} holds {what}, which plots as {', '.join(kinds)}; got {kind!r}")
+        fig = plots.energy(result, trajectory_integrals(result)) if kind == "energy" else \
+            plots.euler(result, seq=seq) if kind == "euler" else kinds[kind](result)
     except (ResultError, ValueError) as exc:
         usage_error(str(exc))
     with _writing("-o", output):
         plots.save(fig, output)
+
+
+def _plottable(path):
+    """The saved result (Trajectory or Dataset) or the gyroscope recording (bundled by name) at ``path``."""
+    from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
+    from ..io.results import ResultError, load_result
+
+    if not path.exists() and str(path) in RECORDINGS:
+        return read_gyro(recording_path(str(path)))
+    if not path.exists():
+        usage_error(f"{path}: no such file (and no bundled recording of that name: {', '.join(RECORDINGS)})")
+    try:
+        if path.is_dir() or path.suffix.lower() == ".zip":
+            return read_gyro(path)
+        return load_result(path)
+    except ResultError as exc:
+        if path.suffix.lower() in (".nc", ".parquet"):
+            raise
+        try:
+            return read_gyro(path)
+        except (GyroFileError, OSError) as gyro:
+            raise ResultError(f"{exc}; nor is it a gyroscope recording: {gyro}") from None
+    except OSError as exc:
+        raise ResultError(f"{path}: cannot read ({exc.strerror or exc})") from None
 
 
 @app.command()
@@ -296,19 +336,32 @@ def animate(
 
 @app.command()
 def examples(
-    name: Optional[str] = typer.Argument(None, help="Example to copy out; none: list them."),
+    name: Optional[str] = typer.Argument(None, help="Scenario or recording to copy out; none: list them all."),
     directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
-    """List the bundled scenario files, or copy one out to edit."""
-    from ..io.bundled import EXAMPLES, copy_example, describe, suggestion
+    """List the bundled scenarios, gyroscope recordings and sweeps, or copy one out to edit."""
+    from .._fileio import atomic_output
+    from ..io.bundled import EXAMPLES, copy_example, suggestion
+    from ..io.gyro import RECORDINGS, recording_path
+    from .examples import sections
 
     if name is None:
-        for example, text in describe().items():
-            _console().print(f"[bold]{example:<16}[/] {_escape(text)}")
+        from rich.text import Text
+
+        for number, (heading, entries) in enumerate(sections()):
+            say(("\n" if number else "") + heading)
+            for example, text in entries.items():
+                console().print(Text.assemble(("  " + f"{example:<16}", "bold"), " ", text), soft_wrap=True)
+        return
+    if name in RECORDINGS:
+        target = directory / recording_path(name).name
+        _check_output("--to", target, force)
+        with _writing("--to", target), atomic_output(target) as tmp:
+            tmp.write_bytes(recording_path(name).read_bytes())
         return
     if name not in EXAMPLES:
-        usage_error(f"no bundled example {name!r}{suggestion(name, EXAMPLES)}")
+        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *RECORDINGS))}")
     try:
         path = copy_example(name, directory, force=force)
     except (FileExistsError, ValueError) as exc:
@@ -341,7 +394,7 @@ def tour(
     from ..tour import run_tour
 
     _check_outputs_in("--out", out_dir, ["index.html"], force)
-    ok = run_tour(out_dir, quick=quick, console=_console())
+    ok = run_tour(out_dir, quick=quick, console=console())
     raise typer.Exit(0 if ok else 1)
 
 
@@ -386,7 +439,7 @@ def sweep(
         require_all([*sweep_needs(scheduler, target), *([("matplotlib", "plot")] if plot_file else [])],
                     feature="kreisel sweep")
         dataset = run_sweep_file(sweep_file, scheduler=scheduler, n_workers=workers, output=output,
-                                 console=_console(stderr=True), stream=stream)
+                                 console=console(stderr=True), stream=stream)
     except SweepError as exc:
         error_line(exc)
         raise typer.Exit(1)
@@ -517,7 +570,7 @@ def fit(
         except ValueError as exc:
             usage_error(f"{recording}: {exc}")
     for line in summary(result):
-        _console(stderr=not result.free_rotation).print(line, soft_wrap=True)
+        console(stderr=not result.free_rotation).print(plain(line), soft_wrap=True)
     if plot_file is not None:
         from .. import plot as plots
 
@@ -526,7 +579,6 @@ def fit(
     if json_file is not None:
         with _writing("--json", json_file), atomic_output(json_file) as tmp:
             tmp.write_text(json.dumps(result.to_dict(), indent=2) + "\n", encoding="utf-8")
-        say(f"wrote {json_file}")
     if not result.free_rotation:
         raise typer.Exit(1)
 
@@ -561,6 +613,37 @@ def serve(
         usage_error(str(exc))
 
 
+@app.command(name="compile")
+def compile_kernels(
+    only: Optional[str] = typer.Option(
+        None, "--only", metavar="TEXT",
+        help="Only the parts whose name holds TEXT: 'integrator', 'array operation', 'quat_multiply', ..."),
+):
+    """Compile all of kreisel's kernels for this machine now, instead of on their first use."""
+    import time
+
+    from .._compiled.cache import cache_root
+    from .compile import parts
+
+    chosen = [(label, work) for label, work in parts() if only is None or only in label]
+    if not chosen:
+        usage_error(f"--only: no part's label holds {only!r}")
+    start = time.perf_counter()
+    bar = progress()
+    if bar is None:
+        note(f"compiling {len(chosen)} parts of kreisel for this machine (minutes for all of them)")
+    with bar if bar is not None else contextlib.nullcontext():
+        task = bar.add_task("compiling", total=len(chosen)) if bar is not None else None
+        for label, work in chosen:
+            if bar is not None:
+                bar.update(task, description=f"compiling {label}")
+            work()
+            if bar is not None:
+                bar.advance(task)
+    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
+    say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
+
+
 def run():
     """Console-script entry point.
 
@@ -585,4 +668,5 @@ def run():
     exit status 2
 
     """
+    _Commands.announce_compiling = True
     app()

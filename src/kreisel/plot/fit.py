@@ -1,11 +1,13 @@
-"""Figure of a free-top fit to a gyroscope recording (:func:`kreisel.fit_free_rotation`)."""
+"""Figures of gyroscope recordings: the raw rates, and a free-top fit (:func:`kreisel.fit_free_rotation`)."""
 
 from __future__ import annotations
+
+import os
 
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["gyro_fit"]
+__all__ = ["gyro_fit", "gyro_recording"]
 
 _COLORS = ("tab:blue", "tab:orange", "tab:green")
 
@@ -47,4 +49,46 @@ def gyro_fit(fit, title=None):
     top.legend(loc="best", ncols=3, fontsize="small")
     bottom.set(xlabel="t (s)", ylabel="residual (rad/s)")
     bottom.legend(loc="upper right", fontsize="small")
+    return fig
+
+
+def gyro_recording(recording, window=None, title=None):
+    """A recording's measured rates ωx, ωy, ωz and their magnitude against time, with the window a fit uses.
+
+    Parameters
+    ----------
+    recording : GyroRecording
+        As read by :func:`kreisel.io.read_gyro`.
+    window : (t_start, t_stop), optional
+        The samples :func:`kreisel.fit_free_rotation` would fit (either end
+        None: the recording's); by default the whole recording.
+    title : str, optional
+        Figure title; by default the recording's source.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kreisel.io.gyro import GyroRecording
+    >>> t = np.linspace(0.0, 2.0, 201)
+    >>> rec = GyroRecording(t, np.column_stack([np.sin(t), np.cos(t), 0 * t]), None, "spin.csv")
+    >>> fig = gyro_recording(rec, window=(0.5, None))
+    >>> fig.axes[0].get_ylabel(), fig.axes[0].get_title()
+    ('ω (rad/s)', 'spin.csv: 201 samples; a fit uses t = 0.5 … 2 s (shaded)')
+    """
+    t, omega = recording.t, recording.omega
+    start, stop = window if window is not None else (None, None)
+    start = t[0] if start is None else max(float(start), t[0])
+    stop = t[-1] if stop is None else min(float(stop), t[-1])
+    if not start < stop:
+        raise ValueError(f"window {window!r} holds no sample: the record spans t = {t[0]:g} … {t[-1]:g} s")
+    fig = Figure(figsize=(8, 4), layout="constrained")
+    ax = fig.add_subplot()
+    marker = 2.0 if t.size > 300 else 4.0
+    for k, (name, color) in enumerate(zip("xyz", _COLORS)):
+        ax.plot(t, omega[:, k], ".-", ms=marker, lw=0.6, color=color, label=f"ω{name}")
+    ax.plot(t, np.linalg.norm(omega, axis=-1), "-", lw=1.0, color="0.3", label="|ω|")
+    ax.axvspan(start, stop, color="0.9", zorder=0, label="fit window")
+    ax.set(xlabel="t (s)", ylabel="ω (rad/s)",
+           title=title or f"{os.path.basename(recording.source)}: {t.size} samples; a fit uses t = {start:g} … {stop:g} s (shaded)")
+    ax.legend(loc="best", ncols=5, fontsize="small")
     return fig

@@ -164,7 +164,7 @@ def euler(traj, seq=None, degrees=True):
     for i in range(3):
         ax.plot(traj.t, angles[..., i].T, label=names[i])
     ax.set(xlabel="t (s)", ylabel="angle (°)" if degrees else "angle (rad)",
-           title=f"Euler angles, intrinsic {seq}, unwrapped")
+           title=f"Euler angles, {'intrinsic' if seq.isupper() else 'extrinsic'} {seq}, unwrapped")
     ax.legend(loc="best")
     return fig
 
