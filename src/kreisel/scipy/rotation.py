@@ -515,7 +515,7 @@ class Rotation:
         Examples
         --------
         >>> from kreisel.scipy import Rotation
-        >>> Rotation.from_rotvec([[0, 0, 0.2], [0, 0, 0.6]]).mean().as_rotvec().round(9).tolist()
+        >>> (Rotation.from_rotvec([[0, 0, 0.2], [0, 0, 0.6]]).mean().as_rotvec().round(9) + 0.0).tolist()
         [0.0, 0.0, 0.4]
         """
         return Rotation._of(self._r.mean(weights, axis))
@@ -532,12 +532,10 @@ class Rotation:
         >>> round(float(np.degrees(r.magnitude())), 9)
         10.0
         """
-        result = self._r.reduce(None if left is None else _rotation(left, "left")._r,
-                                None if right is None else _rotation(right, "right")._r, return_indices)
-        if return_indices:
-            reduced, li, ri = result
-            return Rotation._of(reduced), li, ri
-        return Rotation._of(result)
+        reduced, li, ri = self._r.reduce(None if left is None else _rotation(left, "left")._r,
+                                         None if right is None else _rotation(right, "right")._r, True)
+        out = Rotation._of(reduced)
+        return (out, li, ri) if check_flag(return_indices, "return_indices") else out
 
     def __mul__(self, other: Rotation) -> Rotation:
         if not isinstance(other, Rotation):
