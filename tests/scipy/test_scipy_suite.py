@@ -138,7 +138,7 @@ def outcome(tmp_path_factory):
     env = {**os.environ, "KREISEL_RELAXED": str(relaxed),
            "PYTHONPATH": os.pathsep.join(filter(None, [str(SRC), os.environ.get("PYTHONPATH")]))}
     run = subprocess.run(
-        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rf", "--tb=line", "-W", "ignore",
+        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rf", "--tb=line",
          "--rootdir", str(folder), "-o", "addopts=", *present],
         cwd=folder, env=env, capture_output=True, text=True, timeout=600,
     )

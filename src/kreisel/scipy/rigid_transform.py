@@ -43,7 +43,7 @@ def _dual_parts(dual_quat: ArrayLike, scalar_first: bool) -> tuple[NDArray[np.fl
     """
     dq = as_float_array(dual_quat, "dual_quat", (8,), finite=False)
     order = [0, 1, 2, 3] if check_flag(scalar_first, "scalar_first") else [3, 0, 1, 2]
-    real, dual = dq[..., :4][..., order], dq[..., 4:][..., order]
+    real, dual = np.ascontiguousarray(dq[..., :4][..., order]), np.ascontiguousarray(dq[..., 4:][..., order])
     norm = np.linalg.norm(real, axis=-1, keepdims=True)
     zero = norm == 0.0
     real = np.where(zero, [1.0, 0.0, 0.0, 0.0], real) / np.where(zero, 1.0, norm)
@@ -260,7 +260,7 @@ class RigidTransform:
         dq = np.where(_scipy_flip(dq[..., :4])[..., None], -dq, dq)
         if check_flag(scalar_first, "scalar_first"):
             return dq
-        return dq[..., [1, 2, 3, 0, 5, 6, 7, 4]]
+        return np.ascontiguousarray(dq[..., [1, 2, 3, 0, 5, 6, 7, 4]])
 
     @property
     def rotation(self) -> Rotation:

@@ -20,6 +20,7 @@ from .._norms import nearest_rotation
 from .._validation import as_float_array, batch_shape, check_flag
 from ..so3 import davenport as _davenport
 from ..so3 import euler as _euler
+from ..so3 import matrix as _matrix
 from ..so3 import quaternion as _quat
 from ..so3.rotation import Rotation as _Rotation
 
@@ -36,7 +37,8 @@ class GimbalLockWarning(_euler.GimbalLockWarning):
 
 
 def _last_to_first(q: NDArray[np.float64]) -> NDArray[np.float64]:
-    return q[..., [3, 0, 1, 2]]
+    # C order: indexing the last axis with a list gives a Fortran-ordered array, which the kernels read ~20x slower
+    return np.ascontiguousarray(q[..., [3, 0, 1, 2]])
 
 
 def _warn_gimbal_lock(mask: NDArray[np.bool_]) -> None:
@@ -219,9 +221,14 @@ class Rotation:
         True
         """
         m = as_float_array(matrix, "matrix", (3, 3), finite=False)
-        if not check_flag(assume_valid, "assume_valid"):
-            m = _orthogonal(m)
-        return cls._of(_Rotation._wrap(_scipy_sign(_Rotation.from_matrix(m).as_quat())))
+        try:
+            # kreisel's compiled conversion projects matrices up to 1e-6 from orthogonal itself
+            q = _matrix.matrix_to_quat(m)
+        except ValueError:
+            if check_flag(assume_valid, "assume_valid"):
+                raise
+            q = _matrix.matrix_to_quat(_orthogonal(m))
+        return cls._of(_Rotation._wrap(_scipy_sign(q)))
 
     @classmethod
     def from_rotvec(cls, rotvec: ArrayLike, degrees: bool = False) -> Rotation:
@@ -365,7 +372,7 @@ class Rotation:
         >>> Rotation.from_quat([0, 0, -1, -1]).as_quat(canonical=True).round(6).tolist()
         [0.0, 0.0, 0.707107, 0.707107]
         """
-        return self._r.as_quat(canonical, scalar_first)
+        return np.ascontiguousarray(self._r.as_quat(canonical, scalar_first))
 
     def as_matrix(self) -> NDArray[np.float64]:
         """Rotation matrices, shape ``(..., 3, 3)``.
