@@ -8,7 +8,8 @@ import pytest
 from scipy.spatial.transform import Rotation as ScipyRotation
 
 import kreisel as kr
-from kreisel.scipy import GimbalLockWarning, Rotation
+from kreisel.kinematics import GimbalLockWarning
+from kreisel.scipy import Rotation
 
 
 def test_scipy_script_reads_quaternions_scalar_last():

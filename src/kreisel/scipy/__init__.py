@@ -14,8 +14,8 @@ Modules: ``rotation`` (``Rotation``), ``slerp`` (``Slerp``),
 """
 
 from .rigid_transform import RigidTransform
-from .rotation import GimbalLockWarning, Rotation
+from .rotation import Rotation
 from .rotation_spline import RotationSpline
 from .slerp import Slerp
 
-__all__ = ["Rotation", "Slerp", "RotationSpline", "RigidTransform", "GimbalLockWarning"]
+__all__ = ["Rotation", "Slerp", "RotationSpline", "RigidTransform"]

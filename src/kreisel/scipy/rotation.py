@@ -24,16 +24,12 @@ from ..so3 import matrix as _matrix
 from ..so3 import quaternion as _quat
 from ..so3.rotation import Rotation as _Rotation
 
-__all__ = ["Rotation", "GimbalLockWarning"]
+__all__ = ["Rotation"]
 
 #: Distance of the middle angle from its singular value below which ``as_euler`` warns, radians.
 _GIMBAL_TOLERANCE = 1e-7
 #: Largest deviation of ``M Mᵀ`` from the identity for which a matrix is used as it is.
 _ORTHOGONALITY_TOLERANCE = 1e-12
-
-
-class GimbalLockWarning(_euler.GimbalLockWarning):
-    """Euler or Davenport angles at gimbal lock (a ``UserWarning``, as scipy's)."""
 
 
 def _last_to_first(q: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -46,7 +42,7 @@ def _warn_gimbal_lock(mask: NDArray[np.bool_]) -> None:
         warnings.warn(
             "Gimbal lock: the first and third angles are not unique; the third angle is set to zero "
             f"({int(np.sum(mask))} of {np.size(mask)} rotations)",
-            GimbalLockWarning,
+            _euler.GimbalLockWarning,  # a UserWarning, as scipy's
             stacklevel=3,
         )
 
@@ -408,7 +404,7 @@ class Rotation:
         return self._r.as_mrp()
 
     def as_euler(self, seq: str, degrees: bool = False, *, suppress_warnings: bool = False) -> NDArray[np.float64]:
-        """Euler angles; warns (:class:`GimbalLockWarning`) at gimbal lock, where the third angle is set to zero.
+        """Euler angles; warns (:class:`~kreisel.kinematics.GimbalLockWarning`) at gimbal lock, where the third angle is set to zero.
 
         Examples
         --------
