@@ -115,3 +115,9 @@ def test_bad_input_is_refused_before_any_work():
         Rotation.random(2, rng=0, random_state=0)
     with pytest.raises(TypeError, match="value must be a kreisel.scipy Rotation"):
         r[0] = ScipyRotation.identity()
+
+
+def test_kreisel_accepts_its_scipy_rotations_wherever_it_takes_a_rotation():
+    r = Rotation.from_rotvec([0.1, 0.2, 0.3])
+    pose = kr.RigidTransform(r, [1.0, 2.0, 3.0])
+    np.testing.assert_allclose(pose.as_quat(), r.to_kreisel().as_quat(), rtol=0, atol=1e-16)
