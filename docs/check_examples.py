@@ -14,7 +14,7 @@ import re
 import sys
 
 MODULES = ("kreisel.so3", "kreisel.kinematics", "kreisel.inertia", "kreisel.dynamics", "kreisel.tops",
-           "kreisel.frames", "kreisel.earth", "kreisel.nav", "kreisel.se3", "kreisel.io", "kreisel.plot",
+           "kreisel.frames", "kreisel.earth", "kreisel.nav", "kreisel.se3", "kreisel.scipy", "kreisel.io", "kreisel.plot",
            "kreisel.sweep", "kreisel.web", "kreisel.cli")
 _EXAMPLES = re.compile(r"^\s*Examples\s*\n\s*-{3,}\s*$", re.MULTILINE)
 

@@ -121,6 +121,7 @@ API_MODULES = [
     ("kreisel.earth", "The Earth frame: falling bodies, Foucault pendulum"),
     ("kreisel.nav", "Strapdown attitude, coning, gyro errors, IMU logs"),
     ("kreisel.se3", "Rigid transforms, screws, SE(3)"),
+    ("kreisel.scipy", "scipy's transform interface on kreisel's kernels: a drop-in for scipy code"),
     ("kreisel.io", "Scenario files, results, bundled examples"),
     ("kreisel.plot", "Figures"),
     ("kreisel.sweep", "Parameter sweeps"),

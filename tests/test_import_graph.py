@@ -13,19 +13,19 @@ import pytest
 PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "src" / "kreisel"
 
 #: Layers from the bottom (the private base, then so3 <- kinematics <- inertia/dynamics <-
-#: tops/frames/earth/nav/se3 <- io/plot/cli/web/sweep/tour): a module may import its own layer and those below.
+#: tops/frames/earth/nav/se3 <- io/plot/cli/web/sweep/tour/scipy): a module may import its own layer and those below.
 LAYERS = (
     ("_compiled", "_validation", "_norms", "_fileio", "_version", "_html", "_display", "_optional"),
     ("so3",),
     ("kinematics",),
     ("inertia", "dynamics"),
     ("tops", "frames", "earth", "nav", "se3"),
-    ("io", "plot", "cli", "web", "sweep", "tour", "notebook", "__init__", "__main__"),
+    ("io", "plot", "cli", "web", "sweep", "tour", "notebook", "scipy", "__init__", "__main__"),
 )
 LAYER = {name: level for level, names in enumerate(LAYERS) for name in names}
 #: Packages narrower than their layer: they import only these kreisel packages and the private base
 #: (SE(3) is built on SO(3) alone, its exp/log and Jacobians included).
-ONLY = {"se3": {"so3"}}
+ONLY = {"se3": {"so3"}, "scipy": {"so3", "se3"}}
 
 
 def _modules(root):

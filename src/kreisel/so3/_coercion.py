@@ -5,7 +5,8 @@ new axes, rigid transforms, initial attitudes of the integrators) calls
 :func:`as_quaternion` or :func:`as_rotation_matrix`, so they all accept the
 same inputs with the same tolerance:
 
-- a kreisel :class:`~kreisel.Rotation` or a ``scipy.spatial.transform.Rotation``;
+- a kreisel :class:`~kreisel.Rotation`, a ``scipy.spatial.transform.Rotation`` or a
+  ``kreisel.scipy.Rotation``;
 - arrays ``(..., 3, 3)``: rotation matrices. A matrix whose orthogonality
   defect ``max |RᵀR − 1|`` is at most :data:`ORTHOGONALITY_TOLERANCE` (1e-6)
   is projected onto the nearest rotation; a larger defect, ``det R <= 0`` or
@@ -36,8 +37,10 @@ RotationLike: TypeAlias = Union[Rotation, ArrayLike]
 
 
 def _is_scipy_rotation(obj: object) -> bool:
-    # Checked by module name so that scipy is imported only when it is used.
-    return type(obj).__name__ == "Rotation" and type(obj).__module__.startswith("scipy.spatial.transform")
+    # scipy's Rotation or kreisel.scipy's (the same interface), checked by module name so that neither is
+    # imported here: scipy only when it is used, kreisel.scipy being a layer above this one.
+    return type(obj).__name__ == "Rotation" and type(obj).__module__.startswith(("scipy.spatial.transform",
+                                                                                  "kreisel.scipy"))
 
 
 def _array(rotation: RotationLike, name: str) -> NDArray[np.float64]:
