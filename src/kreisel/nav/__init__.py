@@ -6,10 +6,13 @@ that tests them, IMU error models with Allan deviation, and IMU log
 reading/attitude writing.
 """
 
+from .attitude import KREISEL_DEFAULTS, AttitudeEstimate, estimate_attitude
+from .attitude_error import attitude_error, attitude_error_angles
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
 from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
                          allan_deviation, gauss_markov_allan_deviation)
 from .logs import ImuLog, convert_attitude_frame, read_imu_log, write_attitude
+from .vector_attitude import attitude_from_vectors
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = [
@@ -29,4 +32,10 @@ __all__ = [
     "read_imu_log",
     "write_attitude",
     "convert_attitude_frame",
+    "AttitudeEstimate",
+    "estimate_attitude",
+    "KREISEL_DEFAULTS",
+    "attitude_error",
+    "attitude_error_angles",
+    "attitude_from_vectors",
 ]
