@@ -114,8 +114,9 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     measures β: every measurement picks one state, so each update is a
     scalar one. The error propagates as δ' = δ − R β dt.
 
-    ``state0`` (43,) holds a start state (q 4, b 3, P 36 row by row), or NaN
-    first for a start from the first samples (TRIAD, zero bias);
+    ``state0`` (45,) holds a start state (q 4, b 3, P 36 row by row, the
+    trusted field's norm and dip, norm −1 for none), or NaN first for a
+    start from the first samples (TRIAD, zero bias, no trusted field);
     ``state_out`` receives the final state in the same layout.
     """
     n = gyr.shape[0]
@@ -148,11 +149,13 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     # magnetic reference: norm and dip of the undisturbed field, and a candidate for a new one
     ref_norm = -1.0
     ref_dip = 0.0
-    cand_norm = -1.0
-    cand_dip = 0.0
+    trusted = False
+    if not math.isnan(state0[0]) and state0[43] > 0.0:
+        ref_norm, ref_dip, trusted = state0[43], state0[44], True
+    cand_norm = ref_norm
+    cand_dip = ref_dip
     cand_for = 0.0
     cand_turn = 0.0
-    trusted = False
     alpha_ref = 1.0 - math.exp(-dt / mtau)
     # the accelerometer low-passed in the earth frame, where the body's accelerations average out
     plx = pl_y = 0.0
@@ -300,6 +303,8 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     for a in range(6):
         for b in range(6):
             state_out[7 + 6 * a + b] = P[a, b]
+    state_out[43] = ref_norm if trusted else -1.0
+    state_out[44] = ref_dip
 
 
 @inlined

@@ -29,7 +29,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..so3 import quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
-from . import _attitude_kernels as _k
+from . import _attitude_kernels
 
 __all__ = ["AttitudeEstimate", "estimate_attitude", "KREISEL_DEFAULTS"]
 
@@ -119,15 +119,16 @@ def _kreisel_run(gyr, acc, mag, dt, p, state0):
     q = np.empty((n, 4))
     bias = np.empty((n, 3))
     cov = np.empty((n, 3, 3))
-    state = np.empty(43)
+    state = np.empty(45)
     # without a field the accelerometer stands in for the unread magnetometer argument
-    _k.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, dt, p, state0, q, bias, cov, state)
+    _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, dt, p, state0, q, bias,
+                                     cov, state)
     return q, bias, cov, state
 
 
 def _kreisel(gyr, acc, mag, dt, params, offline):
-    p = np.array([params[name] for name in _k.KREISEL_PARAMETERS])
-    q, bias, cov, state = _kreisel_run(gyr, acc, mag, dt, p, np.full(43, np.nan))
+    p = np.array([params[name] for name in _attitude_kernels.KREISEL_PARAMETERS])
+    q, bias, cov, state = _kreisel_run(gyr, acc, mag, dt, p, np.full(45, np.nan))
     if not offline:
         return q, bias, cov
     # backward in time from the forward pass's end state: the samples reversed, the rates negated (and
@@ -135,14 +136,18 @@ def _kreisel(gyr, acc, mag, dt, params, offline):
     # rate of sample i forward and so that of sample i + 1 backward
     back0 = state.copy()
     back0[4:7] *= -1.0
-    P = back0[7:].reshape(6, 6)
+    P = back0[7:43].reshape(6, 6)
     P[:3, 3:] *= -1.0
     P[3:, :3] *= -1.0
     rev = slice(None, None, -1)
     qb, bb, cb, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
                                  None if mag is None else np.ascontiguousarray(mag[rev]), dt, p, back0)
     qb, bb, cb = qb[rev], -bb[rev], cb[rev]
-    return _fuse(q, cov, qb, cb), 0.5 * (bias + bb), np.linalg.inv(np.linalg.inv(cov) + np.linalg.inv(cb))
+    fused = np.linalg.inv(np.linalg.inv(cov) + np.linalg.inv(cb))
+    # the heading is the forward pass's (see _fuse), and so are its variance and correlations
+    fused[:, 2, :] = cov[:, 2, :]
+    fused[:, :, 2] = cov[:, :, 2]
+    return _fuse(q, cov, qb, cb), 0.5 * (bias + bb), fused
 
 
 def _fuse(qf, pf, qb, pb):
@@ -160,18 +165,19 @@ def _published(method, gyr, acc, mag, dt, params):
     n = gyr.shape[0]
     use_mag = mag is not None
     mag_arg = mag if use_mag else acc
-    start = np.array(_k.triad_start(acc[0], mag_arg[0], use_mag))
+    start = np.array(_attitude_kernels.triad_start(acc[0], mag_arg[0], use_mag))
     q = np.empty((n, 4))
     bias = None
     if method == "madgwick":
         start_nwu = quat_multiply(quat_conjugate(_ENU_FROM_NWU), start)
-        _k.madgwick_filter(gyr, acc, mag_arg, use_mag, dt, params["beta"], start_nwu, q)
+        _attitude_kernels.madgwick_filter(gyr, acc, mag_arg, use_mag, dt, params["beta"], start_nwu, q)
         q = quat_multiply(_ENU_FROM_NWU, q)
     elif method == "mahony":
         bias = np.empty((n, 3))
-        _k.mahony_filter(gyr, acc, mag_arg, use_mag, dt, params["kp"], params["ki"], start, q, bias)
+        _attitude_kernels.mahony_filter(gyr, acc, mag_arg, use_mag, dt, params["kp"], params["ki"], start, q,
+                                        bias)
     else:
-        _k.complementary_filter(gyr, acc, mag_arg, use_mag, dt, params["gain"], start, q)
+        _attitude_kernels.complementary_filter(gyr, acc, mag_arg, use_mag, dt, params["gain"], start, q)
     return q, bias, None
 
 
@@ -207,6 +213,17 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     Returns
     -------
     AttitudeEstimate
+
+    Notes
+    -----
+    The samples are taken as uniformly spaced at ``rate``: no timestamps are
+    read, so a log with gaps, jitter or time running backwards must be
+    resampled first (the IMU readers check the time column). The first
+    sample fixes the start (TRIAD of accelerometer and field, or the
+    accelerometer's tilt with the sensor's own heading), so the recording
+    should start at rest or slowly moving. Measured on BROAD's seven trials
+    (``bench/bench_attitude.py``): mean total error 1.49° causal, 1.46°
+    offline, inclination 0.60° without magnetometer.
 
     Raises
     ------
