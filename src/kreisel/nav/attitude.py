@@ -57,7 +57,7 @@ KREISEL_DEFAULTS = {
     "acc_tau": 1.875,             # s: time constant of the accelerometer's low-pass in the earth frame
     "mag_new_turn": 0.39,         # rad: ... while the sensor turns at least this much
 }
-_PUBLISHED = {"madgwick": {"beta": 0.12}, "mahony": {"kp": 0.74, "ki": 0.0012}, "complementary": {"gain": 0.01}}
+_PUBLISHED = {"madgwick": {"beta": 0.12}, "mahony": {"kp": 0.74, "ki": 0.0012}, "complementary": {"gain": 0.0005}}
 # ENU ← NWU: a quarter turn about up (north, the NWU x axis, becomes the ENU y axis)
 _ENU_FROM_NWU = np.array([np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])
 # NED ← ENU: a half turn about the horizontal axis between north and east
@@ -205,7 +205,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         "madgwick": Madgwick's gradient-descent filter (parameter ``beta``,
         default 0.12); "mahony": Mahony's explicit complementary filter
         (``kp`` 0.74, ``ki`` 0.0012); "complementary": nlerp of the gyro
-        attitude towards the TRIAD attitude of each sample (``gain`` 0.01).
+        attitude towards the TRIAD attitude of each sample (``gain`` 0.0005).
     params : dict, optional
         Parameters overriding the method's defaults (see
         :data:`KREISEL_DEFAULTS` for kreisel's estimator).
