@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from kreisel.nav import _attitude_kernels, attitude_error, attitude_from_vectors, estimate_attitude
+from kreisel.nav import _attitude_kernels, attitude_error, attitude_from_vectors, compare_attitude, estimate_attitude
 
 RATE = 200.0
 FIELD = np.array([0.0, 20.0, -45.0])  # ENU, µT: north and down
@@ -192,3 +192,15 @@ def test_vector_attitude_triad_and_quest_agree_with_the_truth():
         attitude_from_vectors(acc, acc)
     with pytest.raises(ValueError, match="accel must not have zero-length samples"):
         attitude_from_vectors(np.zeros(3), FIELD)
+
+
+def test_compare_attitude_runs_each_method_once(trial):
+    cut = slice(int(11.5 * 285.714), int(21.5 * 285.714))
+    gyr, acc, mag = (trial[k][cut].astype(float) for k in ("gyr", "acc", "mag"))
+    rate = float(trial["sampling_rate"])
+    errors = compare_attitude(gyr, acc, mag, rate=rate, reference=trial["opt_quat"][cut])
+    assert list(errors) == ["kreisel", "kreisel offline", "madgwick", "mahony", "complementary"]
+    direct = attitude_error(estimate_attitude(gyr, acc, mag, rate=rate, method="mahony").q, trial["opt_quat"][cut])
+    assert errors["mahony"] == direct
+    with pytest.raises(ValueError, match="methods must be among"):
+        compare_attitude(gyr, acc, mag, rate=rate, reference=trial["opt_quat"][cut], methods=("vqf",))

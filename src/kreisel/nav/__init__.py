@@ -6,7 +6,7 @@ that tests them, IMU error models with Allan deviation, and IMU log
 reading/attitude writing.
 """
 
-from .attitude import KREISEL_DEFAULTS, AttitudeEstimate, estimate_attitude
+from .attitude import KREISEL_DEFAULTS, AttitudeEstimate, compare_attitude, estimate_attitude
 from .attitude_error import attitude_error, attitude_error_angles
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
 from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
@@ -34,6 +34,7 @@ __all__ = [
     "convert_attitude_frame",
     "AttitudeEstimate",
     "estimate_attitude",
+    "compare_attitude",
     "KREISEL_DEFAULTS",
     "attitude_error",
     "attitude_error_angles",

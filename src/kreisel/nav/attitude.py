@@ -30,8 +30,9 @@ import numpy as np
 from .._validation import as_float_array
 from ..so3 import quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
 from . import _attitude_kernels
+from .attitude_error import attitude_error
 
-__all__ = ["AttitudeEstimate", "estimate_attitude", "KREISEL_DEFAULTS"]
+__all__ = ["AttitudeEstimate", "estimate_attitude", "compare_attitude", "KREISEL_DEFAULTS"]
 
 _METHODS = (None, "kreisel", "madgwick", "mahony", "complementary")
 _FRAMES = ("ENU", "NED")
@@ -293,3 +294,48 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
             turn = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
             cov = turn @ cov @ turn.T
     return AttitudeEstimate(q=q, bias=bias, covariance=cov, method=method)
+
+
+def compare_attitude(gyro, accel, mag=None, *, rate, reference, mask=None,
+                     methods=("kreisel", "kreisel offline", "madgwick", "mahony", "complementary")):
+    """Errors of several estimators on one recording against a reference attitude, in one call.
+
+    Parameters
+    ----------
+    gyro, accel, mag, rate
+        As for :func:`estimate_attitude`.
+    reference : array_like, shape (n, 4)
+        Reference attitude ENU ← sensor (e.g. motion capture); NaN rows are left out.
+    mask : array_like of bool, shape (n,), optional
+        Samples to evaluate (e.g. the motion phases).
+    methods : sequence of str
+        "kreisel", "kreisel offline", "madgwick", "mahony", "complementary".
+
+    Returns
+    -------
+    dict
+        Method name → (total, heading, inclination) RMSE in degrees
+        (:func:`kreisel.nav.attitude_error`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> n = 300
+    >>> acc = np.tile([0.0, 0.0, 9.81], (n, 1))
+    >>> mag = np.tile([0.0, 20.0, -40.0], (n, 1))
+    >>> ref = np.tile([1.0, 0.0, 0.0, 0.0], (n, 1))
+    >>> errors = compare_attitude(np.zeros((n, 3)), acc, mag, rate=100.0, reference=ref, methods=("kreisel", "mahony"))
+    >>> {name: round(e[0], 9) for name, e in errors.items()}
+    {'kreisel': 0.0, 'mahony': 0.0}
+    """
+    known = ("kreisel", "kreisel offline", "madgwick", "mahony", "complementary")
+    unknown = [m for m in methods if m not in known]
+    if unknown:
+        raise ValueError(f"methods must be among {', '.join(map(repr, known))}, got {unknown}")
+    results = {}
+    for name in methods:
+        offline = name == "kreisel offline"
+        method = None if name.startswith("kreisel") else name
+        est = estimate_attitude(gyro, accel, mag, rate=rate, offline=offline, method=method)
+        results[name] = attitude_error(est.q, reference, mask)
+    return results
