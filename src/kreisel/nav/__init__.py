@@ -6,10 +6,13 @@ that tests them, IMU error models with Allan deviation, and attitude
 writing (IMU files are read by :func:`kreisel.io.read_imu`).
 """
 
+from .attitude import KREISEL_DEFAULTS, AttitudeEstimate, compare_attitude, estimate_attitude
+from .attitude_error import attitude_error, attitude_error_angles
 from .coning import ConingMotion, coning_coefficients, coning_drift, coning_motion
 from .imu_errors import (DEG_PER_HOUR, DEG_PER_HOUR_PER_SQRT_HOUR, DEG_PER_SQRT_HOUR, GyroErrorModel,
                          allan_deviation, gauss_markov_allan_deviation)
 from .logs import convert_attitude_frame, write_attitude
+from .vector_attitude import attitude_from_vectors
 from .strapdown import attitude_from_increments, attitude_from_rates
 
 __all__ = [
@@ -27,4 +30,11 @@ __all__ = [
     "DEG_PER_HOUR_PER_SQRT_HOUR",
     "write_attitude",
     "convert_attitude_frame",
+    "AttitudeEstimate",
+    "estimate_attitude",
+    "compare_attitude",
+    "KREISEL_DEFAULTS",
+    "attitude_error",
+    "attitude_error_angles",
+    "attitude_from_vectors",
 ]

@@ -1,0 +1,206 @@
+"""estimate_attitude: exact tracking of noise-free motion, the published filters step by step, a real trial."""
+
+from importlib import resources
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from kreisel.nav import _attitude_kernels, attitude_error, attitude_from_vectors, compare_attitude, estimate_attitude
+
+RATE = 200.0
+FIELD = np.array([0.0, 20.0, -45.0])  # ENU, µT: north and down
+
+
+def motion(n=2000, rate=RATE, w=(0.4, -0.3, 0.8), q0=(0.9, 0.1, -0.3, 0.2)):
+    """Turning at a constant body rate from q0: exact gyro, accelerometer and field samples."""
+    w = np.asarray(w, float)
+    r0 = Rotation.from_quat(np.roll(np.asarray(q0) / np.linalg.norm(q0), -1))
+    r = r0 * Rotation.from_rotvec(np.arange(n)[:, None] * w / rate)
+    q = np.roll(r.as_quat(), 1, axis=1)
+    acc = r.inv().apply([0.0, 0.0, 9.81])
+    mag = r.inv().apply(FIELD)
+    return np.tile(w, (n, 1)), acc, mag, q
+
+
+@pytest.mark.parametrize("method", [None, "madgwick", "mahony", "complementary"])
+def test_noise_free_motion_is_tracked(method):
+    """Gyro, accelerometer and field agree exactly: every filter stays on the motion from its TRIAD start."""
+    gyr, acc, mag, q_true = motion()
+    est = estimate_attitude(gyr, acc, mag, rate=RATE, method=method)
+    np.testing.assert_allclose(np.abs(np.sum(est.q[:1] * q_true[:1], axis=1)), 1.0, atol=1e-15)
+    # the published filters integrate q̇ to first order and drift a little until their gain pulls them back
+    assert attitude_error(est.q, q_true)[0] < (1e-9 if method in (None, "complementary") else 0.5)
+    if method is None:
+        assert np.abs(est.bias).max() < 1e-12
+
+
+def test_gyro_bias_is_learned_at_rest():
+    n = 4000
+    q0 = np.array([0.95, 0.2, 0.1, -0.2])
+    q0 /= np.linalg.norm(q0)
+    r = Rotation.from_quat(np.roll(q0, -1))
+    bias = np.array([0.01, -0.02, 0.005])
+    est = estimate_attitude(np.tile(bias, (n, 1)), np.tile(r.inv().apply([0, 0, 9.81]), (n, 1)),
+                            np.tile(r.inv().apply(FIELD), (n, 1)), rate=RATE)
+    np.testing.assert_allclose(est.bias[-1], bias, atol=5e-4)
+    assert attitude_error(est.q[-100:], np.tile(q0, (100, 1)))[0] < 0.1
+    # the covariance bound: positive definite and small at the end
+    assert np.all(np.linalg.eigvalsh(est.covariance[-1]) > 0)
+
+
+def test_madgwick_step_as_published():
+    """One step of Madgwick's MARG update, written out from the report (NWU frame, q frame ← sensor)."""
+    gyr, acc, mag, _ = motion(3)
+    beta = 0.12
+    q = np.array(attitude_from_vectors(acc[0], mag[0]))
+    nwu = Rotation.from_rotvec([0, 0, -np.pi / 2]) * Rotation.from_quat(np.roll(q, -1))
+    q = np.roll(nwu.as_quat(), 1)
+    qw, qx, qy, qz = q
+    a = acc[1] / np.linalg.norm(acc[1])
+    m = mag[1] / np.linalg.norm(mag[1])
+    h = Rotation.from_quat(np.roll(q, -1)).apply(m)
+    bx, bz = np.hypot(h[0], h[1]), h[2]
+    f = np.array([2 * (qx * qz - qw * qy) - a[0], 2 * (qw * qx + qy * qz) - a[1], 2 * (0.5 - qx**2 - qy**2) - a[2],
+                  2 * bx * (0.5 - qy**2 - qz**2) + 2 * bz * (qx * qz - qw * qy) - m[0],
+                  2 * bx * (qx * qy - qw * qz) + 2 * bz * (qw * qx + qy * qz) - m[1],
+                  2 * bx * (qw * qy + qx * qz) + 2 * bz * (0.5 - qx**2 - qy**2) - m[2]])
+    J = np.array([[-2 * qy, 2 * qz, -2 * qw, 2 * qx], [2 * qx, 2 * qw, 2 * qz, 2 * qy], [0, -4 * qx, -4 * qy, 0],
+                  [-2 * bz * qy, 2 * bz * qz, -4 * bx * qy - 2 * bz * qw, -4 * bx * qz + 2 * bz * qx],
+                  [-2 * bx * qz + 2 * bz * qx, 2 * bx * qy + 2 * bz * qw, 2 * bx * qx + 2 * bz * qz,
+                   -2 * bx * qw + 2 * bz * qy],
+                  [2 * bx * qy, 2 * bx * qz - 4 * bz * qx, 2 * bx * qw - 4 * bz * qy, 2 * bx * qx]])
+    grad = J.T @ f
+    w = gyr[1]
+    qdot = 0.5 * np.array([-qx * w[0] - qy * w[1] - qz * w[2], qw * w[0] + qy * w[2] - qz * w[1],
+                           qw * w[1] - qx * w[2] + qz * w[0], qw * w[2] + qx * w[1] - qy * w[0]])
+    qn = q + (qdot - beta * grad / np.linalg.norm(grad)) / RATE
+    qn /= np.linalg.norm(qn)
+    enu = np.roll((Rotation.from_rotvec([0, 0, np.pi / 2]) * Rotation.from_quat(np.roll(qn, -1))).as_quat(), 1)
+    est = estimate_attitude(gyr[:2], acc[:2], mag[:2], rate=RATE, method="madgwick")
+    np.testing.assert_allclose(np.abs(est.q[1] @ enu), 1.0, atol=1e-14)
+
+
+def test_mahony_step_as_published():
+    gyr, acc, mag, _ = motion(3)
+    kp, ki = 0.74, 0.0012
+    q = np.array(attitude_from_vectors(acc[0], mag[0]))
+    # disturb the start so that the correction is not zero
+    q = np.roll((Rotation.from_rotvec([0.02, -0.01, 0.03]) * Rotation.from_quat(np.roll(q, -1))).as_quat(), 1)
+    r = Rotation.from_quat(np.roll(q, -1))
+    a = acc[1] / np.linalg.norm(acc[1])
+    m = mag[1] / np.linalg.norm(mag[1])
+    h = r.apply(m)
+    v_a = r.inv().apply([0, 0, 1.0])
+    v_m = r.inv().apply([0, np.hypot(h[0], h[1]), h[2]])
+    v_m /= np.linalg.norm(v_m)
+    e = np.cross(a, v_a) + np.cross(m, v_m)
+    b = -ki * e / RATE
+    w = gyr[1] - b + kp * e
+    qw, qx, qy, qz = q
+    qdot = 0.5 * np.array([-qx * w[0] - qy * w[1] - qz * w[2], qw * w[0] + qy * w[2] - qz * w[1],
+                           qw * w[1] - qx * w[2] + qz * w[0], qw * w[2] + qx * w[1] - qy * w[0]])
+    qn = q + qdot / RATE
+    qn /= np.linalg.norm(qn)
+    out = np.empty((2, 4))
+    bias = np.empty((2, 3))
+    _attitude_kernels.mahony_filter(gyr[:2], acc[:2], mag[:2], True, 1 / RATE, kp, ki, q, out, bias)
+    np.testing.assert_allclose(out[1], qn, atol=1e-15)
+    np.testing.assert_allclose(bias[1], b, atol=1e-18)
+
+
+def test_ned_is_the_enu_result_turned():
+    gyr, acc, mag, _ = motion(300)
+    enu = estimate_attitude(gyr, acc, mag, rate=RATE)
+    ned = estimate_attitude(gyr, acc, mag, rate=RATE, frame="NED")
+    turn = Rotation.from_matrix([[0, 1, 0], [1, 0, 0], [0, 0, -1]])
+    expected = np.roll((turn * Rotation.from_quat(np.roll(enu.q, -1, axis=1))).as_quat(), 1, axis=1)
+    np.testing.assert_allclose(np.abs(np.sum(ned.q * expected, axis=1)), 1.0, atol=1e-13)
+
+
+def test_without_magnetometer_the_heading_is_the_sensors():
+    gyr, acc, _, _ = motion(500, w=(0.0, 0.0, 0.0), q0=(1.0, 0.0, 0.0, 0.0))
+    est = estimate_attitude(gyr, acc, rate=RATE)
+    np.testing.assert_allclose(est.q, np.tile([1.0, 0, 0, 0], (500, 1)), atol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def trial():
+    path = resources.files("kreisel.io.examples").joinpath("broad/broad_07_fast_rotation_60s.npz")
+    with resources.as_file(path) as p, np.load(p) as d:
+        return {key: d[key] for key in d.files}
+
+
+def test_bundled_trial_against_motion_capture(trial):
+    # 20 s: 15 s at rest, then 5 s of fast rotation
+    cut = slice(int(11.5 * 285.714), int(31.5 * 285.714))
+    gyr, acc, mag = (trial[k][cut].astype(float) for k in ("gyr", "acc", "mag"))
+    rate = float(trial["sampling_rate"])
+    ref = trial["opt_quat"][cut]
+    est = estimate_attitude(gyr, acc, mag, rate=rate)
+    total, heading, incl = attitude_error(est.q, ref)
+    assert total < 3.0 and incl < 1.5
+    six = estimate_attitude(gyr, acc, rate=rate)
+    assert attitude_error(six.q, ref)[2] < 1.5
+    offline = estimate_attitude(gyr, acc, mag, rate=rate, offline=True)
+    assert attitude_error(offline.q, ref)[0] < 3.0
+
+
+def test_bad_input():
+    gyr, acc, mag, _ = motion(50)
+    with pytest.raises(ValueError, match="gyro must be finite: sample 3"):
+        estimate_attitude(np.where(np.arange(50)[:, None] == 3, np.nan, gyr), acc, mag, rate=RATE)
+    with pytest.raises(ValueError, match="accel must have as many samples as gyro"):
+        estimate_attitude(gyr, acc[:-1], mag, rate=RATE)
+    with pytest.raises(ValueError, match="accel must not be zero in its first sample"):
+        estimate_attitude(gyr, np.zeros_like(acc), mag, rate=RATE)
+    with pytest.raises(ValueError, match="mag has no horizontal part"):
+        estimate_attitude(gyr, acc, acc * 3.0, rate=RATE)
+    with pytest.raises(ValueError, match="mag has no horizontal part"):
+        estimate_attitude(gyr, acc, np.zeros_like(mag), rate=RATE)
+    with pytest.raises(ValueError, match="rate must be a finite positive"):
+        estimate_attitude(gyr, acc, mag, rate=0.0)
+    with pytest.raises(ValueError, match="method must be None or one of"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, method="ekf")
+    with pytest.raises(ValueError, match="offline=True is available for kreisel's estimator only"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, method="madgwick", offline=True)
+    with pytest.raises(ValueError, match="unknown parameter"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, params={"bta": 0.1})
+
+
+@pytest.mark.parametrize("method", [None, "madgwick", "mahony", "complementary"])
+def test_later_zero_samples_are_skipped(method):
+    gyr, acc, mag, q_true = motion(400)
+    acc[200:210] = 0.0
+    mag[250:260] = 0.0
+    est = estimate_attitude(gyr, acc, mag, rate=RATE, method=method)
+    assert np.isfinite(est.q).all()
+    assert attitude_error(est.q, q_true)[0] < (1e-6 if method is None else 0.5)
+
+
+def test_vector_attitude_triad_and_quest_agree_with_the_truth():
+    rng = np.random.default_rng(3)
+    r = Rotation.random(20, random_state=rng)
+    q_true = np.roll(r.as_quat(), 1, axis=1)
+    acc = r.inv().apply([0.0, 0.0, 9.81])
+    mag = r.inv().apply(FIELD)
+    dip = np.arctan2(45.0, 20.0)
+    for q in (attitude_from_vectors(acc, mag), attitude_from_vectors(acc, mag, method="quest"),
+              attitude_from_vectors(acc, mag, method="quest", dip=dip)):
+        np.testing.assert_allclose(np.abs(np.sum(q * q_true, axis=1)), 1.0, atol=1e-13)
+    with pytest.raises(ValueError, match="mag must have a horizontal part"):
+        attitude_from_vectors(acc, acc)
+    with pytest.raises(ValueError, match="accel must not have zero-length samples"):
+        attitude_from_vectors(np.zeros(3), FIELD)
+
+
+def test_compare_attitude_runs_each_method_once(trial):
+    cut = slice(int(11.5 * 285.714), int(21.5 * 285.714))
+    gyr, acc, mag = (trial[k][cut].astype(float) for k in ("gyr", "acc", "mag"))
+    rate = float(trial["sampling_rate"])
+    errors = compare_attitude(gyr, acc, mag, rate=rate, reference=trial["opt_quat"][cut])
+    assert list(errors) == ["kreisel", "kreisel offline", "madgwick", "mahony", "complementary"]
+    direct = attitude_error(estimate_attitude(gyr, acc, mag, rate=rate, method="mahony").q, trial["opt_quat"][cut])
+    assert errors["mahony"] == direct
+    with pytest.raises(ValueError, match="methods must be among"):
+        compare_attitude(gyr, acc, mag, rate=rate, reference=trial["opt_quat"][cut], methods=("vqf",))
