@@ -8,12 +8,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..so3.spline import RotationSpline as _RotationSpline
+from ._interpolation import Interpolation
 from .rotation import Rotation
 
 __all__ = ["RotationSpline"]
 
 
-class RotationSpline:
+class RotationSpline(Interpolation):
     """C² attitude spline through rotations at given times: ``from kreisel.scipy import RotationSpline``.
 
     The curve is kreisel's :class:`~kreisel.so3.RotationSpline`, which is
@@ -33,21 +34,13 @@ class RotationSpline:
     [0.0, 0.0, 1.0]
     """
 
-    def __init__(self, times: ArrayLike, rotations: Rotation) -> None:
-        if not isinstance(rotations, Rotation):
-            raise TypeError(f"rotations must be a kreisel.scipy Rotation, got {type(rotations).__name__}")
-        self._spline = _RotationSpline(times, rotations.to_kreisel())
-        self.rotations = rotations
-
-    @property
-    def times(self) -> NDArray[np.float64]:
-        """The knot times."""
-        return self._spline.times
+    kind = _RotationSpline
+    _interpolant: _RotationSpline
 
     def __call__(self, times: ArrayLike, order: int = 0) -> Any:
         """Rotations (``order=0``), body angular velocities (1) or accelerations (2) at ``times``."""
         if np.ndim(times) > 1:
             raise ValueError(f"times must be a scalar or 1-D, got shape {np.shape(times)}")
         if order == 0:
-            return Rotation.from_kreisel(self._spline(times))
-        return self._spline(times, order, frame="body")
+            return Rotation.from_kreisel(self._interpolant(times))
+        return self._interpolant(times, order, frame="body")

@@ -6,12 +6,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..so3.spline import Slerp as _Slerp
+from ._interpolation import Interpolation
 from .rotation import Rotation
 
 __all__ = ["Slerp"]
 
 
-class Slerp:
+class Slerp(Interpolation):
     """Piecewise slerp through rotations at given times: ``from kreisel.scipy import Slerp``.
 
     Parameters
@@ -28,29 +29,21 @@ class Slerp:
     [[0.0, 0.0, 0.25], [0.0, 0.0, 0.5]]
     """
 
-    def __init__(self, times: ArrayLike, rotations: Rotation) -> None:
-        if not isinstance(rotations, Rotation):
-            raise TypeError(f"rotations must be a kreisel.scipy Rotation, got {type(rotations).__name__}")
-        self._slerp = _Slerp(times, rotations.to_kreisel())
-        self.rotations = rotations
-
-    @property
-    def times(self) -> NDArray[np.float64]:
-        """The knot times."""
-        return self._slerp.times
+    kind = _Slerp
+    _interpolant: _Slerp
 
     @property
     def timedelta(self) -> NDArray[np.float64]:
         """Durations of the segments."""
-        return self._slerp.timedelta
+        return self._interpolant.timedelta
 
     @property
     def rotvecs(self) -> NDArray[np.float64]:
         """Rotation vectors of the segments, from each knot to the next."""
-        return self._slerp.rotvecs
+        return self._interpolant.rotvecs
 
     def __call__(self, times: ArrayLike) -> Rotation:
         """Interpolated rotations at ``times`` (a scalar or 1-D, within the knots)."""
         if np.ndim(times) > 1:
             raise ValueError(f"times must be a scalar or 1-D, got shape {np.shape(times)}")
-        return Rotation.from_kreisel(self._slerp(times))
+        return Rotation.from_kreisel(self._interpolant(times))
