@@ -39,14 +39,19 @@ def _positions(size, count):
     return sorted(set(np.linspace(0, size - 1, count).astype(int).tolist()) | {1, size - 1})
 
 
-@pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
-def test_every_truncation_is_refused_naming_the_file(tmp_path, trajectory, suffix):
+def _saved_bytes_and_a_copy_path(tmp_path, trajectory, name, suffix):
+    """The bytes of ``trajectory`` saved as ``suffix``, and a path beside it (with the CSV's sidecar) to damage."""
     saved = tmp_path / f"saved{suffix}"
     trajectory.save(saved)
-    data = saved.read_bytes()
-    path = tmp_path / f"cut{suffix}"
+    path = tmp_path / f"{name}{suffix}"
     if suffix == ".csv":
         sidecar(path).write_bytes(sidecar(saved).read_bytes())
+    return saved.read_bytes(), path
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
+def test_every_truncation_is_refused_naming_the_file(tmp_path, trajectory, suffix):
+    data, path = _saved_bytes_and_a_copy_path(tmp_path, trajectory, "cut", suffix)
     outcomes = []
     for end in _positions(len(data), 60) + [0]:
         path.write_bytes(data[:end])
@@ -57,12 +62,7 @@ def test_every_truncation_is_refused_naming_the_file(tmp_path, trajectory, suffi
 
 @pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
 def test_a_single_damaged_byte_is_refused_or_harmless(tmp_path, trajectory, suffix):
-    saved = tmp_path / f"saved{suffix}"
-    trajectory.save(saved)
-    data = saved.read_bytes()
-    path = tmp_path / f"bad{suffix}"
-    if suffix == ".csv":
-        sidecar(path).write_bytes(sidecar(saved).read_bytes())
+    data, path = _saved_bytes_and_a_copy_path(tmp_path, trajectory, "bad", suffix)
     outcomes = []
     for at in _positions(len(data), 80):
         for change in (1, 0x40):
