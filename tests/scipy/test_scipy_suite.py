@@ -41,9 +41,6 @@ EXPECTED_FAILURES = {
     "test_rigid_transform.py::test_copy_flag":
         "private storage: ``normalize=False, copy=False`` shares the caller's 4x4 array with scipy's internal "
         "matrix; kreisel stores poses as unit quaternion and translation, never the caller's matrix",
-    "test_rotation_spline.py::test_constant_attitude":
-        "a tolerance below rounding: asks |ω| <= 1e-17 rad/s for a constant attitude, where kreisel's compiled "
-        "product R_iᵀ R_(i+1) of two equal rotations leaves 2.8e-17 (one rounding), a rate of 5.6e-17 rad/s",
 }
 
 CONFTEST = '''

@@ -41,6 +41,14 @@ def test_multiply_is_associative_and_norm_multiplicative(rng):
     np.testing.assert_allclose(kr.quat_norm(kr.quat_multiply(a, b)), kr.quat_norm(a) * kr.quat_norm(b), rtol=1e-14)
 
 
+def test_a_quaternion_times_its_conjugate_has_an_exactly_zero_vector_part(rng):
+    # what a constant attitude needs: R^T R is exactly the identity rotation, batch or single
+    q = rng.normal(size=(257, 4))
+    for product in (kr.quat_multiply(kr.quat_conjugate(q), q), kr.quat_multiply(q, kr.quat_conjugate(q)),
+                    np.array([kr.quat_multiply(kr.quat_conjugate(x), x) for x in q])):
+        assert not product[:, 1:].any()
+
+
 def test_conjugate_inverse_normalize(rng):
     q = rng.normal(size=(10, 4))
     np.testing.assert_allclose(

@@ -29,12 +29,17 @@ from . import cached, inlined, vectorised
 @inlined
 def quat_product(p0: float, p1: float, p2: float, p3: float, q0: float, q1: float, q2: float,
                  q3: float) -> tuple[float, float, float, float]:
-    """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b))."""
+    """Hamilton product ``p q`` (Theory §2.4: (a0 b0 - a.b, a0 b + b0 a + a x b)).
+
+    The terms are summed in pairs, ``a0 b + b0 a`` and ``a x b`` apart, so
+    that ``q* q`` and ``q q*`` have an exactly zero vector part: each pair
+    then cancels exactly, where a left-to-right sum left a rounding error.
+    """
     return (
         p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
+        (p0 * q1 + p1 * q0) + (p2 * q3 - p3 * q2),
+        (p0 * q2 + p2 * q0) + (p3 * q1 - p1 * q3),
+        (p0 * q3 + p3 * q0) + (p1 * q2 - p2 * q1),
     )
 
 
