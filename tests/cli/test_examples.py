@@ -44,7 +44,7 @@ def test_plot_draws_a_recordings_rates_and_the_fit_window(tmp_path):
     t = np.linspace(0.0, 1.0, 201)
     rates = np.degrees(kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 6.0, 0.3]))
     table = tmp_path / "deg.csv"
-    np.savetxt(table, np.column_stack([t, rates]), delimiter=",", header="time,gx,gy,gz", comments="")
+    np.savetxt(table, np.column_stack([t, rates]), delimiter=",", header="time,gx (deg/s),gy (deg/s),gz (deg/s)", comments="")
     for args in ((table,), (table, "--start", "0.2", "--stop", "0.6"), ("phone_toss", "--kind", "rates")):
         figure = tmp_path / "rates.png"
         done = kreisel("plot", *args, "-o", figure, "--force")

@@ -122,7 +122,8 @@ def test_fit_of_a_toss_whose_energy_falls_says_so(tmp_path):
     path = tmp_path / "toss.csv"
     np.savetxt(path, np.column_stack([t, omega + rng.normal(0.0, 0.05, omega.shape)]), delimiter=",",
                header="t,wx,wy,wz", comments="")
-    done = subprocess.run([sys.executable, "-m", "kreisel", "fit", str(path)], capture_output=True, text=True,
+    # without the bias: a fitted constant offset absorbs much of a decay this slow (T -2 %/s left)
+    done = subprocess.run([sys.executable, "-m", "kreisel", "fit", str(path), "--no-bias"], capture_output=True, text=True,
                           timeout=600)
     assert done.returncode == 1, done.stdout + done.stderr
     assert "free rotation explains the data" not in done.stdout + done.stderr
