@@ -17,6 +17,7 @@ import typer
 
 from .._optional import MissingExtraError
 from ._output import compile_notice, console, error_line, note, plain, progress, say, usage_error
+from .attitude import attitude as attitude_command
 
 __all__ = [
     "app",
@@ -642,6 +643,9 @@ def compile_kernels(
                 bar.advance(task)
     count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
+
+
+app.command(name="attitude")(attitude_command)
 
 
 def run():
