@@ -156,7 +156,7 @@ def attitude(
     from ..io.gyro import GyroFileError, read_imu
     from ..nav import estimate_attitude
     from ._output import note, say, usage_error
-    from .app import _FIGURES, _check_output, _writing
+    from ._files import FIGURES, check_output, writing
 
     if method not in METHODS:
         usage_error(f"--method: unknown method {method!r}; methods are {', '.join(METHODS)}")
@@ -166,8 +166,8 @@ def attitude(
         usage_error(f"--frame: expected ENU or NED, got {frame!r}")
     if rate is not None and not 0.0 < rate < float("inf"):
         usage_error(f"--rate: expected a positive sampling rate in Hz, got {rate:g}")
-    _check_output("-o", output, force)
-    _check_output("--plot", plot_file, force, _FIGURES)
+    check_output("-o", output, force)
+    check_output("--plot", plot_file, force, FIGURES)
     if plot_file is not None:
         require_all([("matplotlib", "plot")], feature="kreisel attitude --plot")  # before the estimate
     path = _recording_path(recording)
@@ -198,11 +198,11 @@ def attitude(
     errors = None if reference is None else _reference_errors(estimate, reference, rec.movement)
     for line in summary(rec, estimate, sample_rate, frame, errors):
         say(line)
-    with _writing("-o", output):
+    with writing("-o", output):
         write_csv(output, rec.t, estimate)
     if plot_file is not None:
         from .. import plot as plots
 
-        with _writing("--plot", plot_file):
+        with writing("--plot", plot_file):
             plots.save(plots.attitude_estimate(rec.t, estimate.q, reference, rec.movement,
                                                title=f"{path.name}: {estimate.method}, {frame} ← sensor"), plot_file)
