@@ -58,7 +58,7 @@ def summary(rec, estimate, rate, frame, errors):
     >>> est = AttitudeEstimate(q=np.zeros((3, 4)), bias=None, covariance=None, method="mahony")
     >>> print("\\n".join(summary(rec, est, 100.0, "ENU", (1.0, 0.5, 0.25))))
     imu.csv: 3 samples, 0.02 s at 100 Hz, method mahony, frame ENU ← sensor
-      error against the reference (RMSE over the movement samples): total 1.000°, heading 0.500°, inclination 0.250°
+      error against the reference (RMSE over all samples): total 1.000°, heading 0.500°, inclination 0.250°
     """
     lines = [f"{rec.source}: {rec.t.size} samples, {rec.t[-1] - rec.t[0]:.6g} s at {rate:.6g} Hz, "
              f"method {estimate.method}, frame {frame} ← sensor"]

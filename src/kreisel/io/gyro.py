@@ -164,7 +164,7 @@ def _on_one_clock(table, units, columns, kind, default="gyro"):
 
 def _table_data(text, source, units, columns, kind, default="gyro", rate=None):
     try:
-        table = parse_table(text, source)
+        table = parse_table(text, source, timed=rate is None)
     except TableError as exc:
         raise GyroFileError(str(exc)) from None
     if rate is not None:
