@@ -9,10 +9,11 @@ import typer
 
 from ._output import error_line, say, usage_error
 
-__all__ = ["FIGURES", "check_output", "check_outputs_in", "writing"]
+__all__ = ["FIGURES", "FORCE_HELP", "check_output", "check_outputs_in", "writing"]
 
 #: The figure formats a command's ``--plot`` or ``-o`` writes.
 FIGURES = (".png", ".svg", ".pdf")
+FORCE_HELP = "Replace existing output files (without it, an existing one is refused before any work)."
 
 
 def check_output(option, target, force, suffixes=(), store=False):

@@ -17,6 +17,7 @@ import typer
 from .._optional import MissingExtraError
 from ._output import compile_notice, console, error_line, note, plain, progress, say, usage_error
 from ._files import FIGURES as _FIGURES
+from ._files import FORCE_HELP as _FORCE_HELP
 from ._files import check_output as _check_output
 from ._files import check_outputs_in as _check_outputs_in
 from ._files import writing as _writing
@@ -89,7 +90,6 @@ app = typer.Typer(
 )
 
 
-_FORCE_HELP = "Replace existing output files (without it, an existing one is refused before any work)."
 
 
 def _version(value: bool):

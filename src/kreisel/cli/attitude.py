@@ -7,6 +7,8 @@ from typing import Optional
 
 import typer
 
+from ._files import FORCE_HELP
+
 __all__ = ["BUNDLED", "METHODS", "attitude", "summary", "write_csv"]
 
 #: Bundled IMU recordings, by the short name the command takes in place of a file.
@@ -43,8 +45,8 @@ def _even_rate(t, source):
     return 1.0 / mean
 
 
-def summary(rec, estimate, rate, frame, errors):
-    """Lines describing the run: samples, duration, rate, method, and the errors against the reference.
+def summary(name, rec, estimate, rate, frame, errors):
+    """Lines describing the run on recording ``name``: samples, duration, rate, method, and the errors.
 
     ``errors`` is ``(total, heading, inclination)`` in degrees, or a string saying why there are none
     (None: the recording has no reference).
@@ -54,13 +56,13 @@ def summary(rec, estimate, rate, frame, errors):
     >>> import numpy as np
     >>> from kreisel.io import ImuRecording
     >>> from kreisel.nav import AttitudeEstimate
-    >>> rec = ImuRecording(np.arange(3) / 100.0, np.zeros((3, 3)), source="imu.csv")
+    >>> rec = ImuRecording(np.arange(3) / 100.0, np.zeros((3, 3)))
     >>> est = AttitudeEstimate(q=np.zeros((3, 4)), bias=None, covariance=None, method="mahony")
-    >>> print("\\n".join(summary(rec, est, 100.0, "ENU", (1.0, 0.5, 0.25))))
+    >>> print("\\n".join(summary("imu.csv", rec, est, 100.0, "ENU", (1.0, 0.5, 0.25))))
     imu.csv: 3 samples, 0.02 s at 100 Hz, method mahony, frame ENU ← sensor
       error against the reference (RMSE over all samples): total 1.000°, heading 0.500°, inclination 0.250°
     """
-    lines = [f"{rec.source}: {rec.t.size} samples, {rec.t[-1] - rec.t[0]:.6g} s at {rate:.6g} Hz, "
+    lines = [f"{name}: {rec.t.size} samples, {rec.t[-1] - rec.t[0]:.6g} s at {rate:.6g} Hz, "
              f"method {estimate.method}, frame {frame} ← sensor"]
     if isinstance(errors, str):
         lines.append(f"  no error against the reference: {errors}")
@@ -147,9 +149,7 @@ def attitude(
     plot_file: Optional[pathlib.Path] = typer.Option(
         None, "--plot", help="Draw yaw, pitch and roll (and, with a reference in the file, its angles and "
                              "the errors): attitude.png | .svg | .pdf"),
-    force: bool = typer.Option(
-        False, "--force", help="Replace existing output files (without it, an existing one is refused before "
-                               "any work)."),
+    force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ):
     """Estimate attitude and heading from gyro, accelerometer and magnetometer; write them as CSV."""
     from .._optional import require_all
@@ -196,7 +196,7 @@ def attitude(
         usage_error(f"{path}: {exc}")
     reference = None if rec.reference is None else _in_frame(rec.reference, frame)
     errors = None if reference is None else _reference_errors(estimate, reference, rec.movement)
-    for line in summary(rec, estimate, sample_rate, frame, errors):
+    for line in summary(recording, rec, estimate, sample_rate, frame, errors):
         say(line)
     with writing("-o", output):
         write_csv(output, rec.t, estimate)

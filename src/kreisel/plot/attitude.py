@@ -19,6 +19,9 @@ def _yaw_pitch_roll(q):
     tracked = np.isfinite(q).all(axis=1)
     if tracked.any():
         angles[tracked] = quat_to_euler("ZYX", q[tracked], degrees=True)
+    # a jump across ±180° is a wrap, not a motion: leave a gap instead of a vertical line
+    wraps = np.abs(np.diff(angles, axis=0)) > 180.0
+    angles[1:][wraps] = np.nan
     return angles
 
 
