@@ -240,3 +240,29 @@ def test_bad_columns_and_short_headers(tmp_path):
     with pytest.raises(GyroFileError, match=r"two.csv:1: 2 accelerometer column\(s\) \('ax', 'ay'\); expected x, y "
                                             r"and z"):
         kr.io.read_imu(path)
+
+
+def test_rate_times_a_table_without_a_time_column(tmp_path):
+    rows = np.arange(12.0).reshape(4, 3) / 10.0
+    bare = tmp_path / "bare.txt"
+    np.savetxt(bare, rows)
+    named = tmp_path / "named.csv"
+    np.savetxt(named, np.column_stack([rows, rows + 1.0]), delimiter=",", header="gx,gy,gz,ax,ay,az", comments="")
+    for path in (bare, named):
+        rec = kr.io.read_imu(path, rate=50)
+        np.testing.assert_array_equal(rec.t, np.arange(4) / 50.0)
+        np.testing.assert_array_equal(rec.omega, rows)
+    np.testing.assert_array_equal(kr.io.read_imu(named, rate=50).accel, rows + 1.0)
+
+
+def test_rate_is_refused_where_the_recording_has_its_own_clock(tmp_path):
+    timed = tmp_path / "timed.csv"
+    timed.write_text("t,gx,gy,gz\n0,0,0,1\n0.01,0,0,1\n")
+    with pytest.raises(GyroFileError, match=r"timed.csv:1: the table has a time column"):
+        kr.io.read_imu(timed, rate=100)
+    np.savez(tmp_path / "broad.npz", gyr=np.zeros((3, 3)), sampling_rate=100.0)
+    with pytest.raises(GyroFileError, match="has its own clock"):
+        kr.io.read_imu(tmp_path / "broad.npz", rate=100)
+    for rate, error in ((0, ValueError), (float("nan"), ValueError), ("fast", TypeError)):
+        with pytest.raises(error, match="rate must be"):
+            kr.io.read_imu(timed, rate=rate)

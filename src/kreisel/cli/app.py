@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import contextlib
 import math
-import os
 import pathlib
 import sys
 from typing import List, Optional
@@ -17,6 +16,12 @@ import typer
 
 from .._optional import MissingExtraError
 from ._output import compile_notice, console, error_line, note, plain, progress, say, usage_error
+from ._files import FIGURES as _FIGURES
+from ._files import FORCE_HELP as _FORCE_HELP
+from ._files import check_output as _check_output
+from ._files import check_outputs_in as _check_outputs_in
+from ._files import writing as _writing
+from .attitude import attitude as attitude_command
 
 __all__ = [
     "app",
@@ -85,8 +90,6 @@ app = typer.Typer(
 )
 
 
-_FIGURES = (".png", ".svg", ".pdf")
-_FORCE_HELP = "Replace existing output files (without it, an existing one is refused before any work)."
 
 
 def _version(value: bool):
@@ -456,70 +459,6 @@ def sweep(
             plots.save(plot_sweep(dataset), plot_file)
 
 
-def _check_output(option, target, force, suffixes=(), store=False):
-    """Refuse, before any work, an output the command could not write or would replace unasked.
-
-    A suffix not in ``suffixes`` (any case; none: any suffix), a missing or
-    read-only directory, a directory in a file's place, and an existing file
-    without ``--force`` are usage errors naming the option and the file, so
-    that nothing the user had is replaced unless they say so; the writes
-    themselves stay atomic (the old file is replaced only by a complete new
-    one). ``store``: the output is a Zarr store, a directory, which
-    ``--force`` replaces only if it is one.
-    """
-    if target is None:
-        return
-    if suffixes and target.suffix.lower() not in suffixes:
-        usage_error(f"{option}: unsupported output {target.name!r} (expected {', '.join(suffixes)})")
-    if not target.parent.is_dir():
-        usage_error(f"{option}: directory {str(target.parent)!r} does not exist")
-    if target.is_dir() and not (store and _is_zarr_store(target)):
-        usage_error(f"{option}: {str(target)!r} is a directory; name a file to write"
-                    if not store else f"{option}: {str(target)!r} is a directory but not a Zarr store; "
-                                      "name a new .zarr to write")
-    if os.path.lexists(target) and not force:
-        usage_error(f"{option}: {str(target)!r} already exists; pass --force to replace it")
-    _probe_directory(option, target)
-
-
-def _probe_directory(option, target):
-    """A directory the output's temporary file cannot be created in (read-only, no permission) is a usage error."""
-    import tempfile
-
-    from .._fileio import temporary_prefix
-
-    try:
-        fd, probe = tempfile.mkstemp(prefix=temporary_prefix(target), suffix=".probe", dir=target.parent)
-    except OSError as exc:
-        usage_error(f"{option}: cannot write in {str(target.parent)!r} ({exc.strerror or exc})")
-    os.close(fd)
-    os.unlink(probe)
-
-
-@contextlib.contextmanager
-def _writing(option, target):
-    """Write ``target`` in the block, then say so; an error of the file system (disk full) is one line, status 1."""
-    try:
-        yield
-    except OSError as exc:
-        error_line(f"{option}: cannot write {str(target)!r} ({exc.strerror or exc})")
-        raise typer.Exit(1) from None
-    say(f"wrote {target}")
-
-
-def _check_outputs_in(option, directory, names, force):
-    """:func:`_check_output` for the files ``names`` a command writes into ``directory`` (created if missing)."""
-    if directory.is_dir():
-        for name in names:
-            _check_output(option, directory / name, force)
-    elif os.path.lexists(directory):
-        usage_error(f"{option}: {str(directory)!r} is not a directory")
-
-
-def _is_zarr_store(path):
-    return any((path / name).is_file() for name in (".zgroup", ".zarray", "zarr.json"))
-
-
 @app.command()
 def fit(
     recording: pathlib.Path = typer.Argument(
@@ -642,6 +581,9 @@ def compile_kernels(
                 bar.advance(task)
     count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
+
+
+app.command(name="attitude")(attitude_command)
 
 
 def run():

@@ -11,6 +11,7 @@ with a file is reported as one :class:`GyroFileError` naming the file and line.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import pathlib
 import re
@@ -20,9 +21,9 @@ from importlib import resources
 
 import numpy as np
 
-from .imu_columns import UNITS, unit_scale
+from .imu_columns import UNITS, parse_column, unit_scale
 from .imu_record import ImuRecording
-from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities
+from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities, where
 from .phyphox import TABLES, align, member_for
 
 __all__ = ["GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "MAX_RATE", "parse_gyro", "read_gyro",
@@ -161,12 +162,36 @@ def _on_one_clock(table, units, columns, kind, default="gyro"):
     return data, stated, notes
 
 
-def _table_data(text, source, units, columns, kind, default="gyro"):
+def _table_data(text, source, units, columns, kind, default="gyro", rate=None):
     try:
-        table = parse_table(text, source)
+        table = parse_table(text, source, timed=rate is None)
     except TableError as exc:
         raise GyroFileError(str(exc)) from None
+    if rate is not None:
+        table = _evenly_timed(table, rate)
     return _on_one_clock(table, units, columns, kind, default)
+
+
+def _evenly_timed(table, rate):
+    """``table`` with a first column of times 0, 1/rate, 2/rate, … (s): its rows are samples at ``rate`` Hz."""
+    if table.header is not None and any(parse_column(name).quantity == "time" for name in table.header):
+        raise GyroFileError(f"{where(table.source, table.header_line)}: the table has a time column; rate= is "
+                            "for a table without one")
+    times = np.arange(table.values.shape[0]) / rate
+    header = None if table.header is None else ["time (s)", *table.header]
+    return dataclasses.replace(table, values=np.column_stack([times, table.values]), header=header)
+
+
+def _rate(rate):
+    if rate is None:
+        return None
+    try:
+        value = float(rate)
+    except (TypeError, ValueError):
+        raise TypeError(f"rate must be a number (Hz) or None, got {rate!r}") from None
+    if not (np.isfinite(value) and value > 0):
+        raise ValueError(f"rate must be a finite positive sampling rate in Hz, got {rate!r}")
+    return value
 
 
 def _from_tables(tables, units, columns, kind, folder):
@@ -287,7 +312,7 @@ def _options(units, columns, kind):
     return check_units(units), check_columns(columns), kind
 
 
-def read_imu(source, *, units=None, columns=None, kind="rate"):
+def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
     """Read an IMU recording: gyro, and accelerometer and magnetometer when the file has them.
 
     Formats:
@@ -333,6 +358,11 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     kind : {"rate", "increment"}
         The gyro gives rates, or angle increments since the previous sample
         (units rad, mrad, deg, mdeg; kept as ``.dtheta``).
+    rate : float, optional
+        Sampling rate in Hz of a table file without a time column: its rows
+        are taken as evenly spaced samples from t = 0 (a header, if any,
+        must then name no time column; without a header the first three
+        columns are the gyro's).
 
     Returns
     -------
@@ -363,7 +393,10 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     ([0.5, 0.0, 1.0], [0.0, 0.0, 9.80665])
     """
     units, columns, kind = _options(units, columns, kind)
+    rate = _rate(rate)
     if hasattr(source, "columns") and hasattr(source, "to_numpy"):
+        if rate is not None:
+            raise ValueError("rate= is for a table file without a time column, not a DataFrame (add a time column)")
         try:
             table = frame_table(source)
         except TableError as exc:
@@ -373,6 +406,9 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     if not isinstance(source, (str, os.PathLike)):
         raise TypeError(f"source must be a file path or a pandas DataFrame, got {type(source).__name__}")
     path = pathlib.Path(source)
+    if rate is not None and (path.is_dir() or path.suffix.lower() in (".npz", ".zip")):
+        raise GyroFileError(f"{path}: rate= is for a table file without a time column; this recording has its own "
+                            "clock")
     if path.is_dir():
         return _from_tables(_tables_in_folder(path), units, columns, kind, path)
     suffix = path.suffix.lower()
@@ -381,7 +417,7 @@ def read_imu(source, *, units=None, columns=None, kind="rate"):
     if suffix == ".zip":
         return _from_tables(_tables_in_zip(path), units, columns, kind, path)
     text, note = _decode(path.read_bytes(), str(path))
-    data, stated, notes = _table_data(text, str(path), units, columns, kind)
+    data, stated, notes = _table_data(text, str(path), units, columns, kind, rate=rate)
     return _record(data, stated, str(path), kind, [note] * bool(note) + notes)
 
 

@@ -98,7 +98,7 @@ def _header_cells(cells, line, width):
     return cells + [""] * (width - len(cells)) if len(cells) <= width else None
 
 
-def _fast_values(data):
+def _fast_values(data, width):
     """All rows of ``data`` [(line number, text)] at C speed, when one delimiter splits every row into the same
     number of finite numbers; None otherwise (the line-by-line reading then finds and names the problem)."""
     delimiter = next((d for d in ("\t", ";", ",") if d in data[0][1]), None)
@@ -109,12 +109,12 @@ def _fast_values(data):
         values = np.loadtxt(io.StringIO(body), delimiter=delimiter, ndmin=2, comments=None, dtype=np.float64)
     except ValueError:
         return None
-    if values.shape[0] != len(data) or values.shape[1] < 4 or not np.isfinite(values).all():
+    if values.shape[0] != len(data) or values.shape[1] < width or not np.isfinite(values).all():
         return None
     return values
 
 
-def _slow_values(data, source, empty_cells):
+def _slow_values(data, source, empty_cells, width):
     """Rows of ``data`` read line by line: the first bad line is named. ``empty_cells``: an empty cell is
     NaN (a sensor's buffer that ended before the others' in a table with several time columns)."""
     rows = []
@@ -126,9 +126,9 @@ def _slow_values(data, source, empty_cells):
             raise TableError(f"{source}:{number}: not a number: {bad!r}")
         if not all(np.isfinite(values) | (np.array(cells) == "")):
             raise TableError(f"{source}:{number}: not a finite number in {line!r}")
-        if len(values) < 4:
-            raise TableError(f"{source}:{number}: too few columns ({len(values)}); expected time and the "
-                             "three components of a sensor")
+        if len(values) < width:
+            raise TableError(f"{source}:{number}: too few columns ({len(values)}); expected "
+                             f"{'time and ' * (width > 3)}the three components of a sensor")
         rows.append(values)
     table = np.full((len(rows), max(len(row) for row in rows)), np.nan)
     for k, row in enumerate(rows):
@@ -136,8 +136,11 @@ def _slow_values(data, source, empty_cells):
     return table
 
 
-def parse_table(text, source):
+def parse_table(text, source, timed=True):
     """Numbers, file lines and header of the table in ``text`` (see the module docstring).
+
+    ``timed``: every row holds a time besides a sensor's three components
+    (False for a table whose times are given by its rate).
 
     Examples
     --------
@@ -154,10 +157,11 @@ def parse_table(text, source):
             (header_line, header_text), header, data = data[0], cells, data[1:]
     if not data:
         raise TableError(f"{source}: empty (no data rows)")
-    table = _fast_values(data)
+    width = 4 if timed else 3
+    table = _fast_values(data, width)
     if table is None:
         clocks = sum(parse_column(cell).quantity == "time" for cell in header or ())
-        table = _slow_values(data, source, clocks > 1)
+        table = _slow_values(data, source, clocks > 1, width)
     width = table.shape[1]
     if header is not None:
         header = _header_cells(header, header_text, width)

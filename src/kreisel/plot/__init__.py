@@ -13,12 +13,13 @@ from .. import _fileio, _optional
 # every module of the package draws with matplotlib: without it, one line naming the extra
 _optional.require("matplotlib", extra="plot", feature="plotting (kreisel.plot)")
 
+from .attitude import attitude_estimate
 from .fit import gyro_fit, gyro_recording
 from .inertia import inertia_ellipsoid
 from .trajectory import (DATASET_KINDS, KINDS, apex, coning, energy, euler, foucault, herpolhode, omega,
                          polhode, regular_sequence)
 
-__all__ = ["KINDS", "DATASET_KINDS", "apex", "coning", "energy", "euler", "foucault", "gyro_fit",
+__all__ = ["KINDS", "DATASET_KINDS", "apex", "attitude_estimate", "coning", "energy", "euler", "foucault", "gyro_fit",
            "gyro_recording", "herpolhode", "inertia_ellipsoid", "omega", "polhode", "regular_sequence", "save"]
 
 _FORMATS = {".png", ".svg", ".pdf"}
