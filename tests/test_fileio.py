@@ -23,8 +23,10 @@ def test_a_simulated_trajectory_file_follows_the_umask(tmp_path, umask, mode):
                              cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600,
                              preexec_fn=lambda: os.umask(umask))
     assert process.returncode == 0, process.stderr
-    assert (tmp_path / "traj.csv").stat().st_mode & 0o777 == mode
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["traj.csv"]
+    # the table and its sidecar of metadata, nothing else (no temporary file left behind)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["traj.csv", "traj.csv.json"]
+    for name in ("traj.csv", "traj.csv.json"):
+        assert (tmp_path / name).stat().st_mode & 0o777 == mode, name
 
 
 def test_a_replaced_file_keeps_its_permissions(tmp_path):

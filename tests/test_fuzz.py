@@ -117,6 +117,9 @@ VALID = {
     "q0": _quat, "dtheta": lambda: 0.01 * RNG.normal(size=(8, 3)), "omega_body": lambda: RNG.normal(size=(5, 3)),
     "tau": lambda: np.array([0.1, 1.0]), "sigma": lambda: 0.01, "correlation_time": lambda: 10.0,
     "from_frame": lambda: "NED", "to_frame": lambda: "ENU", "r0": _vec, "v0": _vec, "parts": lambda: _parts(),
+    "gyro": lambda: 0.2 * RNG.normal(size=(50, 3)), "accel": lambda: _gravity_with_noise(50),
+    "mag": lambda: np.array([0.0, 20.0, -40.0]) + RNG.normal(size=(50, 3)), "q_ref": _quat,
+    "reference": lambda: _quat((50,)),
     "A": lambda: _hat(_vec()), "vertices": lambda: _tetrahedron()[0], "faces": lambda: _tetrahedron()[1], "top": lambda: _top(),
 }
 # where a name means something else in one function: (function, parameter) -> valid value
@@ -143,8 +146,15 @@ SPECIFIC = {
                                                           "simulate_particle", "foucault_pendulum")},
     ("convert_attitude_frame", "q"): _quat, ("elliptic_k", "m"): lambda: 0.4, ("elliptic_f", "m"): lambda: 0.4,
     ("elliptic_pi", "m"): lambda: 0.4, ("complete_elliptic_pi", "m"): lambda: 0.4, ("jacobi_elliptic", "m"): lambda: 0.4,
+    **{(name, q): (lambda: _quat((5,))) for name in ("attitude_error", "attitude_error_angles") for q in ("q", "q_ref")},
+    ("attitude_from_vectors", "accel"): lambda: np.array([0.1, -0.2, 9.8]),
+    ("attitude_from_vectors", "mag"): lambda: np.array([0.0, 20.0, -40.0]),
     ("instantaneous_centre", "omega"): lambda: 0.7, ("instantaneous_centre", "velocity"): lambda: RNG.normal(size=2),
 }
+
+
+def _gravity_with_noise(n):
+    return np.array([0.0, 0.0, 9.81]) + 0.05 * RNG.normal(size=(n, 3))
 
 
 def _su2():

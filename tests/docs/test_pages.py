@@ -64,7 +64,11 @@ def test_coming_from_gimbal_lock_splits_are_the_ones_stated():
     ours, theirs = both("zxz", [0.3, 0.0, 0.7])  # extrinsic: kreisel zeroes the first angle, scipy the third
     np.testing.assert_allclose(ours, [0.0, 0.0, 1.0], atol=1e-15)
     np.testing.assert_allclose(theirs, [1.0, 0.0, 0.0], atol=1e-15)
-    ours, theirs = both("ZXZ", [0.3, np.pi, 0.7])  # cos(pi/2) is not 0 in floating point
-    np.testing.assert_allclose(ours, [0.3, np.pi, 0.7], atol=1e-15)
+    ours, theirs = both("ZXZ", [0.3, np.pi, 0.7])  # cos(pi/2) is 6e-17, singular to rounding: the same split
+    np.testing.assert_allclose(ours, [-0.4, np.pi, 0.0], atol=1e-15)
     np.testing.assert_allclose(theirs, [-0.4, np.pi, 0.0], atol=1e-15)
-    assert kr.Rotation.from_euler("ZXZ", ours).approx_equal(kr.Rotation.from_euler("ZXZ", theirs))
+    ours, theirs = both("ZXZ", [0.3, np.pi - 1e-8, 0.7])  # near lock: kreisel keeps its split, scipy zeroes
+    np.testing.assert_allclose(ours, [0.3, np.pi - 1e-8, 0.7], atol=1e-7)  # the split is known to eps / 1e-8
+    np.testing.assert_allclose(theirs, [-0.4, np.pi - 1e-8, 0.0], atol=1e-7)
+    # scipy moves the rotation by about the distance to lock: its split is the rotation to 1e-8 rad only
+    assert kr.Rotation.from_euler("ZXZ", ours).approx_equal(kr.Rotation.from_euler("ZXZ", theirs), atol=1e-7)

@@ -70,6 +70,8 @@ def test_bad_input():
     with pytest.raises(ValueError, match="mask must be a boolean array"):
         attitude_error(ref, ref, mask=[1, 0, 1])
     with pytest.raises(ValueError, match="no sample to evaluate"):
+        attitude_error(ref, ref, mask=np.zeros(3, bool))
+    with pytest.raises(ValueError, match="q_ref is NaN in every row"):
         attitude_error(ref, np.full((3, 4), np.nan))
     bad = ref.copy()
     bad[0, 0] = np.nan

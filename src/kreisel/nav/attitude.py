@@ -27,10 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_float_array
+from .._validation import as_float_array, positive_float
 from ..so3 import quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
 from . import _attitude_kernels
-from .attitude_error import attitude_error
+from .attitude_error import attitude_error, quaternion_rows
 
 __all__ = ["AttitudeEstimate", "estimate_attitude", "compare_attitude", "KREISEL_DEFAULTS"]
 
@@ -99,7 +99,17 @@ def _samples(x, name, n=None):
         row = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
         raise ValueError(f"{name} must be finite: sample {row} is {x[row].tolist()} "
                          "(remove or interpolate missing samples first)")
+    if x.size and not np.abs(x).max() <= LARGEST_COMPONENT:
+        # the filters square the samples: beyond this their squares are not representable
+        raise ValueError(f"{name} holds a component of size {np.abs(x).max():.3g}, beyond any sensor's reading "
+                         f"(at most {LARGEST_COMPONENT:g} in any unit)")
     return np.ascontiguousarray(x)
+
+
+#: Largest sample component the filters take: its square and sums of squares stay far from overflow.
+LARGEST_COMPONENT = 1e150
+#: Smallest length of the first accelerometer sample that gives the up direction, m/s².
+SMALLEST_FIRST_ACCEL = 1e-6
 
 
 def _parameters(method, params):
@@ -261,20 +271,22 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         raise ValueError(f"frame must be 'ENU' or 'NED', got {frame!r}")
     if offline and method != "kreisel":
         raise ValueError(f"offline=True is available for kreisel's estimator only, not method {method!r}")
-    try:
-        rate = float(rate)
-    except (TypeError, ValueError):
-        raise TypeError(f"rate must be a number (Hz), got {rate!r}") from None
-    if not (np.isfinite(rate) and rate > 0):
-        raise ValueError(f"rate must be a finite positive sampling rate in Hz, got {rate!r}")
+    rate = positive_float(rate, "rate")
     gyr = _samples(gyro, "gyro")
     n = gyr.shape[0]
     if n == 0:
         raise ValueError("gyro must hold at least one sample")
     acc = _samples(accel, "accel", n)
     mag = None if mag is None else _samples(mag, "mag", n)
-    if not np.linalg.norm(acc[0]) > 0:
-        raise ValueError("accel must not be zero in its first sample: the initial inclination needs the up direction")
+    turn = float(np.sqrt(np.max(np.sum(gyr * gyr, axis=1)))) / rate
+    if not turn < np.pi:
+        # beyond half a turn between samples a rate no longer tells which way the body turned (aliasing)
+        raise ValueError(f"rate = {rate:g} Hz is too low for gyro: the body turns up to {turn:.3g} rad between "
+                         "samples, and a sampled rate resolves less than π")
+    if not np.linalg.norm(acc[0]) >= SMALLEST_FIRST_ACCEL:
+        raise ValueError(f"accel's first sample has length {np.linalg.norm(acc[0]):.3g} m/s², below "
+                         f"{SMALLEST_FIRST_ACCEL:g}: the initial inclination needs the up direction, which gravity "
+                         "gives (start the recording at rest)")
     if mag is not None:
         up = acc[0] / np.linalg.norm(acc[0])
         horizontal = np.linalg.norm(mag[0] - (mag[0] @ up) * up)
@@ -332,6 +344,7 @@ def compare_attitude(gyro, accel, mag=None, *, rate, reference, mask=None,
     unknown = [m for m in methods if m not in known]
     if unknown:
         raise ValueError(f"methods must be among {', '.join(map(repr, known))}, got {unknown}")
+    reference = quaternion_rows(reference, "reference")
     results = {}
     for name in methods:
         offline = name == "kreisel offline"

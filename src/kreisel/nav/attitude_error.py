@@ -22,11 +22,24 @@ from .._validation import as_float_array
 __all__ = ["attitude_error", "attitude_error_angles"]
 
 
-def _quaternions(q, name):
+def quaternion_rows(q, name):
+    """``q`` as float rows (n, 4), each divided by its largest component (NaN rows kept as NaN).
+
+    Every error angle is a ratio of products of the two quaternions, so the
+    scale drops out; dividing first keeps the products of huge or tiny
+    quaternions finite and exact to rounding.
+    """
     q = as_float_array(q, name, finite=False)
     if q.ndim != 2 or q.shape[1] != 4:
         raise ValueError(f"{name} must have shape (n, 4) (scalar-first quaternions), got {q.shape}")
-    return q
+    if q.size and np.isnan(q).all():
+        raise ValueError(f"{name} is NaN in every row: there is nothing to compare")
+    if np.isinf(q).any():
+        raise ValueError(f"{name} must not hold infinite values")
+    size = np.abs(q).max(axis=1, keepdims=True)
+    if (size == 0.0).any():
+        raise ValueError(f"{name} must not hold a zero quaternion (row {int(np.flatnonzero(size == 0.0)[0])})")
+    return q / size
 
 
 def attitude_error_angles(q, q_ref):
@@ -36,7 +49,8 @@ def attitude_error_angles(q, q_ref):
     ----------
     q, q_ref : array_like, shape (n, 4)
         Scalar-first quaternions frame ← sensor (z of the frame up, e.g. ENU);
-        neither needs unit norm. NaN rows give NaN errors.
+        neither needs unit norm. Rows of ``q_ref`` that are NaN give NaN errors;
+        ``q`` must not hold NaN.
 
     Returns
     -------
@@ -55,10 +69,12 @@ def attitude_error_angles(q, q_ref):
     >>> np.degrees([total[0], heading[0], incl[0]]).round(12).tolist()
     [3.0, 3.0, 0.0]
     """
-    q = _quaternions(q, "q")
-    q_ref = _quaternions(q_ref, "q_ref")
+    q = quaternion_rows(q, "q")
+    q_ref = quaternion_rows(q_ref, "q_ref")
     if q.shape != q_ref.shape:
         raise ValueError(f"q and q_ref must have the same shape, got {q.shape} and {q_ref.shape}")
+    if np.isnan(q).any():
+        raise ValueError("q must not hold NaN (only q_ref may, where the reference lost track)")
     # the unit check is done through the norms below: scale drops out of every ratio
     a0, a1, a2, a3 = q.T
     b0, b1, b2, b3 = q_ref.T
@@ -112,8 +128,8 @@ def attitude_error(q, q_ref, mask=None):
     >>> [round(e, 12) for e in attitude_error(est, ref)]
     [2.0, 0.0, 2.0]
     """
-    q = _quaternions(q, "q")
-    q_ref = _quaternions(q_ref, "q_ref")
+    q = quaternion_rows(q, "q")
+    q_ref = quaternion_rows(q_ref, "q_ref")
     if q.shape != q_ref.shape:
         raise ValueError(f"q and q_ref must have the same shape, got {q.shape} and {q_ref.shape}")
     keep = ~np.isnan(q_ref).any(axis=1)

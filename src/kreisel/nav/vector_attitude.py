@@ -65,7 +65,9 @@ def attitude_from_vectors(accel, mag, *, method="triad", dip=None, weights=(1.0,
         raise ValueError(f"method must be 'triad' or 'quest', got {method!r}")
     acc = as_float_array(accel, "accel", tail=(3,))
     field = as_float_array(mag, "mag", tail=(3,))
-    acc, field = np.broadcast_arrays(acc, field)
+    # only directions matter: dividing each sample by its largest component keeps the norms finite
+    acc, field = (x / np.maximum(np.abs(x).max(axis=-1, keepdims=True), np.finfo(float).tiny)
+                  for x in np.broadcast_arrays(acc, field))
     acc_norm = np.linalg.norm(acc, axis=-1, keepdims=True)
     if not (acc_norm > 0).all():
         raise ValueError("accel must not have zero-length samples: up is undefined")

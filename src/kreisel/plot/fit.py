@@ -70,7 +70,7 @@ def gyro_recording(recording, window=None, title=None):
     >>> import numpy as np
     >>> from kreisel.io.gyro import GyroRecording
     >>> t = np.linspace(0.0, 2.0, 201)
-    >>> rec = GyroRecording(t, np.column_stack([np.sin(t), np.cos(t), 0 * t]), None, "spin.csv")
+    >>> rec = GyroRecording(t, np.column_stack([np.sin(t), np.cos(t), 0 * t]), source="spin.csv")
     >>> fig = gyro_recording(rec, window=(0.5, None))
     >>> fig.axes[0].get_ylabel(), fig.axes[0].get_title()
     ('ω (rad/s)', 'spin.csv: 201 samples; a fit uses t = 0.5 … 2 s (shaded)')
