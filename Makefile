@@ -46,8 +46,21 @@ docs/node_modules/.installed: docs/package.json docs/package-lock.json
 	cd docs && npm ci --no-audit --no-fund
 	touch $@
 
+# English (the source) and its Chinese translation (docs/locale), side by side; the second build finds the gallery
+# already run by the first (sphinx-gallery skips examples whose source is unchanged)
 docs: $(VENV)/.installed-docs docs/node_modules/.installed
-	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going docs docs/_build/html
+	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going docs docs/_build/html/en
+	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going -D language=zh_CN docs docs/_build/html/zh_CN
+
+# the pages translated so far (tests/docs/test_translations.py checks that their catalogs are complete)
+TRANSLATED := index getting_started theory/index theory/1_configuration theory/2_rotation_group theory/3_angular_velocity theory/4_fixed_point theory/5_euler_top theory/6_lagrange_top theory/7_kovalevskaya theory/8_noninertial theory/appendix
+
+# after editing a translated English page: update its catalog, then translate what became empty or fuzzy
+.PHONY: docs-po
+docs-po: $(VENV)/.installed-docs docs/node_modules/.installed
+	rm -rf docs/_build/gettext
+	MPLBACKEND=Agg $(PY) -m sphinx -b gettext -q docs docs/_build/gettext $(TRANSLATED:%=docs/%.rst)
+	$(PY) -m sphinx_intl update -p docs/_build/gettext -d docs/locale -l zh_CN -w 0
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info .numba_cache

@@ -38,7 +38,14 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "theory_citations",
     "api_aliases",
+    "language_switch",
 ]
+
+# Translations (issue 36): English is the source; docs/locale/<language>/LC_MESSAGES holds one catalog per page
+# (`make docs-po` updates them from the English text). `make docs` builds each language with -D language=...
+locale_dirs = ["locale"]
+gettext_compact = False
+gettext_uuid = False
 
 # Private base classes (kreisel.*._module.Name) are not documented by design; the standard library
 # and scipy are not linked because the docs build without network access (no intersphinx).
@@ -57,7 +64,8 @@ exclude_patterns = ["_build", "_generated", "node_modules", "**/sg_execution_tim
                     "tour_notebooks/*.codeobj.json"]
 html_theme = "pydata_sphinx_theme"
 html_title = f"kreisel {release}"
-html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
+html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2,
+                      "navbar_end": ["language-switch", "theme-switcher", "navbar-icon-links"]}
 html_last_updated_fmt = None
 
 autosummary_generate = True

@@ -36,6 +36,24 @@ def _documented_module(domain, target):
     return None
 
 
+def _is_top_level_object(documented, target):
+    """Whether the documented ``kreisel.<sub>.<target>`` is the object that ``kreisel.<target>`` names."""
+    import importlib
+
+    import kreisel
+
+    package, _, path = documented.partition(".")[2].partition(".")
+    try:
+        alias, obj = kreisel, importlib.import_module(f"kreisel.{package}")
+        for part in target.split("."):
+            alias = getattr(alias, part)
+        for part in path.split("."):
+            obj = getattr(obj, part)
+    except (AttributeError, ImportError):
+        return False
+    return obj is alias
+
+
 def _resolve(app, env, node, contnode):
     if node.get("refdomain") != "py":
         return None
@@ -53,6 +71,9 @@ def _resolve(app, env, node, contnode):
         # a top-level alias: the same name in the subpackage that documents it
         exact = [name for name in objects if name.count(".") == target.count(".") + 2
                  and name.startswith("kreisel.") and name.split(".", 2)[2] == target]
+        if len(exact) > 1:
+            # kreisel.Rotation is kreisel.so3.Rotation, not the scipy drop-in's class of the same name
+            exact = [name for name in exact if _is_top_level_object(name, target)]
         if len(exact) == 1:
             entry = objects[exact[0]]
             return make_refnode(app.builder, node["refdoc"], entry.docname, entry.node_id, contnode, exact[0])

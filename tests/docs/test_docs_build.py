@@ -74,12 +74,12 @@ def built():
                              "--assume-old=docs/node_modules/.installed"], cwd=clone, env=env, capture_output=True,
                             text=True, timeout=3000)
     assert result.returncode == 0, (result.stdout[-3000:], result.stderr[-6000:])
-    return clone / "docs" / "_build" / "html"
+    return clone / "docs" / "_build" / "html" / "en"
 
 
 def _current_pages(built):
     """Pages of the current sources (the output directory keeps pages of sources since removed)."""
-    docs = built.parents[1]
+    docs = built.parents[2]
     for page in built.rglob("*.html"):
         relative = page.relative_to(built)
         if (docs / relative).with_suffix(".rst").exists() or relative.parts[0] == "_modules" or \
@@ -125,6 +125,21 @@ def test_notebook_module_is_in_the_api_reference(built):
 
 def test_gallery_is_not_empty():
     assert len(SCRIPTS) >= 10
+
+
+def test_chinese_pages_are_translated_and_every_page_links_to_its_other_language(built):
+    chinese = built.parent / "zh_CN"
+    english = (built / "theory" / "1_configuration.html").read_text(encoding="utf-8")
+    page = (chinese / "theory" / "1_configuration.html").read_text(encoding="utf-8")
+    assert "刚体运动的描述" in page and "Describing the motion of a rigid body" not in page
+    assert "十分钟 API 导览" in (chinese / "getting_started.html").read_text(encoding="utf-8")
+    assert 'href="../../zh_CN/theory/1_configuration.html"' in english
+    assert 'href="../../en/theory/1_configuration.html"' in page
+    for root, other in ((built, "zh_CN"), (chinese, "en")):
+        for html in _current_pages(root):
+            relative = html.relative_to(root)
+            assert f'href="{"../" * (len(relative.parts) - 1)}../{other}/{relative.as_posix()}"' in \
+                html.read_text(encoding="utf-8"), relative
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)

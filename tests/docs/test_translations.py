@@ -1,0 +1,95 @@
+"""The Chinese catalogs (docs/locale/zh_CN) keep up with the English pages they translate and use the glossary.
+
+A page listed in the Makefile's ``TRANSLATED`` has every entry of its catalog translated and none fuzzy, so that an
+edit of the English page without its translation fails here (``make docs-po`` then marks what changed). Wherever an
+English text contains a term of docs/locale/zh_CN/glossary.toml, its translation contains the chapter's Chinese term.
+"""
+
+import re
+import tomllib
+
+import polib
+import pytest
+
+from .conftest import DOCS, ROOT
+
+LOCALE = DOCS / "locale" / "zh_CN"
+
+
+def _translated_pages():
+    line = next(line for line in (ROOT / "Makefile").read_text(encoding="utf-8").splitlines()
+                if line.startswith("TRANSLATED :="))
+    return line.split(":=", 1)[1].split()
+
+
+PAGES = _translated_pages()
+GLOSSARY = tomllib.loads((LOCALE / "glossary.toml").read_text(encoding="utf-8"))["terms"]
+
+#: Code, roles and links: their text is not prose, so it neither needs nor gets a glossary term.
+_MARKUP = re.compile(r"``.+?``|:[a-z:]+:`[^`]*`|`[^`]*`_")
+
+
+def _catalog(page):
+    return polib.pofile(str(LOCALE / "LC_MESSAGES" / f"{page}.po"))
+
+
+def _prose(text):
+    return re.sub(r"\s+", " ", _MARKUP.sub(" ", text)).lower()
+
+
+def _uses(prose, english):
+    """Whether ``prose`` contains the term ``english`` as words ("rigid-body" counts, "numpy-quaternion" not)."""
+    words = r"[-\s]+".join(map(re.escape, english.lower().split()))
+    return re.search(rf"(?<![\w-]){words}(?![\w-])", prose) is not None
+
+
+def test_the_translated_pages_include_getting_started_and_exist():
+    assert "getting_started" in PAGES
+    for page in PAGES:
+        assert (DOCS / f"{page}.rst").is_file(), page
+        assert (LOCALE / "LC_MESSAGES" / f"{page}.po").is_file(), page
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_every_entry_is_translated_and_none_is_fuzzy(page):
+    catalog = _catalog(page)
+    assert [e.msgid for e in catalog.untranslated_entries()] == []
+    assert [e.msgid for e in catalog.fuzzy_entries()] == []
+    assert [e.msgid for e in catalog.obsolete_entries()] == []
+
+
+def _missing_terms(entry):
+    if entry.msgstr == entry.msgid and "\\" in entry.msgid:
+        return []  # a display equation, kept verbatim (its \text{...} included)
+    prose = _prose(entry.msgid)
+    return [english for english, chinese in GLOSSARY.items() if _uses(prose, english) and chinese not in entry.msgstr]
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_the_glossary_terms_are_used(page):
+    missing = [(terms, entry.msgid[:60]) for entry in _catalog(page).translated_entries()
+               if (terms := _missing_terms(entry))]
+    assert missing == []
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_math_code_and_references_are_unchanged(page):
+    for entry in _catalog(page).translated_entries():
+        assert _references(entry.msgstr) == _references(entry.msgid), entry.msgid[:60]
+
+
+def _references(text):
+    """Literals, roles' targets and math of ``text``: what a translation keeps (a role's title may be translated)."""
+    kept = [re.sub(r"^(:[a-z:]+:`)[^`<]*<([^>]*)>`$", r"\1\2`", token) for token in _MARKUP.findall(text)]
+    return sorted(kept)
+
+
+def test_the_glossary_has_one_chinese_term_per_english_term():
+    assert len(GLOSSARY) >= 20
+    assert all(re.search(r"[\u4e00-\u9fff]", chinese) for chinese in GLOSSARY.values())
+
+
+def test_the_glossary_test_would_catch_a_missing_term():
+    entry = polib.POEntry(msgid="The precession of a sleeping top, in rigid-body terms (numpy-quaternion)",
+                          msgstr="用刚体的语言说，睡陀螺的转动（numpy-quaternion）")
+    assert _missing_terms(entry) == ["precession"]
