@@ -349,7 +349,7 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
         (``{"gyro": "deg/s", "accel": "g", "mag": "nT", "time": "ms"}``); they
         override what the header says only where it says nothing (a header
         that states another unit is an error). Without a unit stated anywhere
-        the gyro is read in rad/s, and rates beyond :data:`MAX_RATE` (40 rad/s,
+        the gyro is read in rad/s, and rates beyond ``MAX_RATE`` (40 rad/s,
         where phone gyros have long saturated) are refused, naming the unit they
         look like; a stated unit is trusted.
     columns : dict, optional
