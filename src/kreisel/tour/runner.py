@@ -12,7 +12,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._fileio import atomic_output
-from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, phone_lab, rotations
+from . import earth_frame, free_top, heavy_top, imu_attitude, integrators, kinematics, navigation, phone_lab, rotations
 from .report import Section, render_html
 
 __all__ = ["run_tour", "SECTIONS"]
@@ -22,6 +22,7 @@ SECTIONS = (
     *rotations.SECTIONS,
     *kinematics.SECTIONS,
     *navigation.SECTIONS,
+    *imu_attitude.SECTIONS,
     free_top.inertia_ellipsoid,
     *integrators.SECTIONS,
     free_top.tennis_racket,
