@@ -98,6 +98,8 @@ def _bundle_mathjax():
 
 _bundle_mathjax()
 html_static_path = ["_static", "_generated/static"]
+# the font stack of the Chinese pages (it applies to <html lang="zh-CN"> only)
+html_css_files = ["language.css"]
 mathjax_path = "mathjax/tex-chtml.js"
 
 sphinx_gallery_conf = {
