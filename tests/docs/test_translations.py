@@ -17,9 +17,19 @@ LOCALE = DOCS / "locale" / "zh_CN"
 
 
 def _translated_pages():
-    line = next(line for line in (ROOT / "Makefile").read_text(encoding="utf-8").splitlines()
-                if line.startswith("TRANSLATED :="))
-    return line.split(":=", 1)[1].split()
+    """The Makefile's ``TRANSLATED := ...`` and ``TRANSLATED += ...`` lines, in order."""
+    lines = [re.split(r"[:+]=", line, maxsplit=1)[1] for line in (ROOT / "Makefile").read_text(encoding="utf-8").splitlines()
+             if re.match(r"TRANSLATED [:+]=", line)]
+    return " ".join(lines).split()
+
+
+def _source(page):
+    """The English source of ``page``: a page of docs/, or for a gallery page (written by sphinx-gallery at build
+    time) its script in examples/ or the gallery's README."""
+    if page.startswith("auto_examples/"):
+        name = page.split("/", 1)[1]
+        return ROOT / "examples" / ("README.rst" if name == "index" else f"{name}.py")
+    return DOCS / f"{page}.rst"
 
 
 PAGES = _translated_pages()
@@ -46,7 +56,7 @@ def _uses(prose, english):
 def test_the_translated_pages_include_getting_started_and_exist():
     assert "getting_started" in PAGES
     for page in PAGES:
-        assert (DOCS / f"{page}.rst").is_file(), page
+        assert _source(page).is_file(), page
         assert (LOCALE / "LC_MESSAGES" / f"{page}.po").is_file(), page
 
 
