@@ -55,7 +55,7 @@ docs: $(VENV)/.installed-docs docs/node_modules/.installed
 # the pages translated so far (tests/docs/test_translations.py checks that their catalogs are complete);
 # auto_examples/* are the gallery's pages, which sphinx-gallery writes from examples/ before Sphinx reads them
 TRANSLATED := index getting_started theory/index theory/1_configuration theory/2_rotation_group theory/3_angular_velocity theory/4_fixed_point theory/5_euler_top theory/6_lagrange_top theory/7_kovalevskaya theory/8_noninertial theory/appendix
-TRANSLATED += user_guide/03b_attitude_estimation user_guide/05b_phone_laboratory
+TRANSLATED += user_guide/03b_attitude_estimation user_guide/05b_phone_laboratory coming_from
 
 # after editing a translated English page: update its catalog, then translate what became empty or fuzzy
 .PHONY: docs-po
