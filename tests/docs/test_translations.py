@@ -89,8 +89,8 @@ def test_math_code_and_references_are_unchanged(page):
 
 
 def _references(text):
-    """Literals, roles' targets and math of ``text``: what a translation keeps (a role's title may be translated)."""
-    kept = [re.sub(r"^(:[a-z:]+:`)[^`<]*<([^>]*)>`$", r"\1\2`", token) for token in _MARKUP.findall(text)]
+    """Literals, roles' and links' targets and math of ``text``: what a translation keeps (a title may be translated)."""
+    kept = [re.sub(r"^(:[a-z:]+:)?`[^`<]*<([^>]*)>`(_?)$", r"\1`\2`\3", token) for token in _MARKUP.findall(text)]
     return sorted(kept)
 
 
@@ -103,3 +103,16 @@ def test_the_glossary_test_would_catch_a_missing_term():
     entry = polib.POEntry(msgid="The precession of a sleeping top, in rigid-body terms (numpy-quaternion)",
                           msgstr="用刚体的语言说，睡陀螺的转动（numpy-quaternion）")
     assert _missing_terms(entry) == ["precession"]
+
+
+def test_the_user_guide_tutorials_the_scipy_page_and_the_whole_gallery_are_translated():
+    gallery = {f"auto_examples/{script.stem}" for script in (ROOT / "examples").glob("plot_*.py")}
+    required = {"user_guide/05b_phone_laboratory", "user_guide/03b_attitude_estimation", "coming_from",
+                "auto_examples/index"} | gallery
+    assert len(gallery) >= 10 and required - set(PAGES) == set()
+
+
+@pytest.mark.parametrize("page", [page for page in PAGES if page.startswith("auto_examples/")])
+def test_a_gallery_catalog_holds_no_running_time(page):
+    # sphinx-gallery's "Total running time of the script" changes with every run (docs/_ext/gallery_translation.py)
+    assert [e.msgid for e in _catalog(page) if "running time" in e.msgid.lower()] == []
