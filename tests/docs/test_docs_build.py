@@ -156,6 +156,20 @@ def test_tutorials_the_scipy_page_and_the_gallery_are_in_chinese(built):
     assert "Tennis-racket theorem" not in index
 
 
+def test_no_chinese_page_shows_markup_that_was_not_parsed(built):
+    # reStructuredText takes ``x`` or :role:`x` for markup only next to a space or punctuation, so a translation
+    # that writes it against a Chinese character shows the backticks instead (without a warning)
+    from .test_translations import PAGES
+
+    raw = re.compile(r"``|:(?:func|class|meth|mod|math|ref|doc|data|eq|download|attr):`")
+    shown = []
+    for page in PAGES:
+        html = (built.parent / "zh_CN" / f"{page}.html").read_text(encoding="utf-8")
+        text = re.sub(r"<[^>]+>", "", re.sub(r"<(pre|script)\b.*?</\1>", "", html, flags=re.S))
+        shown += [f"{page}: {text[max(m.start() - 30, 0):m.end() + 30]!r}" for m in raw.finditer(text)]
+    assert shown == []
+
+
 @pytest.mark.parametrize("page", ["theory/5_euler_top.html", "getting_started.html",
                                   "user_guide/05b_phone_laboratory.html", "auto_examples/index.html"])
 def test_chromium_draws_every_chinese_character_with_a_cjk_font(built, chromium, glyphs, page):
