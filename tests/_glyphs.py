@@ -19,8 +19,9 @@ CHROMIUM = pathlib.Path("/usr/bin/chromium")
 ARGS = ["--no-sandbox", "--headless=new", "--disable-gpu", "--disable-background-networking",
         "--disable-component-update", "--disable-sync", "--no-first-run"]
 
-#: CJK ideographs (with extension A and the compatibility block), CJK punctuation and full-width forms
-CJK = r"[\u3000-\u303f\u3400-\u4dbf\u4e00-\u9fff\uf900-\ufaff\uff00-\uffef]"
+#: CJK ideographs (with extension A and the compatibility block), CJK punctuation and full-width forms; not the
+#: ideographic space U+3000, which every font draws blank
+CJK = r"[\u3001-\u303f\u3400-\u4dbf\u4e00-\u9fff\uf900-\ufaff\uff01-\uffef]"
 
 _MEASURE = r"""
 async (cjk) => {
