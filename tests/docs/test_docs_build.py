@@ -150,10 +150,12 @@ def test_tutorials_the_scipy_page_and_the_gallery_are_in_chinese(built):
              "auto_examples/plot_06_tennis_racket.html": "网球拍定理（理论 §5.4）"}
     for page, title in pages.items():
         assert title in (chinese / page).read_text(encoding="utf-8"), page
-    # the thumbnails' titles are raw HTML that sphinx-gallery writes; docs/_ext/gallery_translation.py translates them
+    # the thumbnails' titles and tooltips are raw HTML that sphinx-gallery writes; docs/_ext/gallery_translation.py
+    # translates them
     index = (chinese / "auto_examples" / "index.html").read_text(encoding="utf-8")
     assert '<div class="sphx-glr-thumbnail-title">网球拍定理（理论 §5.4）</div>' in index
-    assert "Tennis-racket theorem" not in index
+    assert 'tooltip="自由（欧拉）陀螺 I = (1, 2, 3) 在每个主轴附近旋转。' in index
+    assert "Tennis-racket theorem" not in index and "The free (Euler) top" not in index
 
 
 def test_no_chinese_page_shows_markup_that_was_not_parsed(built):
