@@ -40,6 +40,7 @@ extensions = [
     "api_aliases",
     "language_switch",
     "gallery_translation",
+    "translation_check",
 ]
 
 # Translations (issue 36): English is the source; docs/locale/<language>/LC_MESSAGES holds one catalog per page
