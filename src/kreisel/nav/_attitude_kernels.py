@@ -104,7 +104,7 @@ def triad_start(acc, mag, use_mag):
 
 
 @cached
-def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_out, state_out):
+def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_out, cov_out, end):
     """kreisel's estimator: an error-state Kalman filter with the attitude error in the earth frame.
 
     State error x = (δ, β): q_est = exp(δ) ⊗ q_true (δ in ENU) and
@@ -114,10 +114,13 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     measures β: every measurement picks one state, so each update is a
     scalar one. The error propagates as δ' = δ − R β dt.
 
-    ``state0`` (45,) holds a start state (q 4, b 3, P 36 row by row, the
-    trusted field's norm and dip, norm −1 for none), or NaN first for a
-    start from the first samples (TRIAD, zero bias, no trusted field);
-    ``state_out`` receives the final state in the same layout.
+    ``start`` (43,) holds a start state (q 4, b 3, the 6 × 6 covariance row
+    by row), or NaN first for a start from the first samples (TRIAD, zero
+    bias); either way no field is trusted yet. ``end`` receives the final
+    state in the same layout. ``mag_clean`` (n,) bool, when not empty, decides for every sample
+    whether its field is the earth's (a decision taken with hindsight by the
+    offline smoother); empty, the filter decides causally from the field's
+    norm and dip.
     """
     n = gyr.shape[0]
     (sg, sb, sa, kacc, sm, mtol, diptol, rgyr, racc, rtime, srest, rtau, sb0, grav, mtau, mnew) = (
@@ -127,7 +130,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     dx = np.zeros(6)
     kbuf = np.empty(6)
     rowbuf = np.empty(6)
-    if math.isnan(state0[0]):
+    if math.isnan(start[0]):
         q0, q1, q2, q3 = triad_start(acc[0], mag[0], use_mag)
         bx = by = bz = 0.0
         for a in range(3):
@@ -136,11 +139,11 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
         for a in range(3, 6):
             P[a, a] = sb0 * sb0
     else:
-        q0, q1, q2, q3 = state0[0], state0[1], state0[2], state0[3]
-        bx, by, bz = state0[4], state0[5], state0[6]
+        q0, q1, q2, q3 = start[0], start[1], start[2], start[3]
+        bx, by, bz = start[4], start[5], start[6]
         for a in range(6):
             for b in range(6):
-                P[a, b] = state0[7 + 6 * a + b]
+                P[a, b] = start[7 + 6 * a + b]
     # low-passed gyro and accelerometer for rest detection
     lgx, lgy, lgz = gyr[0, 0], gyr[0, 1], gyr[0, 2]
     lax, lay, laz = acc[0, 0], acc[0, 1], acc[0, 2]
@@ -150,8 +153,6 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     ref_norm = -1.0
     ref_dip = 0.0
     trusted = False
-    if not math.isnan(state0[0]) and state0[43] > 0.0:
-        ref_norm, ref_dip, trusted = state0[43], state0[44], True
     cand_norm = ref_norm
     cand_dip = ref_dip
     cand_for = 0.0
@@ -164,6 +165,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     qb = sb * sb * dt
     G = np.empty((3, 3))
     GP = np.empty((3, 3))
+    decided = mag_clean.shape[0] > 0
     for j in range(n):
         gx, gy, gz = gyr[j, 0], gyr[j, 1], gyr[j, 2]
         # --- propagation
@@ -266,8 +268,10 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
                 if ref_norm < 0.0:
                     ref_norm, ref_dip = fn, dip
                     cand_norm, cand_dip = fn, dip
-                good = trusted and abs(fn - ref_norm) < mtol * ref_norm and abs(dip - ref_dip) < diptol
-                if good:
+                if decided:
+                    if mag_clean[j]:
+                        _scalar_update(P, dx, kbuf, rowbuf, 2, sm * sm, math.atan2(-fx, fy))
+                elif trusted and abs(fn - ref_norm) < mtol * ref_norm and abs(dip - ref_dip) < diptol:
                     ref_norm += alpha_ref * (fn - ref_norm)
                     ref_dip += alpha_ref * (dip - ref_dip)
                     cand_norm, cand_dip = ref_norm, ref_dip
@@ -298,13 +302,11 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
         for a in range(3):
             for b in range(3):
                 cov_out[j, a, b] = P[a, b]
-    state_out[0], state_out[1], state_out[2], state_out[3] = q0, q1, q2, q3
-    state_out[4], state_out[5], state_out[6] = bx, by, bz
+    end[0], end[1], end[2], end[3] = q0, q1, q2, q3
+    end[4], end[5], end[6] = bx, by, bz
     for a in range(6):
         for b in range(6):
-            state_out[7 + 6 * a + b] = P[a, b]
-    state_out[43] = ref_norm if trusted else -1.0
-    state_out[44] = ref_dip
+            end[7 + 6 * a + b] = P[a, b]
 
 
 @inlined

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array, positive_float
-from ..so3 import quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
+from ..so3 import quat_apply, quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
 from . import _attitude_kernels
 from .attitude_error import attitude_error, quaternion_rows
 
@@ -125,51 +125,101 @@ def _parameters(method, params):
     return merged
 
 
-def _kreisel_run(gyr, acc, mag, dt, p, state0):
+def _kreisel_run(gyr, acc, mag, dt, p, mag_clean=None, start=None):
     n = gyr.shape[0]
     q = np.empty((n, 4))
     bias = np.empty((n, 3))
     cov = np.empty((n, 3, 3))
-    state = np.empty(45)
+    end = np.empty(43)
+    clean = np.zeros(0, dtype=np.bool_) if mag_clean is None else np.ascontiguousarray(mag_clean)
     # without a field the accelerometer stands in for the unread magnetometer argument
-    _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, dt, p, state0, q, bias,
-                                     cov, state)
-    return q, bias, cov, state
+    _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, clean, dt, p,
+                                     np.full(43, np.nan) if start is None else start, q, bias, cov, end)
+    return q, bias, cov, end
+
+
+def _kreisel_backward(gyr, acc, mag, dt, p, end, mag_clean=None):
+    """The filter run backward in time from the forward pass's end state ``end``.
+
+    The samples are reversed, the rates negated (and with them the bias and
+    its correlations) and shifted by one, since the step into sample i uses
+    the rate of sample i forward and so that of sample i + 1 backward.
+    Starting from the forward end state keeps the backward pass on track
+    where the recording ends in motion (a start from the last samples alone,
+    with the bias unknown, can diverge there).
+    """
+    start = end.copy()
+    start[4:7] *= -1.0
+    P = start[7:].reshape(6, 6)
+    P[:3, 3:] *= -1.0
+    P[3:, :3] *= -1.0
+    rev = slice(None, None, -1)
+    q, bias, cov, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
+                                   None if mag is None else np.ascontiguousarray(mag[rev]), dt, p,
+                                   None if mag_clean is None else mag_clean[rev], start)
+    return q[rev], -bias[rev], cov[rev]
 
 
 def _kreisel(gyr, acc, mag, dt, params, offline):
     p = np.array([params[name] for name in _attitude_kernels.KREISEL_PARAMETERS])
-    q, bias, cov, state = _kreisel_run(gyr, acc, mag, dt, p, np.full(45, np.nan))
+    q, bias, cov, end = _kreisel_run(gyr, acc, mag, dt, p)
     if not offline:
         return q, bias, cov
-    # backward in time from the forward pass's end state: the samples reversed, the rates negated (and
-    # with them the bias and its correlations) and shifted by one, since the step into sample i uses the
-    # rate of sample i forward and so that of sample i + 1 backward
-    back0 = state.copy()
-    back0[4:7] *= -1.0
-    P = back0[7:43].reshape(6, 6)
-    P[:3, 3:] *= -1.0
-    P[3:, :3] *= -1.0
-    rev = slice(None, None, -1)
-    qb, bb, cb, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
-                                 None if mag is None else np.ascontiguousarray(mag[rev]), dt, p, back0)
-    qb, bb, cb = qb[rev], -bb[rev], cb[rev]
-    fused = np.linalg.inv(np.linalg.inv(cov) + np.linalg.inv(cb))
-    # the heading is the forward pass's (see _fuse), and so are its variance and correlations
-    fused[:, 2, :] = cov[:, 2, :]
-    fused[:, :, 2] = cov[:, :, 2]
-    return _fuse(q, cov, qb, cb), 0.5 * (bias + bb), fused
+    backward = _kreisel_backward(gyr, acc, mag, dt, p, end)
+    if mag is None:
+        return _smoothed((q, bias, cov), backward, heading=False)
+    # each pass alone judges the field by what it has seen and may lock onto a magnet for a while; the
+    # whole recording judges it better: both passes again, told which samples hold the earth's field
+    clean = _clean_field(_smoothed((q, bias, cov), backward, heading=False)[0], mag, dt, params)
+    q, bias, cov, end = _kreisel_run(gyr, acc, mag, dt, p, clean)
+    return _smoothed((q, bias, cov), _kreisel_backward(gyr, acc, mag, dt, p, end, clean), heading=True)
 
 
-def _fuse(qf, pf, qb, pb):
-    """exp(W δ) ⊗ q_f, δ = log(q_b ⊗ q_f⁻¹) in the earth frame, W = P_f (P_f + P_b)⁻¹, tilt part only."""
-    delta = quat_to_rotvec(quat_multiply(qb, quat_conjugate(qf)))
-    weight = np.linalg.solve(np.swapaxes(pf + pb, -1, -2), np.swapaxes(pf, -1, -2))
-    step = np.einsum("nji,nj->ni", weight, delta)
-    # the heading stays the forward pass's: the backward pass may trust a field that the forward pass
-    # rejected (on the benchmark's magnet trials fusing its heading made the mean error 4x worse)
-    step[:, 2] = 0.0
-    return quat_multiply(rotvec_to_quat(step), qf)
+def _clean_field(q, mag, dt, params):
+    """Samples whose field is the earth's, judged with the whole recording's hindsight.
+
+    With the smoothed tilt, each sample's field gives a norm and a dip; the
+    earth's are their medians over the recording (right as long as the field
+    is undisturbed for more than half of it), and a sample is clean while
+    both stay within the causal filter's tolerances for at least
+    ``mag_new_time`` (shorter runs are a disturbed field passing by chance).
+    """
+    f = quat_apply(q, mag)
+    horizontal = np.hypot(f[:, 0], f[:, 1])
+    norm = np.hypot(horizontal, f[:, 2])
+    dip = np.arctan2(-f[:, 2], horizontal)
+    ref_norm, ref_dip = np.median(norm), np.median(dip)
+    clean = (np.abs(norm - ref_norm) < params["mag_norm_tol"] * ref_norm) & (np.abs(dip - ref_dip) < params["mag_dip_tol"])
+    bounds = np.concatenate([[0], np.flatnonzero(np.diff(clean.astype(np.int8))) + 1, [clean.size]])
+    lengths = np.diff(bounds)
+    return np.repeat(clean[bounds[:-1]] & (lengths * dt >= params["mag_new_time"]), lengths)
+
+
+def _smoothed(forward, backward, heading):
+    """The two passes fused by their covariances (two-filter smoother): attitude, bias, covariance.
+
+    The attitude is exp(W δ) ⊗ q_f with W = P_f (P_f + P_b)⁻¹ and δ the
+    error q_b ⊗ q_f⁻¹ in the earth frame, split as BROAD's metric splits it
+    into a tilt (δx, δy) and a turn about the vertical δz. Without
+    ``heading`` (no magnetometer: each pass's heading starts at the
+    sensor's own, so they differ by an arbitrary turn) only the tilt is
+    fused and the heading, its variance and correlations stay forward's.
+    """
+    qf, bf, pf = forward
+    qb, bb, pb = backward
+    e = quat_multiply(qb, quat_conjugate(qf))
+    turn = 2.0 * np.arctan2(e[:, 3], e[:, 0])
+    vertical = np.zeros((turn.size, 4))
+    vertical[:, 0], vertical[:, 3] = np.cos(0.5 * turn), -np.sin(0.5 * turn)
+    delta = quat_to_rotvec(quat_multiply(e, vertical))
+    delta[:, 2] = np.angle(np.exp(1j * turn))
+    k = 3 if heading else 2
+    weight = np.linalg.solve(np.swapaxes(pf + pb, -1, -2)[:, :k, :k], np.swapaxes(pf, -1, -2)[:, :k, :k])
+    step = np.zeros_like(delta)
+    step[:, :k] = np.einsum("nji,nj->ni", weight, delta[:, :k])
+    cov = pf.copy()
+    cov[:, :k, :k] = np.linalg.inv(np.linalg.inv(pf[:, :k, :k]) + np.linalg.inv(pb[:, :k, :k]))
+    return quat_multiply(rotvec_to_quat(step), qf), 0.5 * (bf + bb), cov
 
 
 def _published(method, gyr, acc, mag, dt, params):
