@@ -104,7 +104,7 @@ def triad_start(acc, mag, use_mag):
 
 
 @cached
-def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_out, cov_out, end):
+def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_out, cov_out, bias_var_out, end):
     """kreisel's estimator: an error-state Kalman filter with the attitude error in the earth frame.
 
     State error x = (δ, β): q_est = exp(δ) ⊗ q_true (δ in ENU) and
@@ -117,7 +117,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_
     ``start`` (43,) holds a start state (q 4, b 3, the 6 × 6 covariance row
     by row), or NaN first for a start from the first samples (TRIAD, zero
     bias); either way no field is trusted yet. ``end`` receives the final
-    state in the same layout. ``mag_clean`` (n,) bool, when not empty, decides for every sample
+    state in the same layout, ``bias_var_out`` the bias variances. ``mag_clean`` (n,) bool, when not empty, decides for every sample
     whether its field is the earth's (a decision taken with hindsight by the
     offline smoother); empty, the filter decides causally from the field's
     norm and dip.
@@ -302,6 +302,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_
         for a in range(3):
             for b in range(3):
                 cov_out[j, a, b] = P[a, b]
+            bias_var_out[j, a] = P[3 + a, 3 + a]
     end[0], end[1], end[2], end[3] = q0, q1, q2, q3
     end[4], end[5], end[6] = bx, by, bz
     for a in range(6):

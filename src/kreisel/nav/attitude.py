@@ -130,12 +130,14 @@ def _kreisel_run(gyr, acc, mag, dt, p, mag_clean=None, start=None):
     q = np.empty((n, 4))
     bias = np.empty((n, 3))
     cov = np.empty((n, 3, 3))
+    bias_var = np.empty((n, 3))
     end = np.empty(43)
     clean = np.zeros(0, dtype=np.bool_) if mag_clean is None else np.ascontiguousarray(mag_clean)
     # without a field the accelerometer stands in for the unread magnetometer argument
     _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, clean, dt, p,
-                                     np.full(43, np.nan) if start is None else start, q, bias, cov, end)
-    return q, bias, cov, end
+                                     np.full(43, np.nan) if start is None else start, q, bias, cov, bias_var,
+                                     end)
+    return q, bias, cov, bias_var, end
 
 
 def _kreisel_backward(gyr, acc, mag, dt, p, end, mag_clean=None):
@@ -154,25 +156,25 @@ def _kreisel_backward(gyr, acc, mag, dt, p, end, mag_clean=None):
     P[:3, 3:] *= -1.0
     P[3:, :3] *= -1.0
     rev = slice(None, None, -1)
-    q, bias, cov, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
-                                   None if mag is None else np.ascontiguousarray(mag[rev]), dt, p,
-                                   None if mag_clean is None else mag_clean[rev], start)
-    return q[rev], -bias[rev], cov[rev]
+    q, bias, cov, bias_var, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
+                                             None if mag is None else np.ascontiguousarray(mag[rev]), dt, p,
+                                             None if mag_clean is None else mag_clean[rev], start)
+    return q[rev], -bias[rev], cov[rev], bias_var[rev]
 
 
 def _kreisel(gyr, acc, mag, dt, params, offline):
     p = np.array([params[name] for name in _attitude_kernels.KREISEL_PARAMETERS])
-    q, bias, cov, end = _kreisel_run(gyr, acc, mag, dt, p)
+    *forward, end = _kreisel_run(gyr, acc, mag, dt, p)
     if not offline:
-        return q, bias, cov
+        return forward[:3]
     backward = _kreisel_backward(gyr, acc, mag, dt, p, end)
     if mag is None:
-        return _smoothed((q, bias, cov), backward, heading=False)
+        return _smoothed(forward, backward, heading=False)
     # each pass alone judges the field by what it has seen and may lock onto a magnet for a while; the
     # whole recording judges it better: both passes again, told which samples hold the earth's field
-    clean = _clean_field(_smoothed((q, bias, cov), backward, heading=False)[0], mag, dt, params)
-    q, bias, cov, end = _kreisel_run(gyr, acc, mag, dt, p, clean)
-    return _smoothed((q, bias, cov), _kreisel_backward(gyr, acc, mag, dt, p, end, clean), heading=True)
+    clean = _clean_field(_smoothed(forward, backward, heading=False)[0], mag, dt, params)
+    *forward, end = _kreisel_run(gyr, acc, mag, dt, p, clean)
+    return _smoothed(forward, _kreisel_backward(gyr, acc, mag, dt, p, end, clean), heading=True)
 
 
 def _clean_field(q, mag, dt, params):
@@ -196,7 +198,7 @@ def _clean_field(q, mag, dt, params):
 
 
 def _smoothed(forward, backward, heading):
-    """The two passes fused by their covariances (two-filter smoother): attitude, bias, covariance.
+    """The two passes (attitude, bias, covariance, bias variance) fused by their covariances.
 
     The attitude is exp(W δ) ⊗ q_f with W = P_f (P_f + P_b)⁻¹ and δ the
     error q_b ⊗ q_f⁻¹ in the earth frame, split as BROAD's metric splits it
@@ -205,8 +207,8 @@ def _smoothed(forward, backward, heading):
     sensor's own, so they differ by an arbitrary turn) only the tilt is
     fused and the heading, its variance and correlations stay forward's.
     """
-    qf, bf, pf = forward
-    qb, bb, pb = backward
+    qf, bf, pf, vf = forward
+    qb, bb, pb, vb = backward
     e = quat_multiply(qb, quat_conjugate(qf))
     turn = 2.0 * np.arctan2(e[:, 3], e[:, 0])
     vertical = np.zeros((turn.size, 4))
@@ -219,7 +221,11 @@ def _smoothed(forward, backward, heading):
     step[:, :k] = np.einsum("nji,nj->ni", weight, delta[:, :k])
     cov = pf.copy()
     cov[:, :k, :k] = np.linalg.inv(np.linalg.inv(pf[:, :k, :k]) + np.linalg.inv(pb[:, :k, :k]))
-    return quat_multiply(rotvec_to_quat(step), qf), 0.5 * (bf + bb), cov
+    # the bias by its variances too, axis by axis (its correlations are not kept per sample)
+    total = vf + vb
+    # both variances zero only with bias_std0 = bias_walk = 0: both passes then keep the bias at zero
+    bias = np.where(total > 0.0, (bf * vb + bb * vf) / np.where(total > 0.0, total, 1.0), 0.5 * (bf + bb))
+    return quat_multiply(rotvec_to_quat(step), qf), bias, cov
 
 
 def _published(method, gyr, acc, mag, dt, params):
