@@ -220,11 +220,12 @@ def _smoothed(forward, backward, heading):
     delta = quat_to_rotvec(quat_multiply(e, vertical))
     delta[:, 2] = np.angle(np.exp(1j * turn))
     k = 3 if heading else 2
-    weight = np.linalg.solve(np.swapaxes(pf + pb, -1, -2)[:, :k, :k], np.swapaxes(pf, -1, -2)[:, :k, :k])
+    # the covariances are symmetric: (P_f + P_b)⁻¹ P_f = Wᵀ, and the fused covariance is P_f − P_f Wᵀ
+    weight_t = np.linalg.solve((pf + pb)[:, :k, :k], pf[:, :k, :k])
     step = np.zeros_like(delta)
-    step[:, :k] = np.einsum("nji,nj->ni", weight, delta[:, :k])
+    step[:, :k] = np.einsum("nji,nj->ni", weight_t, delta[:, :k])
     cov = pf.copy()
-    cov[:, :k, :k] = np.linalg.inv(np.linalg.inv(pf[:, :k, :k]) + np.linalg.inv(pb[:, :k, :k]))
+    cov[:, :k, :k] -= pf[:, :k, :k] @ weight_t
     # the bias by its variances too, axis by axis (its correlations are not kept per sample)
     total = vf + vb
     # both variances zero only with bias_std0 = bias_walk = 0: both passes then keep the bias at zero
