@@ -194,6 +194,33 @@ def test_offline_is_consistent_under_time_reversal(seed, with_mag):
         assert attitude_error(est.q, q_true)[2] < attitude_error(causal.q, q_true)[2]
 
 
+@pytest.mark.parametrize("k", [2, 3])
+def test_smoother_fusion_against_the_information_form(k, quat):
+    """q = exp(P_f (P_f + P_b)⁻¹ δ) ⊗ q_f and P = (P_f⁻¹ + P_b⁻¹)⁻¹ on the first k components, from numpy's inverses."""
+    rng = np.random.default_rng(7)
+    n = 50
+    qf = np.roll(Rotation.random(n, random_state=rng).as_quat(), 1, axis=1)
+    # the backward estimate a few degrees away, tilted and turned about the vertical
+    tilt = np.concatenate([rng.normal(scale=0.02, size=(n, 2)), np.zeros((n, 1))], axis=1)
+    turn = rng.normal(scale=0.05, size=n)
+    qb = quat.mul(quat.mul(np.roll(Rotation.from_rotvec(tilt).as_quat(), 1, axis=1),
+                           np.stack([np.cos(turn / 2), 0 * turn, 0 * turn, np.sin(turn / 2)], axis=1)), qf)
+    a, b = rng.normal(size=(2, n, 3, 3)) * 1e-3
+    pf, pb = a @ np.swapaxes(a, 1, 2) + 1e-7 * np.eye(3), b @ np.swapaxes(b, 1, 2) + 1e-7 * np.eye(3)
+    q, cov = np.empty((n, 4)), np.empty((n, 3, 3))
+    _attitude_kernels.smoother_fusion(qf, pf, qb, pb, k, q, cov)
+    delta = np.concatenate([quat.log(np.roll(Rotation.from_rotvec(tilt).as_quat(), 1, axis=1))[:, :2], turn[:, None]],
+                           axis=1)[:, :k]
+    step = np.zeros((n, 3))
+    step[:, :k] = np.einsum("nij,njl,nl->ni", pf[:, :k, :k], np.linalg.inv(pf[:, :k, :k] + pb[:, :k, :k]), delta)
+    expected = quat.mul(np.roll(Rotation.from_rotvec(step).as_quat(), 1, axis=1), qf)
+    np.testing.assert_allclose(np.abs(np.sum(q * expected, axis=1)), 1.0, atol=1e-14)
+    fused = np.linalg.inv(np.linalg.inv(pf[:, :k, :k]) + np.linalg.inv(pb[:, :k, :k]))
+    np.testing.assert_allclose(cov[:, :k, :k], fused, rtol=1e-9, atol=1e-9 * np.abs(fused).max())
+    np.testing.assert_array_equal(cov[:, k:, :], pf[:, k:, :])
+    np.testing.assert_array_equal(cov[:, :, k:], pf[:, :, k:])
+
+
 def test_offline_bridges_a_magnet_on_the_sensor():
     """A magnet fixed to the sensor for 4 s of motion: the smoother leaves that field out and bridges it."""
     gyr, acc, mag, q_true = noisy_recording(0)

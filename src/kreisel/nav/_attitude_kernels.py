@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .._compiled import cached, inlined
-from .._compiled.kernels import quat_product, rotated, rotvec_quat_in_range
+from .._compiled.kernels import quat_product, quat_rotvec, rotated, rotvec_quat_in_range
 
 #: Layout of the parameter vector of :func:`kreisel_filter` (names used by the public layer).
 KREISEL_PARAMETERS = ("gyro_noise", "bias_walk", "acc_noise", "acc_disturbance", "mag_noise", "mag_norm_tol",
@@ -308,6 +308,73 @@ def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_
     for a in range(6):
         for b in range(6):
             end[7 + 6 * a + b] = P[a, b]
+
+
+@cached
+def smoother_fusion(qf, pf, qb, pb, k, q_out, cov_out):
+    """Two passes fused by their covariances: q = exp(P_f S⁻¹ δ) ⊗ q_f, P = P_f − P_f S⁻¹ P_f, S = P_f + P_b.
+
+    δ is the error q_b ⊗ q_f⁻¹ in the earth frame split into a tilt (δx, δy)
+    and a turn about the vertical δz (BROAD's split); only its first ``k``
+    components (2: the tilt, 3: all) and the matching blocks of the
+    covariances take part, the rest of ``cov_out`` is P_f.
+    """
+    S = np.zeros((3, 3))
+    Si = np.zeros((3, 3))
+    step = np.zeros(3)
+    for j in range(qf.shape[0]):
+        e0, e1, e2, e3 = quat_product(qb[j, 0], qb[j, 1], qb[j, 2], qb[j, 3], qf[j, 0], -qf[j, 1], -qf[j, 2],
+                                      -qf[j, 3])
+        turn = 2.0 * math.atan2(e3, e0)
+        if turn > math.pi:
+            turn -= 2.0 * math.pi
+        elif turn <= -math.pi:
+            turn += 2.0 * math.pi
+        t0, t1, t2, t3 = quat_product(e0, e1, e2, e3, math.cos(0.5 * turn), 0.0, 0.0, -math.sin(0.5 * turn))
+        tx, ty, _ = quat_rotvec(t0, t1, t2, t3)
+        delta = (tx, ty, turn)
+        for a in range(3):
+            for b in range(3):
+                S[a, b] = pf[j, a, b] + pb[j, a, b]
+                Si[a, b] = 0.0
+        if k == 2:
+            det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+            Si[0, 0], Si[0, 1], Si[1, 0], Si[1, 1] = S[1, 1] / det, -S[0, 1] / det, -S[1, 0] / det, S[0, 0] / det
+        else:
+            c00 = S[1, 1] * S[2, 2] - S[1, 2] * S[2, 1]
+            c01 = S[1, 2] * S[2, 0] - S[1, 0] * S[2, 2]
+            c02 = S[1, 0] * S[2, 1] - S[1, 1] * S[2, 0]
+            det = S[0, 0] * c00 + S[0, 1] * c01 + S[0, 2] * c02
+            Si[0, 0], Si[1, 0], Si[2, 0] = c00 / det, c01 / det, c02 / det
+            Si[0, 1] = (S[0, 2] * S[2, 1] - S[0, 1] * S[2, 2]) / det
+            Si[1, 1] = (S[0, 0] * S[2, 2] - S[0, 2] * S[2, 0]) / det
+            Si[2, 1] = (S[0, 1] * S[2, 0] - S[0, 0] * S[2, 1]) / det
+            Si[0, 2] = (S[0, 1] * S[1, 2] - S[0, 2] * S[1, 1]) / det
+            Si[1, 2] = (S[0, 2] * S[1, 0] - S[0, 0] * S[1, 2]) / det
+            Si[2, 2] = (S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]) / det
+        # u = S⁻¹ δ, step = P_f u; G = S⁻¹ P_f, P = P_f − P_f G (all within the first k components)
+        step[:] = 0.0
+        for a in range(k):
+            u = 0.0
+            for b in range(k):
+                u += Si[a, b] * delta[b]
+            for c in range(k):
+                step[c] += pf[j, c, a] * u
+        for a in range(3):
+            for b in range(3):
+                cov_out[j, a, b] = pf[j, a, b]
+        for a in range(k):
+            for b in range(k):
+                s = 0.0
+                for c in range(k):
+                    g = 0.0
+                    for d in range(k):
+                        g += Si[c, d] * pf[j, d, b]
+                    s += pf[j, a, c] * g
+                cov_out[j, a, b] -= s
+        d0, d1, d2, d3 = rotvec_quat_in_range(step[0], step[1], step[2])
+        p0, p1, p2, p3 = quat_product(d0, d1, d2, d3, qf[j, 0], qf[j, 1], qf[j, 2], qf[j, 3])
+        q_out[j, 0], q_out[j, 1], q_out[j, 2], q_out[j, 3] = _normalised(p0, p1, p2, p3)
 
 
 @inlined

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array, positive_float
-from ..so3 import quat_apply, quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
+from ..so3 import quat_apply, quat_conjugate, quat_multiply
 from . import _attitude_kernels
 from .attitude_error import attitude_error, quaternion_rows
 
@@ -206,31 +206,22 @@ def _smoothed(forward, backward, heading):
 
     The attitude is exp(W δ) ⊗ q_f with W = P_f (P_f + P_b)⁻¹ and δ the
     error q_b ⊗ q_f⁻¹ in the earth frame, split as BROAD's metric splits it
-    into a tilt (δx, δy) and a turn about the vertical δz. Without
+    into a tilt (δx, δy) and a turn about the vertical δz
+    (:func:`._attitude_kernels.smoother_fusion`). Without
     ``heading`` (no magnetometer: each pass's heading starts at the
     sensor's own, so they differ by an arbitrary turn) only the tilt is
     fused and the heading, its variance and correlations stay forward's.
     """
     qf, bf, pf, vf = forward
     qb, bb, pb, vb = backward
-    e = quat_multiply(qb, quat_conjugate(qf))
-    turn = 2.0 * np.arctan2(e[:, 3], e[:, 0])
-    vertical = np.zeros((turn.size, 4))
-    vertical[:, 0], vertical[:, 3] = np.cos(0.5 * turn), -np.sin(0.5 * turn)
-    delta = quat_to_rotvec(quat_multiply(e, vertical))
-    delta[:, 2] = np.angle(np.exp(1j * turn))
-    k = 3 if heading else 2
-    # the covariances are symmetric: (P_f + P_b)⁻¹ P_f = Wᵀ, and the fused covariance is P_f − P_f Wᵀ
-    weight_t = np.linalg.solve((pf + pb)[:, :k, :k], pf[:, :k, :k])
-    step = np.zeros_like(delta)
-    step[:, :k] = np.einsum("nji,nj->ni", weight_t, delta[:, :k])
-    cov = pf.copy()
-    cov[:, :k, :k] -= pf[:, :k, :k] @ weight_t
+    q = np.empty_like(qf)
+    cov = np.empty_like(pf)
+    _attitude_kernels.smoother_fusion(qf, pf, qb, pb, 3 if heading else 2, q, cov)
     # the bias by its variances too, axis by axis (its correlations are not kept per sample)
     total = vf + vb
     # both variances zero only with bias_std0 = bias_walk = 0: both passes then keep the bias at zero
     bias = np.where(total > 0.0, (bf * vb + bb * vf) / np.where(total > 0.0, total, 1.0), 0.5 * (bf + bb))
-    return quat_multiply(rotvec_to_quat(step), qf), bias, cov
+    return q, bias, cov
 
 
 def _published(method, gyr, acc, mag, dt, params):
