@@ -169,7 +169,7 @@ def noisy_recording(seed, n=4000, rate=RATE, rest=5.0):
 
 
 def reversed_in_time(gyr, acc, mag):
-    """The recording played backward: the rate that turned sample i − 1 into sample i, negated, now turns i into i − 1."""
+    """The recording played backward: the rate that turned sample i − 1 into i, negated, turns i into i − 1."""
     return -np.concatenate([gyr[:1], gyr[:0:-1]]), acc[::-1], None if mag is None else mag[::-1]
 
 
@@ -196,7 +196,7 @@ def test_offline_is_consistent_under_time_reversal(seed, with_mag):
 
 @pytest.mark.parametrize("k", [2, 3])
 def test_smoother_fusion_against_the_information_form(k, quat):
-    """q = exp(P_f (P_f + P_b)⁻¹ δ) ⊗ q_f and P = (P_f⁻¹ + P_b⁻¹)⁻¹ on the first k components, from numpy's inverses."""
+    """exp(P_f S⁻¹ δ) ⊗ q_f and (P_f⁻¹ + P_b⁻¹)⁻¹, S = P_f + P_b, on the first k components, by numpy's inverses."""
     rng = np.random.default_rng(7)
     n = 50
     qf = np.roll(Rotation.random(n, random_state=rng).as_quat(), 1, axis=1)

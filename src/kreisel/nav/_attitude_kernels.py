@@ -117,7 +117,8 @@ def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_
     ``start`` (43,) holds a start state (q 4, b 3, the 6 × 6 covariance row
     by row), or NaN first for a start from the first samples (TRIAD, zero
     bias); either way no field is trusted yet. ``end`` receives the final
-    state in the same layout, ``bias_var_out`` the bias variances. ``mag_clean`` (n,) bool, when not empty, decides for every sample
+    state in the same layout, ``bias_var_out`` the bias variances.
+    ``mag_clean`` (n,) bool, when not empty, decides for every sample
     whether its field is the earth's (a decision taken with hindsight by the
     offline smoother); empty, the filter decides causally from the field's
     norm and dip.

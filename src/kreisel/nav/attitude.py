@@ -195,7 +195,8 @@ def _clean_field(q, mag, dt, params):
     norm = np.hypot(horizontal, f[:, 2])
     dip = np.arctan2(-f[:, 2], horizontal)
     ref_norm, ref_dip = np.median(norm), np.median(dip)
-    clean = (np.abs(norm - ref_norm) < params["mag_norm_tol"] * ref_norm) & (np.abs(dip - ref_dip) < params["mag_dip_tol"])
+    clean = ((np.abs(norm - ref_norm) < params["mag_norm_tol"] * ref_norm)
+             & (np.abs(dip - ref_dip) < params["mag_dip_tol"]))
     bounds = np.concatenate([[0], np.flatnonzero(np.diff(clean.astype(np.int8))) + 1, [clean.size]])
     lengths = np.diff(bounds)
     return np.repeat(clean[bounds[:-1]] & (lengths * dt >= params["mag_new_time"]), lengths)
@@ -207,7 +208,7 @@ def _smoothed(forward, backward, heading):
     The attitude is exp(W δ) ⊗ q_f with W = P_f (P_f + P_b)⁻¹ and δ the
     error q_b ⊗ q_f⁻¹ in the earth frame, split as BROAD's metric splits it
     into a tilt (δx, δy) and a turn about the vertical δz
-    (:func:`._attitude_kernels.smoother_fusion`). Without
+    (``_attitude_kernels.smoother_fusion``). Without
     ``heading`` (no magnetometer: each pass's heading starts at the
     sensor's own, so they differ by an arbitrary turn) only the tilt is
     fused and the heading, its variance and correlations stay forward's.
