@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .._compiled import cached, inlined
-from .._compiled.kernels import quat_product, rotated, rotvec_quat_in_range
+from .._compiled.kernels import quat_product, quat_rotvec, rotated, rotvec_quat_in_range
 
 #: Layout of the parameter vector of :func:`kreisel_filter` (names used by the public layer).
 KREISEL_PARAMETERS = ("gyro_noise", "bias_walk", "acc_noise", "acc_disturbance", "mag_noise", "mag_norm_tol",
@@ -104,7 +104,7 @@ def triad_start(acc, mag, use_mag):
 
 
 @cached
-def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_out, state_out):
+def kreisel_filter(gyr, acc, mag, use_mag, mag_clean, dt, p, start, q_out, bias_out, cov_out, bias_var_out, end):
     """kreisel's estimator: an error-state Kalman filter with the attitude error in the earth frame.
 
     State error x = (δ, β): q_est = exp(δ) ⊗ q_true (δ in ENU) and
@@ -114,10 +114,14 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     measures β: every measurement picks one state, so each update is a
     scalar one. The error propagates as δ' = δ − R β dt.
 
-    ``state0`` (45,) holds a start state (q 4, b 3, P 36 row by row, the
-    trusted field's norm and dip, norm −1 for none), or NaN first for a
-    start from the first samples (TRIAD, zero bias, no trusted field);
-    ``state_out`` receives the final state in the same layout.
+    ``start`` (43,) holds a start state (q 4, b 3, the 6 × 6 covariance row
+    by row), or NaN first for a start from the first samples (TRIAD, zero
+    bias); either way no field is trusted yet. ``end`` receives the final
+    state in the same layout, ``bias_var_out`` the bias variances.
+    ``mag_clean`` (n,) bool, when not empty, decides for every sample
+    whether its field is the earth's (a decision taken with hindsight by the
+    offline smoother); empty, the filter decides causally from the field's
+    norm and dip.
     """
     n = gyr.shape[0]
     (sg, sb, sa, kacc, sm, mtol, diptol, rgyr, racc, rtime, srest, rtau, sb0, grav, mtau, mnew) = (
@@ -127,7 +131,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     dx = np.zeros(6)
     kbuf = np.empty(6)
     rowbuf = np.empty(6)
-    if math.isnan(state0[0]):
+    if math.isnan(start[0]):
         q0, q1, q2, q3 = triad_start(acc[0], mag[0], use_mag)
         bx = by = bz = 0.0
         for a in range(3):
@@ -136,11 +140,11 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
         for a in range(3, 6):
             P[a, a] = sb0 * sb0
     else:
-        q0, q1, q2, q3 = state0[0], state0[1], state0[2], state0[3]
-        bx, by, bz = state0[4], state0[5], state0[6]
+        q0, q1, q2, q3 = start[0], start[1], start[2], start[3]
+        bx, by, bz = start[4], start[5], start[6]
         for a in range(6):
             for b in range(6):
-                P[a, b] = state0[7 + 6 * a + b]
+                P[a, b] = start[7 + 6 * a + b]
     # low-passed gyro and accelerometer for rest detection
     lgx, lgy, lgz = gyr[0, 0], gyr[0, 1], gyr[0, 2]
     lax, lay, laz = acc[0, 0], acc[0, 1], acc[0, 2]
@@ -150,8 +154,6 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     ref_norm = -1.0
     ref_dip = 0.0
     trusted = False
-    if not math.isnan(state0[0]) and state0[43] > 0.0:
-        ref_norm, ref_dip, trusted = state0[43], state0[44], True
     cand_norm = ref_norm
     cand_dip = ref_dip
     cand_for = 0.0
@@ -164,6 +166,7 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
     qb = sb * sb * dt
     G = np.empty((3, 3))
     GP = np.empty((3, 3))
+    decided = mag_clean.shape[0] > 0
     for j in range(n):
         gx, gy, gz = gyr[j, 0], gyr[j, 1], gyr[j, 2]
         # --- propagation
@@ -266,8 +269,10 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
                 if ref_norm < 0.0:
                     ref_norm, ref_dip = fn, dip
                     cand_norm, cand_dip = fn, dip
-                good = trusted and abs(fn - ref_norm) < mtol * ref_norm and abs(dip - ref_dip) < diptol
-                if good:
+                if decided:
+                    if mag_clean[j]:
+                        _scalar_update(P, dx, kbuf, rowbuf, 2, sm * sm, math.atan2(-fx, fy))
+                elif trusted and abs(fn - ref_norm) < mtol * ref_norm and abs(dip - ref_dip) < diptol:
                     ref_norm += alpha_ref * (fn - ref_norm)
                     ref_dip += alpha_ref * (dip - ref_dip)
                     cand_norm, cand_dip = ref_norm, ref_dip
@@ -298,13 +303,79 @@ def kreisel_filter(gyr, acc, mag, use_mag, dt, p, state0, q_out, bias_out, cov_o
         for a in range(3):
             for b in range(3):
                 cov_out[j, a, b] = P[a, b]
-    state_out[0], state_out[1], state_out[2], state_out[3] = q0, q1, q2, q3
-    state_out[4], state_out[5], state_out[6] = bx, by, bz
+            bias_var_out[j, a] = P[3 + a, 3 + a]
+    end[0], end[1], end[2], end[3] = q0, q1, q2, q3
+    end[4], end[5], end[6] = bx, by, bz
     for a in range(6):
         for b in range(6):
-            state_out[7 + 6 * a + b] = P[a, b]
-    state_out[43] = ref_norm if trusted else -1.0
-    state_out[44] = ref_dip
+            end[7 + 6 * a + b] = P[a, b]
+
+
+@cached
+def smoother_fusion(qf, pf, qb, pb, k, q_out, cov_out):
+    """Two passes fused by their covariances: q = exp(P_f S⁻¹ δ) ⊗ q_f, P = P_f − P_f S⁻¹ P_f, S = P_f + P_b.
+
+    δ is the error q_b ⊗ q_f⁻¹ in the earth frame split into a tilt (δx, δy)
+    and a turn about the vertical δz (BROAD's split); only its first ``k``
+    components (2: the tilt, 3: all) and the matching blocks of the
+    covariances take part, the rest of ``cov_out`` is P_f.
+    """
+    S = np.zeros((3, 3))
+    Si = np.zeros((3, 3))
+    step = np.zeros(3)
+    for j in range(qf.shape[0]):
+        e0, e1, e2, e3 = quat_product(qb[j, 0], qb[j, 1], qb[j, 2], qb[j, 3], qf[j, 0], -qf[j, 1], -qf[j, 2],
+                                      -qf[j, 3])
+        turn = 2.0 * math.atan2(e3, e0)
+        if turn > math.pi:
+            turn -= 2.0 * math.pi
+        elif turn <= -math.pi:
+            turn += 2.0 * math.pi
+        t0, t1, t2, t3 = quat_product(e0, e1, e2, e3, math.cos(0.5 * turn), 0.0, 0.0, -math.sin(0.5 * turn))
+        tx, ty, _ = quat_rotvec(t0, t1, t2, t3)
+        delta = (tx, ty, turn)
+        for a in range(3):
+            for b in range(3):
+                S[a, b] = pf[j, a, b] + pb[j, a, b]
+                Si[a, b] = 0.0
+        if k == 2:
+            det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+            Si[0, 0], Si[0, 1], Si[1, 0], Si[1, 1] = S[1, 1] / det, -S[0, 1] / det, -S[1, 0] / det, S[0, 0] / det
+        else:
+            c00 = S[1, 1] * S[2, 2] - S[1, 2] * S[2, 1]
+            c01 = S[1, 2] * S[2, 0] - S[1, 0] * S[2, 2]
+            c02 = S[1, 0] * S[2, 1] - S[1, 1] * S[2, 0]
+            det = S[0, 0] * c00 + S[0, 1] * c01 + S[0, 2] * c02
+            Si[0, 0], Si[1, 0], Si[2, 0] = c00 / det, c01 / det, c02 / det
+            Si[0, 1] = (S[0, 2] * S[2, 1] - S[0, 1] * S[2, 2]) / det
+            Si[1, 1] = (S[0, 0] * S[2, 2] - S[0, 2] * S[2, 0]) / det
+            Si[2, 1] = (S[0, 1] * S[2, 0] - S[0, 0] * S[2, 1]) / det
+            Si[0, 2] = (S[0, 1] * S[1, 2] - S[0, 2] * S[1, 1]) / det
+            Si[1, 2] = (S[0, 2] * S[1, 0] - S[0, 0] * S[1, 2]) / det
+            Si[2, 2] = (S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]) / det
+        # u = S⁻¹ δ, step = P_f u; G = S⁻¹ P_f, P = P_f − P_f G (all within the first k components)
+        step[:] = 0.0
+        for a in range(k):
+            u = 0.0
+            for b in range(k):
+                u += Si[a, b] * delta[b]
+            for c in range(k):
+                step[c] += pf[j, c, a] * u
+        for a in range(3):
+            for b in range(3):
+                cov_out[j, a, b] = pf[j, a, b]
+        for a in range(k):
+            for b in range(k):
+                s = 0.0
+                for c in range(k):
+                    g = 0.0
+                    for d in range(k):
+                        g += Si[c, d] * pf[j, d, b]
+                    s += pf[j, a, c] * g
+                cov_out[j, a, b] -= s
+        d0, d1, d2, d3 = rotvec_quat_in_range(step[0], step[1], step[2])
+        p0, p1, p2, p3 = quat_product(d0, d1, d2, d3, qf[j, 0], qf[j, 1], qf[j, 2], qf[j, 3])
+        q_out[j, 0], q_out[j, 1], q_out[j, 2], q_out[j, 3] = _normalised(p0, p1, p2, p3)
 
 
 @inlined

@@ -17,8 +17,12 @@ field's horizontal direction δz — and the gyro bias β, coupled by
 directly. A magnetic field is used only after its norm and dip have stayed
 unchanged while the sensor turned (a magnet on the sensor turns with it and
 changes both), and only while they stay within tolerance.
-``offline=True`` runs the filter forward and then backward in time
-(reversed samples, negated gyro) and fuses the two by their covariances.
+``offline=True`` smooths with the whole recording: the filter runs forward
+and then backward in time (reversed samples, negated gyro), their fused
+tilt shows each sample's field norm and dip, and the samples whose norm and
+dip stay near the recording's medians are judged to hold the earth's field.
+Both passes run again with that decision, using the field there only (the
+gyro bridges the rest from both sides), and are fused by their covariances.
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import as_float_array, positive_float
-from ..so3 import quat_conjugate, quat_multiply, quat_to_rotvec, rotvec_to_quat
+from ..so3 import quat_apply, quat_conjugate, quat_multiply
 from . import _attitude_kernels
 from .attitude_error import attitude_error, quaternion_rows
 
@@ -125,51 +129,127 @@ def _parameters(method, params):
     return merged
 
 
-def _kreisel_run(gyr, acc, mag, dt, p, state0):
+def _kreisel_run(gyr, acc, mag, dt, p, mag_clean=None, start=None):
     n = gyr.shape[0]
     q = np.empty((n, 4))
     bias = np.empty((n, 3))
     cov = np.empty((n, 3, 3))
-    state = np.empty(45)
+    bias_var = np.empty((n, 3))
+    end = np.empty(43)
+    clean = np.zeros(0, dtype=np.bool_) if mag_clean is None else np.ascontiguousarray(mag_clean)
     # without a field the accelerometer stands in for the unread magnetometer argument
-    _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, dt, p, state0, q, bias,
-                                     cov, state)
-    return q, bias, cov, state
+    _attitude_kernels.kreisel_filter(gyr, acc, acc if mag is None else mag, mag is not None, clean, dt, p,
+                                     np.full(43, np.nan) if start is None else start, q, bias, cov, bias_var,
+                                     end)
+    return q, bias, cov, bias_var, end
+
+
+def _kreisel_backward(gyr, acc, mag, dt, p, end, mag_clean=None):
+    """The filter run backward in time from the forward pass's end state ``end``.
+
+    The samples are reversed, the rates negated (and with them the bias and
+    its correlations) and shifted by one, since the step into sample i uses
+    the rate of sample i forward and so that of sample i + 1 backward.
+    Starting from the forward end state keeps the backward pass on track
+    where the recording ends in motion (a start from the last samples alone,
+    with the bias unknown, can diverge there).
+    """
+    start = end.copy()
+    start[4:7] *= -1.0
+    P = start[7:].reshape(6, 6)
+    P[:3, 3:] *= -1.0
+    P[3:, :3] *= -1.0
+    rev = slice(None, None, -1)
+    q, bias, cov, bias_var, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
+                                             None if mag is None else np.ascontiguousarray(mag[rev]), dt, p,
+                                             None if mag_clean is None else mag_clean[rev], start)
+    return q[rev], -bias[rev], cov[rev], bias_var[rev]
 
 
 def _kreisel(gyr, acc, mag, dt, params, offline):
     p = np.array([params[name] for name in _attitude_kernels.KREISEL_PARAMETERS])
-    q, bias, cov, state = _kreisel_run(gyr, acc, mag, dt, p, np.full(45, np.nan))
+    *forward, end = _kreisel_run(gyr, acc, mag, dt, p)
     if not offline:
-        return q, bias, cov
-    # backward in time from the forward pass's end state: the samples reversed, the rates negated (and
-    # with them the bias and its correlations) and shifted by one, since the step into sample i uses the
-    # rate of sample i forward and so that of sample i + 1 backward
-    back0 = state.copy()
-    back0[4:7] *= -1.0
-    P = back0[7:43].reshape(6, 6)
-    P[:3, 3:] *= -1.0
-    P[3:, :3] *= -1.0
-    rev = slice(None, None, -1)
-    qb, bb, cb, _ = _kreisel_run(-np.concatenate([gyr[:1], gyr[:0:-1]]), np.ascontiguousarray(acc[rev]),
-                                 None if mag is None else np.ascontiguousarray(mag[rev]), dt, p, back0)
-    qb, bb, cb = qb[rev], -bb[rev], cb[rev]
-    fused = np.linalg.inv(np.linalg.inv(cov) + np.linalg.inv(cb))
-    # the heading is the forward pass's (see _fuse), and so are its variance and correlations
-    fused[:, 2, :] = cov[:, 2, :]
-    fused[:, :, 2] = cov[:, :, 2]
-    return _fuse(q, cov, qb, cb), 0.5 * (bias + bb), fused
+        return forward[:3]
+    backward = _kreisel_backward(gyr, acc, mag, dt, p, end)
+    if mag is None:
+        return _smoothed(forward, backward, heading=False)
+    # each pass alone judges the field by what it has seen and may lock onto a magnet for a while; the
+    # whole recording judges it better: both passes again, told which samples hold the earth's field
+    clean = _clean_field(_smoothed(forward, backward, heading=False)[0], mag, dt, params)
+    smoothed = _smoothed_with(gyr, acc, mag, dt, p, clean)
+    # a field of the right norm and dip can still point the wrong way: then it disagrees for a while with
+    # the heading that the gyro carries from the clean field on both sides
+    clean &= _agrees_with_heading(smoothed[0], mag, dt, params)
+    return _smoothed_with(gyr, acc, mag, dt, p, clean)
 
 
-def _fuse(qf, pf, qb, pb):
-    """exp(W δ) ⊗ q_f, δ = log(q_b ⊗ q_f⁻¹) in the earth frame, W = P_f (P_f + P_b)⁻¹, tilt part only."""
-    delta = quat_to_rotvec(quat_multiply(qb, quat_conjugate(qf)))
-    weight = np.linalg.solve(np.swapaxes(pf + pb, -1, -2), np.swapaxes(pf, -1, -2))
-    step = np.einsum("nji,nj->ni", weight, delta)
-    # the heading stays the forward pass's: the backward pass may trust a field that the forward pass
-    # rejected (on the benchmark's magnet trials fusing its heading made the mean error 4x worse)
-    step[:, 2] = 0.0
-    return quat_multiply(rotvec_to_quat(step), qf)
+def _smoothed_with(gyr, acc, mag, dt, p, clean):
+    """Forward and backward pass using the field at the ``clean`` samples only, fused."""
+    *forward, end = _kreisel_run(gyr, acc, mag, dt, p, clean)
+    return _smoothed(forward, _kreisel_backward(gyr, acc, mag, dt, p, end, clean), heading=True)
+
+
+def _clean_field(q, mag, dt, params):
+    """Samples whose field is the earth's, judged with the whole recording's hindsight.
+
+    With the smoothed tilt, each sample's field gives a norm and a dip; the
+    earth's are their medians over the recording (right as long as the field
+    is undisturbed for more than half of it), and a sample is clean while
+    both stay within the causal filter's tolerances for at least
+    ``mag_new_time`` (shorter runs are a disturbed field passing by chance).
+    """
+    f = quat_apply(q, mag)
+    horizontal = np.hypot(f[:, 0], f[:, 1])
+    norm = np.hypot(horizontal, f[:, 2])
+    dip = np.arctan2(-f[:, 2], horizontal)
+    ref_norm, ref_dip = np.median(norm), np.median(dip)
+    clean = ((np.abs(norm - ref_norm) < params["mag_norm_tol"] * ref_norm)
+             & (np.abs(dip - ref_dip) < params["mag_dip_tol"]))
+    bounds = np.concatenate([[0], np.flatnonzero(np.diff(clean.astype(np.int8))) + 1, [clean.size]])
+    lengths = np.diff(bounds)
+    return np.repeat(clean[bounds[:-1]] & (lengths * dt >= params["mag_new_time"]), lengths)
+
+
+def _agrees_with_heading(q, mag, dt, params):
+    """Samples whose field's horizontal direction agrees with the heading of ``q`` around them.
+
+    The sine of the turn of the measured north from the estimated north,
+    averaged over a centred window of ``mag_new_time``, must stay below that
+    of ``mag_dip_tol``: the angular tolerance of the dip test, applied to the
+    direction that the dip test cannot see.
+    """
+    f = quat_apply(q, mag)
+    horizontal = np.hypot(f[:, 0], f[:, 1])
+    turn = np.divide(-f[:, 0], horizontal, out=np.zeros(len(f)), where=horizontal > 0.0)
+    half = int(0.5 * params["mag_new_time"] / dt)
+    sums = np.concatenate([[0.0], np.cumsum(turn)])
+    index = np.arange(len(f))
+    lo, hi = np.maximum(index - half, 0), np.minimum(index + half + 1, len(f))
+    return np.abs((sums[hi] - sums[lo]) / (hi - lo)) < np.sin(params["mag_dip_tol"])
+
+
+def _smoothed(forward, backward, heading):
+    """The two passes (attitude, bias, covariance, bias variance) fused by their covariances.
+
+    The attitude is exp(W δ) ⊗ q_f with W = P_f (P_f + P_b)⁻¹ and δ the
+    error q_b ⊗ q_f⁻¹ in the earth frame, split as BROAD's metric splits it
+    into a tilt (δx, δy) and a turn about the vertical δz
+    (``_attitude_kernels.smoother_fusion``). Without
+    ``heading`` (no magnetometer: each pass's heading starts at the
+    sensor's own, so they differ by an arbitrary turn) only the tilt is
+    fused and the heading, its variance and correlations stay forward's.
+    """
+    qf, bf, pf, vf = forward
+    qb, bb, pb, vb = backward
+    q = np.empty_like(qf)
+    cov = np.empty_like(pf)
+    _attitude_kernels.smoother_fusion(qf, pf, qb, pb, 3 if heading else 2, q, cov)
+    # the bias by its variances too, axis by axis (its correlations are not kept per sample)
+    total = vf + vb
+    # both variances zero only with bias_std0 = bias_walk = 0: both passes then keep the bias at zero
+    bias = np.where(total > 0.0, (bf * vb + bb * vf) / np.where(total > 0.0, total, 1.0), 0.5 * (bf + bb))
+    return q, bias, cov
 
 
 def _published(method, gyr, acc, mag, dt, params):
@@ -207,8 +287,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     rate : float
         Sampling rate in Hz.
     offline : bool
-        kreisel's estimator only: fuse a forward and a backward pass (for
-        recorded data; each sample then uses the whole recording).
+        kreisel's estimator only: smooth with a forward and a backward pass
+        (for recorded data; each sample then uses the whole recording, and
+        the magnetic field is judged with hindsight: module notes).
     frame : {"ENU", "NED"}
         Earth frame of the result (north is magnetic north).
     method : None or {"madgwick", "mahony", "complementary"}
@@ -233,8 +314,10 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     sample fixes the start (TRIAD of accelerometer and field, or the
     accelerometer's tilt with the sensor's own heading), so the recording
     should start at rest or slowly moving. Measured on BROAD's seven trials
-    (``bench/bench_attitude.py``): mean total error 1.49° causal, 1.46°
-    offline, inclination 0.60° without magnetometer.
+    (``bench/bench_attitude.py``): mean total error 1.49° causal, 1.17°
+    offline, inclination 0.60° without magnetometer. The offline judgement of
+    the field takes its medians over the recording as the earth's, so it needs
+    the field undisturbed for more than half of the recording.
 
     Raises
     ------
