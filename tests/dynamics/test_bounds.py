@@ -334,7 +334,9 @@ def test_kernels_are_compiled_before_the_loop_that_holds_back_ctrl_c(monkeypatch
     # 17–25 s later: numba compiled inside the loop that defers Ctrl-C. Nothing is compiled in there now.
     from kreisel.dynamics import _integrators
 
-    kernels = [_integrators.run_dop853, _integrators.fixed_step, _integrators.run_dop853_batch, _integrators.run_batch]
+    kernels = [_integrators.run_dop853, _integrators.run_dop853_batch]
+    kernels += [runner for method in engine.METHODS.values() if method not in (None, _integrators.DOP853)
+                for free in (False, True) for runner in _integrators.runners(method, free)]
     loop = engine.run_chunked
 
     def checked(*args, **kwargs):

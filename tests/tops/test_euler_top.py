@@ -365,8 +365,12 @@ def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits
     single = kr.EulerTop(1.0, 2.0, 3.0).solve(t, [0.3, 0.2, 1.0])
     monkeypatch.setattr(euler_top, "SAMPLES_PER_CALL", 64)
     calls = []
-    compiled = _free_top.body_samples
-    monkeypatch.setattr(_free_top, "body_samples", lambda *args: calls.append(args[3].size) or compiled(*args))
+    in_regime = _free_top.body_in_regime
+
+    def counted(regime):
+        return lambda *args: calls.append(args[3].size) or in_regime(regime)(*args)
+
+    monkeypatch.setattr(_free_top, "body_in_regime", counted)
     np.testing.assert_array_equal(kr.EulerTop(1.0, 2.0, 3.0).solve(t, [0.3, 0.2, 1.0]).q, single.q)
     assert max(calls) == 64 and sum(calls) == t.size
     if count > 1:

@@ -4,8 +4,8 @@ State ``y = (ω′1, ω′2, ω′3, q0, q1, q2, q3)`` in the principal frame (T
 principal-axis Euler equations), optionally followed by the centre of mass
 position and velocity ``(r, v)`` in space (13 components, the 6-DOF body).
 Every method is written once for one body: :func:`run_dop853` and
-:func:`fixed_step` integrate one body, :func:`run_dop853_batch` and
-:func:`run_batch` many in parallel (``prange``) with the same code.
+the fixed-step runners (:func:`runners`) integrate one body, :func:`run_dop853_batch` and the
+runners' ``many`` many in parallel (``prange``) with the same code.
 
 Status codes returned by the drivers: 0 success, 1 adaptive step fell below
 round-off, 2 non-finite state, 3 implicit iteration did not converge (step
@@ -21,7 +21,8 @@ enough to be interrupted (Ctrl-C) and to report progress. Continuing is exact: a
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from types import FunctionType
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import prange
@@ -89,8 +90,9 @@ def _model_rhs(t, y, model, dy, offset):
 
 
 # ----------------------------------------------------------------------------
-# fixed-step methods; each advances the rotation part y[0:7] in place by one step h.
-# Workspace: five flat arrays a, b, c, d, e of length 16 passed down from the driver.
+# fixed-step methods; each advances the rotation part y[0:7] in place by one step h. They share one
+# signature, (t, h, inertia, rows, y, wa, wb, wc, wd, scratch) -> status, with the driver's work arrays
+# wa (8), wb (8), wc (28), wd (12) and scratch (13) of :func:`rhs`; each uses those it needs.
 
 
 @cached
@@ -146,6 +148,7 @@ def _strang_free(h, inertia, y):
     for a in range(3):
         y[a] = s[a] / inertia[a]
     y[3], y[4], y[5], y[6] = s[3], s[4], s[5], s[6]
+    return OK
 
 
 @cached
@@ -238,18 +241,38 @@ def _dmv_free(h, inertia, y):
     return OK
 
 
-@cached
-def _kick_drift_kick(method, t, h, inertia, rows, y, scratch):
+@generic
+def _kick_drift_kick(drift, t, h, inertia, rows, y, scratch):
+    """The torque's kick for h/2, the torque-free step ``drift(h, inertia, y) -> status``, the closing kick."""
     if rows is not None:
         _kick(t, 0.5 * h, inertia, rows, y, scratch)
-    status = OK
-    if method == DMV:
-        status = _dmv_free(h, inertia, y)
-    else:
-        _strang_free(h, inertia, y)
+    status = drift(h, inertia, y)
     if rows is not None and status == OK:
         status = _closing_kick(t + h, 0.5 * h, inertia, rows, y, scratch)
     return status
+
+
+@cached
+def _splitting(t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
+    """Lie–Poisson splitting: the Strang step of the free body, a torque by kick–drift–kick."""
+    return _kick_drift_kick(_strang_free, t, h, inertia, rows, y, scratch)
+
+
+@cached
+def _splitting4(t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
+    """Yoshida's triple jump of :func:`_splitting`: order 4."""
+    status = _splitting(t, YOSHIDA_OUTER * h, inertia, rows, y, wa, wb, wc, wd, scratch)
+    t1 = t + YOSHIDA_OUTER * h
+    status += _splitting(t1, YOSHIDA_INNER * h, inertia, rows, y, wa, wb, wc, wd, scratch)
+    t2 = t1 + YOSHIDA_INNER * h
+    status += _splitting(t2, YOSHIDA_OUTER * h, inertia, rows, y, wa, wb, wc, wd, scratch)
+    return status
+
+
+@cached
+def _dmv(t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
+    """Discrete Moser–Veselov, a torque by kick–drift–kick."""
+    return _kick_drift_kick(_dmv_free, t, h, inertia, rows, y, scratch)
 
 
 @cached
@@ -295,10 +318,11 @@ def _rk4_step(t, h, i0, i1, i2, rows, stage, scratch, y):
 
 
 @cached
-def _rk4(t, h, inertia, rows, y, stage, scratch):
+def _rk4(t, h, inertia, rows, y, stage, wb, wc, wd, scratch):
     """:func:`_rk4_step` on the array ``y`` (its first 7 components)."""
     y[0], y[1], y[2], y[3], y[4], y[5], y[6] = _rk4_step(t, h, inertia[0], inertia[1], inertia[2], rows, stage, scratch,
                                                          (y[0], y[1], y[2], y[3], y[4], y[5], y[6]))
+    return OK
 
 
 @cached
@@ -348,10 +372,11 @@ def _rkmk4(t, h, inertia, rows, y, y0, stage, deriv, ku, scratch):
         y[i] = y0[i] + h / 6.0 * (deriv[i] + 2.0 * deriv[7 + i] + 2.0 * deriv[14 + i] + deriv[21 + i])
     _group_stage(y0, u0, u1, u2, y)
     y[3], y[4], y[5], y[6] = quat_unit(y[3], y[4], y[5], y[6])
+    return OK
 
 
 @cached
-def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
+def _midpoint(t, h, inertia, rows, y, y0, mean, wc, wd, scratch):
     """Implicit midpoint on (ω′, q), solved by fixed-point iteration to round-off.
 
     The quaternion half is linear given the mean ω̄, so q1 = q0 ⊗ cay(h ω̄/2)
@@ -385,26 +410,6 @@ def _midpoint(t, h, inertia, rows, y, y0, mean, scratch):
 
 
 @cached
-def _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch):
-    if method == SPLITTING or method == DMV:
-        return _kick_drift_kick(method, t, h, inertia, rows, y, scratch)
-    if method == SPLITTING4:
-        status = _kick_drift_kick(SPLITTING, t, YOSHIDA_OUTER * h, inertia, rows, y, scratch)
-        t1 = t + YOSHIDA_OUTER * h
-        status += _kick_drift_kick(SPLITTING, t1, YOSHIDA_INNER * h, inertia, rows, y, scratch)
-        t2 = t1 + YOSHIDA_INNER * h
-        status += _kick_drift_kick(SPLITTING, t2, YOSHIDA_OUTER * h, inertia, rows, y, scratch)
-        return status
-    if method == RK4:
-        _rk4(t, h, inertia, rows, y, wa, scratch)
-        return OK
-    if method == RKMK4:
-        _rkmk4(t, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-        return OK
-    return _midpoint(t, h, inertia, rows, y, wa, wb, scratch)
-
-
-@cached
 def _translation_kick(t, h, mass, frows, y, scratch):
     if frows is None:
         return
@@ -414,7 +419,7 @@ def _translation_kick(t, h, mass, frows, y, scratch):
 
 
 class Steps(NamedTuple):
-    """The resumable states of fixed-step runs (:func:`fixed_step`), one row per body.
+    """The resumable states of fixed-step runs (:func:`runners`), one row per body.
 
     Attributes
     ----------
@@ -438,7 +443,7 @@ class Steps(NamedTuple):
 
 
 def new_state(y0: NDArray[np.float64]) -> Steps:
-    """The resumable states of :func:`fixed_step` for bodies starting at ``y0 (count, ny)``: one :class:`Steps`."""
+    """The resumable states of fixed-step runs for bodies starting at ``y0 (count, ny)``: one :class:`Steps`."""
     count = y0.shape[0]
     return Steps(np.full(count, -1, dtype=np.int64), np.zeros(count, dtype=np.int64), np.zeros(count),
                  np.zeros((count, 7)), np.array(y0, dtype=np.float64, order="C"))
@@ -509,7 +514,7 @@ def _finite(s, v):
 
 @generic
 def _register_run(steps, at_output, from_omega, params, t_out, grid, state, b, inertia, out, budget, every):
-    """:func:`fixed_step` of a torque-free body whose state stays in registers: one loop over numbers.
+    """A run of a torque-free body whose state stays in registers: one loop over numbers.
 
     ``steps(params, n, h, i0, i1, i2, s, pending) -> (s, pending)`` takes
     ``n`` steps of size ``h`` from the 7-tuple ``s``; ``at_output(params,
@@ -601,9 +606,9 @@ def _momentum(params, i0, i1, i2, s):
     return i0 * s[0], i1 * s[1], i2 * s[2], s[3], s[4], s[5], s[6]
 
 
-@cached
-def _splitting_free(weights, t_out, grid, state, b, inertia, out, budget, every):
-    """:func:`fixed_step` of ``splitting``/``splitting4`` without torque, its state in registers.
+@generic
+def _splitting_free(weights, t_out, grid, state, b, inertia, mass, rows, frows, out, budget, every):
+    """A run of ``splitting``/``splitting4`` without torque, its state in registers.
 
     Each step is a composition of Strang steps of sizes ``weights·h``.
     Consecutive half-flows about axis 0 are merged into one (they commute and
@@ -644,9 +649,9 @@ def _same(params, i0, i1, i2, s):
     return s
 
 
-@cached
-def _rk4_free(t_out, grid, state, b, inertia, out, budget, every):
-    """:func:`fixed_step` of ``rk4`` without torque, its state ``(ω′, q)`` in registers."""
+@generic
+def _rk4_free(params, t_out, grid, state, b, inertia, mass, rows, frows, out, budget, every):
+    """A run of ``rk4`` without torque, its state ``(ω′, q)`` in registers."""
     return _register_run(_rk4_steps, _rk4_output, _same, None, t_out, grid, state, b, inertia, out, budget, every)
 
 
@@ -678,11 +683,13 @@ def _flows_at_output(p, ahead, i0, s):
         (m0, twice[0], twice[1], twice[2], twice[3], twice[4], twice[5])
 
 
-@cached
-def fixed_step(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: Steps, b: int,
-               inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, out: NDArray[np.float64],
-               budget: int, every: int) -> int:
+@generic
+def _stepped(step, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: Steps, b: int,
+             inertia: NDArray[np.float64], mass: float, rows: _Rows, frows: _Rows, out: NDArray[np.float64],
+             budget: int, every: int) -> int:
     """Fixed-step integration of body ``b`` of ``state``; interval k takes ``grid[1, k]`` steps of size ``grid[0, k]``.
+
+    ``step`` is the method's step (see the fixed-step methods above).
 
     At most ``budget`` steps per call (see the module note). The grid comes
     from :func:`step_grid`, and the caller has checked that every step count
@@ -691,13 +698,6 @@ def fixed_step(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64
     samples kept).
     """
     ny = state.y.shape[1]
-    if ny == 7 and rows is None and method == SPLITTING:
-        return _splitting_free((1.0,), t_out, grid, state, b, inertia, out, budget, every)
-    if ny == 7 and rows is None and method == SPLITTING4:
-        return _splitting_free((YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER), t_out, grid, state, b, inertia, out,
-                               budget, every)
-    if ny == 7 and rows is None and method == RK4:
-        return _rk4_free(t_out, grid, state, b, inertia, out, budget, every)
     y = np.empty(ny)
     for i in range(ny):
         y[i] = state.y[b, i]
@@ -722,25 +722,18 @@ def fixed_step(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64
         h, n_sub = grid[0, k], int(grid[1, k])
         n = min(n_sub - s0, budget - taken)
         taken += n
-        # one loop per method keeps the dispatch out of the hot loop; written here, not in an inlined helper:
-        # numba counted the references of the seven arrays handed to the helper at every output interval
-        if ny == 7 and method == RK4:
-            for s in range(s0, s0 + n):
-                _rk4(t_out[k] + s * h, h, inertia, rows, y, wa, scratch)
-        elif ny == 7 and method == RKMK4:
-            for s in range(s0, s0 + n):
-                _rkmk4(t_out[k] + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch)
-        elif ny == 7:
-            for s in range(s0, s0 + n):
-                if _rotation_step(method, t_out[k] + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
-                    return NO_CONVERGENCE
+        # the steps' loop is written here, not in an inlined helper: numba counted the references of the
+        # seven arrays handed to the helper at every output interval
+        for s in range(s0, s0 + n if ny == 7 else 0):
+            if step(t_out[k] + s * h, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
+                return NO_CONVERGENCE
         for s in range(s0, s0 + n if ny == 13 else 0):
             t = t_out[k] + s * h
             # velocity Verlet for the centre of mass around the rotation step
             _translation_kick(t, 0.5 * h, mass, frows, y, scratch)
             for c in range(3):
                 y[7 + c] += h * y[10 + c]
-            if _rotation_step(method, t, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
+            if step(t, h, inertia, rows, y, wa, wb, wc, wd, scratch) != OK:
                 return NO_CONVERGENCE
             _translation_kick(t + h, 0.5 * h, mass, frows, y, scratch)
         s0 += n
@@ -792,15 +785,76 @@ def run_dop853_batch(t_out: NDArray[np.float64], runs: Runs, inertia: NDArray[np
                                    out[b], budget)
 
 
-@parallel
-def run_batch(method: int, t_out: NDArray[np.float64], grid: NDArray[np.float64], state: Steps,
-              inertia: NDArray[np.float64], mass: NDArray[np.float64], rows: _Rows, frows: _Rows,
-              out: NDArray[np.float64], status: NDArray[np.int64], budget: int, every: int) -> None:
-    """Many bodies of a fixed-step ``method``, one per ``prange`` iteration: the same code as :func:`fixed_step`.
+# ----------------------------------------------------------------------------
+# The runners. numba caches no function that takes another compiled function as an argument (its type holds
+# the callee's address), so each fixed-step method gets compiled runners of its own, made from the two
+# templates below by :func:`_declare`: a run compiles the method it uses and no other.
+
+def _one_body(t_out, grid, state, b, inertia, mass, rows, frows, out, budget, every):
+    """Body ``b``: the method's run ``RUN(PARAMETER, ...)`` (globals of each runner, see :func:`_declare`)."""
+    return RUN(PARAMETER, t_out, grid, state, b, inertia, mass, rows, frows, out, budget, every)  # noqa: F821
+
+
+def _many_bodies(t_out, grid, state, inertia, mass, rows, frows, out, status, budget, every):
+    """Many bodies, one per ``prange`` iteration: the same code, the one-body runner ``ONE``, as for one.
 
     Bodies whose ``status`` is no longer :data:`PAUSED` (finished or failed) are skipped.
     """
     for b in prange(status.size):
         if status[b] == PAUSED:
-            status[b] = fixed_step(method, t_out, grid, state, np.int64(b), inertia[b], mass[b], rows, frows, out[b],
-                                   budget, every)
+            # np.int64: a prange index is unsigned, and ONE would be compiled again for it
+            status[b] = ONE(t_out, grid, state, np.int64(b), inertia[b], mass[b], rows, frows,  # noqa: F821
+                            out[b], budget, every)
+
+
+class Runners(NamedTuple):
+    """The compiled runners of a fixed-step method: ``one`` body (returns its status) and ``many`` (in parallel).
+
+    ``one(t_out, grid, state, b, inertia, mass, rows, frows, out, budget, every)`` takes the arguments of
+    :func:`_stepped`; ``many(t_out, grid, state, inertia, mass, rows, frows, out, status, budget, every)``
+    the bodies' moments, masses, outputs and statuses as arrays.
+    """
+
+    one: Any
+    many: Any
+
+
+def _declare(name: str, run: Any, parameter: Any) -> Runners:
+    """The runners of the method whose run of one body is ``run(parameter, t_out, grid, state, b, ...)``.
+
+    Each is a template's code made a function of its own, named after the
+    method (the name keys its cache entry), whose globals give ``RUN``,
+    ``PARAMETER`` and ``ONE`` the method's.
+    """
+    def made(flavour: Any, template: Any, suffix: str, **constants: Any) -> Any:
+        function = FunctionType(template.__code__, {**globals(), **constants}, f"{name}_{suffix}")
+        function.__qualname__ = function.__name__
+        return flavour(function)
+
+    one = made(cached, _one_body, "one", RUN=run, PARAMETER=parameter)
+    return Runners(one, made(parallel, _many_bodies, "many", ONE=one))
+
+
+_RUNNERS = {SPLITTING: _declare("splitting", _stepped, _splitting),
+            SPLITTING4: _declare("splitting4", _stepped, _splitting4),
+            DMV: _declare("dmv", _stepped, _dmv),
+            RKMK4: _declare("rkmk4", _stepped, _rkmk4),
+            MIDPOINT: _declare("midpoint", _stepped, _midpoint),
+            RK4: _declare("rk4", _stepped, _rk4)}
+# a torque-free rotation (state (ω′, q), no torque) whose state stays in registers
+_FREE_RUNNERS = {SPLITTING: _declare("splitting_free", _splitting_free, (1.0,)),
+                 SPLITTING4: _declare("splitting4_free", _splitting_free, (YOSHIDA_OUTER, YOSHIDA_INNER, YOSHIDA_OUTER)),
+                 RK4: _declare("rk4_free", _rk4_free, None)}
+
+
+def runners(method: int, free: bool) -> Runners:
+    """The runners of fixed-step ``method``; ``free``: a torque-free rotation alone (state (ω′, q), no torque).
+
+    Examples
+    --------
+    >>> runners(SPLITTING, free=True) == runners(SPLITTING, free=False)
+    False
+    >>> runners(DMV, free=True) == runners(DMV, free=False)  # no torque-free runner of its own
+    True
+    """
+    return _FREE_RUNNERS.get(method, _RUNNERS[method]) if free else _RUNNERS[method]

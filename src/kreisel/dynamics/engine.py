@@ -275,19 +275,17 @@ def _run(code: int, t: _Array, dt: float, y0: _Array, moments: _Array, mass: _Ar
     else:
         grid = _integrators.step_grid(t, dt)
         state = _integrators.new_state(y0)
+        runners = _integrators.runners(code, free=ny == 7 and rows is None)
         if count == 1:
-            compile_ahead(_integrators.fixed_step, code, t, grid, state, 0, moments[0], mass[0], rows, frows, out[0], 1,
-                          every)
+            compile_ahead(runners.one, t, grid, state, 0, moments[0], mass[0], rows, frows, out[0], 1, every)
         else:
-            compile_ahead(_integrators.run_batch, code, t, grid, state, moments, mass, rows, frows, out, status, 1,
-                          every)
+            compile_ahead(runners.many, t, grid, state, moments, mass, rows, frows, out, status, 1, every)
 
         def step(budget: int) -> bool:
             if count == 1:
-                status[0] = _integrators.fixed_step(code, t, grid, state, 0, moments[0], mass[0], rows, frows,
-                                                    out[0], budget, every)
+                status[0] = runners.one(t, grid, state, 0, moments[0], mass[0], rows, frows, out[0], budget, every)
             else:
-                _integrators.run_batch(code, t, grid, state, moments, mass, rows, frows, out, status, budget, every)
+                runners.many(t, grid, state, moments, mass, rows, frows, out, status, budget, every)
             return not np.any(status == _dop853.PAUSED)
 
         def reached() -> float:

@@ -21,6 +21,7 @@ Python layer names them (:class:`kreisel.tops.euler_top.Regime`).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -324,19 +325,58 @@ def _classify(moments, w):
 
 
 @cached
+def steady_body(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64],
+                omega: NDArray[np.float64], quat: NDArray[np.float64]) -> None:
+    """:func:`body_samples` of a body in the regime :data:`STEADY`."""
+    _steady_samples(w, q, t, omega, quat)
+
+
+@cached
+def symmetric_body(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64],
+                   omega: NDArray[np.float64], quat: NDArray[np.float64]) -> None:
+    """:func:`body_samples` of a body in the regime :data:`SYMMETRIC`."""
+    _, axis, perpendicular = _classify(moments, w)[:3]
+    _symmetric_samples(moments, axis, perpendicular, w, q, t, omega, quat)
+
+
+@cached
+def asymmetric_body(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64],
+                    omega: NDArray[np.float64], quat: NDArray[np.float64]) -> None:
+    """:func:`body_samples` of a body in one of the elliptic regimes (about an axis, the separatrix)."""
+    _, _, _, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
+    qp0, qp1, qp2, qp3 = _permutation_quat(i0, i1, i2, flip)
+    permute = np.array([i0, i1, i2, flip, qp0, qp1, qp2, qp3], dtype=np.float64)
+    _asymmetric_samples(moments[i0], moments[i1], moments[i2], v1, v2, v3, q[0], q[1], q[2], q[3], t, omega,
+                        quat, permute)
+
+
+@cached
 def body_samples(moments: NDArray[np.float64], w: NDArray[np.float64], q: NDArray[np.float64], t: NDArray[np.float64], omega: NDArray[np.float64],
                  quat: NDArray[np.float64]) -> None:
-    """Exact ω (n, 3) and q (n, 4) of one body at times t, written into ``omega``, ``quat``."""
-    regime, axis, perpendicular, i0, i1, i2, flip, v1, v2, v3 = _classify(moments, w)
+    """Exact ω (n, 3) and q (n, 4) of one body at times t, written into ``omega``, ``quat``.
+
+    It holds the code of every regime; a caller that knows the regime (from
+    :func:`setup_info`) calls that regime's function (:func:`body_in_regime`)
+    and compiles that one only.
+    """
+    regime = _classify(moments, w)[0]
     if regime == STEADY:
-        _steady_samples(w, q, t, omega, quat)
+        steady_body(moments, w, q, t, omega, quat)
     elif regime == SYMMETRIC:
-        _symmetric_samples(moments, axis, perpendicular, w, q, t, omega, quat)
+        symmetric_body(moments, w, q, t, omega, quat)
     else:
-        qp0, qp1, qp2, qp3 = _permutation_quat(i0, i1, i2, flip)
-        permute = np.array([i0, i1, i2, flip, qp0, qp1, qp2, qp3], dtype=np.float64)
-        _asymmetric_samples(moments[i0], moments[i1], moments[i2], v1, v2, v3, q[0], q[1], q[2], q[3], t, omega,
-                            quat, permute)
+        asymmetric_body(moments, w, q, t, omega, quat)
+
+
+def body_in_regime(regime: int) -> Any:
+    """The compiled :func:`body_samples` of a body in ``regime`` (a case code), with its arguments.
+
+    Examples
+    --------
+    >>> body_in_regime(STEADY) is steady_body, body_in_regime(SEPARATRIX) is asymmetric_body
+    (True, True)
+    """
+    return steady_body if regime == STEADY else symmetric_body if regime == SYMMETRIC else asymmetric_body
 
 
 @cached

@@ -551,24 +551,27 @@ def _solve(moments: NDArray[np.float64], t: ArrayLike, omega0: ArrayLike, q0: Ar
     # the motion depends on the moments' ratios only: a power of two (exact) brings the largest to ~1
     scaled = np.ldexp(moments, -np.frexp(np.max(moments, axis=-1, keepdims=True))[1])
     count = int(np.prod(batch, dtype=np.int64))
-    flat = [np.ascontiguousarray(np.broadcast_to(a, batch + a.shape[-1:])).reshape(count, -1)
+    # writable copies: the arrays of EulerTop.regime's call, so that both load one compiled setup_info
+    flat = [np.array(np.broadcast_to(a, batch + a.shape[-1:]), order="C").reshape(count, -1)
             for a in (scaled, omega0, q0)]
+    info = np.empty((count, len(_free_top.INFO_FIELDS)))
+    _free_top.setup_info(flat[0], flat[1], info)
     omega = np.empty((count, t.size, 3))
     quat = np.empty((count, t.size, 4))
     # compiled calls of at most SAMPLES_PER_CALL samples (each sample is computed on its own: the
     # same bits), so that Ctrl-C stops 3e7 samples at once instead of after the whole call
     if count == 1 or t.size * 2 > SAMPLES_PER_CALL:
         for b in range(count):
+            # the function of the body's regime: a first run compiles that regime's code only
+            samples = _free_top.body_in_regime(int(info[b, 0]))
             for s in range(0, t.size, SAMPLES_PER_CALL):
                 e = s + SAMPLES_PER_CALL
-                _free_top.body_samples(flat[0][b], flat[1][b], flat[2][b], t[s:e], omega[b, s:e], quat[b, s:e])
+                samples(flat[0][b], flat[1][b], flat[2][b], t[s:e], omega[b, s:e], quat[b, s:e])
     else:
         group = SAMPLES_PER_CALL // t.size
         for b in range(0, count, group):
             _free_top.batch_samples(flat[0][b:b + group], flat[1][b:b + group], flat[2][b:b + group], t,
                                     omega[b:b + group], quat[b:b + group])
-    info = np.empty((count, len(_free_top.INFO_FIELDS)))
-    _free_top.setup_info(flat[0], flat[1], info)
     labels = [Regime(int(code)).label for code in info[:, 0]]
     meta: dict[str, Any] = {"method": "exact", "body": meta_body}
     if moments.ndim == 1:
