@@ -120,8 +120,9 @@ def _plausible(data, stated, source, kind):
     read_as = "in the header's unit" if origin == "header" else "its numbers taken as rad/s: no unit is given"
     likely = next((u for u in _LIKELY if UNITS["gyro"][u] < scale and peak / scale * UNITS["gyro"][u] <= MAX_RATE),
                   None)
-    advice = (f"the numbers look like {likely}: read them with units={likely!r} (kreisel fit --units {likely})"
-              if likely else "give the unit with units= (kreisel fit --units)")
+    advice = (f"the numbers look like {likely}: read them with units={likely!r} "
+              f"(on the command line: --units {likely})" if likely
+              else "give the unit with units= (on the command line: --units)")
     unit = next(u for u, s in UNITS["gyro"].items() if s == scale)
     raise GyroFileError(f"{source}: the gyro's |ω| reaches {peak:.4g} rad/s ({read_as}), beyond the ~35 rad/s "
                         f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units={unit!r} if the "
