@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import kreisel as kr
-from kreisel.cli._output import COMPILING
 
 SRC = pathlib.Path(kr.__file__).resolve().parents[1]
 
@@ -27,23 +26,6 @@ n_samples = 21
 """
 
 
-def kreisel(*args, cwd=None, stdin=None):
-    """Run ``python -m kreisel ARGS``; the completed process (text output)."""
-    env = dict(os.environ, PYTHONPATH=str(SRC), COLUMNS="200")
-    return subprocess.run([sys.executable, "-m", "kreisel", *map(str, args)], cwd=cwd, env=env, input=stdin,
-                          capture_output=True, text=True, timeout=600)
-
-
-def usage_error(process, *fragments):
-    """Exit status 2, one error line naming every fragment, no traceback (a first run's compile notice aside)."""
-    assert process.returncode == 2, (process.stdout, process.stderr)
-    assert "Traceback" not in process.stderr
-    lines = [line for line in process.stderr.strip().splitlines() if line != COMPILING]
-    assert len(lines) == 1 and lines[0].startswith("error: "), process.stderr
-    for fragment in fragments:
-        assert fragment in lines[0], (fragment, lines[0])
-
-
 @pytest.mark.parametrize("attitude, line, key, expected", [
     ('seq = "ZXQ"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "letters x, y, z"),
     ('seq = "ZZX"\neuler = [1, 2, 3]', 7, "initial.attitude.seq", "no axis twice in a row"),
@@ -51,14 +33,15 @@ def usage_error(process, *fragments):
     ("matrix = [[1, 0, 0], [0, 2, 0], [0, 0, 1]]", 7, "initial.attitude.matrix", "a rotation matrix"),
     ('quat = [1, 0, 0, 0]\nseq = "ZXZ"', 8, "initial.attitude.seq", "only used with euler"),
 ])
-def test_bad_attitude_values_are_named_before_the_run(tmp_path, attitude, line, key, expected):
+def test_bad_attitude_values_are_named_before_the_run(kreisel, usage_error, tmp_path, attitude, line, key,
+                                                     expected):
     scenario = tmp_path / "spin.toml"
     scenario.write_text(GOOD.replace("ATTITUDE", attitude))
     usage_error(kreisel("simulate", scenario), f"spin.toml:{line}: {key}: expected" if "only" not in expected
                 else f"spin.toml:{line}: {key}: {expected}", expected)
 
 
-def test_scenario_file_defects_are_one_clear_line(tmp_path):
+def test_scenario_file_defects_are_one_clear_line(kreisel, usage_error, tmp_path):
     good = GOOD.replace("ATTITUDE", "quat = [1, 0, 0, 0]")
     files = {
         "bom.toml": ("\ufeff" + good, None),
@@ -78,7 +61,7 @@ def test_scenario_file_defects_are_one_clear_line(tmp_path):
     usage_error(kreisel("simulate", "binary.toml", cwd=tmp_path), "binary.toml: not a text file")
 
 
-def test_bundled_scenario_names_work_and_typos_get_the_nearest_name(tmp_path):
+def test_bundled_scenario_names_work_and_typos_get_the_nearest_name(kreisel, usage_error, tmp_path):
     process = kreisel("simulate", "tennis_racket", cwd=tmp_path)
     assert process.returncode == 0, process.stderr
     assert "2001 samples" in process.stdout
@@ -87,7 +70,7 @@ def test_bundled_scenario_names_work_and_typos_get_the_nearest_name(tmp_path):
     usage_error(kreisel("sweep", "lagrange_apx", cwd=tmp_path), "did you mean 'lagrange_apex'?")
 
 
-def test_examples_copy_twice_needs_force(tmp_path):
+def test_examples_copy_twice_needs_force(kreisel, usage_error, tmp_path):
     assert kreisel("examples", "fast_top", cwd=tmp_path).returncode == 0
     (tmp_path / "fast_top.toml").write_text("# my edits\n")
     usage_error(kreisel("examples", "fast_top", cwd=tmp_path), "fast_top.toml already exists", "--force")
@@ -101,7 +84,7 @@ def numbers(text):
     return np.array([[float(x) for x in line.split()] for line in text.strip().splitlines()])
 
 
-def test_convert_takes_negative_numbers_as_typed():
+def test_convert_takes_negative_numbers_as_typed(kreisel, usage_error):
     process = kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "-30", "45", "60", "--degrees")
     assert process.returncode == 0, process.stderr
     np.testing.assert_allclose(numbers(process.stdout)[0], kr.euler_to_quat("ZXZ", [-30, 45, 60], degrees=True),
@@ -117,7 +100,7 @@ def test_convert_takes_negative_numbers_as_typed():
     usage_error(kreisel("convert", "--from", "euler:ZXZ", "1", "2", "3"), "missing option --to")
 
 
-def test_convert_input_files(tmp_path):
+def test_convert_input_files(kreisel, usage_error, tmp_path):
     angles = tmp_path / "angles.csv"
     angles.write_text("phi,theta,psi\n30,45,60\n-10,20,-30\n")
     process = kreisel("convert", "--from", "euler:ZXZ", "--to", "quat", "--degrees", "-i", angles)
@@ -140,14 +123,14 @@ def test_convert_input_files(tmp_path):
                 "--to given 2 times")
 
 
-def test_convert_help_states_the_layouts():
+def test_convert_help_states_the_layouts(kreisel):
     text = " ".join(kreisel("convert", "--help").stdout.split())
     for phrase in ("scalar first", "--scalar-last", "row-major", "the axis, then the angle", "-30 45 60",
                    "mrp | euler_parameters", "euler_parameters e0 e1 e2 e3, the conjugate quaternion"):
         assert phrase in text, phrase
 
 
-def test_a_heavy_top_reports_its_first_integrals_not_drift(tmp_path):
+def test_a_heavy_top_reports_its_first_integrals_not_drift(kreisel, tmp_path):
     process = kreisel("simulate", "fast_top", "-o", "fast.nc", cwd=tmp_path)
     assert process.returncode == 0, process.stderr
     assert "drift" not in process.stdout
@@ -170,7 +153,7 @@ def test_a_heavy_top_reports_its_first_integrals_not_drift(tmp_path):
     assert "no energy ellipsoid" in title and float(width) < 0.2, shown
 
 
-def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):
+def test_plot_says_what_a_foucault_result_holds_and_plots_it(kreisel, usage_error, tmp_path):
     assert kreisel("simulate", "foucault", "-o", "f.nc", cwd=tmp_path).returncode == 0
     process = kreisel("plot", "f.nc", "-o", "f.png", cwd=tmp_path)
     assert process.returncode == 0, process.stderr
@@ -179,7 +162,7 @@ def test_plot_says_what_a_foucault_result_holds_and_plots_it(tmp_path):
                 "f.nc holds a Foucault pendulum result, which plots as azimuth")
 
 
-def test_serve_opens_a_bundled_scenario_by_name(tmp_path, interrupt):
+def test_serve_opens_a_bundled_scenario_by_name(kreisel, usage_error, tmp_path, interrupt):
     import re
 
     import httpx

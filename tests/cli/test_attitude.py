@@ -1,9 +1,5 @@
 """``kreisel attitude`` run as a user runs it: a subprocess on a synthetic recording and on the bundled trial."""
 
-import os
-import pathlib
-import subprocess
-import sys
 from importlib import resources
 
 import numpy as np
@@ -13,25 +9,8 @@ from PIL import Image
 
 import kreisel as kr
 
-SRC = pathlib.Path(kr.__file__).resolve().parents[1]
 RATE = 100.0
 HEADER = "t (s),gx (rad/s),gy (rad/s),gz (rad/s),ax (m/s2),ay (m/s2),az (m/s2),mx (uT),my (uT),mz (uT)"
-
-
-def kreisel(*args, cwd=None):
-    env = dict(os.environ, PYTHONPATH=str(SRC), COLUMNS="200")
-    return subprocess.run([sys.executable, "-m", "kreisel", *map(str, args)], cwd=cwd, env=env,
-                          capture_output=True, text=True, timeout=600)
-
-
-def refused(process, *fragments):
-    """Exit status 2, one error line naming every fragment, no traceback."""
-    assert process.returncode == 2, (process.stdout, process.stderr)
-    assert "Traceback" not in process.stderr
-    lines = [line for line in process.stderr.splitlines() if line.startswith("error:")]
-    assert len(lines) == 1, process.stderr
-    for fragment in fragments:
-        assert fragment in lines[0], (fragment, lines[0])
 
 
 def synthetic(n=400):
@@ -63,7 +42,7 @@ def _mean_rate(t):
     (("--method", "mahony", "--frame", "NED"), {"method": "mahony", "frame": "NED"}),
     (("--offline", "--no-mag"), {"offline": True, "mag": None}),
 ])
-def test_csv_matches_estimate_attitude_bit_for_bit(recording, tmp_path, options, keywords):
+def test_csv_matches_estimate_attitude_bit_for_bit(kreisel, recording, tmp_path, options, keywords):
     out = tmp_path / "attitude.csv"
     process = kreisel("attitude", recording, "-o", out, *options)
     assert process.returncode == 0, process.stderr
@@ -81,7 +60,7 @@ def test_csv_matches_estimate_attitude_bit_for_bit(recording, tmp_path, options,
         assert "no magnetometer" not in process.stderr  # asked for, not missing
 
 
-def test_method_without_bias_writes_no_bias_columns(recording, tmp_path):
+def test_method_without_bias_writes_no_bias_columns(kreisel, recording, tmp_path):
     out = tmp_path / "madgwick.csv"
     process = kreisel("attitude", recording, "-o", out, "--method", "madgwick")
     assert process.returncode == 0, process.stderr
@@ -90,7 +69,7 @@ def test_method_without_bias_writes_no_bias_columns(recording, tmp_path):
     assert "method madgwick" in process.stdout
 
 
-def test_rate_for_a_table_without_time(tmp_path):
+def test_rate_for_a_table_without_time(kreisel, tmp_path):
     _, omega, accel, _ = synthetic(200)
     path = tmp_path / "no_time.csv"
     np.savetxt(path, np.column_stack([np.degrees(omega), accel]), fmt="%.17g", delimiter=",",
@@ -105,7 +84,7 @@ def test_rate_for_a_table_without_time(tmp_path):
     np.testing.assert_array_equal(table[:, 1:5], est.q)
 
 
-def test_bundled_trial_errors_and_plot(tmp_path):
+def test_bundled_trial_errors_and_plot(kreisel, tmp_path):
     out, figure = tmp_path / "broad.csv", tmp_path / "broad.png"
     process = kreisel("attitude", "broad_07", "-o", out, "--plot", figure)
     assert process.returncode == 0, process.stderr
@@ -120,35 +99,35 @@ def test_bundled_trial_errors_and_plot(tmp_path):
     assert Image.open(figure).size[0] > 500
 
 
-def test_ned_errors_equal_enu_errors(tmp_path):
+def test_ned_errors_equal_enu_errors(kreisel, tmp_path):
     runs = {frame: kreisel("attitude", "broad_07", "-o", tmp_path / f"{frame}.csv", "--frame", frame,
                            "--method", "mahony") for frame in ("ENU", "NED")}
     lines = {frame: [line for line in p.stdout.splitlines() if "RMSE" in line] for frame, p in runs.items()}
     assert lines["ENU"] and lines["ENU"] == lines["NED"]
 
 
-def test_refusals(recording, tmp_path):
+def test_refusals(kreisel, usage_error, recording, tmp_path):
     out = tmp_path / "attitude.csv"
     out.write_text("keep me")
-    refused(kreisel("attitude", recording, "-o", out), "already exists", "--force")
+    usage_error(kreisel("attitude", recording, "-o", out), "already exists", "--force")
     assert out.read_text() == "keep me"
     fresh = tmp_path / "fresh.csv"
-    refused(kreisel("attitude", recording, "-o", fresh, "--offline", "--method", "madgwick"), "--offline")
-    refused(kreisel("attitude", recording, "-o", fresh, "--frame", "NWU"), "--frame", "NWU")
-    refused(kreisel("attitude", recording, "-o", fresh, "--method", "vqf"), "--method", "vqf")
-    refused(kreisel("attitude", recording, "-o", fresh, "--rate", "50"), "has a time column")
-    refused(kreisel("attitude", tmp_path / "[bold]gone.csv", "-o", fresh), "[bold]gone.csv", "no such file")
+    usage_error(kreisel("attitude", recording, "-o", fresh, "--offline", "--method", "madgwick"), "--offline")
+    usage_error(kreisel("attitude", recording, "-o", fresh, "--frame", "NWU"), "--frame", "NWU")
+    usage_error(kreisel("attitude", recording, "-o", fresh, "--method", "vqf"), "--method", "vqf")
+    usage_error(kreisel("attitude", recording, "-o", fresh, "--rate", "50"), "has a time column")
+    usage_error(kreisel("attitude", tmp_path / "[bold]gone.csv", "-o", fresh), "[bold]gone.csv", "no such file")
     assert not fresh.exists()
 
 
-def test_files_it_cannot_use(tmp_path):
+def test_files_it_cannot_use(kreisel, usage_error, tmp_path):
     t, omega, accel, mag = synthetic(100)
     fresh = tmp_path / "out.csv"
     gyro_only = tmp_path / "gyro.csv"
     np.savetxt(gyro_only, np.column_stack([t, omega]), delimiter=",", header="t,gx,gy,gz", comments="")
-    refused(kreisel("attitude", gyro_only, "-o", fresh), "no accelerometer")
+    usage_error(kreisel("attitude", gyro_only, "-o", fresh), "no accelerometer")
     gap = tmp_path / "gap.csv"
     keep = np.r_[0:50, 60:100]
     np.savetxt(gap, np.column_stack([t, omega, accel, mag])[keep], delimiter=",", header=HEADER, comments="")
-    refused(kreisel("attitude", gap, "-o", fresh), "not evenly spaced", "t = 0.49")
+    usage_error(kreisel("attitude", gap, "-o", fresh), "not evenly spaced", "t = 0.49")
     assert not fresh.exists()

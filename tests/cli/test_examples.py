@@ -1,38 +1,25 @@
 """``kreisel examples`` lists everything bundled, and ``kreisel plot`` draws a recording, as a user runs them."""
 
-import os
-import pathlib
-import subprocess
-import sys
-
 import numpy as np
 from PIL import Image
 
 import kreisel as kr
 from kreisel.io.gyro import recording_path
 
-SRC = pathlib.Path(kr.__file__).resolve().parents[1]
 
-
-def kreisel(*args, cwd=None):
-    env = dict(os.environ, PYTHONPATH=str(SRC), COLUMNS="200")
-    return subprocess.run([sys.executable, "-m", "kreisel", *map(str, args)], cwd=cwd, env=env, capture_output=True,
-                          text=True, timeout=600)
-
-
-def test_examples_lists_scenarios_the_recording_and_the_sweeps():
+def test_examples_lists_scenarios_the_recording_and_the_sweeps(kreisel):
     done = kreisel("examples")
     assert done.returncode == 0, done.stderr
     headings = [line for line in done.stdout.splitlines() if line and not line.startswith(" ")]
-    assert [h.split(" (")[0] for h in headings] == ["scenarios", "gyroscope recordings", "sweeps"]
-    recordings = done.stdout.split("gyroscope recordings")[1].split("sweeps")[0]
+    assert [h.split(" (")[0] for h in headings] == ["scenarios", "gyroscope recordings", "IMU recordings", "sweeps"]
+    recordings = done.stdout.split("gyroscope recordings")[1].split("IMU recordings")[0]
     assert "phone_toss" in recordings and "tossed about its middle axis" in recordings
     sweeps = done.stdout.split("\nsweeps")[1]
     for name in ("tennis_racket", "lagrange_apex", "imu_monte_carlo"):
         assert f"  {name}" in sweeps
 
 
-def test_examples_copies_the_recording_out(tmp_path):
+def test_examples_copies_the_recording_out(kreisel, tmp_path):
     done = kreisel("examples", "phone_toss", "--to", tmp_path)
     assert done.returncode == 0 and done.stdout.strip() == f"wrote {tmp_path / 'phone_toss.csv'}", done.stderr
     assert (tmp_path / "phone_toss.csv").read_bytes() == recording_path("phone_toss").read_bytes()
@@ -40,7 +27,7 @@ def test_examples_copies_the_recording_out(tmp_path):
     assert again.returncode == 2 and "already exists; pass --force" in again.stderr
 
 
-def test_plot_draws_a_recordings_rates_and_the_fit_window(tmp_path):
+def test_plot_draws_a_recordings_rates_and_the_fit_window(kreisel, tmp_path):
     t = np.linspace(0.0, 1.0, 201)
     rates = np.degrees(kr.EulerTop(0.2, 0.8, 1.0).omega(t, [0.5, 6.0, 0.3]))
     table = tmp_path / "deg.csv"
@@ -56,7 +43,7 @@ def test_plot_draws_a_recordings_rates_and_the_fit_window(tmp_path):
     assert wrong.returncode == 2 and "a gyroscope recording, which plots as rates" in wrong.stderr
 
 
-def test_plot_of_neither_a_result_nor_a_recording_says_both(tmp_path):
+def test_plot_of_neither_a_result_nor_a_recording_says_both(kreisel, tmp_path):
     junk = tmp_path / "notes.csv"
     junk.write_text("shopping list\nmilk, eggs\n")
     done = kreisel("plot", junk, "-o", tmp_path / "x.png")

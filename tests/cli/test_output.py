@@ -1,40 +1,34 @@
 """What ``kreisel`` prints, as a user sees it (a subprocess): user text as typed, no doubled or blank lines, whole help."""
 
-import os
-import pathlib
+import functools
 import re
-import subprocess
-import sys
 
 import pytest
 from typer.main import get_command
 
-import kreisel as kr
 from kreisel.cli import app
 from kreisel.cli._output import COMPILING
 
-SRC = pathlib.Path(kr.__file__).resolve().parents[1]
+
+@pytest.fixture
+def kreisel(kreisel):
+    """The command in an 80-column terminal, where wrapping would cut or double what it prints."""
+    return functools.partial(kreisel, env={"COLUMNS": "80"})
 
 
-def kreisel(*args, cwd=None):
-    env = dict(os.environ, PYTHONPATH=str(SRC), COLUMNS="80")
-    return subprocess.run([sys.executable, "-m", "kreisel", *map(str, args)], cwd=cwd, env=env, capture_output=True,
-                          text=True, timeout=600)
-
-
-def test_an_euler_sequence_is_printed_as_typed_not_as_an_emoji():
+def test_an_euler_sequence_is_printed_as_typed_not_as_an_emoji(kreisel):
     done = kreisel("convert", "--from", "euler:ZZZ", "--to", "quat", "1", "2", "3")
     assert done.returncode == 2
     assert "--from euler:ZZZ: seq must not repeat" in done.stderr and "💤" not in done.stderr, done.stderr
 
 
 @pytest.mark.parametrize("name", ["[bold]top[/bold].toml", "a:zzz:b.toml", "x [red]y.toml"])
-def test_file_names_are_printed_as_typed(tmp_path, name):
+def test_file_names_are_printed_as_typed(kreisel, tmp_path, name):
     done = kreisel("simulate", name, cwd=tmp_path)
     assert done.returncode == 2 and f"{name}: no such file" in done.stderr, done.stderr
 
 
-def test_a_scenario_title_with_markup_runs_and_its_output_starts_with_the_result(tmp_path, racket_toml):
+def test_a_scenario_title_with_markup_runs_and_its_output_starts_with_the_result(kreisel, tmp_path, racket_toml):
     scenario = tmp_path / "s.toml"
     scenario.write_text(racket_toml.replace('"short tennis racket"', '"[bold]racket[/] :zzz:"'))
     done = kreisel("simulate", scenario)
@@ -43,13 +37,13 @@ def test_a_scenario_title_with_markup_runs_and_its_output_starts_with_the_result
     assert done.stderr in ("", COMPILING + "\n"), repr(done.stderr)  # no empty line where a bar was
 
 
-def test_fit_json_says_wrote_once(tmp_path):
+def test_fit_json_says_wrote_once(kreisel, tmp_path):
     done = kreisel("fit", "phone_toss", "--json", tmp_path / "f.json")
     assert done.returncode == 0, done.stderr
     assert done.stdout.count(f"wrote {tmp_path / 'f.json'}") == 1, done.stdout
 
 
-def test_help_gives_every_command_summary_whole():
+def test_help_gives_every_command_summary_whole(kreisel):
     done = kreisel("--help")
     commands = done.stdout.split("Commands:")[1]
     assert done.returncode == 0 and "..." not in commands, done.stdout
@@ -59,7 +53,7 @@ def test_help_gives_every_command_summary_whole():
         assert f"{name} {summary}" in text, (name, summary)
 
 
-def test_plot_euler_takes_the_sequence(tmp_path, racket_toml):
+def test_plot_euler_takes_the_sequence(kreisel, tmp_path, racket_toml):
     scenario, traj = tmp_path / "s.toml", tmp_path / "t.nc"
     scenario.write_text(racket_toml)
     assert kreisel("simulate", scenario, "-o", traj).returncode == 0

@@ -99,7 +99,7 @@ def test_deg_per_second_without_a_unit_is_refused_naming_the_likely_unit(tmp_pat
     with pytest.raises(GyroFileError, match=r"deg.csv: the gyro's \|ω\| reaches 6\d\d(\.\d+)? rad/s \(its numbers "
                                             r"taken as rad/s: no unit is given\), beyond the ~35 rad/s .* the "
                                             r"numbers look like deg/s: read them with units='deg/s' "
-                                            r"\(kreisel fit --units deg/s\)"):
+                                            r"\(on the command line: --units deg/s\)"):
         kr.io.read_gyro(path)
     rec = kr.io.read_gyro(path, units="deg/s")
     np.testing.assert_allclose(rec.omega, np.radians(DEG_TOSS), rtol=1e-15)

@@ -54,7 +54,7 @@ def test_fit_window_and_bias_options(client):
     [
         ({"text": "0 1 2 3\n0.1 1 x 3\n", "name": "bad.csv"}, 400, "bad.csv:2: not a number"),
         ({"text": "", "name": "empty.csv"}, 400, "empty.csv: empty"),
-        ({"text": "0 1 2 3\n1 1 2 3\n", "name": "short.csv"}, 400, "short.csv: too few samples"),
+        ({"text": "0 0.1 0.2 0.3\n1 0.1 0.2 0.3\n", "name": "short.csv"}, 400, "short.csv: too few samples"),
         ({"name": "x.csv"}, 422, "text"),
         ({"text": "0 1 2 3\n", "bias": "yes"}, 422, "bias"),
     ],

@@ -21,6 +21,7 @@ from ._files import FORCE_HELP as _FORCE_HELP
 from ._files import check_output as _check_output
 from ._files import check_outputs_in as _check_outputs_in
 from ._files import writing as _writing
+from ._recordings import units_option
 from .attitude import attitude as attitude_command
 
 __all__ = [
@@ -229,7 +230,7 @@ def simulate(
 def plot(
     file: pathlib.Path = typer.Argument(
         ..., help="Result file written by `kreisel simulate`, or a gyroscope recording "
-                                  "(as `kreisel fit` reads; 'phone_toss' is bundled)."),
+                  "(as `kreisel fit` reads; 'phone_toss' and 'broad_07' are bundled)."),
     kind: Optional[str] = typer.Option(
         None, "--kind", "-k", help="Trajectories: omega (default) | energy | euler | polhode | herpolhode | apex; "
                                    "Foucault results: azimuth; coning results: error; recordings: rates."),
@@ -240,6 +241,7 @@ def plot(
     start: Optional[float] = typer.Option(
         None, "--start", help="Recordings: the fit window's start, s (as in the file)."),
     stop: Optional[float] = typer.Option(None, "--stop", help="Recordings: the fit window's end, s."),
+    units: Optional[str] = units_option(),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Plot a saved result (a trajectory, or what a Foucault or coning run holds) or a recording's rates."""
@@ -266,13 +268,12 @@ def plot(
         except ValueError as exc:
             usage_error(f"--seq {seq}: {exc} (uppercase: intrinsic, lowercase: extrinsic)")
     try:
-        result = _plottable(file)
+        result = _plottable(file, units)
         if isinstance(result, GyroRecording):
             kinds = {"rates": lambda recording: plots.gyro_recording(recording, window=(start, stop))}
             what = "a gyroscope recording"
-        elif start is not None or stop is not None:
-            usage_error(f"--start and --stop mark the fit window of a gyroscope recording; {file} holds a "
-                        "saved result")
+        elif start is not None or stop is not None or units is not None:
+            usage_error(f"--start, --stop and --units are for a gyroscope recording; {file} holds a saved result")
         elif isinstance(result, Trajectory):
             kinds, what = plots.KINDS, "a trajectory"
         else:
@@ -289,26 +290,29 @@ def plot(
         plots.save(fig, output)
 
 
-def _plottable(path):
-    """The saved result (Trajectory or Dataset) or the gyroscope recording (bundled by name) at ``path``."""
-    from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
-    from ..io.results import ResultError, load_result
+def _plottable(path, units):
+    """The saved result (Trajectory or Dataset) or the gyroscope recording (bundled by name) at ``path``.
 
-    if not path.exists() and str(path) in RECORDINGS:
-        return read_gyro(recording_path(str(path)))
-    if not path.exists():
-        usage_error(f"{path}: no such file (and no bundled recording of that name: {', '.join(RECORDINGS)})")
+    ``units``: the gyro's unit (``--units``), for a recording whose file names none.
+    """
+    from ..io.gyro import GyroFileError, read_gyro
+    from ..io.results import ResultError, load_result
+    from ._recordings import read_recording, recording_file
+
+    path = recording_file(path)
     try:
         if path.is_dir() or path.suffix.lower() == ".zip":
-            return read_gyro(path)
+            return read_recording(read_gyro, path, units=units)
         return load_result(path)
     except ResultError as exc:
         if path.suffix.lower() in (".nc", ".parquet"):
             raise
         try:
-            return read_gyro(path)
+            return read_gyro(path, units=units)
         except (GyroFileError, OSError) as gyro:
             raise ResultError(f"{exc}; nor is it a gyroscope recording: {gyro}") from None
+        except ValueError as bad_units:
+            usage_error(f"--units: {bad_units}")
     except OSError as exc:
         raise ResultError(f"{path}: cannot read ({exc.strerror or exc})") from None
 
@@ -346,7 +350,7 @@ def examples(
     """List the bundled scenarios, gyroscope recordings and sweeps, or copy one out to edit."""
     from .._fileio import atomic_output
     from ..io.bundled import EXAMPLES, copy_example, suggestion
-    from ..io.gyro import RECORDINGS, recording_path
+    from ._recordings import bundled_recordings
     from .examples import sections
 
     if name is None:
@@ -357,14 +361,15 @@ def examples(
             for example, text in entries.items():
                 console().print(Text.assemble(("  " + f"{example:<16}", "bold"), " ", text), soft_wrap=True)
         return
-    if name in RECORDINGS:
-        target = directory / recording_path(name).name
+    recordings = bundled_recordings()
+    if name in recordings:
+        target = directory / recordings[name].name
         _check_output("--to", target, force)
         with _writing("--to", target), atomic_output(target) as tmp:
-            tmp.write_bytes(recording_path(name).read_bytes())
+            tmp.write_bytes(recordings[name].read_bytes())
         return
     if name not in EXAMPLES:
-        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *RECORDINGS))}")
+        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
     try:
         path = copy_example(name, directory, force=force)
     except (FileExistsError, ValueError) as exc:
@@ -468,8 +473,7 @@ def fit(
     stop: Optional[float] = typer.Option(None, "--stop", help="Fit up to this time, s."),
     bias: bool = typer.Option(True, "--bias/--no-bias",
                               help="Also fit a constant gyroscope offset (as the viewer does; real gyros have one)."),
-    units: Optional[str] = typer.Option(
-        None, "--units", help="The gyroscope's unit when the file does not name it: rad/s, deg/s, mdeg/s, rpm…"),
+    units: Optional[str] = units_option(),
     align: bool = typer.Option(False, "--align", help="Also fit the rotation from sensor to principal axes."),
     plot_file: Optional[pathlib.Path] = typer.Option(None, "--plot", help="Draw data, fit and residuals: fit.png | .svg | .pdf"),
     json_file: Optional[pathlib.Path] = typer.Option(None, "--json", help="Write the results as JSON."),
@@ -481,24 +485,17 @@ def fit(
 
     from .._fileio import atomic_output
     from .._optional import require_all
-    from ..io.gyro import RECORDINGS, GyroFileError, read_gyro, recording_path
+    from ..io.gyro import read_gyro
     from ..tops.fitting import NotFreeRotationWarning, fit_free_rotation
+    from ._recordings import read_recording, recording_file
     from .fit import summary
 
     _check_output("--plot", plot_file, force, _FIGURES)
     if plot_file is not None:
         require_all([("matplotlib", "plot")], feature="kreisel fit --plot")   # before the fit
     _check_output("--json", json_file, force)
-    if not recording.exists() and str(recording) in RECORDINGS:
-        recording = recording_path(str(recording))
-    try:
-        data = read_gyro(recording, units=units)
-    except OSError as exc:
-        usage_error(f"cannot read {recording} ({exc.strerror or exc})")
-    except GyroFileError as exc:
-        usage_error(str(exc))
-    except ValueError as exc:  # the --units value
-        usage_error(f"--units: {exc}")
+    recording = recording_file(recording)
+    data = read_recording(read_gyro, recording, units=units)
     for note in data.notes:
         say(f"{recording}: {note}")
     with warnings.catch_warnings():
@@ -540,11 +537,11 @@ def serve(
         None, "--allow-host", help="Another name the viewer answers to, e.g. this machine's name on the network (repeatable)."),
 ):
     """Start the interactive 3D viewer in the browser."""
-    from ..io.gyro import RECORDINGS, TRIALS, recording_path
     from ..web import serve as run_server
+    from ._recordings import recording_file
 
-    if recording is not None and not recording.exists() and str(recording) in (*RECORDINGS, *TRIALS):
-        recording = recording_path(str(recording))
+    if recording is not None:
+        recording = recording_file(recording)
     try:
         if no_token and token is not None:
             raise ValueError("give --token or --no-token, not both")

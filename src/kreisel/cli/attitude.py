@@ -8,24 +8,15 @@ from typing import Optional
 import typer
 
 from ._files import FORCE_HELP
+from ._recordings import units_option
 
-__all__ = ["BUNDLED", "METHODS", "attitude", "summary", "write_csv"]
+__all__ = ["METHODS", "attitude", "summary", "write_csv"]
 
-#: Bundled IMU recordings, by the short name the command takes in place of a file.
-BUNDLED = {"broad_07": "broad/broad_07_fast_rotation_60s.npz"}
 METHODS = ("kreisel", "madgwick", "mahony", "complementary")
 # a sample interval this far from the mean is a gap or a stall, not jitter: the filters step at one rate
 _SPACING_TOLERANCE = 0.25
 # NED ← ENU: a half turn about the horizontal axis between north and east
 _NED_FROM_ENU = (0.0, 0.5 ** 0.5, 0.5 ** 0.5, 0.0)
-
-
-def _recording_path(recording):
-    from importlib import resources
-
-    if not recording.exists() and str(recording) in BUNDLED:
-        return pathlib.Path(str(resources.files("kreisel.io.examples").joinpath(BUNDLED[str(recording)])))
-    return recording
 
 
 def _even_rate(t, source):
@@ -144,8 +135,7 @@ def attitude(
         False, "--no-mag", help="Ignore the magnetometer: the heading comes from the gyro alone."),
     rate: Optional[float] = typer.Option(
         None, "--rate", help="Sampling rate, Hz, of a table without a time column (its rows evenly spaced)."),
-    units: Optional[str] = typer.Option(
-        None, "--units", help="The gyroscope's unit when the file does not name it: rad/s, deg/s, mdeg/s, rpm…"),
+    units: Optional[str] = units_option(),
     plot_file: Optional[pathlib.Path] = typer.Option(
         None, "--plot", help="Draw yaw, pitch and roll (and, with a reference in the file, its angles and "
                              "the errors): attitude.png | .svg | .pdf"),
@@ -153,10 +143,11 @@ def attitude(
 ):
     """Estimate attitude and heading from gyro, accelerometer and magnetometer; write them as CSV."""
     from .._optional import require_all
-    from ..io.gyro import GyroFileError, read_imu
+    from ..io.gyro import read_imu
     from ..nav import estimate_attitude
-    from ._output import note, say, usage_error
     from ._files import FIGURES, check_output, writing
+    from ._output import note, say, usage_error
+    from ._recordings import read_recording, recording_file
 
     if method not in METHODS:
         usage_error(f"--method: unknown method {method!r}; methods are {', '.join(METHODS)}")
@@ -170,17 +161,8 @@ def attitude(
     check_output("--plot", plot_file, force, FIGURES)
     if plot_file is not None:
         require_all([("matplotlib", "plot")], feature="kreisel attitude --plot")  # before the estimate
-    path = _recording_path(recording)
-    if not path.exists():
-        usage_error(f"{recording}: no such file (and no bundled recording of that name: {', '.join(BUNDLED)})")
-    try:
-        rec = read_imu(path, units=units, rate=rate)
-    except OSError as exc:
-        usage_error(f"cannot read {path} ({exc.strerror or exc})")
-    except GyroFileError as exc:
-        usage_error(str(exc))
-    except ValueError as exc:
-        usage_error(f"--units: {exc}")
+    path = recording_file(recording)
+    rec = read_recording(read_imu, path, units=units, rate=rate)
     for line in rec.notes:
         note(f"{path}: {line}")
     if rec.accel is None:

@@ -1,4 +1,4 @@
-"""``kreisel examples``: what kreisel ships to try (scenarios, a gyroscope recording, sweeps), listed by use."""
+"""``kreisel examples``: what kreisel ships to try (scenarios, recordings, sweeps), listed by use."""
 
 from __future__ import annotations
 
@@ -8,10 +8,12 @@ import tomllib
 
 __all__ = ["RECORDING_NOTES", "sections", "sweep_files"]
 
-#: What each bundled recording (:data:`kreisel.io.gyro.RECORDINGS`) holds.
+#: What each bundled recording (:data:`kreisel.io.gyro.RECORDINGS`, the IMU trials of ``kreisel attitude``) holds.
 RECORDING_NOTES = {
     "phone_toss": "A phone (146 × 71 × 8 mm) tossed about its middle axis: 0.65 s of free flight with one flip, "
                   "phyphox's CSV format, 0.05 rad/s noise and a gyro bias (Theory §5.4).",
+    "broad_07": "BROAD trial 07 (CC BY 4.0), 60 s at 285.7 Hz: gyro, accelerometer and magnetometer at rest, then "
+                "turned fast by hand, with the optical reference attitude (Theory §3.5).",
 }
 
 
@@ -28,10 +30,10 @@ def sections():
     Examples
     --------
     >>> [(heading.split(" (")[0], sorted(entries)[:2]) for heading, entries in sections()]
-    [('scenarios', ['coning', 'fast_top']), ('gyroscope recordings', ['phone_toss']), ('sweeps', ['imu_monte_carlo', 'lagrange_apex'])]
+    [('scenarios', ['coning', 'fast_top']), ('gyroscope recordings', ['phone_toss']), ('IMU recordings', ['broad_07']), ('sweeps', ['imu_monte_carlo', 'lagrange_apex'])]
     """
     from ..io.bundled import describe
-    from ..io.gyro import RECORDINGS
+    from ..io.gyro import RECORDINGS, TRIALS
 
     sweeps = {name: tomllib.loads(path.read_text(encoding="utf-8")).get("description", "")
               for name, path in sweep_files().items()}
@@ -39,5 +41,7 @@ def sections():
         ("scenarios (kreisel simulate NAME; kreisel examples NAME copies one out to edit)", describe()),
         ("gyroscope recordings (kreisel fit NAME, kreisel plot NAME; kreisel examples NAME copies one out)",
          {name: RECORDING_NOTES.get(name, "") for name in RECORDINGS}),
+        ("IMU recordings (kreisel attitude NAME, kreisel plot NAME; kreisel examples NAME copies one out)",
+         {name: RECORDING_NOTES.get(name, "") for name in TRIALS}),
         ("sweeps (kreisel sweep NAME)", sweeps),
     ]

@@ -42,6 +42,10 @@ GyroRecording = ImuRecording
 _KINDS = ("rate", "increment")
 # what too fast a gyro is most likely in, most common first
 _LIKELY = ("deg/s", "mdeg/s", "mrad/s")
+# what time stamps too far apart are most likely in (loggers' raw clocks), and the sample interval, s, that an IMU
+# log read in the right unit has at most (10 Hz)
+_LIKELY_CLOCKS = ("ms", "us", "ns")
+_SLOWEST_STEP = 0.1
 _BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
 # characters no text table holds (tab, line breaks and form feeds aside)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
@@ -122,16 +126,40 @@ def _plausible(data, stated, source, kind):
     read_as = "in the header's unit" if origin == "header" else "its numbers taken as rad/s: no unit is given"
     likely = next((u for u in _LIKELY if UNITS["gyro"][u] < scale and peak / scale * UNITS["gyro"][u] <= MAX_RATE),
                   None)
-    advice = (f"the numbers look like {likely}: read them with units={likely!r} (kreisel fit --units {likely})"
-              if likely else "give the unit with units= (kreisel fit --units)")
+    advice = (f"the numbers look like {likely}: read them with units={likely!r} "
+              f"(on the command line: --units {likely})" if likely
+              else "give the unit with units= (on the command line: --units)")
     unit = next(u for u, s in UNITS["gyro"].items() if s == scale)
     raise GyroFileError(f"{source}: the gyro's |ω| reaches {peak:.4g} rad/s ({read_as}), beyond the ~35 rad/s "
                         f"(2000 °/s) at which phone and MEMS gyros saturate; {advice}, or units={unit!r} if the "
                         "rates are real")
 
 
+def _plausible_clock(data, stated, source, kind):
+    """Refuse time stamps taken as seconds between which the gyro turns more than half a turn (most likely ms, µs, ns).
+
+    No sampled rotation can be followed across half a turn between two samples, so such a file is a unit mistake
+    (an Android log's nanosecond stamps read as seconds made the samples 10⁷ s apart), not data to integrate.
+    """
+    t, gyro = data["time"], data["gyro"]
+    if kind != "rate" or stated.get("time", ("units",))[0] != "assumed" or t.size < 2:
+        return
+    step = np.diff(t)
+    turn = float(np.median(np.linalg.norm(gyro[1:], axis=1) * step))
+    if turn <= np.pi:
+        return
+    median = float(np.median(step))
+    likely = next((u for u in _LIKELY_CLOCKS if median * UNITS["time"][u] <= _SLOWEST_STEP), None)
+    advice = (f"the times look like {likely}: name the unit in the header ('time ({likely})') or read them with "
+              f"units={{'time': {likely!r}}}" if likely else "give the time column's unit in the header or units=")
+    raise GyroFileError(f"{source}: the time stamps, taken as seconds (no unit is given), are {median:.4g} s apart, "
+                        f"and the gyro turns {turn:.3g} rad between two samples (median), more than half a turn; "
+                        f"{advice}, or units={{'time': 's'}} if the samples are that far apart")
+
+
 def _record(data, stated, source, kind, notes, **extra):
     _plausible(data, stated, source, kind)
+    _plausible_clock(data, stated, source, kind)
     t, gyro = data["time"], data["gyro"]
     dtheta = None
     if kind == "increment":

@@ -331,8 +331,8 @@ def quantities(table, *, default="gyro", units=None, columns=None, kind="rate"):
     found, parsed = _selected(table, columns, default)
     sensors = [q for q in ("gyro", "accel", "mag") if q in found]
     clock = _clocks(found, parsed, columns, sensors)
-    time_scale, _ = _scale(table, parsed, [found["time"]], "time", units)
-    data, stated, main = {}, {}, clock[default]
+    time_scale, time_origin = _scale(table, parsed, [found["time"]], "time", units)
+    data, stated, main = {}, {"time": (time_origin, time_scale)}, clock[default]
     for time in dict.fromkeys(clock[q] for q in (default, *sensors)):
         on_it = [q for q in sensors if clock[q] == time]
         rows = _complete_rows(table, [time, *(k for q in on_it for k in found[q])], len(set(clock.values())) > 1)

@@ -1,0 +1,80 @@
+"""read_imu on files loggers and spreadsheets write: each read right or refused in one line, never misread."""
+
+import numpy as np
+import pytest
+
+import kreisel as kr
+from kreisel.io import GyroFileError
+
+ROWS = [(0.0, 0.1, 0.2, 0.3), (0.01, 0.4, 0.5, 0.6), (0.02, 0.7, 0.8, 0.9)]
+
+
+def table(rows=ROWS, header="time,gx,gy,gz", newline="\n", trailing=""):
+    lines = [header + trailing, *(",".join(repr(v) for v in row) + trailing for row in rows)]
+    return newline.join(lines) + newline
+
+
+@pytest.mark.parametrize("text", [
+    "\ufeff" + table(),
+    table(newline="\r\n"),
+    table(trailing=","),
+    "\ufeff" + table(newline="\r\n", trailing=","),
+], ids=["BOM", "CRLF", "trailing commas", "all three"])
+def test_excel_and_windows_files_read_as_the_plain_one(tmp_path, text):
+    path = tmp_path / "log.csv"
+    path.write_bytes(text.encode("utf-8"))
+    rec = kr.io.read_imu(path)
+    np.testing.assert_array_equal(rec.t, [row[0] for row in ROWS])
+    np.testing.assert_array_equal(rec.omega, [row[1:] for row in ROWS])
+
+
+@pytest.mark.parametrize("text, message", [
+    (table(rows=[ROWS[0], ROWS[1], (0.01, 1.0, 1.0, 1.0), ROWS[2]]),
+     r"log.csv:4: time not increasing \(0.01 after 0.01\)"),
+    ("time,gx,gy,gz\n", r"log.csv: empty \(no data rows\)"),
+    ("time,gx,gy,gz\r\n", r"log.csv: empty \(no data rows\)"),
+    ("", r"log.csv: empty \(no data rows\)"),
+], ids=["duplicate time stamp", "header only", "header only, CRLF", "empty"])
+def test_files_without_a_usable_clock_or_data_are_refused_naming_the_line(tmp_path, text, message):
+    path = tmp_path / "log.csv"
+    path.write_bytes(text.encode("utf-8"))
+    with pytest.raises(GyroFileError, match=message):
+        kr.io.read_imu(path)
+
+
+def test_nanosecond_time_stamps_without_a_unit_are_not_taken_for_seconds(tmp_path):
+    """An Android log's ``timestamp`` column (ns since boot) was read as seconds: samples 10⁷ s apart, and
+    ``kreisel attitude`` integrated 1 rad/s over them without a word."""
+    t = 1_700_000_000_000_000_000 + 10_000_000 * np.arange(50)   # 100 Hz
+    omega = np.tile([0.1, 0.2, 1.0], (50, 1))
+    path = tmp_path / "android.csv"
+    path.write_text("timestamp,gx,gy,gz\n" + "".join(f"{ti},{w[0]},{w[1]},{w[2]}\n" for ti, w in zip(t, omega)))
+    with pytest.raises(GyroFileError, match=r"android.csv: the time stamps, taken as seconds \(no unit is given\), "
+                                            r"are 1e\+07 s apart, .* the times look like ns: name the unit in the "
+                                            r"header \('time \(ns\)'\) or read them with units=\{'time': 'ns'\}"):
+        kr.io.read_imu(path)
+    rec = kr.io.read_imu(path, units={"time": "ns"})
+    np.testing.assert_allclose(np.diff(rec.t), 0.01, rtol=0, atol=2.6e-7)   # a double holds 1.7e18 ns to 256 ns
+    path.write_text(path.read_text().replace("timestamp,", "timestamp (ns),", 1))
+    np.testing.assert_array_equal(kr.io.read_imu(path).t, rec.t)
+
+
+@pytest.mark.parametrize("unit, scale", [("ms", 1e3), ("us", 1e6)])
+def test_milli_and_microsecond_stamps_of_a_turning_gyro_are_named(tmp_path, unit, scale):
+    t = np.arange(40) * 0.005 * scale                            # 200 Hz
+    path = tmp_path / "log.csv"
+    path.write_text("t,gx,gy,gz\n" + "".join(f"{ti:.17g},0.5,3.0,0.2\n" for ti in t))
+    with pytest.raises(GyroFileError, match=f"the times look like {unit}"):
+        kr.io.read_imu(path)
+    np.testing.assert_allclose(kr.io.read_imu(path, units={"time": unit}).t[1], 0.005, rtol=1e-12)
+
+
+def test_slow_samples_of_a_slow_turn_and_a_stated_second_are_trusted(tmp_path):
+    t = np.arange(20) * 2.0                                      # one sample every 2 s, 0.1 rad/s: 0.2 rad apart
+    path = tmp_path / "slow.csv"
+    path.write_text("t,gx,gy,gz\n" + "".join(f"{ti},0.1,0,0\n" for ti in t))
+    np.testing.assert_array_equal(kr.io.read_imu(path).t, t)
+    path.write_text("t,gx,gy,gz\n" + "".join(f"{ti},3.0,0,0\n" for ti in t))   # 6 rad apart: refused ...
+    with pytest.raises(GyroFileError, match="more than half a turn"):
+        kr.io.read_imu(path)
+    np.testing.assert_array_equal(kr.io.read_imu(path, units={"time": "s"}).t, t)   # ... unless the unit is stated
