@@ -143,6 +143,8 @@ def _translated(fig, tr, font):
         if tr is not None and font is not None:
             for text in fig.findobj(Text):
                 old = text.get_text()
+                if "$" in old:   # mathtext (log-axis tick labels): symbols only
+                    continue
                 new = tr(old)
                 if new != old:
                     changed.append((text, old, text.get_fontfamily()))
