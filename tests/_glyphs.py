@@ -3,7 +3,7 @@
 :func:`missing_glyphs` draws every character of the page's text on a canvas in the font of the element
 that holds it, and compares it with the drawing of a character no font has (U+10FFFD, private use):
 the same pixels mean that chromium found no font for the character and drew the empty box. A test
-proves it can fail with :func:`fontconfig_without` (a fontconfig that hides, e.g., every CJK font).
+proves it can fail with :func:`fontconfig_without` (a fontconfig that hides, e.g., every Chinese font).
 """
 
 import pathlib
@@ -46,16 +46,16 @@ def missing_glyphs(page):
     return page.evaluate(_SCRIPT)
 
 
-def fontconfig_without(tmp_path, hidden="CJK"):
-    """A fontconfig file for ``FONTCONFIG_FILE`` that sees the system's fonts except those whose file name has
-    ``hidden``: chromium started with it has no font for, e.g., Chinese characters."""
+def fontconfig_without(tmp_path, lang="zh-cn"):
+    """A fontconfig file for ``FONTCONFIG_FILE`` that sees the system's fonts except every one that covers ``lang``
+    (a fontconfig language tag): chromium started with it has no font for, e.g., Chinese characters."""
     config = tmp_path / "fonts.conf"
     config.write_text(f"""<?xml version="1.0"?>
 <!DOCTYPE fontconfig SYSTEM "fonts.dtd">
 <fontconfig>
   <dir>/usr/share/fonts</dir>
-  <cachedir>{tmp_path / "cache"}</cachedir>
-  <selectfont><rejectfont><glob>*{hidden}*</glob></rejectfont></selectfont>
+  <cachedir>{tmp_path / "fontconfig-cache"}</cachedir>
+  <selectfont><rejectfont><pattern><patelt name="lang"><string>{lang}</string></patelt></pattern></rejectfont></selectfont>
 </fontconfig>
 """, encoding="utf-8")
     return config

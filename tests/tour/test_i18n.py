@@ -132,3 +132,17 @@ def test_figures_without_a_cjk_font_keep_english_text_and_the_report_says_so(sec
     assert page.count(ZH(report.NO_CJK_FONT)) == 1
     assert _glyph_warnings(sections[:2], "zh") == []
     assert ZH(report.NO_CJK_FONT) not in render_html(sections[:2], lang="en")
+
+
+def test_a_cjk_font_installed_after_matplotlibs_font_cache_is_found(monkeypatch):
+    from matplotlib import font_manager
+
+    from kreisel.tour import _fonts
+
+    if not any("CJK" in path for path in font_manager.findSystemFonts()):
+        pytest.skip("no Noto CJK font (.ci/run installs fonts-noto-cjk)")
+    monkeypatch.setattr(font_manager.fontManager, "ttflist",
+                        [font for font in font_manager.fontManager.ttflist if "CJK" not in font.name])
+    assert _fonts.cjk_family.__wrapped__() == "Noto Sans CJK SC"
+    added = [font for font in font_manager.fontManager.ttflist if "CJK" in font.name]
+    assert {font.fname for font in added} == {next(f.fname for f in added)} and all(f.weight == 400 for f in added)

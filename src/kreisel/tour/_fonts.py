@@ -17,9 +17,9 @@ def cjk_family():
     """The family name of an installed CJK font matplotlib can draw with, or None.
 
     matplotlib caches its font list the first time it runs, so a font installed later (``apt-get install
-    fonts-noto-cjk``) is missing from it: the system's font files it does not know yet are added to it.
+    fonts-noto-cjk``) is missing from it: the first such CJK font file of the system is added to it.
     """
-    from matplotlib import font_manager
+    from matplotlib import font_manager, ft2font
 
     def known():
         return {font.name for font in font_manager.fontManager.ttflist}
@@ -27,10 +27,14 @@ def cjk_family():
     if not known().intersection(_FAMILIES):
         seen = {font.fname for font in font_manager.fontManager.ttflist}
         for path in font_manager.findSystemFonts():
-            if path not in seen:
-                try:
-                    font_manager.fontManager.addfont(path)
-                except (OSError, RuntimeError, ValueError):   # a font file FreeType cannot read: not ours to use
-                    continue
+            if path in seen:
+                continue
+            try:
+                font = ft2font.FT2Font(path)
+            except (OSError, RuntimeError, ValueError):   # a font file FreeType cannot read: not ours to use
+                continue
+            if font.family_name in _FAMILIES and font.style_name == "Regular":
+                font_manager.fontManager.addfont(path)   # this one file only: the rest of the list stays as it was
+                break
     names = known()
     return next((family for family in _FAMILIES if family in names), None)
