@@ -52,8 +52,11 @@ docs: $(VENV)/.installed-docs docs/node_modules/.installed
 	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going docs docs/_build/html/en
 	MPLBACKEND=Agg $(PY) -m sphinx -b html -W -n --keep-going -D language=zh_CN docs docs/_build/html/zh_CN
 
-# the pages translated so far (tests/docs/test_translations.py checks that their catalogs are complete)
+# the pages translated so far (tests/docs/test_translations.py checks that their catalogs are complete);
+# auto_examples/* are the gallery's pages, which sphinx-gallery writes from examples/ before Sphinx reads them
 TRANSLATED := index getting_started theory/index theory/1_configuration theory/2_rotation_group theory/3_angular_velocity theory/4_fixed_point theory/5_euler_top theory/6_lagrange_top theory/7_kovalevskaya theory/8_noninertial theory/appendix
+TRANSLATED += user_guide/index user_guide/01_description user_guide/02_coordinates user_guide/03_angular_velocity user_guide/03b_attitude_estimation user_guide/04_fixed_point user_guide/05_euler_top user_guide/05b_phone_laboratory user_guide/06_lagrange_top user_guide/07_kovalevskaya user_guide/08_noninertial user_guide/appendix coming_from
+TRANSLATED += auto_examples/index auto_examples/plot_01_euler_angles auto_examples/plot_02_gimbal_lock auto_examples/plot_03_bortz auto_examples/plot_04_centrodes auto_examples/plot_05_inertia_ellipsoid auto_examples/plot_06_tennis_racket auto_examples/plot_06b_phone_laboratory auto_examples/plot_06c_separatrix_accuracy auto_examples/plot_07_poinsot auto_examples/plot_08_lagrange_top auto_examples/plot_09_kovalevskaya auto_examples/plot_10_eastward_deflection auto_examples/plot_11_foucault auto_examples/plot_12_coning auto_examples/plot_13_integrators
 
 # after editing a translated English page: update its catalog, then translate what became empty or fuzzy
 .PHONY: docs-po

@@ -39,6 +39,7 @@ extensions = [
     "theory_citations",
     "api_aliases",
     "language_switch",
+    "gallery_translation",
 ]
 
 # Translations (issue 36): English is the source; docs/locale/<language>/LC_MESSAGES holds one catalog per page
@@ -46,6 +47,9 @@ extensions = [
 locale_dirs = ["locale"]
 gettext_compact = False
 gettext_uuid = False
+# code blocks and the gallery's printed output are not messages (Sphinx translates literal blocks only when
+# "literal-block" is listed here), so a catalog holds prose, titles and captions only
+gettext_additional_targets = []
 
 # Private base classes (kreisel.*._module.Name) are not documented by design; the standard library
 # and scipy are not linked because the docs build without network access (no intersphinx).
@@ -98,6 +102,8 @@ def _bundle_mathjax():
 
 _bundle_mathjax()
 html_static_path = ["_static", "_generated/static"]
+# the font stack of the Chinese pages (it applies to <html lang="zh-CN"> only)
+html_css_files = ["language.css"]
 mathjax_path = "mathjax/tex-chtml.js"
 
 sphinx_gallery_conf = {

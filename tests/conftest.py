@@ -1,5 +1,6 @@
 """Fixtures shared across test folders: a short scenario, and tools for the tests that install kreisel the way a user does."""
 
+import importlib.util
 import pathlib
 import shutil
 import signal
@@ -60,3 +61,39 @@ def repository_copy(tmp_path_factory):
             (target / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(source, target / name)
     return target
+
+
+def _glyphs_module():
+    spec = importlib.util.spec_from_file_location("_glyphs", ROOT / "tests" / "_glyphs.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="session")
+def glyphs():
+    """tests/_glyphs.py: ``glyphs.cjk_glyphs(page)`` checks that chromium draws every CJK character of a page."""
+    return _glyphs_module()
+
+
+@pytest.fixture(scope="module")
+def playwright_chromium(glyphs):
+    """Playwright, for Debian's chromium (``glyphs.launch(playwright_chromium)``); skips where either is missing.
+
+    Module-scoped: Playwright's synchronous API runs one instance at a time, and other test modules start their own.
+    """
+    if not glyphs.CHROMIUM.exists():
+        pytest.skip("needs Debian's chromium at /usr/bin/chromium (.ci/run installs it with apt-get)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as playwright:
+        yield playwright
+
+
+@pytest.fixture(scope="module")
+def chromium(glyphs, playwright_chromium):
+    """Debian's headless chromium (a Playwright browser) with the machine's fonts."""
+    browser = glyphs.launch(playwright_chromium)
+    try:
+        yield browser
+    finally:
+        browser.close()

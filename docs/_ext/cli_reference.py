@@ -46,7 +46,8 @@ EXAMPLES = {
     "compile": [("compile", "compile every kernel for this machine now, instead of on first use"),
                 ("compile --only integrator", "only the integrators")],
     "serve": [("serve", "open the 3D viewer in the browser"),
-              ("serve symmetric_top --no-browser --port 8000", "serve a scenario without opening a browser")],
+              ("serve symmetric_top --no-browser --port 8000", "serve a scenario without opening a browser"),
+              ("serve --recording broad_07", "replay the bundled BROAD trial: kreisel's attitude beside motion capture")],
 }
 
 

@@ -142,6 +142,51 @@ def test_chinese_pages_are_translated_and_every_page_links_to_its_other_language
                 html.read_text(encoding="utf-8"), relative
 
 
+def test_tutorials_the_scipy_page_and_the_gallery_are_in_chinese(built):
+    chinese = built.parent / "zh_CN"
+    pages = {"user_guide/05b_phone_laboratory.html": "你的手机：一个自由转动实验室",
+             "user_guide/03b_attitude_estimation.html": "由真实 IMU 求姿态",
+             "coming_from.html": "从 scipy、pytransform3d 或 numpy-quaternion 迁移过来",
+             "auto_examples/plot_06_tennis_racket.html": "网球拍定理（理论 §5.4）"}
+    for page, title in pages.items():
+        assert title in (chinese / page).read_text(encoding="utf-8"), page
+    # the thumbnails' titles and tooltips are raw HTML that sphinx-gallery writes; docs/_ext/gallery_translation.py
+    # translates them
+    index = (chinese / "auto_examples" / "index.html").read_text(encoding="utf-8")
+    assert '<div class="sphx-glr-thumbnail-title">网球拍定理（理论 §5.4）</div>' in index
+    assert 'tooltip="自由（欧拉）陀螺 I = (1, 2, 3) 在每个主轴附近旋转。' in index
+    assert "Tennis-racket theorem" not in index and "The free (Euler) top" not in index
+
+
+def test_no_chinese_page_shows_markup_that_was_not_parsed(built):
+    # reStructuredText takes ``x`` or :role:`x` for markup only next to a space or punctuation, so a translation
+    # that writes it against a Chinese character shows the backticks instead (without a warning)
+    from .test_translations import PAGES
+
+    raw = re.compile(r"``|:(?:func|class|meth|mod|math|ref|doc|data|eq|download|attr):`")
+    shown = []
+    for page in PAGES:
+        html = (built.parent / "zh_CN" / f"{page}.html").read_text(encoding="utf-8")
+        text = re.sub(r"<[^>]+>", "", re.sub(r"<(pre|script)\b.*?</\1>", "", html, flags=re.S))
+        shown += [f"{page}: {text[max(m.start() - 30, 0):m.end() + 30]!r}" for m in raw.finditer(text)]
+    assert shown == []
+
+
+@pytest.mark.parametrize("page", ["theory/5_euler_top.html", "getting_started.html",
+                                  "user_guide/05b_phone_laboratory.html", "auto_examples/index.html"])
+def test_chromium_draws_every_chinese_character_with_a_cjk_font(built, chromium, glyphs, page):
+    tab = chromium.new_page()
+    try:
+        tab.goto((built.parent / "zh_CN" / page).as_uri(), wait_until="load")
+        stack = tab.evaluate("getComputedStyle(document.body).fontFamily")
+        report = glyphs.cjk_glyphs(tab)
+    finally:
+        tab.close()
+    assert stack.startswith('"Noto Sans CJK SC"'), stack  # docs/_static/language.css
+    assert report["characters"] > 300
+    assert report["missing"] == [], (report["missing"][:20], report["fonts"])
+
+
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
 def test_every_example_ran_and_printed_a_result(built, script):
     page = (built / "auto_examples" / f"{script.stem}.html").read_text(encoding="utf-8")

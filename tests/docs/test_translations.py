@@ -17,9 +17,19 @@ LOCALE = DOCS / "locale" / "zh_CN"
 
 
 def _translated_pages():
-    line = next(line for line in (ROOT / "Makefile").read_text(encoding="utf-8").splitlines()
-                if line.startswith("TRANSLATED :="))
-    return line.split(":=", 1)[1].split()
+    """The Makefile's ``TRANSLATED := ...`` and ``TRANSLATED += ...`` lines, in order."""
+    lines = [re.split(r"[:+]=", line, maxsplit=1)[1] for line in (ROOT / "Makefile").read_text(encoding="utf-8").splitlines()
+             if re.match(r"TRANSLATED [:+]=", line)]
+    return " ".join(lines).split()
+
+
+def _source(page):
+    """The English source of ``page``: a page of docs/, or for a gallery page (written by sphinx-gallery at build
+    time) its script in examples/ or the gallery's README."""
+    if page.startswith("auto_examples/"):
+        name = page.split("/", 1)[1]
+        return ROOT / "examples" / ("README.rst" if name == "index" else f"{name}.py")
+    return DOCS / f"{page}.rst"
 
 
 PAGES = _translated_pages()
@@ -46,7 +56,7 @@ def _uses(prose, english):
 def test_the_translated_pages_include_getting_started_and_exist():
     assert "getting_started" in PAGES
     for page in PAGES:
-        assert (DOCS / f"{page}.rst").is_file(), page
+        assert _source(page).is_file(), page
         assert (LOCALE / "LC_MESSAGES" / f"{page}.po").is_file(), page
 
 
@@ -79,8 +89,8 @@ def test_math_code_and_references_are_unchanged(page):
 
 
 def _references(text):
-    """Literals, roles' targets and math of ``text``: what a translation keeps (a role's title may be translated)."""
-    kept = [re.sub(r"^(:[a-z:]+:`)[^`<]*<([^>]*)>`$", r"\1\2`", token) for token in _MARKUP.findall(text)]
+    """Literals, roles' and links' targets and math of ``text``: what a translation keeps (a title may be translated)."""
+    kept = [re.sub(r"^(:[a-z:]+:)?`[^`<]*<([^>]*)>`(_?)$", r"\1`\2`\3", token) for token in _MARKUP.findall(text)]
     return sorted(kept)
 
 
@@ -93,3 +103,16 @@ def test_the_glossary_test_would_catch_a_missing_term():
     entry = polib.POEntry(msgid="The precession of a sleeping top, in rigid-body terms (numpy-quaternion)",
                           msgstr="用刚体的语言说，睡陀螺的转动（numpy-quaternion）")
     assert _missing_terms(entry) == ["precession"]
+
+
+def test_the_user_guide_tutorials_the_scipy_page_and_the_whole_gallery_are_translated():
+    gallery = {f"auto_examples/{script.stem}" for script in (ROOT / "examples").glob("plot_*.py")}
+    required = {"user_guide/05b_phone_laboratory", "user_guide/03b_attitude_estimation", "coming_from",
+                "auto_examples/index"} | gallery
+    assert len(gallery) >= 10 and required - set(PAGES) == set()
+
+
+@pytest.mark.parametrize("page", [page for page in PAGES if page.startswith("auto_examples/")])
+def test_a_gallery_catalog_holds_no_running_time(page):
+    # sphinx-gallery's "Total running time of the script" changes with every run (docs/_ext/gallery_translation.py)
+    assert [e.msgid for e in _catalog(page) if "running time" in e.msgid.lower()] == []

@@ -153,3 +153,89 @@ def test_uploaded_recording_is_fitted_and_replayed(page):
     page.wait_for_function("window.kreisel.ready && !window.kreisel.data.fit", timeout=240_000)
     assert page.locator("#preset option[data-recording]").count() == 0
     assert not page.errors, page.errors
+
+
+@pytest.fixture(scope="module")
+def attitude_page(playwright):
+    """The page of ``kreisel serve --recording broad_07``: the bundled BROAD trial's attitude replay."""
+    import kreisel as kr
+    from kreisel.web import create_app
+    from kreisel.web.server import bind, url_of
+
+    from .conftest import RELAXED, start_server
+
+    sock = bind("127.0.0.1", 0)
+    app = create_app(port=sock.getsockname()[1], limits=RELAXED,
+                     recording=kr.io.read_imu(kr.io.recording_path("broad_07")))
+    server, thread = start_server(app, sock)
+    browser = playwright.chromium.launch(executable_path=str(CHROMIUM), args=ARGS, timeout=120_000)
+    try:
+        page = browser.new_page(viewport={"width": 1400, "height": 820})
+        page.errors = []
+        page.on("pageerror", lambda exc: page.errors.append(str(exc)))
+        page.set_default_timeout(180_000)
+        page.goto(f"{url_of(sock)}?token={app.state.viewer.token}", wait_until="load", timeout=120_000)
+        yield page
+    finally:
+        browser.close()
+        server.should_exit = True
+        thread.join(timeout=30)
+        sock.close()
+        app.state.viewer.runner.close()
+
+
+def test_attitude_replay_shows_the_estimate_beside_the_reference(attitude_page):
+    """Both sensors are drawn; scrubbed to a sample, the scene's attitudes are the API's and the error readout is
+    kreisel.nav.attitude_error_angles' angle of that sample."""
+    import kreisel as kr
+
+    page = attitude_page
+    page.wait_for_function("window.kreisel && window.kreisel.ready && window.kreisel.data.kind === 'attitude'",
+                           timeout=240_000)
+    assert page.evaluate("window.kreisel.webgl"), "WebGL (SwiftShader) was not available"
+    legend = page.inner_text("#legend")
+    assert "estimated attitude (kreisel's estimator)" in legend and "reference attitude (motion capture" in legend
+    readout = page.inner_text("#readout")
+    assert "estimated by kreisel's estimator from gyro, accelerometer and magnetometer at 285.71 Hz" in readout
+    assert "error against the reference (RMSE over the movement)" in readout
+    assert page.evaluate("document.getElementById('preset').selectedOptions[0].text") == \
+        "recording: broad_07_fast_rotation_60s.npz"
+    rec = kr.io.read_imu(kr.io.recording_path("broad_07"))
+    estimate = kr.nav.estimate_attitude(rec.omega, rec.accel, rec.mag, rate=(rec.t.size - 1) / (rec.t[-1] - rec.t[0]))
+    total, heading, inclination = np.degrees(kr.nav.attitude_error_angles(estimate.q, rec.reference))
+    api = page.evaluate("fetch('/api/recording').then((r) => r.json())")
+    for index in (12_000, 9_000):  # in the fast rotation: errors of 2.9° and 4.0°
+        page.evaluate(f"(() => {{ const s = document.getElementById('scrub'); s.value = {index}; "
+                      "s.dispatchEvent(new Event('input')); })()")
+        page.wait_for_function(f"window.kreisel.shown && window.kreisel.shown.index === {index}", timeout=60_000)
+        shown = page.evaluate("window.kreisel.shown")
+        assert not page.evaluate("window.kreisel.playing")
+        # the scene's two bodies hold the API's attitudes (three.js stores them as doubles, unchanged)
+        assert shown["estimate"] == api["q"][index] and shown["reference"] == api["q_ref"][index]
+        np.testing.assert_array_equal(shown["estimate"], estimate.q[index])
+        np.testing.assert_array_equal(shown["reference"], rec.reference[index])
+        readout = page.inner_text("#attitude-error")
+        assert readout == (f"error {total[index]:.3f}° (heading {heading[index]:.3f}°, "
+                           f"inclination {inclination[index]:.3f}°)"), readout
+        assert f"t = {rec.t[index]:.3f} s" in page.inner_text("#hud")
+    # where the motion capture lost the body only the estimate is drawn, and the readout says why
+    page.evaluate("(() => { const s = document.getElementById('scrub'); s.value = 100; "
+                  "s.dispatchEvent(new Event('input')); })()")
+    page.wait_for_function("window.kreisel.shown.index === 100", timeout=60_000)
+    assert page.evaluate("window.kreisel.shown.reference") is None
+    assert page.inner_text("#attitude-error") == "error: the reference lost the body here"
+    ARTIFACTS.mkdir(exist_ok=True)
+    page.evaluate("(() => { const s = document.getElementById('scrub'); s.value = 12000; "
+                  "s.dispatchEvent(new Event('input')); })()")
+    page.wait_for_function("window.kreisel.shown.index === 12000", timeout=60_000)
+    page.screenshot(path=str(ARTIFACTS / "viewer_attitude.png"))
+    # the two sensors are drawn: the scene holds the estimate's orange and the reference's blue
+    from io import BytesIO
+
+    from matplotlib.image import imread
+
+    pixels = (imread(BytesIO(page.locator("#scene").screenshot()), format="png")[..., :3] * 255).astype(int)
+    orange = (np.abs(pixels - [224, 138, 48]).max(axis=-1) < 60) & (pixels[..., 0] > pixels[..., 2] + 80)
+    blue = (np.abs(pixels - [74, 120, 200]).max(axis=-1) < 60) & (pixels[..., 2] > pixels[..., 0] + 60)
+    assert orange.sum() > 500 and blue.sum() > 500, (orange.sum(), blue.sum())
+    assert not page.errors, page.errors

@@ -5,9 +5,10 @@ import { legendRows, Viewer, webglAvailable } from "./widget.js";
 
 const $ = (id) => document.getElementById(id);
 // window.kreisel is read by the end-to-end tests: the data, the playback position, what is plotted and
-// how the run arrived (streamed: over /api/stream; chunks: chunk messages received; done: all samples in)
+// how the run arrived (streamed: over /api/stream; chunks: chunk messages received; done: all samples in) and,
+// for an attitude replay, what the scene shows (shown: the sample index and the two attitudes, scalar first)
 const state = (window.kreisel = { data: null, index: 0, time: 0, playing: true, ready: false, error: null,
-  streamed: false, chunks: 0, done: false, plotted: { omega: [], energy: [], J: [] } });
+  streamed: false, chunks: 0, done: false, plotted: { omega: [], energy: [], J: [] }, shown: null });
 let socket = null;
 let viewer = null;
 
@@ -67,10 +68,29 @@ function integralLines(d) {
   return lines;
 }
 
+// An attitude replay: the estimator, the RMSE against the reference and what the scene shows.
+function attitudeLines(d) {
+  const r = d.rmse_deg, deg = (v) => `${fmt(v, 4)}°`;
+  const sensors = d.magnetometer ? "gyro, accelerometer and magnetometer" : "gyro and accelerometer (no magnetometer)";
+  return [`estimated by ${d.method === "kreisel" ? "kreisel's estimator" : d.method} from ${sensors} at ${fmt(d.rate, 5)} Hz`,
+    `error against the reference (RMSE over ${r.over === "movement" ? "the movement" : "all samples"}):`,
+    `  total ${deg(r.total)}, heading ${deg(r.heading)}, inclination ${deg(r.inclination)}`,
+    "orange: the estimate; blue: the reference (hidden where it lost the body)"];
+}
+
+// The error angle of the sample shown, as kreisel.nav.attitude_error_angles gives it.
+function errorText(d, i) {
+  const e = d.error_deg;
+  if (e.total[i] === null) return "error: the reference lost the body here";
+  return `error ${e.total[i].toFixed(3)}° (heading ${e.heading[i].toFixed(3)}°, inclination ${e.inclination[i].toFixed(3)}°)`;
+}
+
 function readout(d) {
   const lines = [`${d.title}`];
   const s = d.analysis;
-  if (d.kind === "foucault") {
+  if (d.kind === "attitude") {
+    lines.push(...attitudeLines(d));
+  } else if (d.kind === "foucault") {
     lines.push(`swing plane rate  ${fmt(s.precession_rate_measured)} rad/s`,
       `theory −Ω sin λ    ${fmt(s.precession_rate_theory)} rad/s`,
       `one turn in       ${fmt(s.period_hours, 5)} h`, ...integralLines(d));
@@ -109,7 +129,7 @@ function legend(d) {
 // The preset box names what plays: a recording's replay gets an entry of its own, dropped with the next run.
 function showSource(d) {
   let entry = $("preset").querySelector("option[data-recording]");
-  if (!d.fit) {
+  if (!d.fit && d.kind !== "attitude") {
     if (entry) entry.remove();
     return;
   }
@@ -120,7 +140,8 @@ function showSource(d) {
   }
   entry.text = `recording: ${d.source.split(/[\\/]/).pop()}`;
   $("preset").value = "";
-  $("description").textContent = `${d.title}: the fitted free top, the measurement light in the ω′ plot`;
+  $("description").textContent = d.fit ? `${d.title}: the fitted free top, the measurement light in the ω′ plot`
+    : `${d.title}: the two sensors turn together, the error angle above`;
 }
 
 // Start playing `d`, which may hold only the first chunk of a streamed run.
@@ -135,12 +156,20 @@ function show(d) {
   if (viewer) viewer.load(d);
   readout(d);
   legend(d);
-  const foucault = d.kind === "foucault";
-  $("energy-title").textContent = foucault ? "swing-plane azimuth (rad)"
+  const foucault = d.kind === "foucault", attitude = d.kind === "attitude";
+  $("energy-title").textContent = foucault ? "swing-plane azimuth (rad)" : attitude ? "rotation rate |ω′| from the gyro (rad/s)"
     : d.gravity ? "energy E = T + V (J)" : "kinetic energy T (J)";
-  $("omega-title").textContent = foucault ? "tilt of the string at the turning points (rad)" : "ω′ components (rad/s)";
+  $("omega-title").textContent = foucault ? "tilt of the string at the turning points (rad)"
+    : attitude ? "error against the reference (°)" : "ω′ components (rad/s)";
   $("omega-legend").style.display = foucault ? "none" : "";
-  $("J-panel").style.display = foucault ? "none" : "";
+  $("omega-legend").replaceChildren(...(attitude ? ATTITUDE_LEGEND : OMEGA_LEGEND).map(([color, text]) => {
+    const span = document.createElement("span");
+    span.style.color = color;
+    span.textContent = text;
+    return span;
+  }));
+  $("J-panel").style.display = foucault || attitude ? "none" : "";
+  $("attitude-error").style.display = attitude ? "" : "none";
   status(`${d.title}: ${d.t.length} of ${d.n_samples || d.t.length} samples`);
 }
 
@@ -205,7 +234,15 @@ function run(body) {
   };
 }
 
+const OMEGA_LEGEND = [["#d33", "ω′₁"], ["#393", "ω′₂"], ["#33d", "ω′₃"]];
+const ATTITUDE_LEGEND = [["#222", "total"], ["#93c", "heading"], ["#d33", "inclination"]];
+
 function series(d) {
+  if (d.kind === "attitude") {
+    const nan = (values) => values.map((v) => (v === null ? NaN : v));
+    const e = d.error_deg;
+    return { omega: [nan(e.total), nan(e.heading), nan(e.inclination)], energy: [d.omega_norm], J: [[]] };
+  }
   if (d.kind === "foucault") return { omega: [d.tilt.map(Math.abs)], energy: [d.swing_azimuth], J: [[]] };
   const col = (k, w = d.omega) => w.map((v) => v[k]);
   const omega = [col(0), col(1), col(2)];
@@ -219,7 +256,9 @@ function drawPlots() {
   if (!d) return;
   if (!d._series) d._series = series(d);
   const s = d._series, i = state.index, span = d.t_range || null;
-  const colors = d.omega_measured ? ["#f2b8b8", "#b8dcb8", "#b8b8f2", "#d33", "#393", "#33d"] : ["#d33", "#393", "#33d"];
+  const attitude = d.kind === "attitude";
+  const colors = d.omega_measured ? ["#f2b8b8", "#b8dcb8", "#b8b8f2", "#d33", "#393", "#33d"]
+    : attitude ? ATTITUDE_LEGEND.map(([color]) => color) : ["#d33", "#393", "#33d"];
   state.plotted.omega = drawPlot($("plot-omega"), d.t, s.omega, colors, i, span);
   state.plotted.energy = drawPlot($("plot-energy"), d.t, s.energy, ["#b60"], i, span)[0];
   state.plotted.J = drawPlot($("plot-J"), d.t, s.J, ["#088"], i, span)[0];
@@ -259,6 +298,12 @@ function frame(now) {
     if (viewer) { viewer.frame = $("camera").value; viewer.show(state.index); }
     drawPlots();
     $("hud").textContent = `t = ${d.t[state.index].toFixed(3)} s   (${state.index + 1}/${d.n_samples || d.t.length})`;
+    $("scrub").max = String(d.t.length - 1);
+    $("scrub").value = String(state.index);
+    if (d.kind === "attitude") {
+      $("attitude-error").textContent = errorText(d, state.index);
+      state.shown = { index: state.index, ...(viewer ? viewer.attitudes() : {}) };
+    } else state.shown = null;
   }
   if (viewer) viewer.render();
   requestAnimationFrame(frame);
@@ -290,6 +335,13 @@ async function init() {
     state.time = state.data.t[state.index];
   };
   $("restart").onclick = () => { if (state.data) { state.time = state.data.t[0]; state.index = 0; } };
+  // dragging the time slider pauses the replay at the sample it points to
+  $("scrub").oninput = () => {
+    if (!state.data) return;
+    state.playing = false; $("play").textContent = "Play";
+    state.index = Math.min(parseInt($("scrub").value, 10), state.data.t.length - 1);
+    state.time = state.data.t[state.index];
+  };
   $("speed").oninput = () => ($("speedval").textContent = `${Math.pow(10, num("speed")).toPrecision(2)}×`);
   const exportAs = async (format) => {
     if (!state.data) return;
@@ -306,7 +358,7 @@ async function init() {
     const file = $("load").files[0];
     if (file) run({ toml: await file.text() });
   };
-  // a gyroscope recording: fitted on the server, then played like a run (one reply, no stream)
+  // a recording: fitted (or its attitude estimated) on the server, then played like a run (one reply, no stream)
   const showFit = (d) => {
     if (socket) { try { socket.send("cancel"); socket.close(); } catch (e) { /* already closed */ } socket = null; }
     state.done = true; state.playing = true; $("play").textContent = "Pause";

@@ -48,10 +48,33 @@ function boxSize(moments) {
 
 const css = (hex) => `#${hex.toString(16).padStart(6, "0")}`;
 const COLORS = { omega: 0xcc00cc, J: 0x008888, herpolhode: 0x228822, polhode: 0xaa2288, plane: 0x88bb88,
-  ellipsoid: 0x6677aa, apex: 0x0077cc, gravity: 0x444444, swing: 0x3050d0 };
+  ellipsoid: 0x6677aa, apex: 0x0077cc, gravity: 0x444444, swing: 0x3050d0, estimate: 0xe08a30, reference: 0x4a78c8 };
+// the estimate and the reference side by side, across the default view (the camera looks along (-5.6, 3.4, -2.3))
+const BESIDE = new THREE.Vector3(0.52, 0.85, 0).multiplyScalar(0.95);
+
+// A sensor: a flat box longest along its x axis, with its x, y, z axes drawn through it.
+function sensor(color, position) {
+  const group = new THREE.Group();
+  group.position.copy(position);
+  group.add(new THREE.Mesh(new THREE.BoxGeometry(1.0, 0.6, 0.16),
+    new THREE.MeshStandardMaterial({ color, transparent: true, opacity: 0.8, roughness: 0.6 })));
+  for (let k = 0; k < 3; k++) {
+    const dir = new THREE.Vector3(k === 0 ? 0.8 : 0, k === 1 ? 0.8 : 0, k === 2 ? 0.8 : 0);
+    group.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), dir]),
+      new THREE.LineBasicMaterial({ color: AXIS_COLORS[k] })));
+  }
+  return group;
+}
 
 /** What the scene draws for `data`, as [CSS colour, description] rows of the legend. */
 export function legendItems(data) {
+  if (data.kind === "attitude") {
+    const method = data.method === "kreisel" ? "kreisel's estimator" : `${data.method}'s filter`;
+    return [[css(COLORS.estimate), `estimated attitude (${method})`],
+      [css(COLORS.reference), "reference attitude (motion capture; hidden where it lost the body)"],
+      [css(AXIS_COLORS[0]), "sensor x (and east)"], [css(AXIS_COLORS[1]), "sensor y (and north)"],
+      [css(AXIS_COLORS[2]), "sensor z (and up)"]];
+  }
   if (data.kind === "foucault") {
     return [[css(COLORS.swing), "swing plane (turns with −Ω sin λ)"],
       [css(COLORS.swing), "turning points of the bob, magnified"], ["#aa3322", "bob"]];
@@ -122,6 +145,7 @@ export class Viewer {
     const space = new THREE.AxesHelper(0.6);
     this.world.add(space);
     if (data.kind === "foucault") return this.loadFoucault(data);
+    if (data.kind === "attitude") return this.loadAttitude(data);
     const heavy = !!data.gravity;
     const info = data.analysis;
     const P = info.principal_axes; // columns: principal axes in body components
@@ -198,6 +222,22 @@ export class Viewer {
     this.filled = upto;
   }
 
+  // An estimated attitude and its reference: two sensors side by side, each turned by its own attitude.
+  loadAttitude() {
+    this.body = sensor(COLORS.estimate, BESIDE.clone().negate());
+    this.reference = sensor(COLORS.reference, BESIDE);
+    this.world.add(this.body, this.reference);
+    this.trails = [];
+    this.bodyTrails = [];
+    this.filled = this.data.t.length;
+  }
+
+  /** The attitudes the scene shows now, scalar first: {estimate, reference} (reference null where hidden). */
+  attitudes() {
+    const q = (o) => [o.quaternion.w, o.quaternion.x, o.quaternion.y, o.quaternion.z];
+    return { estimate: q(this.body), reference: this.reference.visible ? q(this.reference) : null };
+  }
+
   loadFoucault(data) {
     const L = 2.0;
     this.body = null;
@@ -238,6 +278,14 @@ export class Viewer {
     }
     const q = quat(d.q[i]);
     this.body.quaternion.copy(q);
+    if (d.kind === "attitude") {
+      const ref = d.q_ref[i];
+      this.reference.visible = ref !== null;
+      if (ref !== null) this.reference.quaternion.copy(quat(ref));
+      if (this.frame === "body") this.world.quaternion.copy(q.clone().invert());
+      else this.world.quaternion.identity();
+      return;
+    }
     setArrow(this.omegaArrow, vec(d.omega_space[i], this.s));
     setArrow(this.JArrow, vec(d.J[i], 1.8 / this.J0));
     // body-frame camera: undo the attitude so the body stands still and space turns around it

@@ -537,7 +537,9 @@ def serve(
     port: int = typer.Option(0, "--port", help="Port; 0 picks a free one."),
     no_browser: bool = typer.Option(False, "--no-browser", help="Do not open a browser window."),
     recording: Optional[pathlib.Path] = typer.Option(
-        None, "--recording", help="Gyroscope recording to fit and replay (see `kreisel fit`); 'phone_toss' is bundled."),
+        None, "--recording", help="Recording to replay: with an accelerometer and a reference attitude, kreisel's "
+                                  "estimated attitude beside the reference (see `kreisel attitude`); else the free "
+                                  "top fitted to the gyro (see `kreisel fit`). 'phone_toss' and 'broad_07' are bundled."),
     token: Optional[str] = typer.Option(
         None, "--token", help="Secret the viewer's URL carries (default: a random one per server)."),
     no_token: bool = typer.Option(False, "--no-token", help="No secret: any local user or process may use the viewer."),
@@ -545,10 +547,10 @@ def serve(
         None, "--allow-host", help="Another name the viewer answers to, e.g. this machine's name on the network (repeatable)."),
 ):
     """Start the interactive 3D viewer in the browser."""
-    from ..io.gyro import RECORDINGS, recording_path
+    from ..io.gyro import RECORDINGS, TRIALS, recording_path
     from ..web import serve as run_server
 
-    if recording is not None and not recording.exists() and str(recording) in RECORDINGS:
+    if recording is not None and not recording.exists() and str(recording) in (*RECORDINGS, *TRIALS):
         recording = recording_path(str(recording))
     try:
         if no_token and token is not None:

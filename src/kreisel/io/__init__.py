@@ -1,7 +1,7 @@
 """Files in and out: scenario TOML files, result files, bundled examples, IMU (gyroscope) recordings."""
 
 from .bundled import EXAMPLES, copy_example, example_path
-from .gyro import (RECORDINGS, GyroFileError, GyroRecording, ImuRecording, parse_gyro, read_gyro, read_imu,
+from .gyro import (RECORDINGS, TRIALS, GyroFileError, GyroRecording, ImuRecording, parse_gyro, read_gyro, read_imu,
                    recording_path)
 from .results import ResultError, load_result, load_trajectory, save_result
 from .run import run_scenario, summary
@@ -10,5 +10,5 @@ from .schema import SchemaError
 
 __all__ = ["EXAMPLES", "copy_example", "example_path", "ResultError", "load_result", "load_trajectory", "save_result",
            "run_scenario", "summary", "Scenario", "ScenarioError", "load_scenario", "parse_scenario",
-           "SchemaError", "GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "parse_gyro", "read_gyro",
-           "read_imu", "recording_path"]
+           "SchemaError", "GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "TRIALS", "parse_gyro",
+           "read_gyro", "read_imu", "recording_path"]

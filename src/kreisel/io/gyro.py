@@ -26,11 +26,13 @@ from .imu_record import ImuRecording
 from .imu_table import TableError, check_columns, check_units, frame_table, parse_table, quantities, where
 from .phyphox import TABLES, align, member_for
 
-__all__ = ["GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "MAX_RATE", "parse_gyro", "read_gyro",
-           "read_imu", "recording_path"]
+__all__ = ["GyroFileError", "GyroRecording", "ImuRecording", "RECORDINGS", "TRIALS", "MAX_RATE", "parse_gyro",
+           "read_gyro", "read_imu", "recording_path"]
 
 # bundled synthetic recordings (package data), so the fit runs offline: name -> file
 RECORDINGS = {"phone_toss": "phone_toss.csv"}
+#: Bundled real IMU recordings with a motion-capture reference attitude (BROAD's layout): name -> file.
+TRIALS = {"broad_07": "broad/broad_07_fast_rotation_60s.npz"}
 #: rad/s beyond which a gyro reading is taken for a unit mistake: phone and MEMS gyros saturate near 35 rad/s
 #: (2000 °/s)
 MAX_RATE = 40.0
@@ -440,19 +442,25 @@ def read_gyro(path, *, units=None, columns=None, kind="rate"):
 
 
 def recording_path(name):
-    """Path of a bundled gyroscope recording inside the installed package.
+    """Path of a bundled IMU recording inside the installed package.
 
     ``phone_toss`` is a phone (146 × 71 × 8 mm slab) tossed about its middle
     axis, made with kreisel's exact free-top solution in phyphox's CSV format:
     about 400 Hz with jittered sample times, 0.05 rad/s noise and a constant
-    bias on each axis, one flip in its 0.65 s of flight.
+    bias on each axis, one flip in its 0.65 s of flight. ``broad_07`` is the
+    first 60 s of BROAD's trial 07 (:data:`TRIALS`): gyro, accelerometer and
+    magnetometer at 285.7 Hz with the motion-capture attitude, 26.5 s at rest
+    and then fast rotation.
 
     Examples
     --------
     >>> rec = read_gyro(recording_path("phone_toss"))
     >>> rec.omega.shape[1], round(float(rec.t[-1] - rec.t[0]), 2)
     (3, 0.65)
+    >>> read_imu(recording_path("broad_07")).reference.shape
+    (17142, 4)
     """
-    if name not in RECORDINGS:
-        raise ValueError(f"name must be one of {', '.join(RECORDINGS)}, got {name!r}")
-    return pathlib.Path(str(resources.files("kreisel.io.examples").joinpath(RECORDINGS[name])))
+    files = {**RECORDINGS, **TRIALS}
+    if name not in files:
+        raise ValueError(f"name must be one of {', '.join(files)}, got {name!r}")
+    return pathlib.Path(str(resources.files("kreisel.io.examples").joinpath(files[name])))

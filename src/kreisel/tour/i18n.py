@@ -3,8 +3,9 @@
 English is the single source. The sections write English; rendering in another language looks
 each string up in ``locale/<lang>.toml``, keyed by the English text. A key may hold ``{name}``
 fields where a section formats a value into its text at run time (an f-string): the field
-matches whatever stands there (a number, a symbol) and the translation puts it back in its own
-place, so a translator works on templates and never retypes a number. A string without an entry
+matches whatever stands there (a number, a symbol, a word of the catalog, which is translated
+too) and the translation puts it back in its own place, so a translator works on templates and
+never retypes a number. Only a field named ``english`` may hold English words (an error message). A string without an entry
 stays English; the tour's tests fail on it, and on an entry that no string uses any more.
 """
 
@@ -88,11 +89,13 @@ class Catalog:
         if key in self._exact:
             return self._exact[key]
         values = _pattern(key).fullmatch(text).groupdict()
-        # a field holding a word of the catalog (a locus kind, a case) is translated too
         for name, value in values.items():
-            if value in self._exact:
+            if value in self._exact:   # a word of the catalog (a locus kind, a case) is translated too
                 self.used.add(value)
                 values[name] = self._exact[value]
+            elif name != "english" and needs_translation(value, self.neutral_words):
+                # English words in a field: the text needs an entry of its own, not this template
+                self.missing.add(text)
         return self.entries[key].format(**values)
 
 

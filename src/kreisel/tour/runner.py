@@ -12,7 +12,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._fileio import atomic_output
-from . import earth_frame, free_top, heavy_top, integrators, kinematics, navigation, phone_lab, rotations
+from . import earth_frame, free_top, heavy_top, imu_attitude, integrators, kinematics, navigation, phone_lab, rotations
 from ._fonts import cjk_family
 from .i18n import check_language
 from .report import NO_CJK_FONT, Section, render_html
@@ -24,6 +24,7 @@ SECTIONS = (
     *rotations.SECTIONS,
     *kinematics.SECTIONS,
     *navigation.SECTIONS,
+    *imu_attitude.SECTIONS,
     free_top.inertia_ellipsoid,
     *integrators.SECTIONS,
     free_top.tennis_racket,

@@ -12,7 +12,9 @@ Endpoints (all JSON unless noted):
 ``WebSocket /api/stream``            same body as the first message -> the run in chunks (below)
 ``POST /api/fit``                    ``{"text": recording, "name", "start", "stop", "bias"}`` -> the free top
                                      fitted to a gyroscope recording, as a run (:func:`kreisel.web.session.fit`)
-``GET /api/recording``               the recording given to :func:`serve`, fitted (or null)
+``GET /api/recording``               the recording given to :func:`serve`: fitted, or, when it has an
+                                     accelerometer and a reference attitude, its estimated attitude beside
+                                     the reference (:func:`kreisel.web.session.attitude_replay`); or null
 
 Only the server's own pages may use it: requests whose ``Host`` or ``Origin`` is not the server, or that
 do not carry the server's token, are refused with 403 and bodies over the size limit with 413, before they are read (:mod:`kreisel.web.guard`).
@@ -273,8 +275,9 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
         The server's port, required in the ``Host`` header when given.
     limits : Limits, optional
         Run slots, time limit and body size (``kreisel.web.runner.Limits``).
-    recording : GyroRecording, optional
-        A gyroscope recording (:func:`kreisel.io.read_gyro`) fitted and shown first.
+    recording : ImuRecording, optional
+        A recording (:func:`kreisel.io.read_imu`) shown first: with an accelerometer and a reference
+        attitude, its attitude estimated by kreisel replayed beside the reference; else the free top fitted.
     token : str, optional
         The secret every request must carry (see ``kreisel.web.guard``); by default a random one
         (``app.state.viewer.token``), as Jupyter makes; ``""``: none, any local process may use the viewer.
@@ -380,6 +383,8 @@ def create_app(scenario_text=None, chunk_samples=session.CHUNK_SAMPLES, host="12
     async def initial_recording(request: Request):
         if recording is None:
             return None
+        if recording.accel is not None and recording.reference is not None:
+            return JSONResponse(await viewer.one(request, "attitude_replay", recording))
         return JSONResponse(await viewer.one(request, "fit", recording, recording.source))
 
     @app.post("/api/export")

@@ -84,7 +84,9 @@ def serve(scenario=None, host="127.0.0.1", port=0, open_browser=True, recording=
     open_browser : bool
         Open the default web browser at the URL once the server listens.
     recording : str or path-like, optional
-        A gyroscope recording (see :func:`kreisel.io.read_gyro`) fitted and shown first.
+        A recording (see :func:`kreisel.io.read_imu`) shown first: one with an accelerometer and a reference
+        attitude (BROAD's motion capture) replays kreisel's estimated attitude beside the reference, with
+        the error angle; any other is fitted with the free top (see ``kreisel fit``).
     token : str, optional
         The secret every request must carry; by default a random one, in the URL printed and opened
         (the page keeps it in a cookie). ``""``: no token, any local process may use the viewer.

@@ -555,6 +555,88 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     }
 
 
+#: Largest relative departure of a sample interval from the mean that the attitude replay steps over: beyond
+#: it the recording has a gap or a stall, and the filters, which step at one rate, would misplace the motion.
+SPACING_TOLERANCE = 0.25
+
+
+def _rows(x):
+    """Rows of ``x`` as JSON lists, None where a row is not finite (the reference lost the body)."""
+    return [row.tolist() if np.isfinite(row).all() else None for row in x]
+
+
+def attitude_replay(recording):
+    """An IMU recording's attitude estimated by kreisel beside its reference, as a replay (job ``"attitude_replay"``).
+
+    The attitude frame ← sensor is estimated with :func:`kreisel.nav.estimate_attitude` (kreisel's
+    default, causal estimator; the magnetometer when the recording has one) and compared per sample with
+    the recording's reference (BROAD's motion capture) by :func:`kreisel.nav.attitude_error_angles`.
+
+    Parameters
+    ----------
+    recording : ImuRecording
+        With gyro, accelerometer and ``reference`` (:func:`kreisel.io.read_imu`), evenly sampled.
+
+    Returns
+    -------
+    dict
+        ``kind`` ``"attitude"``, ``title``, ``source``, ``method``, ``magnetometer`` (whether one was used),
+        ``rate`` (Hz), ``t``, ``q`` (estimate,
+        scalar-first rows), ``q_ref`` (rows, None where the reference lost the body), ``omega_norm`` (the
+        gyro's rate |ω′|, rad/s), ``error_deg`` (``total``, ``heading``, ``inclination`` per sample, None
+        where lost) and ``rmse_deg`` (the three RMSEs of :func:`kreisel.nav.attitude_error` and ``over``: ``"movement"`` or ``"all"``).
+
+    Raises
+    ------
+    ScenarioError
+        No accelerometer or no reference, unevenly spaced samples, or samples the estimator refuses.
+    RunRefused
+        More than :data:`MAX_RECORDING_SAMPLES` samples.
+
+    Examples
+    --------
+    >>> import kreisel as kr
+    >>> data = attitude_replay(kr.io.read_imu(kr.io.recording_path("broad_07")))
+    >>> data["kind"], len(data["t"]) == len(data["q"]) == len(data["q_ref"]), round(data["rate"], 3)
+    ('attitude', True, 285.714)
+    >>> data["q_ref"][0], data["rmse_deg"]["over"]
+    (None, 'movement')
+    """
+    from ..nav import attitude_error, attitude_error_angles, estimate_attitude
+
+    name = recording.source
+    if recording.accel is None or recording.reference is None:
+        raise ScenarioError(f"{name}: an attitude replay needs an accelerometer and a reference attitude")
+    n = len(recording.t)
+    if n > MAX_RECORDING_SAMPLES:
+        raise RunRefused(f"the recording has {n} samples; the viewer replays at most {MAX_RECORDING_SAMPLES}")
+    if n < 2:
+        raise ScenarioError(f"{name}: {n} sample; an attitude replay needs at least 2")
+    step = np.diff(recording.t)
+    mean = float(recording.t[-1] - recording.t[0]) / (n - 1)
+    worst = int(np.argmax(np.abs(step - mean)))
+    if abs(step[worst] - mean) > SPACING_TOLERANCE * mean:
+        raise ScenarioError(f"{name}: samples are not evenly spaced (interval {step[worst]:.6g} s after "
+                            f"t = {recording.t[worst]:.6g} s, mean {mean:.6g} s): resample the recording first")
+    try:
+        estimate = estimate_attitude(recording.omega, recording.accel, recording.mag, rate=1.0 / mean)
+        errors = np.degrees(attitude_error_angles(estimate.q, recording.reference))
+        rmse = attitude_error(estimate.q, recording.reference, recording.movement)
+    except ValueError as exc:
+        raise ScenarioError(f"{name}: {exc}") from None
+    title = f"attitude of {pathlib.PurePath(name).name}: kreisel's estimate and the reference"
+    return {
+        "kind": "attitude", "title": title, "source": name, "method": estimate.method,
+        "magnetometer": recording.mag is not None, "rate": 1.0 / mean,
+        "t": recording.t.tolist(), "q": estimate.q.tolist(), "q_ref": _rows(recording.reference),
+        "omega_norm": np.linalg.norm(recording.omega, axis=1).tolist(),
+        "error_deg": {key: [float(v) if np.isfinite(v) else None for v in values]
+                      for key, values in zip(("total", "heading", "inclination"), errors)},
+        "rmse_deg": {"total": rmse[0], "heading": rmse[1], "inclination": rmse[2],
+                     "over": "all" if recording.movement is None else "movement"},
+    }
+
+
 def export(text, exact, format, folder, max_steps=RUN_STEPS):
     """Run scenario TOML ``text`` and write its trajectory as ``format`` ("nc" or "csv") into ``folder``.
 
@@ -633,4 +715,4 @@ def _messages(scenario, solver, text, chunk_samples):
 
 __all__ = ["METHODS", "MAX_SAMPLES", "MAX_STREAM_SAMPLES", "CHUNK_SAMPLES", "RunRefused", "ScenarioError",
            "Solver", "IntegralChanges", "samples", "regime_text", "scenario_data", "scenario_toml", "toml_text", "form_fields", "load", "run",
-           "export", "stream"]
+           "export", "stream", "attitude_replay"]
