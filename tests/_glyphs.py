@@ -65,14 +65,17 @@ async (cjk) => {
 """
 
 
-def cjk_glyphs(page):
+def cjk_glyphs(page, characters=CJK):
     """Check the page loaded in ``page`` (a Playwright page of chromium).
 
-    Returns a dict: ``characters`` (CJK characters in the page's text), ``distinct``, ``missing`` (a list of
+    ``characters`` is the (JavaScript) regular expression of the characters checked: CJK by default, ``r"\S"``
+    for every visible character (the tour report: Greek, math symbols, ✓ too).
+
+    Returns a dict: ``characters`` (checked characters in the page's text), ``distinct``, ``missing`` (a list of
     ``[character, css font]`` that no font draws) and ``fonts`` (font family → glyphs it drew in the elements that
     hold CJK text, as chromium reports them).
     """
-    report = page.evaluate(_MEASURE, CJK)
+    report = page.evaluate(_MEASURE, characters)
     session = page.context.new_cdp_session(page)
     try:
         session.send("DOM.enable")

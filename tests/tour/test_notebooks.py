@@ -1,7 +1,8 @@
 """The tour as notebooks: made from the section functions, written by ``kreisel tour --notebooks``, executed.
 
-The notebooks a user writes with the command are opened with nbformat and run with nbclient
-in an IPython kernel (quick problems); every section shows its checks passing.
+The notebooks a user writes with the command, in English and in Chinese (``--lang zh``), are opened
+with nbformat and run with nbclient in an IPython kernel (quick problems); every section shows its
+checks passing.
 """
 
 import ast
@@ -95,18 +96,19 @@ def test_unknown_name_is_refused():
         notebook_text("rotations")
 
 
-@pytest.fixture(scope="module")
-def written(tmp_path_factory):
-    """``kreisel tour --notebooks DIR --quick`` run as a user runs it."""
-    out = tmp_path_factory.mktemp("class")
-    result = subprocess.run([sys.executable, "-m", "kreisel", "tour", "--notebooks", str(out), "--quick"],
-                            capture_output=True, text=True, timeout=600)
+@pytest.fixture(scope="module", params=["en", "zh"])
+def written(tmp_path_factory, request):
+    """``kreisel tour --notebooks DIR --quick --lang LANG`` run as a user runs it."""
+    out = tmp_path_factory.mktemp(f"class-{request.param}")
+    result = subprocess.run([sys.executable, "-m", "kreisel", "tour", "--notebooks", str(out), "--quick",
+                             "--lang", request.param], capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stderr
     assert result.stdout.split("\n")[0] == f"wrote {out / '01_rotations.ipynb'}"
-    return out
+    return out, request.param
 
 
 def test_command_writes_one_valid_notebook_per_part(written):
+    written, _ = written
     assert sorted(p.name for p in written.iterdir()) == [f"{name}.ipynb" for name in NOTEBOOKS]
     for path in written.iterdir():
         nb = nbformat.read(path, as_version=4)
@@ -115,6 +117,7 @@ def test_command_writes_one_valid_notebook_per_part(written):
 
 
 def test_notebooks_execute_and_every_section_passes(written):
+    written, lang = written
     # the kernel imports the kreisel under test (a source tree on PYTHONPATH or an install)
     env = {**os.environ, "MPLBACKEND": "Agg",
            "PYTHONPATH": os.pathsep.join([str(pathlib.Path(kreisel.__file__).parents[1]), os.environ.get("PYTHONPATH", "")])}
@@ -126,8 +129,25 @@ def test_notebooks_execute_and_every_section_passes(written):
         shown = [o.data["text/html"] for c in nb.cells if c.cell_type == "code" for o in c.outputs
                  if "text/html" in o.get("data", {})]
         assert len(shown) == len(functions), name
+        passed = {"en": "<b>all checks pass</b>", "zh": "<b>全部核对通过</b>"}[lang]
         for function, html in zip(functions, shown):
-            assert "<b>all checks pass</b>" in html and "class='fail'" not in html, (name, function.__name__)
+            assert passed in html and "class='fail'" not in html, (name, function.__name__)
         assert sum(html.count("data:image/png;base64,") for html in shown) >= len(functions), name
         ids += [i for html in shown for i in re.findall(r"<section id='([^']+)'", html)]
     assert len(ids) == len(SECTIONS) == len(set(ids)), ids  # one id per section, none twice
+
+
+@pytest.mark.parametrize("name", list(NOTEBOOKS))
+def test_chinese_notebooks_translate_the_markdown_and_keep_the_code(name):
+    en, zh = (jupytext.reads(notebook_text(name, quick=True, lang=lang), fmt="py:percent") for lang in ("en", "zh"))
+    assert [c.cell_type for c in en.cells] == [c.cell_type for c in zh.cells]
+    code_en, code_zh = ([c.source for c in nb.cells if c.cell_type == "code"] for nb in (en, zh))
+    assert code_zh[1:] == code_en[1:]   # every section's code, word for word
+    assert code_zh[0] == code_en[0].replace("\n\nquick", "\nfrom kreisel.tour.report import use_language\n\n"
+                                            "use_language('zh')\n\nquick")
+    for cell_en, cell_zh in zip(en.cells, zh.cells):
+        if cell_en.cell_type == "markdown":
+            assert re.search(r"[\u4e00-\u9fff]", cell_zh.source) and cell_zh.source != cell_en.source
+            title = cell_zh.source.splitlines()[0]
+            underline = cell_zh.source.splitlines()[1]
+            assert set(underline) <= {"=", "-"} and len(underline) >= len(title)

@@ -3,15 +3,8 @@
 import html
 import re
 
-import pytest
 
-from kreisel.tour import SECTIONS
 from kreisel.tour.report import render_html
-
-
-@pytest.fixture(scope="module")
-def sections():
-    return [function(True) for function in SECTIONS]
 
 
 def _labelled(ax, axis):

@@ -385,15 +385,22 @@ def tour(
         None, "--notebooks", metavar="DIR",
         help="Instead of running the tour, write its sections as Jupyter notebooks DIR/01_rotations.ipynb, ... "
              "(needs kreisel[notebook]); with --quick their problems are small."),
+    lang: str = typer.Option("en", "--lang", metavar="en|zh",
+                             help="Language of the report or notebooks: en (English) or zh (Chinese: prose, tables, "
+                                  "captions and figure text; the numbers are the same)."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """Run every demonstration of the chapter and write DIR/index.html, or write the tour as notebooks."""
+    from ..tour.i18n import LANGUAGES
+
+    if lang not in LANGUAGES:
+        usage_error(f"--lang must be one of {', '.join(LANGUAGES)}, got {lang!r}")
     if notebooks is not None:
         from ..tour.notebooks import NOTEBOOKS, write_notebooks
 
         _check_outputs_in("--notebooks", notebooks, [f"{name}.ipynb" for name in NOTEBOOKS], force)
         try:
-            written = write_notebooks(notebooks, quick=quick)
+            written = write_notebooks(notebooks, quick=quick, lang=lang)
         except (ImportError, OSError, ValueError) as exc:
             usage_error(f"--notebooks: {exc}")
         for path in written:
@@ -402,7 +409,7 @@ def tour(
     from ..tour import run_tour
 
     _check_outputs_in("--out", out_dir, ["index.html"], force)
-    ok = run_tour(out_dir, quick=quick, console=console())
+    ok = run_tour(out_dir, quick=quick, console=console(), lang=lang)
     raise typer.Exit(0 if ok else 1)
 
 

@@ -9,6 +9,9 @@ The text form is jupytext's percent format (:func:`notebook_text`); jupytext tur
 a notebook (:func:`notebook`), ``kreisel tour --notebooks DIR`` writes those out
 (:func:`write_notebooks`) and the documentation renders the same text as a sphinx-gallery
 page. Headings are underlined (setext), which Markdown and reStructuredText read alike.
+In Chinese (``lang="zh"``) the markdown cells are translated with the tour's catalog
+(:mod:`kreisel.tour.i18n`) and the first code cell shows the sections in Chinese
+(:func:`~kreisel.tour.report.use_language`); every other code cell is the English one.
 Writing notebooks needs jupytext (``pip install 'kreisel[notebook]'``).
 """
 
@@ -20,8 +23,10 @@ import inspect
 import pathlib
 import sys
 import textwrap
+import unicodedata
 
 from .._fileio import atomic_output
+from .i18n import catalog, check_language
 from .runner import SECTIONS
 
 __all__ = ["NOTEBOOKS", "notebook_text", "notebook", "write_notebooks"]
@@ -52,7 +57,9 @@ def _markdown(text):
 
 
 def _heading(title, underline):
-    return f"{title}\n{underline * len(title)}"
+    # as long as the title is wide: a Chinese character takes two columns (reStructuredText counts them so)
+    width = sum(2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in title)
+    return f"{title}\n{underline * width}"
 
 
 def _absolute_import(node, package):
@@ -63,8 +70,8 @@ def _absolute_import(node, package):
     return ast.unparse(node)
 
 
-def _setup_cell(module, functions, quick):
-    """Imports of the module, the module-level helpers its sections use, and the ``quick`` switch."""
+def _setup_cell(module, functions, quick, lang):
+    """Imports of the module, the module-level helpers its sections use, the language and the ``quick`` switch."""
     tree = ast.parse(inspect.getsource(module))
     imports = [_absolute_import(node, module.__package__) for node in tree.body
                if isinstance(node, (ast.Import, ast.ImportFrom)) and getattr(node, "module", None) != "__future__"]
@@ -80,6 +87,8 @@ def _setup_cell(module, functions, quick):
     helpers = sorted((defined - sections) & used)
     if helpers:
         imports.append(f"from {module.__name__} import {', '.join(helpers)}")
+    if lang != "en":
+        imports += ["from kreisel.tour.report import use_language", "", f"use_language({lang!r})"]
     return "# %%\n" + "\n".join(imports) + f"\n\nquick = {bool(quick)}  # True: smaller problems, the same checks\n"
 
 
@@ -112,7 +121,7 @@ def _body(function):
     return textwrap.dedent("\n".join(lines[start:last.end_lineno])).strip() + "\n"
 
 
-def notebook_text(name, quick=False):
+def notebook_text(name, quick=False, lang="en"):
     """The notebook ``name`` (a key of :data:`NOTEBOOKS`) in jupytext's percent format.
 
     Parameters
@@ -121,6 +130,8 @@ def notebook_text(name, quick=False):
         ``"01_rotations"``, ... (see :data:`NOTEBOOKS`).
     quick : bool
         The value of the ``quick`` switch in the first code cell.
+    lang : {"en", "zh"}
+        The language of the markdown cells and of the sections' results; the code is the same.
 
     Returns
     -------
@@ -137,24 +148,26 @@ def notebook_text(name, quick=False):
     """
     if name not in NOTEBOOKS:
         raise ValueError(f"name must be one of {', '.join(NOTEBOOKS)}, got {name!r}")
+    tr = catalog(check_language(lang))
     functions = NOTEBOOKS[name]
     module = sys.modules[functions[0].__module__]
     topic = module.__doc__.strip().splitlines()[0].rstrip(".")
     topic = topic.split(" for ", 1)[1] if topic.startswith("Tour section") and " for " in topic else topic
     topic = topic.removeprefix("Tour section: ")
-    intro = textwrap.fill("Each code cell below is one section of ``kreisel tour``: the tour's own code, which "
+    topic = tr(topic[0].upper() + topic[1:])
+    intro = tr("Each code cell below is one section of ``kreisel tour``: the tour's own code, which "
                           "computes the chapter's results with kreisel and shows them next to the values they must "
                           "reproduce, with its figures. Change a cell and run it again. In the first cell, "
-                          "``quick = True`` makes the problems smaller; the checks stay the same.", 98)
-    cells = [_markdown(_heading(topic[0].upper() + topic[1:], "=") + "\n\n" + intro),
-             _setup_cell(module, functions, quick)]
+                          "``quick = True`` makes the problems smaller; the checks stay the same.")
+    cells = [_markdown(_heading(topic, "=") + "\n\n" + (textwrap.fill(intro, 98) if lang == "en" else intro)),
+             _setup_cell(module, functions, quick, lang)]
     for function in functions:
-        title = inspect.getdoc(function).splitlines()[0].rstrip(".")
+        title = tr(inspect.getdoc(function).splitlines()[0].rstrip("."))
         cells += [_markdown(_heading(title, "-")), "# %%\n" + _body(function)]
     return "\n".join(cells)
 
 
-def notebook(name, quick=False):
+def notebook(name, quick=False, lang="en"):
     """The notebook ``name`` as an ``nbformat`` notebook (Python 3 kernel), read from :func:`notebook_text`.
 
     Parameters
@@ -163,6 +176,8 @@ def notebook(name, quick=False):
         A key of :data:`NOTEBOOKS`.
     quick : bool
         The value of the ``quick`` switch in the first code cell.
+    lang : {"en", "zh"}
+        The language of the markdown cells and of the sections' results.
 
     Returns
     -------
@@ -175,13 +190,13 @@ def notebook(name, quick=False):
     ['markdown', 'code', 'markdown', 'code']
     """
     jupytext = _jupytext()
-    nb = jupytext.reads(notebook_text(name, quick), fmt="py:percent")
+    nb = jupytext.reads(notebook_text(name, quick, lang), fmt="py:percent")
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
     nb.metadata.pop("jupytext", None)
     return nb
 
 
-def write_notebooks(out_dir, quick=False):
+def write_notebooks(out_dir, quick=False, lang="en"):
     """Write every tour notebook to ``out_dir/<name>.ipynb`` (each file replaced atomically).
 
     Parameters
@@ -190,6 +205,8 @@ def write_notebooks(out_dir, quick=False):
         Created if missing.
     quick : bool
         The value of the ``quick`` switch in each notebook's first code cell.
+    lang : {"en", "zh"}
+        The language of the markdown cells and of the sections' results.
 
     Returns
     -------
@@ -203,6 +220,7 @@ def write_notebooks(out_dir, quick=False):
     ...     [p.name for p in write_notebooks(d)][:2]
     ['01_rotations.ipynb', '02_kinematics.ipynb']
     """
+    check_language(lang)
     jupytext = _jupytext()
     out_dir = pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -210,6 +228,6 @@ def write_notebooks(out_dir, quick=False):
     for name in NOTEBOOKS:
         path = out_dir / f"{name}.ipynb"
         with atomic_output(path) as tmp:
-            tmp.write_text(jupytext.writes(notebook(name, quick), fmt="ipynb"), encoding="utf-8")
+            tmp.write_text(jupytext.writes(notebook(name, quick, lang), fmt="ipynb"), encoding="utf-8")
         written.append(path)
     return written

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import contextlib
 import dataclasses
 import html
 import io
@@ -10,8 +11,33 @@ import re
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.text import Text
 
-__all__ = ["Check", "Section", "panel", "plain", "render_html"]
+from ._fonts import cjk_family
+from .i18n import catalog, check_language
+
+__all__ = ["Check", "Section", "panel", "plain", "render_html", "use_language", "NO_CJK_FONT"]
+
+#: The note of a Chinese report whose figures keep their English text (see :func:`render_html`).
+NO_CJK_FONT = ("no CJK font found for matplotlib (on Debian: apt-get install fonts-noto-cjk): "
+               "the figures keep their English text")
+
+_shown = {"lang": "en"}
+
+
+def use_language(lang):
+    """Show sections in a notebook (their ``_repr_html_``) in ``lang``, one of :data:`~kreisel.tour.i18n.LANGUAGES`.
+
+    The tour's Chinese notebooks call ``use_language("zh")`` in their first cell; their section cells are the
+    English ones, word for word.
+
+    Examples
+    --------
+    >>> use_language("zh"); "万向节锁" in Section("Gimbal lock", "§2.3", "", [])._repr_html_()
+    True
+    >>> use_language("en")
+    """
+    _shown["lang"] = check_language(lang)
 
 
 @dataclasses.dataclass
@@ -19,13 +45,15 @@ class Check:
     """One number kreisel computed, next to the value it must reproduce.
 
     ``ok`` is decided by the section (relative or absolute tolerance, or an
-    inequality); ``expected`` is shown as given, e.g. ``"0.0186 m (chapter)"``.
+    inequality); ``expected`` is shown as given, e.g. ``"0.0186 m (chapter, atol 5e-05)"``,
+    with ``source`` (``"chapter"``), the words in it that a translation translates.
     """
 
     label: str
     value: object
     expected: str
     ok: bool
+    source: str = ""
 
     @classmethod
     def close(cls, label, value, target, rtol=None, atol=None, source="", unit=""):
@@ -35,7 +63,7 @@ class Check:
         ok = bool(np.isfinite(value) and abs(value - target) <= atol + rtol * abs(target))
         tol = f"rtol {rtol:g}" if rtol else f"atol {atol:g}"
         text = f"{target:.6g}{' ' + unit if unit else ''} ({source + ', ' if source else ''}{tol})"
-        return cls(label, float(value), text, ok)
+        return cls(label, float(value), text, ok, source)
 
     @classmethod
     def below(cls, label, value, bound, unit=""):
@@ -78,8 +106,10 @@ class Section:
 
     def _repr_html_(self):
         # in a notebook (the tour's notebooks end each section cell with its Section)
-        mark = "all checks pass" if self.ok else "FAIL"
-        return _section_html(self, self.anchor) + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>"
+        tr = catalog(_shown["lang"])
+        mark = tr("all checks pass" if self.ok else "FAIL")
+        return (_section_html(self, self.anchor, tr, _figure_font(tr))
+                + f"<p><b>{mark}</b> ({sum(c.ok for c in self.checks)}/{len(self.checks)})</p>")
 
 
 def panel(xlabel, ylabel, title, figsize=(7, 3.8)):
@@ -97,10 +127,40 @@ def panel(xlabel, ylabel, title, figsize=(7, 3.8)):
     return fig, ax
 
 
-def _png(fig):
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100)
+def _png(fig, tr=None, font=None):
+    """The figure as base64 PNG data; with ``tr`` and a CJK ``font`` family, its text translated while it is drawn."""
+    with _translated(fig, tr, font):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=100)
     return base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+@contextlib.contextmanager
+def _translated(fig, tr, font):
+    """Every text of ``fig`` (titles, axis labels, legends, annotations) translated, and restored afterwards."""
+    changed = []
+    try:
+        if tr is not None and font is not None:
+            for text in fig.findobj(Text):
+                old = text.get_text()
+                if "$" in old:   # mathtext (log-axis tick labels): symbols only
+                    continue
+                new = tr(old)
+                if new != old:
+                    changed.append((text, old, text.get_fontfamily()))
+                    # the figure's own font first (Latin, Greek, math symbols), the CJK font for the rest
+                    text.set_fontfamily([*text.get_fontfamily(), font])
+                    text.set_text(new)
+        yield
+    finally:
+        for text, old, family in changed:
+            text.set_text(old)
+            text.set_fontfamily(family)
+
+
+def _figure_font(tr):
+    """The CJK family for the figures of a translated report; None for English or when there is none."""
+    return None if tr.lang == "en" else cjk_family()
 
 
 def plain(v):
@@ -120,48 +180,70 @@ def plain(v):
     return str(v)
 
 
-def render_html(sections, title="kreisel — the rigid-body chapter, executed"):
-    """The report as one HTML string with figures embedded as PNG data."""
+def render_html(sections, title="kreisel — the rigid-body chapter, executed", lang="en"):
+    """The report as one HTML string with figures embedded as PNG data.
+
+    Parameters
+    ----------
+    sections : list of Section
+    title : str
+        English; translated with the rest.
+    lang : {"en", "zh"}
+        The language of the prose, tables, captions and figure text (numbers, units and symbols are the same
+        in both). Chinese figure text needs a CJK font (:data:`NO_CJK_FONT`); without one the figures keep their
+        English text and the report says so once.
+    """
+    tr = catalog(check_language(lang))
+    font = _figure_font(tr)
     passed = sum(s.ok for s in sections)
     parts = [
-        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
-        f"<title>{html.escape(title)}</title><style>",
+        f"<!DOCTYPE html><html lang='{'zh-CN' if lang == 'zh' else lang}'><head><meta charset='utf-8'>",
+        f"<title>{html.escape(tr(title))}</title><style>",
         "body{font-family:system-ui,sans-serif;max-width:980px;margin:2em auto;padding:0 1em;color:#222}",
         "table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:left}",
         ".pass{color:#17702a;font-weight:bold}.fail{color:#b00020;font-weight:bold}",
         "figure{margin:1em 0}figcaption{color:#555;font-size:.9em}img{max-width:100%}",
         "section{border-top:1px solid #ddd;margin-top:2em}code{background:#f4f4f4;padding:0 .2em}",
         "</style></head><body>",
-        f"<h1>{html.escape(title)}</h1>",
-        f"<p>{passed} of {len(sections)} sections pass. Each section computes the chapter's results with "
-        "kreisel and checks them against the chapter's numbers or an independent reference.</p>",
-        "<table><tr><th>section</th><th>theory</th><th>checks</th><th>time</th></tr>",
+        f"<h1>{html.escape(tr(title))}</h1>",
+        "<p>" + html.escape(tr(f"{passed} of {len(sections)} sections pass. Each section computes the chapter's "
+                               "results with kreisel and checks them against the chapter's numbers or an independent "
+                               "reference.")) + "</p>",
     ]
+    if lang != "en" and font is None:
+        parts.append(f"<p class='note'>{html.escape(tr(NO_CJK_FONT))}</p>")
+    parts.append("<table><tr>" + "".join(f"<th>{tr(h)}</th>" for h in ("section", "theory", "checks", "time"))
+                 + "</tr>")
     for s in sections:
-        mark = "<span class='pass'>pass</span>" if s.ok else "<span class='fail'>FAIL</span>"
-        parts.append(f"<tr><td><a href='#{s.anchor}'>{html.escape(s.title)}</a></td><td>{html.escape(s.seed)}</td>"
+        mark = f"<span class='pass'>{tr('pass')}</span>" if s.ok else f"<span class='fail'>{tr('FAIL')}</span>"
+        parts.append(f"<tr><td><a href='#{s.anchor}'>{html.escape(tr(s.title))}</a></td><td>{html.escape(s.seed)}</td>"
                      f"<td>{mark} {sum(c.ok for c in s.checks)}/{len(s.checks)}</td><td>{s.seconds:.1f} s</td></tr>")
     parts.append("</table>")
-    parts += [_section_html(s, s.anchor) for s in sections]
+    parts += [_section_html(s, s.anchor, tr, font) for s in sections]
     parts.append("</body></html>")
     return "\n".join(parts)
 
 
-def _section_html(s, anchor):
-    """One section: title, what the theory says, the checks, the figures (PNG data)."""
-    parts = [f"<section id='{anchor}'><h2>{html.escape(s.title)} <small>(Theory {html.escape(s.seed)})</small></h2>",
-             f"<p>{s.text}</p>"]
+def _section_html(s, anchor, tr, font):
+    """One section: title, what the theory says, the checks, the figures (PNG data), in the language of ``tr``."""
+    parts = [f"<section id='{anchor}'><h2>{html.escape(tr(s.title))} "
+             f"<small>({html.escape(tr(f'Theory {s.seed}'))})</small></h2>",
+             f"<p>{tr(s.text)}</p>"]
     if s.error:
-        parts.append(f"<p class='fail'>error: {html.escape(s.error)}</p>")
+        parts.append(f"<p class='fail'>{html.escape(tr(f'error: {s.error}'))}</p>")
     if s.checks:
-        parts.append("<table><tr><th>quantity</th><th>kreisel</th><th>expected</th><th></th></tr>")
+        parts.append("<table><tr>" + "".join(f"<th>{tr(h)}</th>" for h in ("quantity", "kreisel", "expected", ""))
+                     + "</tr>")
         for c in s.checks:
             mark = "<span class='pass'>✓</span>" if c.ok else "<span class='fail'>✗</span>"
-            parts.append(f"<tr><td>{html.escape(c.label)}</td><td>{html.escape(plain(c.value))}</td>"
-                         f"<td>{html.escape(c.expected)}</td><td>{mark}</td></tr>")
+            # Check.close writes "target (source, tolerance)": only the source is words
+            expected = (c.expected.replace(f"({c.source}, ", f"({tr(c.source)}, ", 1) if c.source
+                        else tr(c.expected))
+            parts.append(f"<tr><td>{html.escape(tr(c.label))}</td><td>{html.escape(tr(plain(c.value)))}</td>"
+                         f"<td>{html.escape(expected)}</td><td>{mark}</td></tr>")
         parts.append("</table>")
     for fig, caption in s.figures:
-        parts.append(f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{_png(fig)}'>"
-                     f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+        parts.append(f"<figure><img alt='{html.escape(tr(caption))}' src='data:image/png;base64,{_png(fig, tr, font)}'>"
+                     f"<figcaption>{html.escape(tr(caption))}</figcaption></figure>")
     parts.append("</section>")
     return "\n".join(parts)

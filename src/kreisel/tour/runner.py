@@ -13,7 +13,9 @@ from rich.table import Table
 
 from .._fileio import atomic_output
 from . import earth_frame, free_top, heavy_top, imu_attitude, integrators, kinematics, navigation, phone_lab, rotations
-from .report import Section, render_html
+from ._fonts import cjk_family
+from .i18n import check_language
+from .report import NO_CJK_FONT, Section, render_html
 
 __all__ = ["run_tour", "SECTIONS"]
 
@@ -45,7 +47,7 @@ def _run_one(function, quick):
     return section
 
 
-def run_tour(out_dir="tour", quick=False, console=None):
+def run_tour(out_dir="tour", quick=False, console=None, lang="en"):
     """Run every section, write ``out_dir/index.html``, print a summary; True if all pass.
 
     Parameters
@@ -56,7 +58,10 @@ def run_tour(out_dir="tour", quick=False, console=None):
         Smaller problems with the same checks.
     console : rich.console.Console, optional
         Where the progress bar and summary go (default: standard output).
+    lang : {"en", "zh"}
+        The language of the report (prose, tables, captions, figure text); the summary printed stays English.
     """
+    check_language(lang)
     console = console or Console()
     out_dir = pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -71,7 +76,7 @@ def run_tour(out_dir="tour", quick=False, console=None):
             progress.advance(task)
     index = out_dir / "index.html"
     with atomic_output(index) as tmp:
-        tmp.write_text(render_html(sections), encoding="utf-8")
+        tmp.write_text(render_html(sections, lang=lang), encoding="utf-8")
     table = Table(title="kreisel tour")
     for name in ("section", "theory", "checks", "time"):
         table.add_column(name)
@@ -86,5 +91,7 @@ def run_tour(out_dir="tour", quick=False, console=None):
                 console.print("[red]✗[/] " + escape(f"{s.title}: {c.label} = {c.value} (expected {c.expected})"))
         if s.error:
             console.print("[red]✗[/] " + escape(f"{s.title}: {s.error}"))
+    if lang != "en" and cjk_family() is None:
+        console.print(escape(f"note: {NO_CJK_FONT}"))
     console.print(escape(f"report: {index}"))
     return all(s.ok for s in sections)
