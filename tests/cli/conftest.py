@@ -47,3 +47,29 @@ def usage_error():
             assert fragment in lines[0], (fragment, lines[0])
 
     return check
+
+
+@pytest.fixture
+def serve(interrupt):
+    """``with serve(*args, cwd=...) as (url, token)``: ``kreisel serve ARGS --port 0 --no-browser`` running.
+
+    ``url`` is the printed address without its query, ``token`` the ``?token=...`` query it carries; the server is
+    stopped as Ctrl+C stops it when the block ends.
+    """
+    import contextlib
+    import re
+
+    @contextlib.contextmanager
+    def running(*args, cwd=None):
+        server = subprocess.Popen([sys.executable, "-m", "kreisel", "serve", *map(str, args), "--port", "0",
+                                   "--no-browser"], cwd=cwd, env=dict(os.environ, PYTHONPATH=str(SRC)),
+                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            found = next(filter(None, (re.search(r"(http://127\.0\.0\.1:\d+/)(\?token=[\w-]+)", line)
+                                       for line in server.stdout)), None)
+            assert found, "kreisel serve did not print its URL"
+            yield found.groups()
+        finally:
+            interrupt(server, 60)
+
+    return running

@@ -162,28 +162,13 @@ def test_plot_says_what_a_foucault_result_holds_and_plots_it(kreisel, usage_erro
                 "f.nc holds a Foucault pendulum result, which plots as azimuth")
 
 
-def test_serve_opens_a_bundled_scenario_by_name(kreisel, usage_error, tmp_path, interrupt):
-    import re
-
+def test_serve_opens_a_bundled_scenario_by_name(kreisel, usage_error, serve, tmp_path):
     import httpx
 
     usage_error(kreisel("serve", "tenis_racket", "--no-browser", cwd=tmp_path), "did you mean 'tennis_racket'?")
     (tmp_path / "data.toml").write_bytes(b"\x89PNG\r\n\x1a\n\x00\xff")
     usage_error(kreisel("serve", "data.toml", "--no-browser", cwd=tmp_path), "data.toml: not a text file")
-    env = dict(os.environ, PYTHONPATH=str(SRC))
-    server = subprocess.Popen([sys.executable, "-m", "kreisel", "serve", "tennis_racket", "--port", "0",
-                               "--no-browser"], cwd=tmp_path, env=env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True)
-    try:
-        url = None
-        for line in server.stdout:
-            found = re.search(r"(http://127\.0\.0\.1:\d+/)(\?token=[\w-]+)", line)
-            if found:
-                url, token = found.groups()
-                break
-        assert url, "kreisel serve did not print its URL"
+    with serve("tennis_racket", cwd=tmp_path) as (url, token):
         # the printed URL carries the server's token, and nothing is answered without it
         assert httpx.get(url + "api/initial", timeout=60).status_code == 403
         assert 'title = "Tennis racket' in httpx.get(url + "api/initial" + token, timeout=60).json()["toml"]
-    finally:
-        interrupt(server, 60)
