@@ -125,7 +125,7 @@ def test_complete_pi_where_m_and_n_both_approach_one():
             assert value == pytest.approx(float(exact), rel=4 * EPS), (one_minus_n, m1)
 
 
-@pytest.mark.parametrize("m1", [0.9997, 0.3, 1e-6, 1e-20])
+@pytest.mark.parametrize("m1", [0.9997, 0.3, 1e-6, 1e-20, 1e-40, 1e-310])
 def test_third_kind_for_characteristics_far_below_zero(m1):
     # n -> −∞ (a top passing next to the lower vertical): Π ~ π/(2√(1 − n)) is what is left of
     # F + (n/3) s³ R_J after F cancels; the form with R_C and R_J(q) loses nothing

@@ -291,6 +291,16 @@ def test_every_start_next_to_a_principal_axis(moments, axis, spin, signs, offset
     np.testing.assert_allclose(np.linalg.norm(tr.q, axis=-1), 1.0, rtol=0, atol=4 * EPS)
 
 
+@pytest.mark.parametrize("offset", [1e-152, 1e-154, 1e-155, 1e-160])
+def test_a_start_whose_parameter_m1_is_subnormal_has_a_finite_attitude(offset):
+    # next to the intermediate axis, k′ ~ 1e-154 makes m1 = k′² subnormal, where R_J of Π(ν | m) overflowed
+    top = kr.EulerTop(1.0, 2.0, 3.0)
+    omega0 = np.array([0.0, -1.0, -offset])
+    tr = top.solve(np.array([0.0, 0.3, 7.0, 150.0, 4e3]), omega0, Q0)
+    assert np.all(np.isfinite(tr.q))
+    np.testing.assert_allclose(np.linalg.norm(_space_momentum(tr), axis=-1), top.angular_momentum(omega0), rtol=1e-14)
+
+
 def test_triangle_inequality_is_one_rule_with_simulate():
     with pytest.raises(ValueError, match="triangle inequality") as from_top:
         kr.EulerTop(1.0, 1.0, 5.0)

@@ -168,8 +168,10 @@ def complete_pi(nu: float, one_minus_nu: float, m1: float, kc: float) -> float:
     """Π(ν | m), ν < 1, with 1 − ν given separately (accurate when ν is near 1)."""
     k = complete_k(m1, kc)
     # R_J is exact to a few ulp however far apart m1 and 1 − ν are (down to 1e-300, checked
-    # against mpmath), so the m1 -> 0 limit serves only m1 = 0 itself (k′ underflowed)
-    if m1 == 0.0:
+    # against mpmath), so for ν >= 0 the m1 -> 0 limit serves only m1 = 0 itself (k′ underflowed);
+    # for ν < 0 (1 − ν >= 1) the limit is exact to rounding below _LOG_M1, and the R_J term below
+    # would overflow once m1 is subnormal (k′ below 1.5e-154), leaving inf · m1 for a finite Π
+    if m1 == 0.0 or (nu < 0.0 and m1 < _LOG_M1):
         # Π(ν | m) − K/(1 − ν) → −ν/(1 − ν) ∫₀^1 ds/(1 − ν s²) as m1 → 0; for ν > 0 the integral
         # atanh(√ν)/√ν = (2 ln(1 + √ν) − ln(1 − ν))/(2√ν) keeps the digits of 1 − ν
         if nu > 0.0:
