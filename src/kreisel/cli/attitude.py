@@ -13,27 +13,8 @@ from ._recordings import units_option
 __all__ = ["METHODS", "attitude", "summary", "write_csv"]
 
 METHODS = ("kreisel", "madgwick", "mahony", "complementary")
-# a sample interval this far from the mean is a gap or a stall, not jitter: the filters step at one rate
-_SPACING_TOLERANCE = 0.25
 # NED ← ENU: a half turn about the horizontal axis between north and east
 _NED_FROM_ENU = (0.0, 0.5 ** 0.5, 0.5 ** 0.5, 0.0)
-
-
-def _even_rate(t, source):
-    """The sampling rate of times ``t``; a usage error where the intervals are not even (a gap, a stall)."""
-    import numpy as np
-
-    from ._output import usage_error
-
-    if t.size < 2:
-        usage_error(f"{source}: {t.size} sample; attitude estimation needs at least 2")
-    step = np.diff(t)
-    mean = (t[-1] - t[0]) / (t.size - 1)
-    worst = int(np.argmax(np.abs(step - mean)))
-    if abs(step[worst] - mean) > _SPACING_TOLERANCE * mean:
-        usage_error(f"{source}: samples are not evenly spaced (interval {step[worst]:.6g} s after t = {t[worst]:.6g} s, "
-                    f"mean {mean:.6g} s); the filters step at one rate: resample the recording first")
-    return 1.0 / mean
 
 
 def summary(name, rec, estimate, rate, frame, errors):
@@ -170,7 +151,10 @@ def attitude(
     mag = None if no_mag else rec.mag
     if mag is None and not no_mag:
         note(f"{path}: no magnetometer: the heading comes from the gyro alone")
-    sample_rate = _even_rate(rec.t, path)
+    try:
+        sample_rate = rec.sampling_rate()
+    except ValueError as exc:
+        usage_error(str(exc))
     try:
         estimate = estimate_attitude(rec.omega, rec.accel, mag, rate=sample_rate, offline=offline, frame=frame,
                                      method=None if method == "kreisel" else method)

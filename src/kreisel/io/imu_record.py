@@ -7,7 +7,11 @@ from typing import Optional
 
 import numpy as np
 
-__all__ = ["ImuRecording"]
+__all__ = ["ImuRecording", "SPACING_TOLERANCE"]
+
+#: Largest relative departure of a sample interval from the mean that :meth:`ImuRecording.sampling_rate` accepts:
+#: beyond it the recording has a gap or a stall, and filters that step at one rate would misplace the motion.
+SPACING_TOLERANCE = 0.25
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -71,6 +75,32 @@ class ImuRecording:
                                                           ("increments", self.dtheta)) if value is not None)
         span = f"t=[{self.t[0]:g}, {self.t[-1]:g}] s" if self.t.size else "t=[]"
         return f"ImuRecording({self.source!r}, n={self.t.size}, {span}, {sensors}{extra})"
+
+    def sampling_rate(self):
+        """The sampling rate in Hz of evenly spaced samples: one over the mean interval.
+
+        Raises
+        ------
+        ValueError
+            Fewer than 2 samples, or an interval further than :data:`SPACING_TOLERANCE` from the mean (a gap or
+            a stall), naming where.
+
+        Examples
+        --------
+        >>> ImuRecording(np.array([0.0, 0.01, 0.02]), np.zeros((3, 3))).sampling_rate()
+        100.0
+        """
+        t = self.t
+        if t.size < 2:
+            raise ValueError(f"{self.source}: {t.size} sample; attitude estimation needs at least 2")
+        step = np.diff(t)
+        mean = float(t[-1] - t[0]) / (t.size - 1)
+        worst = int(np.argmax(np.abs(step - mean)))
+        if abs(step[worst] - mean) > SPACING_TOLERANCE * mean:
+            raise ValueError(f"{self.source}: samples are not evenly spaced (interval {step[worst]:.6g} s after "
+                             f"t = {t[worst]:.6g} s, mean {mean:.6g} s); the filters step at one rate: resample "
+                             "the recording first")
+        return 1.0 / mean
 
     def attitude(self, q0=(1.0, 0.0, 0.0, 0.0), samples_per_update=None, method=None):
         """Integrate the gyro into attitude (sensor → the frame of ``q0``).

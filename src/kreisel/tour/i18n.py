@@ -67,14 +67,14 @@ class Catalog:
             self.entries = {m["en"]: m[lang] for m in data["message"]}
             self.neutral_words = frozenset(data["neutral"]["words"])
         self._exact = {k: v for k, v in self.entries.items() if not _FIELD.search(k)}
-        self._templates = [(_pattern(k), k) for k in self.entries if _FIELD.search(k)]
+        self._templates = {k: _pattern(k) for k in self.entries if _FIELD.search(k)}
         self.used, self.missing = set(), set()
 
     def matches(self, text):
         """The keys that ``text`` matches: its exact entry, else every template it fits."""
         if text in self._exact:
             return [text]
-        return [key for pattern, key in self._templates if pattern.fullmatch(text)]
+        return [key for key, pattern in self._templates.items() if pattern.fullmatch(text)]
 
     def __call__(self, text):
         if self.lang == "en" or not text:
@@ -88,7 +88,7 @@ class Catalog:
         self.used.add(key)
         if key in self._exact:
             return self._exact[key]
-        values = _pattern(key).fullmatch(text).groupdict()
+        values = self._templates[key].fullmatch(text).groupdict()
         for name, value in values.items():
             if value in self._exact:   # a word of the catalog (a locus kind, a case) is translated too
                 self.used.add(value)

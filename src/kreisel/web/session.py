@@ -555,11 +555,6 @@ def fit(recording, name="upload", start=None, stop=None, bias=True):
     }
 
 
-#: Largest relative departure of a sample interval from the mean that the attitude replay steps over: beyond
-#: it the recording has a gap or a stall, and the filters, which step at one rate, would misplace the motion.
-SPACING_TOLERANCE = 0.25
-
-
 def _rows(x):
     """Rows of ``x`` as JSON lists, None where a row is not finite (the reference lost the body)."""
     return [row.tolist() if np.isfinite(row).all() else None for row in x]
@@ -610,16 +605,12 @@ def attitude_replay(recording):
     n = len(recording.t)
     if n > MAX_RECORDING_SAMPLES:
         raise RunRefused(f"the recording has {n} samples; the viewer replays at most {MAX_RECORDING_SAMPLES}")
-    if n < 2:
-        raise ScenarioError(f"{name}: {n} sample; an attitude replay needs at least 2")
-    step = np.diff(recording.t)
-    mean = float(recording.t[-1] - recording.t[0]) / (n - 1)
-    worst = int(np.argmax(np.abs(step - mean)))
-    if abs(step[worst] - mean) > SPACING_TOLERANCE * mean:
-        raise ScenarioError(f"{name}: samples are not evenly spaced (interval {step[worst]:.6g} s after "
-                            f"t = {recording.t[worst]:.6g} s, mean {mean:.6g} s): resample the recording first")
     try:
-        estimate = estimate_attitude(recording.omega, recording.accel, recording.mag, rate=1.0 / mean)
+        rate = recording.sampling_rate()
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+    try:
+        estimate = estimate_attitude(recording.omega, recording.accel, recording.mag, rate=rate)
         errors = np.degrees(attitude_error_angles(estimate.q, recording.reference))
         rmse = attitude_error(estimate.q, recording.reference, recording.movement)
     except ValueError as exc:
@@ -627,7 +618,7 @@ def attitude_replay(recording):
     title = f"attitude of {pathlib.PurePath(name).name}: kreisel's estimate and the reference"
     return {
         "kind": "attitude", "title": title, "source": name, "method": estimate.method,
-        "magnetometer": recording.mag is not None, "rate": 1.0 / mean,
+        "magnetometer": recording.mag is not None, "rate": rate,
         "t": recording.t.tolist(), "q": estimate.q.tolist(), "q_ref": _rows(recording.reference),
         "omega_norm": np.linalg.norm(recording.omega, axis=1).tolist(),
         "error_deg": {key: [float(v) if np.isfinite(v) else None for v in values]
