@@ -82,8 +82,8 @@ class ImuRecording:
         Raises
         ------
         ValueError
-            Fewer than 2 samples, or an interval further than :data:`SPACING_TOLERANCE` from the mean (a gap or
-            a stall), naming where.
+            Fewer than 2 samples, or an interval more than 25 % away from the mean (a gap or a stall),
+            naming where.
 
         Examples
         --------
