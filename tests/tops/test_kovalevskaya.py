@@ -55,3 +55,15 @@ def test_bad_input():
         kr.KovalevskayaTop(1.0, 0.0)
     with pytest.raises(ValueError, match="gamma"):
         TOP.integrals([1.0, 2.0, 3.0], [1.0, 0.0])
+
+
+@pytest.mark.parametrize("omega", [[1e200, 0.0, 0.0], [0.0, 2e77, 0.0], [1.0, 0.0, 1e160]])
+def test_integrals_beyond_double_precision_are_refused(omega):
+    with pytest.raises(ValueError, match=r"omega and gamma are out of range for the \w+ integral"):
+        TOP.integrals(omega, [0.0, 0.6, 0.8])
+
+
+def test_integrals_just_inside_double_precision_stay_finite_and_exact():
+    # (p² − q²)² with p = 1e76, q = γ = 0 is 1e304: representable, and K equals it to rounding
+    ints = TOP.integrals([1e76, 0.0, 0.0], [0.0, 0.0, 1.0])
+    assert ints.kovalevskaya == pytest.approx(1e304, rel=1e-14)

@@ -100,6 +100,12 @@ class KovalevskayaTop:
         -------
         KovalevskayaIntegrals
 
+        Raises
+        ------
+        ValueError
+            Non-finite input, or an integral beyond double precision (K overflows
+            above |ω| ≈ 1e77 rad/s).
+
         Examples
         --------
         Kovalevskaya's fourth integral is what makes this top integrable: with the
@@ -118,12 +124,19 @@ class KovalevskayaTop:
         p, q, r = np.moveaxis(omega, -1, 0)
         g1, g2, g3 = np.moveaxis(gamma, -1, 0)
         c = self.c
-        return KovalevskayaIntegrals(
-            energy=self.I3 * (p * p + q * q + 0.5 * r * r) + self.mgl * g1,
-            area=2.0 * p * g1 + 2.0 * q * g2 + r * g3,
-            geometric=g1 * g1 + g2 * g2 + g3 * g3,
-            kovalevskaya=(p * p - q * q - c * g1) ** 2 + (2.0 * p * q - c * g2) ** 2,
-        )
+        with np.errstate(over="ignore", invalid="ignore"):
+            integrals = KovalevskayaIntegrals(
+                energy=self.I3 * (p * p + q * q + 0.5 * r * r) + self.mgl * g1,
+                area=2.0 * p * g1 + 2.0 * q * g2 + r * g3,
+                geometric=g1 * g1 + g2 * g2 + g3 * g3,
+                kovalevskaya=(p * p - q * q - c * g1) ** 2 + (2.0 * p * q - c * g2) ** 2,
+            )
+        for name, value in vars(integrals).items():
+            if not np.isfinite(value).all():
+                raise ValueError(f"omega and gamma are out of range for the {name} integral: it overflows double "
+                                 "precision (beyond about 1.8e308); K is quartic in omega, so |omega| must stay "
+                                 "below about 1e77 rad/s")
+        return integrals
 
     def simulate(self, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None, method: str | None = None,
                  **options: Any) -> Trajectory:
