@@ -17,7 +17,8 @@ import numpy as np
 from .. import so3
 from .._validation import parse_sequence
 
-__all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows"]
+__all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows",
+           "radians_hint"]
 
 # name -> numbers per rotation on input; None: complex, output only
 _REPRESENTATIONS = {
@@ -150,6 +151,39 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     if dst == "quat" and scalar_last:
         out = np.roll(out, -1, axis=-1)
     return out
+
+
+def radians_hint(source, rows, degrees=False):
+    """A note for angles read as radians that look like degrees, or None.
+
+    An angle beyond a full turn is a valid rotation, so it is converted as
+    given; but a reader who forgot ``--degrees`` gets a wrong rotation without
+    any error, and this note is what tells them.
+
+    Examples
+    --------
+    >>> radians_hint("euler:ZXZ", [[30, 45, 60]])
+    'note: angles are read as radians (60 rad is 9.5 turns); pass --degrees if you meant degrees'
+    >>> radians_hint("euler:ZXZ", [[30, 45, 60]], degrees=True) is None
+    True
+    >>> radians_hint("axis_angle", [[0, 0, 1, 1.5]]) is None
+    True
+    """
+    name, _ = parse_representation(source, "--from")
+    if degrees or name not in ("euler", "axis_angle", "rotvec"):
+        return None
+    values = np.asarray(rows, dtype=np.float64)
+    if name == "euler":
+        angles = np.abs(values)
+    elif name == "axis_angle":
+        angles = np.abs(values[:, 3])
+    else:
+        angles = np.linalg.norm(values, axis=-1)
+    largest = float(np.max(angles, initial=0.0))
+    if not largest > 2.0 * np.pi:
+        return None
+    return (f"note: angles are read as radians ({largest:g} rad is {largest / (2.0 * np.pi):.1f} turns); "
+            "pass --degrees if you meant degrees")
 
 
 def _radians(values, degrees):
