@@ -1,5 +1,7 @@
 """``kreisel examples`` lists everything bundled, and ``kreisel plot`` draws a recording, as a user runs them."""
 
+import pathlib
+
 import numpy as np
 from PIL import Image
 
@@ -25,6 +27,15 @@ def test_examples_copies_the_recording_out(kreisel, tmp_path):
     assert (tmp_path / "phone_toss.csv").read_bytes() == recording_path("phone_toss").read_bytes()
     again = kreisel("examples", "phone_toss", "--to", tmp_path)
     assert again.returncode == 2 and "already exists; pass --force" in again.stderr
+
+
+def test_examples_names_a_sweeps_file_instead_of_no_such_example(kreisel, tmp_path):
+    done = kreisel("examples", "imu_monte_carlo", "--to", tmp_path)
+    assert done.returncode == 2 and not list(tmp_path.iterdir())
+    assert "'imu_monte_carlo' is a bundled sweep, which `kreisel sweep imu_monte_carlo` runs" in done.stderr
+    named = pathlib.Path(done.stderr.split("to edit it, copy ")[1].strip())
+    assert named.name == "imu_monte_carlo.toml"
+    assert 'description = "Monte Carlo of strapdown attitude' in named.read_text(encoding="utf-8")
 
 
 def test_plot_draws_a_recordings_rates_and_the_fit_window(kreisel, tmp_path):

@@ -346,7 +346,8 @@ def animate(
 
 @app.command()
 def examples(
-    name: Optional[str] = typer.Argument(None, help="Scenario or recording to copy out; none: list them all."),
+    name: Optional[str] = typer.Argument(
+        None, help="Scenario or recording to copy out (a sweep's file is named where it lies); none: list them all."),
     directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
@@ -354,7 +355,7 @@ def examples(
     from .._fileio import atomic_output
     from ..io.bundled import EXAMPLES, copy_example, suggestion
     from ._recordings import bundled_recordings
-    from .examples import sections
+    from .examples import sections, sweep_files
 
     if name is None:
         from rich.text import Text
@@ -371,6 +372,10 @@ def examples(
         with _writing("--to", target), atomic_output(target) as tmp:
             tmp.write_bytes(recordings[name].read_bytes())
         return
+    sweeps = sweep_files()
+    if name not in EXAMPLES and name in sweeps:
+        usage_error(f"{name!r} is a bundled sweep, which `kreisel sweep {name}` runs as it is; "
+                    f"to edit it, copy {sweeps[name]}")
     if name not in EXAMPLES:
         usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
     try:
