@@ -75,6 +75,25 @@ def test_convert_no_radians_note_for_angles_within_a_turn_or_in_degrees(args):
     assert "radians" not in result.stderr
 
 
+@pytest.mark.parametrize("quat", [("0", "0", "0", "1"), ("0", "0", "0", "-2"), ("1e-20", "0", "0", "1")])
+def test_convert_notes_a_quaternion_that_looks_scalar_last(quat):
+    result = run("convert", "--from", "quat", "--to", "rotvec", "--", *quat)
+    assert result.exit_code == 0, result.output
+    np.testing.assert_allclose(np.abs(numbers(result.stdout)[0]), [0.0, 0.0, np.pi], atol=1e-9)
+    assert "read scalar first" in result.stderr and "pass --scalar-last" in result.stderr
+
+
+@pytest.mark.parametrize("args", [
+    ("--from", "quat", "--to", "rotvec", "--scalar-last", "0", "0", "0", "1"),
+    ("--from", "quat", "--to", "rotvec", "1", "0", "0", "0"),
+    ("--from", "quat", "--to", "rotvec", "0", "0", "0.6", "0.8"),
+])
+def test_convert_no_scalar_last_note_for_other_quaternions(args):
+    result = run("convert", *args)
+    assert result.exit_code == 0, result.output
+    assert "scalar" not in result.stderr
+
+
 @pytest.mark.parametrize("args, message", [
     (("--from", "euler", "--to", "quat", "1", "2", "3"), "euler:SEQ"),
     (("--from", "spinor", "--to", "quat", "1", "2", "3"), "unknown representation"),

@@ -139,7 +139,7 @@ def convert(
     input_file: Optional[pathlib.Path] = typer.Option(
         None, "--input", "-i", help="CSV or whitespace file, one rotation a row; a first line of names is skipped."),
 ):
-    from .convert import ConversionError, format_rows, parse_representation, radians_hint, read_rows, width
+    from .convert import ConversionError, format_rows, input_notes, parse_representation, read_rows, width
     from .convert import convert as run
 
     numbers = [_number(value) for value in values or ()]
@@ -162,9 +162,8 @@ def convert(
         result = run(source[0], target[0], rows, degrees=degrees, scalar_last=scalar_last, lines=lines)
     except ConversionError as exc:
         usage_error(str(exc))
-    hint = radians_hint(source[0], rows, degrees)
-    if hint is not None:
-        note(hint)
+    for text in input_notes(source[0], rows, degrees, scalar_last):
+        note(text)
     for line in format_rows(result):
         typer.echo(line)
 

@@ -18,7 +18,7 @@ from .. import so3
 from .._validation import parse_sequence
 
 __all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows",
-           "radians_hint"]
+           "input_notes"]
 
 # name -> numbers per rotation on input; None: complex, output only
 _REPRESENTATIONS = {
@@ -153,26 +153,37 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     return out
 
 
-def radians_hint(source, rows, degrees=False):
-    """A note for angles read as radians that look like degrees, or None.
+def input_notes(source, rows, degrees=False, scalar_last=False):
+    """Notes on input that is valid but looks like a slip of convention.
 
-    An angle beyond a full turn is a valid rotation, so it is converted as
-    given; but a reader who forgot ``--degrees`` gets a wrong rotation without
-    any error, and this note is what tells them.
+    An angle beyond a full turn is a valid rotation, and so is the
+    quaternion [0, 0, 0, 1] (a half turn about z); both are converted as
+    given. But a reader who forgot ``--degrees``, or pasted the identity
+    from a scalar-last library, gets a wrong rotation without any error,
+    and these notes are what tell them.
 
     Examples
     --------
-    >>> radians_hint("euler:ZXZ", [[30, 45, 60]])
-    'note: angles are read as radians (60 rad is 9.5 turns); pass --degrees if you meant degrees'
-    >>> radians_hint("euler:ZXZ", [[30, 45, 60]], degrees=True) is None
-    True
-    >>> radians_hint("axis_angle", [[0, 0, 1, 1.5]]) is None
-    True
+    >>> input_notes("euler:ZXZ", [[30, 45, 60]])
+    ['note: angles are read as radians (60 rad is 9.5 turns); pass --degrees if you meant degrees']
+    >>> input_notes("euler:ZXZ", [[30, 45, 60]], degrees=True)
+    []
+    >>> input_notes("axis_angle", [[0, 0, 1, 1.5]])
+    []
+    >>> input_notes("quat", [[0, 0, 0, 1]])  # doctest: +NORMALIZE_WHITESPACE
+    ['note: quaternions are read scalar first, q0 q1 q2 q3, so 0 0 0 1 is a half turn about z;
+      pass --scalar-last if it is x y z w (the identity)']
     """
     name, _ = parse_representation(source, "--from")
-    if degrees or name not in ("euler", "axis_angle", "rotvec"):
-        return None
     values = np.asarray(rows, dtype=np.float64)
+    notes = []
+    if name == "quat" and not scalar_last:
+        norms = np.linalg.norm(values, axis=-1)
+        if np.any((norms > 0.0) & (np.abs(values[:, 3]) >= norms * (1.0 - 1e-12))):
+            notes.append("note: quaternions are read scalar first, q0 q1 q2 q3, so 0 0 0 1 is a half turn about z; "
+                         "pass --scalar-last if it is x y z w (the identity)")
+    if degrees or name not in ("euler", "axis_angle", "rotvec"):
+        return notes
     if name == "euler":
         angles = np.abs(values)
     elif name == "axis_angle":
@@ -180,10 +191,10 @@ def radians_hint(source, rows, degrees=False):
     else:
         angles = np.linalg.norm(values, axis=-1)
     largest = float(np.max(angles, initial=0.0))
-    if not largest > 2.0 * np.pi:
-        return None
-    return (f"note: angles are read as radians ({largest:g} rad is {largest / (2.0 * np.pi):.1f} turns); "
-            "pass --degrees if you meant degrees")
+    if largest > 2.0 * np.pi:
+        notes.append(f"note: angles are read as radians ({largest:g} rad is {largest / (2.0 * np.pi):.1f} turns); "
+                     "pass --degrees if you meant degrees")
+    return notes
 
 
 def _radians(values, degrees):
