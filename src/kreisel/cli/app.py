@@ -302,6 +302,9 @@ def _plottable(path, units):
     from ._recordings import read_recording, recording_file
 
     path = recording_file(path)
+    if path.suffix.lower() == ".toml":
+        raise ResultError(f"{path} is a scenario or sweep file, not a result: kreisel simulate {path} -o traj.nc "
+                          f"(or kreisel sweep {path}) runs it, and kreisel plot draws what it wrote")
     try:
         if path.is_dir() or path.suffix.lower() == ".zip":
             return read_recording(read_gyro, path, units=units)
@@ -552,10 +555,13 @@ def serve(
 ):
     """Start the interactive 3D viewer in the browser."""
     from ..web import serve as run_server
-    from ._recordings import recording_file
+    from ._recordings import not_a_recording, recording_file
 
     if recording is not None:
         recording = recording_file(recording)
+        mistaken = not_a_recording(recording)
+        if mistaken is not None:
+            usage_error(f"--recording: {mistaken}")
     try:
         if no_token and token is not None:
             raise ValueError("give --token or --no-token, not both")
