@@ -350,7 +350,8 @@ def animate(
 def examples(
     name: Optional[str] = typer.Argument(
         None, help="Scenario or recording to copy out (a sweep's file is named where it lies); none: list them all."),
-    directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
+    directory: pathlib.Path = typer.Option(
+        pathlib.Path("."), "--to", help="Directory to copy the example into (made if missing)."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """List the bundled scenarios, gyroscope recordings and sweeps, or copy one out to edit."""
@@ -368,18 +369,25 @@ def examples(
                 console().print(Text.assemble(("  " + f"{example:<16}", "bold"), " ", text), soft_wrap=True)
         return
     recordings = bundled_recordings()
+    sweeps = sweep_files()
+    if name not in EXAMPLES and name in sweeps:
+        usage_error(f"{name!r} is a bundled sweep, which `kreisel sweep {name}` runs as it is; "
+                    f"to edit it, copy {sweeps[name]}")
+    if name not in EXAMPLES and name not in recordings:
+        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
+    if not directory.is_dir():
+        if directory.exists():
+            usage_error(f"--to: {str(directory)!r} is a file; name the directory to copy into")
+        try:
+            directory.mkdir(parents=True)
+        except OSError as exc:
+            usage_error(f"--to: cannot make the directory {str(directory)!r} ({exc.strerror})")
     if name in recordings:
         target = directory / recordings[name].name
         _check_output("--to", target, force)
         with _writing("--to", target), atomic_output(target) as tmp:
             tmp.write_bytes(recordings[name].read_bytes())
         return
-    sweeps = sweep_files()
-    if name not in EXAMPLES and name in sweeps:
-        usage_error(f"{name!r} is a bundled sweep, which `kreisel sweep {name}` runs as it is; "
-                    f"to edit it, copy {sweeps[name]}")
-    if name not in EXAMPLES:
-        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
     try:
         path = copy_example(name, directory, force=force)
     except (FileExistsError, ValueError) as exc:
