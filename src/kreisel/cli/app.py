@@ -594,10 +594,11 @@ def compile_kernels(
     chosen = [(label, work) for label, work in parts() if only is None or only in label]
     if not chosen:
         usage_error(f"--only: no part's label holds {only!r}")
+    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     start = time.perf_counter()
     bar = progress()
     if bar is None:
-        note(f"compiling {len(chosen)} parts of kreisel for this machine (minutes for all of them)")
+        note(f"compiling {count} of kreisel for this machine (minutes for all of them)")
     with bar if bar is not None else contextlib.nullcontext():
         task = bar.add_task("compiling", total=len(chosen)) if bar is not None else None
         for label, work in chosen:
@@ -606,7 +607,6 @@ def compile_kernels(
             work()
             if bar is not None:
                 bar.advance(task)
-    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
 
 
