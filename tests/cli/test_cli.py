@@ -52,6 +52,48 @@ def test_convert_reads_rows_from_stdin_and_prints_complex_su2():
     assert len(rows) == 2 and "j" in rows[1]
 
 
+@pytest.mark.parametrize("args, turns", [
+    (("--from", "euler:ZXZ", "--to", "quat", "30", "45", "60"), "9.5 turns"),
+    (("--from", "axis_angle", "--to", "quat", "0", "0", "1", "90"), "14.3 turns"),
+    (("--from", "rotvec", "--to", "matrix", "--", "0", "-90", "0"), "14.3 turns"),
+])
+def test_convert_notes_radians_that_look_like_degrees(args, turns):
+    result = run("convert", *args)
+    assert result.exit_code == 0, result.output
+    assert turns in result.stderr and "pass --degrees" in result.stderr
+    assert "--degrees" not in result.stdout
+
+
+@pytest.mark.parametrize("args", [
+    ("--from", "euler:ZXZ", "--to", "quat", "--degrees", "30", "45", "60"),
+    ("--from", "euler:ZXZ", "--to", "quat", "0.5", "-6.2", "3.1"),
+    ("--from", "quat", "--to", "euler:ZXZ", "0", "0", "0", "1"),
+])
+def test_convert_no_radians_note_for_angles_within_a_turn_or_in_degrees(args):
+    result = run("convert", *args)
+    assert result.exit_code == 0, result.output
+    assert "radians" not in result.stderr
+
+
+@pytest.mark.parametrize("quat", [("0", "0", "0", "1"), ("0", "0", "0", "-2"), ("1e-20", "0", "0", "1")])
+def test_convert_notes_a_quaternion_that_looks_scalar_last(quat):
+    result = run("convert", "--from", "quat", "--to", "rotvec", "--", *quat)
+    assert result.exit_code == 0, result.output
+    np.testing.assert_allclose(np.abs(numbers(result.stdout)[0]), [0.0, 0.0, np.pi], atol=1e-9)
+    assert "read scalar first" in result.stderr and "pass --scalar-last" in result.stderr
+
+
+@pytest.mark.parametrize("args", [
+    ("--from", "quat", "--to", "rotvec", "--scalar-last", "0", "0", "0", "1"),
+    ("--from", "quat", "--to", "rotvec", "1", "0", "0", "0"),
+    ("--from", "quat", "--to", "rotvec", "0", "0", "0.6", "0.8"),
+])
+def test_convert_no_scalar_last_note_for_other_quaternions(args):
+    result = run("convert", *args)
+    assert result.exit_code == 0, result.output
+    assert "scalar" not in result.stderr
+
+
 @pytest.mark.parametrize("args, message", [
     (("--from", "euler", "--to", "quat", "1", "2", "3"), "euler:SEQ"),
     (("--from", "spinor", "--to", "quat", "1", "2", "3"), "unknown representation"),

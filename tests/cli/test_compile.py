@@ -27,6 +27,7 @@ def test_compile_fills_the_cache_ahead_of_the_first_run(kreisel, tmp_path):
     done = kreisel("compile", "--only", "quat_normalize")
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("compiled 1 part in ") and str(tmp_path / "kreisel") in done.stdout
+    assert done.stderr.startswith("compiling 1 part of kreisel for this machine"), done.stderr
     assert COMPILING not in done.stderr
     run = kreisel("convert", "--from", "quat", "--to", "quat", "2", "0", "0", "0")
     assert run.returncode == 0 and run.stderr == "" and run.stdout.split() == ["1", "0", "0", "0"], run.stderr

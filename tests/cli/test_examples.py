@@ -1,5 +1,7 @@
 """``kreisel examples`` lists everything bundled, and ``kreisel plot`` draws a recording, as a user runs them."""
 
+import pathlib
+
 import numpy as np
 from PIL import Image
 
@@ -25,6 +27,35 @@ def test_examples_copies_the_recording_out(kreisel, tmp_path):
     assert (tmp_path / "phone_toss.csv").read_bytes() == recording_path("phone_toss").read_bytes()
     again = kreisel("examples", "phone_toss", "--to", tmp_path)
     assert again.returncode == 2 and "already exists; pass --force" in again.stderr
+
+
+def test_examples_makes_the_to_directory_as_the_cli_reference_shows(kreisel, tmp_path):
+    """`kreisel examples lagrange_cusps --to scenarios/`, the reference's example, said the directory did not exist."""
+    done = kreisel("examples", "lagrange_cusps", "--to", "scenarios/", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    copied = tmp_path / "scenarios" / "lagrange_cusps.toml"
+    assert copied.read_text(encoding="utf-8") == kr.io.example_path("lagrange_cusps").read_text(encoding="utf-8")
+    nested = kreisel("examples", "phone_toss", "--to", tmp_path / "a" / "b")
+    assert nested.returncode == 0 and (tmp_path / "a" / "b" / "phone_toss.csv").is_file(), nested.stderr
+
+
+def test_examples_refuses_a_file_as_the_to_directory_and_makes_nothing_for_a_bad_name(kreisel, tmp_path):
+    (tmp_path / "notes.txt").write_text("mine", encoding="utf-8")
+    done = kreisel("examples", "tennis_racket", "--to", tmp_path / "notes.txt")
+    assert done.returncode == 2 and "is a file; name the directory to copy into" in done.stderr
+    assert (tmp_path / "notes.txt").read_text(encoding="utf-8") == "mine"
+    wrong = kreisel("examples", "tenis_racket", "--to", tmp_path / "new")
+    assert wrong.returncode == 2 and "did you mean 'tennis_racket'" in wrong.stderr
+    assert not (tmp_path / "new").exists()
+
+
+def test_examples_names_a_sweeps_file_instead_of_no_such_example(kreisel, tmp_path):
+    done = kreisel("examples", "imu_monte_carlo", "--to", tmp_path)
+    assert done.returncode == 2 and not list(tmp_path.iterdir())
+    assert "'imu_monte_carlo' is a bundled sweep, which `kreisel sweep imu_monte_carlo` runs" in done.stderr
+    named = pathlib.Path(done.stderr.split("to edit it, copy ")[1].strip())
+    assert named.name == "imu_monte_carlo.toml"
+    assert 'description = "Monte Carlo of strapdown attitude' in named.read_text(encoding="utf-8")
 
 
 def test_plot_draws_a_recordings_rates_and_the_fit_window(kreisel, tmp_path):

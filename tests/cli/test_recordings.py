@@ -62,3 +62,32 @@ def test_plot_refuses_units_for_a_saved_result(kreisel, usage_error, tmp_path, r
     assert kreisel("simulate", "s.toml", "-o", "t.nc", cwd=tmp_path).returncode == 0
     usage_error(kreisel("plot", "t.nc", "--units", "deg/s", "-o", "x.png", cwd=tmp_path),
                 "--units are for a gyroscope recording; t.nc holds a saved result")
+
+
+@pytest.fixture(scope="module")
+def other_files(tmp_path_factory):
+    """A saved result and a scenario file: kreisel's own files that a newcomer passes where a recording goes."""
+    folder = tmp_path_factory.mktemp("other")
+    kr.EulerTop(1.0, 2.0, 3.0).solve(np.linspace(0.0, 1.0, 11), [0.1, 1.0, 0.1]).save(folder / "traj.nc")
+    (folder / "top.toml").write_text('[body]\nmoments = [1.0, 2.0, 3.0]\n', encoding="utf-8")
+    return folder
+
+
+@pytest.mark.parametrize("command", [("fit",), ("attitude", "-o", "a.csv"), ("serve", "--no-browser", "--recording")])
+@pytest.mark.parametrize("name, told", [
+    ("traj.nc", "traj.nc is a result file (as kreisel simulate writes), not a sensor recording: "
+                "plot it with kreisel plot traj.nc -o fig.png"),
+    ("top.toml", "top.toml is a scenario or sweep file, not a sensor recording: kreisel simulate top.toml -o traj.nc"),
+])
+def test_a_result_or_scenario_given_as_a_recording_is_named_for_what_it_is(
+        kreisel, usage_error, other_files, command, name, told):
+    """`kreisel fit traj.nc` said "traj.nc: not a text file (control character '\\x02' at character 3)"."""
+    done = kreisel(*command, name, cwd=other_files)
+    usage_error(done, told)
+    assert not (other_files / "a.csv").exists()
+
+
+def test_plot_of_a_scenario_says_to_simulate_it_first(kreisel, usage_error, other_files):
+    done = kreisel("plot", "top.toml", "-o", "x.png", cwd=other_files)
+    usage_error(done, "top.toml is a scenario or sweep file, not a result: kreisel simulate top.toml -o traj.nc")
+    assert not (other_files / "x.png").exists()

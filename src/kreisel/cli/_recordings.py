@@ -8,7 +8,7 @@ import typer
 
 from ._output import usage_error
 
-__all__ = ["bundled_recordings", "read_recording", "recording_file", "units_option"]
+__all__ = ["bundled_recordings", "not_a_recording", "read_recording", "recording_file", "units_option"]
 
 def units_option():
     """The ``--units`` option of every command that reads a recording: the gyro's unit where the file names none."""
@@ -39,6 +39,31 @@ def recording_file(recording):
     usage_error(f"{recording}: no such file, and no bundled recording of that name{suggestion(recording, bundled)}")
 
 
+def not_a_recording(path):
+    """Why ``path`` is another of kreisel's files rather than a recording, or None.
+
+    Read as a table, a result or a scenario fails on its first bytes with a
+    message about control characters or numbers, which does not tell the
+    reader that they passed the wrong kind of file.
+
+    Examples
+    --------
+    >>> not_a_recording(pathlib.Path("run.nc"))  # doctest: +NORMALIZE_WHITESPACE
+    'run.nc is a result file (as kreisel simulate writes), not a sensor recording:
+     plot it with kreisel plot run.nc -o fig.png'
+    >>> not_a_recording(pathlib.Path("Gyroscope.csv")) is None
+    True
+    """
+    suffix = path.suffix.lower()
+    if suffix == ".toml":
+        return (f"{path} is a scenario or sweep file, not a sensor recording: kreisel simulate {path} -o traj.nc "
+                f"(or kreisel sweep {path}) runs it")
+    if suffix in (".nc", ".parquet", ".zarr"):
+        return (f"{path} is a result file (as kreisel simulate writes), not a sensor recording: "
+                f"plot it with kreisel plot {path} -o fig.png")
+    return None
+
+
 def read_recording(read, path, **options):
     """``read(path, **options)`` (a reader of :mod:`kreisel.io.gyro`), its refusals as one-line usage errors.
 
@@ -46,6 +71,9 @@ def read_recording(read, path, **options):
     """
     from ..io.gyro import GyroFileError
 
+    mistaken = not_a_recording(path)
+    if mistaken is not None:
+        usage_error(mistaken)
     try:
         return read(path, **options)
     except OSError as exc:

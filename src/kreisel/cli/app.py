@@ -139,7 +139,7 @@ def convert(
     input_file: Optional[pathlib.Path] = typer.Option(
         None, "--input", "-i", help="CSV or whitespace file, one rotation a row; a first line of names is skipped."),
 ):
-    from .convert import ConversionError, format_rows, parse_representation, read_rows, width
+    from .convert import ConversionError, format_rows, input_notes, parse_representation, read_rows, width
     from .convert import convert as run
 
     numbers = [_number(value) for value in values or ()]
@@ -162,6 +162,8 @@ def convert(
         result = run(source[0], target[0], rows, degrees=degrees, scalar_last=scalar_last, lines=lines)
     except ConversionError as exc:
         usage_error(str(exc))
+    for text in input_notes(source[0], rows, degrees, scalar_last):
+        note(text)
     for line in format_rows(result):
         typer.echo(line)
 
@@ -300,6 +302,9 @@ def _plottable(path, units):
     from ._recordings import read_recording, recording_file
 
     path = recording_file(path)
+    if path.suffix.lower() == ".toml":
+        raise ResultError(f"{path} is a scenario or sweep file, not a result: kreisel simulate {path} -o traj.nc "
+                          f"(or kreisel sweep {path}) runs it, and kreisel plot draws what it wrote")
     try:
         if path.is_dir() or path.suffix.lower() == ".zip":
             return read_recording(read_gyro, path, units=units)
@@ -343,15 +348,17 @@ def animate(
 
 @app.command()
 def examples(
-    name: Optional[str] = typer.Argument(None, help="Scenario or recording to copy out; none: list them all."),
-    directory: pathlib.Path = typer.Option(pathlib.Path("."), "--to", help="Where to copy the example."),
+    name: Optional[str] = typer.Argument(
+        None, help="Scenario or recording to copy out (a sweep's file is named where it lies); none: list them all."),
+    directory: pathlib.Path = typer.Option(
+        pathlib.Path("."), "--to", help="Directory to copy the example into (made if missing)."),
     force: bool = typer.Option(False, "--force", help=_FORCE_HELP),
 ):
     """List the bundled scenarios, gyroscope recordings and sweeps, or copy one out to edit."""
     from .._fileio import atomic_output
     from ..io.bundled import EXAMPLES, copy_example, suggestion
     from ._recordings import bundled_recordings
-    from .examples import sections
+    from .examples import sections, sweep_files
 
     if name is None:
         from rich.text import Text
@@ -362,14 +369,25 @@ def examples(
                 console().print(Text.assemble(("  " + f"{example:<16}", "bold"), " ", text), soft_wrap=True)
         return
     recordings = bundled_recordings()
+    sweeps = sweep_files()
+    if name not in EXAMPLES and name in sweeps:
+        usage_error(f"{name!r} is a bundled sweep, which `kreisel sweep {name}` runs as it is; "
+                    f"to edit it, copy {sweeps[name]}")
+    if name not in EXAMPLES and name not in recordings:
+        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
+    if not directory.is_dir():
+        if directory.exists():
+            usage_error(f"--to: {str(directory)!r} is a file; name the directory to copy into")
+        try:
+            directory.mkdir(parents=True)
+        except OSError as exc:
+            usage_error(f"--to: cannot make the directory {str(directory)!r} ({exc.strerror})")
     if name in recordings:
         target = directory / recordings[name].name
         _check_output("--to", target, force)
         with _writing("--to", target), atomic_output(target) as tmp:
             tmp.write_bytes(recordings[name].read_bytes())
         return
-    if name not in EXAMPLES:
-        usage_error(f"no bundled example {name!r}{suggestion(name, (*EXAMPLES, *recordings))}")
     try:
         path = copy_example(name, directory, force=force)
     except (FileExistsError, ValueError) as exc:
@@ -545,10 +563,13 @@ def serve(
 ):
     """Start the interactive 3D viewer in the browser."""
     from ..web import serve as run_server
-    from ._recordings import recording_file
+    from ._recordings import not_a_recording, recording_file
 
     if recording is not None:
         recording = recording_file(recording)
+        mistaken = not_a_recording(recording)
+        if mistaken is not None:
+            usage_error(f"--recording: {mistaken}")
     try:
         if no_token and token is not None:
             raise ValueError("give --token or --no-token, not both")
@@ -573,10 +594,11 @@ def compile_kernels(
     chosen = [(label, work) for label, work in parts() if only is None or only in label]
     if not chosen:
         usage_error(f"--only: no part's label holds {only!r}")
+    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     start = time.perf_counter()
     bar = progress()
     if bar is None:
-        note(f"compiling {len(chosen)} parts of kreisel for this machine (minutes for all of them)")
+        note(f"compiling {count} of kreisel for this machine (minutes for all of them)")
     with bar if bar is not None else contextlib.nullcontext():
         task = bar.add_task("compiling", total=len(chosen)) if bar is not None else None
         for label, work in chosen:
@@ -585,7 +607,6 @@ def compile_kernels(
             work()
             if bar is not None:
                 bar.advance(task)
-    count = f"{len(chosen)} part{'s' if len(chosen) != 1 else ''}"
     say(f"compiled {count} in {time.perf_counter() - start:.0f} s into {cache_root()}")
 
 

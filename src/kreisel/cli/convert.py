@@ -17,7 +17,8 @@ import numpy as np
 from .. import so3
 from .._validation import parse_sequence
 
-__all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows"]
+__all__ = ["ConversionError", "parse_representation", "width", "read_rows", "convert", "format_rows",
+           "input_notes"]
 
 # name -> numbers per rotation on input; None: complex, output only
 _REPRESENTATIONS = {
@@ -150,6 +151,50 @@ def convert(source, target, rows, degrees=False, scalar_last=False, lines=None):
     if dst == "quat" and scalar_last:
         out = np.roll(out, -1, axis=-1)
     return out
+
+
+def input_notes(source, rows, degrees=False, scalar_last=False):
+    """Notes on input that is valid but looks like a slip of convention.
+
+    An angle beyond a full turn is a valid rotation, and so is the
+    quaternion [0, 0, 0, 1] (a half turn about z); both are converted as
+    given. But a reader who forgot ``--degrees``, or pasted the identity
+    from a scalar-last library, gets a wrong rotation without any error,
+    and these notes are what tell them.
+
+    Examples
+    --------
+    >>> input_notes("euler:ZXZ", [[30, 45, 60]])
+    ['note: angles are read as radians (60 rad is 9.5 turns); pass --degrees if you meant degrees']
+    >>> input_notes("euler:ZXZ", [[30, 45, 60]], degrees=True)
+    []
+    >>> input_notes("axis_angle", [[0, 0, 1, 1.5]])
+    []
+    >>> input_notes("quat", [[0, 0, 0, 1]])  # doctest: +NORMALIZE_WHITESPACE
+    ['note: quaternions are read scalar first, q0 q1 q2 q3, so 0 0 0 1 is a half turn about z;
+      pass --scalar-last if it is x y z w (the identity)']
+    """
+    name, _ = parse_representation(source, "--from")
+    values = np.asarray(rows, dtype=np.float64)
+    notes = []
+    if name == "quat" and not scalar_last:
+        norms = np.linalg.norm(values, axis=-1)
+        if np.any((norms > 0.0) & (np.abs(values[:, 3]) >= norms * (1.0 - 1e-12))):
+            notes.append("note: quaternions are read scalar first, q0 q1 q2 q3, so 0 0 0 1 is a half turn about z; "
+                         "pass --scalar-last if it is x y z w (the identity)")
+    if degrees or name not in ("euler", "axis_angle", "rotvec"):
+        return notes
+    if name == "euler":
+        angles = np.abs(values)
+    elif name == "axis_angle":
+        angles = np.abs(values[:, 3])
+    else:
+        angles = np.linalg.norm(values, axis=-1)
+    largest = float(np.max(angles, initial=0.0))
+    if largest > 2.0 * np.pi:
+        notes.append(f"note: angles are read as radians ({largest:g} rad is {largest / (2.0 * np.pi):.1f} turns); "
+                     "pass --degrees if you meant degrees")
+    return notes
 
 
 def _radians(values, degrees):
