@@ -78,3 +78,24 @@ def test_slow_samples_of_a_slow_turn_and_a_stated_second_are_trusted(tmp_path):
     with pytest.raises(GyroFileError, match="more than half a turn"):
         kr.io.read_imu(path)
     np.testing.assert_array_equal(kr.io.read_imu(path, units={"time": "s"}).t, t)   # ... unless the unit is stated
+
+
+@pytest.mark.parametrize("text, message", [
+    ("time,mx,my,mz,other\n0,1,2,3,4\n0.01,1,2,3,4\n",
+     r"log.csv:1: the header names no gyro columns \(it names the magnetometer's\), and 1 other column \('other'\) "
+     r"is left; expected three gyro columns x, y, z: name them with columns="),
+    ("time,mx,my,mz\n0,1,2,3\n0.01,1,2,3\n",
+     r"log.csv:1: the header names no gyro columns \(it names the magnetometer's\), and 0 other columns \(\) are "
+     r"left"),
+    ('"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)",'
+     '"Absolute acceleration (m/s^2)"\n0,1,2,3,4\n0.01,1,2,3,4\n',
+     r"log.csv:1: the header names no gyro columns \(it names the accelerometer's\), and 1 other column "
+     r"\('Absolute acceleration \(m/s\^2\)'\) is left"),
+], ids=["magnetometer and one more column", "magnetometer only", "phyphox Accelerometer.csv"])
+def test_a_table_of_other_sensors_is_not_read_as_a_gyro(tmp_path, text, message):
+    """A magnetometer log with one spare column came back as a gyro of shape (n, 1), one with none as (n, 0)."""
+    path = tmp_path / "log.csv"
+    path.write_text(text)
+    with pytest.raises(GyroFileError, match=message):
+        kr.io.read_imu(path)
+

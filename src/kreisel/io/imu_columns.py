@@ -160,7 +160,8 @@ def layout(columns, source, default="gyro"):
     Raises
     ------
     ValueError
-        A quantity with an axis named twice, or with fewer or more than three columns.
+        A quantity with an axis named twice, or with fewer or more than three columns; a header that names
+        no ``default`` columns and leaves fewer than three columns for them.
     """
     found = {}
     time = next((k for k, c in enumerate(columns) if c.quantity == "time"), 0)
@@ -182,7 +183,16 @@ def layout(columns, source, default="gyro"):
         found[quantity] = members
     if default not in found:
         claimed = {time, *[k for members in found.values() for k in members]}
-        free = [k for k in range(len(columns)) if k not in claimed][:3]
+        free = [k for k in range(len(columns)) if k not in claimed]
+        if len(free) < 3:
+            # the few columns left over are a norm or a status, not the three axes of a gyro
+            others = " and the ".join(f"{_SENSOR[q]}'s" for q in found)
+            names = ", ".join(repr(columns[k].name) for k in free)
+            left = f"{len(free)} other column{'s' * (len(free) != 1)} ({names})"
+            raise ValueError(f"{source}: the header names no {_SENSOR[default]} columns (it names the {others}), "
+                             f"and {left} {'is' if len(free) == 1 else 'are'} left; expected three "
+                             f"{_SENSOR[default]} columns x, y, z: name them with columns=")
+        free = free[:3]
         if sorted(columns[k].axis for k in free if columns[k].axis is not None) == [0, 1, 2]:
             free.sort(key=lambda k: columns[k].axis)
         found[default] = free
