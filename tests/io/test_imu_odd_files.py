@@ -1,5 +1,7 @@
 """read_imu on files loggers and spreadsheets write: each read right or refused in one line, never misread."""
 
+import zipfile
+
 import numpy as np
 import pytest
 
@@ -99,3 +101,33 @@ def test_a_table_of_other_sensors_is_not_read_as_a_gyro(tmp_path, text, message)
     with pytest.raises(GyroFileError, match=message):
         kr.io.read_imu(path)
 
+
+def workbook(path, excel97=False):
+    """An .xlsx as Excel writes it (a zip of XML parts), or the OLE header of an .xls."""
+    if excel97:
+        path.write_bytes(b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1" + bytes(504))
+        return
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.writestr("[Content_Types].xml", "<Types/>")
+        archive.writestr("xl/workbook.xml", "<workbook/>")
+        archive.writestr("xl/worksheets/sheet1.xml", "<worksheet/>")
+
+
+@pytest.mark.parametrize("name, excel97", [("Gyroscope.xlsx", False), ("Gyroscope.xls", True), ("gyro.csv", False)],
+                         ids=["xlsx", "xls", "xlsx named csv"])
+def test_spreadsheet_exports_are_refused_as_such(tmp_path, name, excel97):
+    """phyphox's "Excel" export was refused as "not a text file (control character '\\x03' ...)"."""
+    path = tmp_path / name
+    workbook(path, excel97)
+    with pytest.raises(GyroFileError, match=rf"{name}: a spreadsheet workbook, not a text table; export it as CSV "
+                                            r"\(phyphox: 'CSV \(Comma, decimal point\)'\)"):
+        kr.io.read_imu(path)
+
+
+def test_a_phyphox_zip_without_its_suffix_is_read_as_the_zip(tmp_path):
+    path = tmp_path / "export"
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.writestr("Gyroscope.csv", "time,gx,gy,gz\n0,1,2,3\n0.01,1,2,3\n")
+    np.testing.assert_array_equal(kr.io.read_imu(path).omega, [[1, 2, 3], [1, 2, 3]])
+    with pytest.raises(GyroFileError, match=r"export: rate= is for a table file without a time column; this zip"):
+        kr.io.read_imu(path, rate=100)

@@ -12,6 +12,7 @@ with a file is reported as one :class:`GyroFileError` naming the file and line.
 from __future__ import annotations
 
 import dataclasses
+import io
 import os
 import pathlib
 import re
@@ -47,6 +48,9 @@ _LIKELY = ("deg/s", "mdeg/s", "mrad/s")
 _LIKELY_CLOCKS = ("ms", "us", "ns")
 _SLOWEST_STEP = 0.1
 _BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
+# how a zip archive (phyphox's export, or an .xlsx/.ods workbook) and an OLE file (an .xls workbook) begin
+_ZIP = b"PK\x03\x04"
+_OLE = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"
 # characters no text table holds (tab, line breaks and form feeds aside)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
@@ -76,6 +80,16 @@ def _decode(data, source):
         raise GyroFileError(f"{source}: not a text file (control character {control.group()!r} at character "
                             f"{control.start()})")
     return text.lstrip("\ufeff"), note
+
+
+def _is_workbook(raw):
+    """Whether the zip archive ``raw`` is an Office Open XML or OpenDocument workbook (or no readable zip)."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as archive:
+            names = archive.namelist()
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError):
+        return True
+    return any(name.startswith("xl/") or name == "content.xml" for name in names)
 
 
 def _read_member(archive, member, path):
@@ -353,7 +367,9 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
       holding ``Gyroscope.csv`` and possibly ``Accelerometer.csv`` and
       ``Magnetometer.csv``, each at its own rate: those are interpolated
       linearly onto the gyro's time stamps, gyro samples outside their span are
-      dropped, and ``.notes`` says so;
+      dropped, and ``.notes`` says so (a zip archive is recognised by its
+      content, whatever its name); spreadsheet workbooks (phyphox's "Excel"
+      export, ``.xlsx``, ``.xls``, ``.ods``) are refused: export CSV instead;
     - plain CSV/TSV or whitespace tables, ``#`` comment lines, an optional
       header line; without a header: time, ωx, ωy, ωz, further columns ignored;
     - BROAD's ``.npz`` layout: ``gyr`` (rad/s), ``acc`` (m/s²), ``mag`` (µT),
@@ -446,7 +462,16 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
         return _from_npz(path, units, kind)
     if suffix == ".zip":
         return _from_tables(_tables_in_zip(path), units, columns, kind, path)
-    text, note = _decode(path.read_bytes(), str(path))
+    raw = path.read_bytes()
+    if raw.startswith(_ZIP) and not _is_workbook(raw):
+        if rate is not None:
+            raise GyroFileError(f"{path}: rate= is for a table file without a time column; this zip archive holds "
+                                "phyphox tables with their own clocks")
+        return _from_tables(_tables_in_zip(path), units, columns, kind, path)
+    if raw.startswith((_ZIP, _OLE)):
+        raise GyroFileError(f"{path}: a spreadsheet workbook, not a text table; export it as CSV "
+                            "(phyphox: 'CSV (Comma, decimal point)')")
+    text, note = _decode(raw, str(path))
     data, stated, notes = _table_data(text, str(path), units, columns, kind, rate=rate)
     return _record(data, stated, str(path), kind, [note] * bool(note) + notes)
 
