@@ -131,3 +131,41 @@ def test_a_phyphox_zip_without_its_suffix_is_read_as_the_zip(tmp_path):
     np.testing.assert_array_equal(kr.io.read_imu(path).omega, [[1, 2, 3], [1, 2, 3]])
     with pytest.raises(GyroFileError, match=r"export: rate= is for a table file without a time column; this zip"):
         kr.io.read_imu(path, rate=100)
+
+
+ACCEL_MAG = "t,gx,gy,gz,ax,ay,az,mx,my,mz\n" + "".join(f"{0.01 * k},0.1,0,0,{{a}},{{m}}\n" for k in range(20))
+
+
+@pytest.mark.parametrize("accel, mag, message", [
+    ("0.02,-0.01,0.99", "20,0,-40", r"log.csv: the accelerometer's \|a\| is 0.99 \(90th percentile\), taken as m/s² "
+                                    r"\(no unit is given\): a phone held still reads 9.8 m/s²; the numbers look like "
+                                    r"g: name the unit in the header \('ax \(g\)'\) or read them with units=\{'accel': 'g'\}, "
+                                    r"or units=\{'accel': 'm/s2'\} if the values are real"),
+    ("20,-10,990", "20,0,-40", r"the accelerometer's \|a\| is 990 .* the numbers look like mg"),
+    ("0,0,9.81", "0.2,0,-0.4", r"log.csv: the magnetometer's \|B\| is 0.447 \(median\), taken as µT \(no unit is "
+                               r"given\): the Earth's field is 25…65 µT; the numbers look like G: name the unit in the "
+                               r"header \('mx \(G\)'\) or read them with units=\{'mag': 'G'\}, or "
+                               r"units=\{'mag': 'uT'\} if the values are real"),
+    ("0,0,9.81", "20000,0,-40000", r"the magnetometer's \|B\| is 4.47e\+04 .* the numbers look like nT"),
+], ids=["accel in g", "accel in mg", "mag in gauss", "mag in nT"])
+def test_accelerometer_and_magnetometer_without_units_in_other_units_are_named(tmp_path, accel, mag, message):
+    """A log with the accelerometer in g and the magnetometer in gauss, no units in the header, was read as m/s²
+    and µT: gravity 10 times too weak and a field 100 times too weak, without a word."""
+    path = tmp_path / "log.csv"
+    path.write_text(ACCEL_MAG.format(a=accel, m=mag))
+    with pytest.raises(GyroFileError, match=message):
+        kr.io.read_imu(path)
+
+
+def test_accelerometer_and_magnetometer_in_stated_units_are_trusted(tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text(ACCEL_MAG.format(a="0,0,1", m="0.2,0,-0.4"))
+    rec = kr.io.read_imu(path, units={"accel": "g", "mag": "G"})
+    np.testing.assert_allclose(rec.accel[0], [0, 0, 9.80665], rtol=1e-15)
+    np.testing.assert_allclose(rec.mag[0], [20.0, 0.0, -40.0], rtol=1e-15)
+    rec = kr.io.read_imu(path, units={"accel": "m/s2", "mag": "uT"})
+    np.testing.assert_array_equal(rec.accel[0], [0, 0, 1])
+    np.testing.assert_array_equal(rec.mag[0], [0.2, 0, -0.4])
+    path.write_text(ACCEL_MAG.format(a="0,0,9.81", m="20,0,-40"))
+    rec = kr.io.read_imu(path)
+    np.testing.assert_array_equal([rec.accel[0, 2], rec.mag[0, 2]], [9.81, -40])

@@ -51,6 +51,15 @@ _BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
 # how a zip archive (phyphox's export, or an .xlsx/.ods workbook) and an OLE file (an .xls workbook) begin
 _ZIP = b"PK\x03\x04"
 _OLE = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"
+# how an accelerometer or magnetometer without a unit is judged: the statistic of |values|, the band a phone reads
+# in m/s² (held still 9.8; beyond 40 g no phone accelerometer reaches) or µT (the Earth's 25…65 µT, with the
+# offsets of a phone's own magnets), the units most likely meant, and how the message names them
+_FIELD_CHECKS = {
+    "accel": ("90th percentile", (4.0, 400.0), ("g", "mg"), "a", "m/s²", "a phone held still reads 9.8 m/s²"),
+    "mag": ("median", (2.0, 2000.0), ("G", "mT", "nT"), "B", "µT", "the Earth's field is 25…65 µT"),
+}
+_SI = {"accel": "m/s2", "mag": "uT"}
+_NAMES = {"accel": "accelerometer", "mag": "magnetometer"}
 # characters no text table holds (tab, line breaks and form feeds aside)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
@@ -171,8 +180,31 @@ def _plausible_clock(data, stated, source, kind):
                         f"{advice}, or units={{'time': 's'}} if the samples are that far apart")
 
 
+def _plausible_field(data, stated, source, quantity):
+    """Refuse accelerometer or magnetometer numbers without a unit that no phone reads in m/s² or µT but that
+    fit another unit (g, mg; G, mT, nT), naming that unit."""
+    origin, _ = stated.get(quantity, ("units", None))
+    values = data.get(quantity)
+    if origin != "assumed" or values is None or not values.size:
+        return
+    statistic, band, likely_units, symbol, unit, reading = _FIELD_CHECKS[quantity]
+    norm = np.linalg.norm(values, axis=1)
+    size = float(np.percentile(norm, 90) if statistic == "90th percentile" else np.median(norm))
+    low, high = band
+    likely = next((shown for shown in likely_units if low <= size * unit_scale(quantity, shown) <= high), None)
+    if low <= size <= high or likely is None:
+        return
+    axis = {"accel": "ax", "mag": "mx"}[quantity]
+    raise GyroFileError(f"{source}: the {_NAMES[quantity]}'s |{symbol}| is {size:.3g} ({statistic}), taken as {unit} "
+                        f"(no unit is given): {reading}; the numbers look like {likely}: name the unit in the header "
+                        f"('{axis} ({likely})') or read them with units={{{quantity!r}: {likely!r}}}, or "
+                        f"units={{{quantity!r}: {_SI[quantity]!r}}} if the values are real")
+
+
 def _record(data, stated, source, kind, notes, **extra):
     _plausible(data, stated, source, kind)
+    _plausible_field(data, stated, source, "accel")
+    _plausible_field(data, stated, source, "mag")
     _plausible_clock(data, stated, source, kind)
     t, gyro = data["time"], data["gyro"]
     dtheta = None
@@ -251,7 +283,8 @@ def _from_tables(tables, units, columns, kind, folder):
     sensors = {}
     for quantity in ("accel", "mag"):
         if quantity in texts and quantity not in data:
-            other, _, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            other, other_stated, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            stated[quantity] = other_stated[quantity]
             sensors[quantity] = (other["time"], other[quantity])
     if sensors:
         data, aligned = _on_gyro_clock(data, sensors, folder)
