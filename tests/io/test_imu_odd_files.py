@@ -169,3 +169,42 @@ def test_accelerometer_and_magnetometer_in_stated_units_are_trusted(tmp_path):
     path.write_text(ACCEL_MAG.format(a="0,0,9.81", m="20,0,-40"))
     rec = kr.io.read_imu(path)
     np.testing.assert_array_equal([rec.accel[0, 2], rec.mag[0, 2]], [9.81, -40])
+
+
+@pytest.mark.parametrize("header, kw, note", [
+    ("t,gx,gy,gz,ax,ay,az", {}, "units assumed where the file names none: time s, gyro rad/s, accelerometer m/s²; "
+                                "name them in the header ('gx (deg/s)') or give units="),
+    ("t,gx (deg/s),gy (deg/s),gz (deg/s),ax,ay,az", {}, "units assumed where the file names none: time s, accelerometer "
+                                                        "m/s²; name them in the header"),
+    ("t,gx,gy,gz,ax,ay,az", {"units": {"time": "s", "gyro": "rad/s"}}, "units assumed where the file names none: "
+                                                                        "accelerometer m/s²;"),
+    ("time (s),gx (rad/s),gy (rad/s),gz (rad/s),ax (g),ay (g),az (g)", {}, None),
+], ids=["nothing named", "gyro named", "units= given", "all named"])
+def test_the_units_the_reader_assumed_are_in_the_notes(tmp_path, header, kw, note):
+    """A log without units was read as s, rad/s and m/s² without a word: nothing told a user reading a deg/s
+    file at slow rates that it had been taken for rad/s."""
+    path = tmp_path / "log.csv"
+    path.write_text(header + "\n" + "".join(f"{0.01 * k},0.1,0,0,0,0,{1 if '(g)' in header else 9.81}\n"
+                                            for k in range(5)))
+    notes = kr.io.read_imu(path, **kw).notes
+    assert [n for n in notes if n.startswith("units assumed")] == ([] if note is None else [notes[0]])
+    assert note is None or notes[0].startswith(note), notes
+
+
+def test_rate_and_the_bundled_recordings_assume_nothing(tmp_path):
+    path = tmp_path / "bare.txt"
+    np.savetxt(path, np.full((4, 3), 0.1))
+    assert kr.io.read_imu(path, rate=50, units="rad/s").notes == ()
+    assert kr.io.read_imu(kr.io.recording_path("phone_toss")).notes == ()
+    assert kr.io.read_imu(kr.io.recording_path("broad_07")).notes == ()
+
+
+def test_time_stamps_too_slow_for_an_imu_taken_as_seconds_say_so(tmp_path):
+    """Millisecond stamps of a phone lying still were read as seconds: 10 s between samples, a 1000 times too long
+    recording, and no note."""
+    path = tmp_path / "still.csv"
+    path.write_text("timestamp,gx (rad/s),gy (rad/s),gz (rad/s)\n" + "".join(f"{10 * k},0.001,0,0\n" for k in range(5)))
+    notes = kr.io.read_imu(path).notes
+    assert notes == ("units assumed where the file names none: time s; name them in the header ('gx (deg/s)') or give "
+                     "units=; the samples, 10 s apart (median), are slower than any IMU log (10 Hz and faster): "
+                     "if the times are ms, name the unit ('time (ms)') or give units={'time': 'ms'}",)

@@ -60,6 +60,8 @@ _FIELD_CHECKS = {
 }
 _SI = {"accel": "m/s2", "mag": "uT"}
 _NAMES = {"accel": "accelerometer", "mag": "magnetometer"}
+# what a table without units is read in, as its note says
+_ASSUMED = {"time": "time s", "gyro": "gyro rad/s", "accel": "accelerometer m/s²", "mag": "magnetometer µT"}
 # characters no text table holds (tab, line breaks and form feeds aside)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
@@ -201,10 +203,29 @@ def _plausible_field(data, stated, source, quantity):
                         f"units={{{quantity!r}: {_SI[quantity]!r}}} if the values are real")
 
 
-def _record(data, stated, source, kind, notes, **extra):
+def _assumed_units(data, stated, kind):
+    """The note naming the units the reader assumed for a table that names none, or None."""
+    assumed = [q for q in _ASSUMED if stated.get(q, ("",))[0] == "assumed" and (q == "time" or q in data)]
+    if not assumed:
+        return None
+    shown = ", ".join("gyro rad" if q == "gyro" and kind == "increment" else _ASSUMED[q] for q in assumed)
+    note = f"units assumed where the file names none: {shown}; name them in the header ('gx (deg/s)') or give units="
+    t = data["time"]
+    median = float(np.median(np.diff(t))) if t.size > 1 else 0.0
+    if "time" in assumed and median > _SLOWEST_STEP:
+        # a still sensor does not turn, so the gyro cannot show a clock in ms (_plausible_clock); say it here
+        likely = next((u for u in _LIKELY_CLOCKS if median * UNITS["time"][u] <= _SLOWEST_STEP), "ms")
+        note += (f"; the samples, {median:.3g} s apart (median), are slower than any IMU log (10 Hz and faster): "
+                 f"if the times are {likely}, name the unit ('time ({likely})') or give units={{'time': {likely!r}}}")
+    return note
+
+
+def _record(data, stated, source, kind, notes, assumed=True, **extra):
     _plausible(data, stated, source, kind)
     _plausible_field(data, stated, source, "accel")
     _plausible_field(data, stated, source, "mag")
+    note = _assumed_units(data, stated, kind) if assumed else None
+    notes = [note, *notes] if note else notes
     _plausible_clock(data, stated, source, kind)
     t, gyro = data["time"], data["gyro"]
     dtheta = None
@@ -245,7 +266,10 @@ def _table_data(text, source, units, columns, kind, default="gyro", rate=None):
         raise GyroFileError(str(exc)) from None
     if rate is not None:
         table = _evenly_timed(table, rate)
-    return _on_one_clock(table, units, columns, kind, default)
+    data, stated, notes = _on_one_clock(table, units, columns, kind, default)
+    if rate is not None:
+        stated["time"] = ("units", 1.0)   # the caller's rate gave the clock
+    return data, stated, notes
 
 
 def _evenly_timed(table, rate):
@@ -355,7 +379,8 @@ def _from_npz(path, units, kind):
                 raise GyroFileError(f"{path}: units gives {unit!r}, not a unit of {quantity}")
             data[quantity] = data[quantity] * scale
             stated[quantity] = ("units" if unit else "assumed", scale)
-    return _record(data, stated, str(path), kind, [], **extra)
+    # BROAD's layout fixes the units (rad/s, m/s², µT): nothing is assumed that the format does not say
+    return _record(data, stated, str(path), kind, [], assumed=False, **extra)
 
 
 def parse_gyro(text, source="<text>", *, units=None, columns=None, kind="rate"):
