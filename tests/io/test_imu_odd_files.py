@@ -208,3 +208,26 @@ def test_time_stamps_too_slow_for_an_imu_taken_as_seconds_say_so(tmp_path):
     assert notes == ("units assumed where the file names none: time s; name them in the header ('gx (deg/s)') or give "
                      "units=; the samples, 10 s apart (median), are slower than any IMU log (10 Hz and faster): "
                      "if the times are ms, name the unit ('time (ms)') or give units={'time': 'ms'}",)
+
+
+PHYPHOX = '"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)","Gyroscope z (rad/s)","Absolute (rad/s)"\n'
+
+
+@pytest.mark.parametrize("row, message", [
+    ("0.01,NaN,0.2,0.3,0.37", r"Gyroscope.csv:3: not a finite number: 'NaN' \(column 2, 'Gyroscope x \(rad/s\)'\); "
+                              r"expected a finite number"),
+    ("0.01,,0.2,0.3,0.37", r"Gyroscope.csv:3: not a number: '' \(column 2, 'Gyroscope x \(rad/s\)'\), an empty "
+                           r"cell; expected a number"),
+    ("0.01,0.1,x,0.3,0.37", r"Gyroscope.csv:3: not a number: 'x' \(column 3, 'Gyroscope y \(rad/s\)'\); expected"),
+    ("0.01,0.1,0.2,inf,0.37", r"Gyroscope.csv:3: not a finite number: 'inf' \(column 4, 'Gyroscope z \(rad/s\)'\)"),
+], ids=["NaN", "empty", "letter", "inf"])
+@pytest.mark.parametrize("semicolons", [False, True], ids=["comma", "semicolon, decimal comma"])
+def test_a_bad_cell_mid_file_is_named_by_line_and_column(tmp_path, row, message, semicolons):
+    """A NaN or an empty cell mid-file named the line but not the column, and showed the whole line instead."""
+    text = PHYPHOX + "0.0,0.1,0.2,0.3,0.37\n" + row + "\n0.02,0.1,0.2,0.3,0.37\n"
+    if semicolons:
+        text = text.replace(",", ";").replace(".", ",")
+    path = tmp_path / "Gyroscope.csv"
+    path.write_text(text)
+    with pytest.raises(GyroFileError, match=message):
+        kr.io.read_imu(path)
