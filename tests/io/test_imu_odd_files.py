@@ -87,12 +87,10 @@ def test_slow_samples_of_a_slow_turn_and_a_stated_second_are_trusted(tmp_path):
      r"log.csv:1: the header names no gyro columns \(it names the magnetometer's\), and 1 other column \('other'\) "
      r"is left; expected three gyro columns x, y, z: name them with columns="),
     ("time,mx,my,mz\n0,1,2,3\n0.01,1,2,3\n",
-     r"log.csv:1: the header names no gyro columns \(it names the magnetometer's\), and 0 other columns \(\) are "
-     r"left"),
+     r"log.csv:1: the header names no gyro columns \(it names the magnetometer's\), and no other column is left"),
     ('"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)",'
      '"Absolute acceleration (m/s^2)"\n0,1,2,3,4\n0.01,1,2,3,4\n',
-     r"log.csv:1: the header names no gyro columns \(it names the accelerometer's\), and 1 other column "
-     r"\('Absolute acceleration \(m/s\^2\)'\) is left"),
+     r"log.csv:1: the header names no gyro columns \(it names the accelerometer's\), and no other column is left"),
 ], ids=["magnetometer and one more column", "magnetometer only", "phyphox Accelerometer.csv"])
 def test_a_table_of_other_sensors_is_not_read_as_a_gyro(tmp_path, text, message):
     """A magnetometer log with one spare column came back as a gyro of shape (n, 1), one with none as (n, 0)."""
@@ -230,4 +228,37 @@ def test_a_bad_cell_mid_file_is_named_by_line_and_column(tmp_path, row, message,
     path = tmp_path / "Gyroscope.csv"
     path.write_text(text)
     with pytest.raises(GyroFileError, match=message):
+        kr.io.read_imu(path)
+
+
+RAW_GYRO = PHYPHOX + "".join(f"{0.0025 * k:.9E},1.0E-1,-2.5E0,3.0E-2,2.5E0\n" for k in range(8))
+RAW_ACCEL = ('"Time (s)","Linear Acceleration x (m/s^2)","Linear Acceleration y (m/s^2)",'
+             '"Linear Acceleration z (m/s^2)","Absolute acceleration (m/s^2)"\n0,1,2,3,3.7\n0.01,1,2,3,3.7\n')
+
+
+@pytest.mark.parametrize("folder", [False, True], ids=["zip", "folder"])
+def test_a_phyphox_experiment_export_with_its_raw_data_table_is_read(tmp_path, folder):
+    """phyphox's "Gyroscope" experiment exports "Raw Data.csv" (and meta/), not Gyroscope.csv: such a zip was
+    refused for having no Gyroscope.csv."""
+    files = {"Raw Data.csv": RAW_GYRO, "meta/device.csv": '"property","value"\n"model","Pixel"\n'}
+    path = tmp_path / ("export" if folder else "export.zip")
+    if folder:
+        (path / "meta").mkdir(parents=True)
+        for name, text in files.items():
+            (path / name).write_text(text)
+    else:
+        with zipfile.ZipFile(path, "w") as archive:
+            for name, text in files.items():
+                archive.writestr(name, text)
+    rec = kr.io.read_imu(path)
+    np.testing.assert_allclose(rec.t, np.arange(8) * 0.0025, rtol=1e-15, atol=0)
+    np.testing.assert_array_equal(rec.omega, np.tile([0.1, -2.5, 0.03], (8, 1)))
+
+
+def test_a_phyphox_export_of_another_experiment_is_refused_naming_what_it_holds(tmp_path):
+    path = tmp_path / "export.zip"
+    with zipfile.ZipFile(path, "w") as archive:
+        archive.writestr("Raw Data.csv", RAW_ACCEL)
+    with pytest.raises(GyroFileError, match=r"export.zip:Raw Data.csv:1: the header names no gyro columns, and no other "
+                                            r"column is left; expected three gyro columns x, y, z"):
         kr.io.read_imu(path)

@@ -126,7 +126,7 @@ def _tables_in_zip(path):
             names = archive.namelist()
             members = {q: member_for(names, q) for q in TABLES}
             if members["gyro"] is None:
-                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv")
+                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv (nor Raw Data.csv)")
             return {q: (_read_member(archive, m, path), f"{path}:{m}") for q, m in members.items() if m}
     except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError) as exc:
         raise GyroFileError(f"{path}: not a readable zip archive ({exc})") from None
@@ -136,7 +136,7 @@ def _tables_in_folder(path):
     names = sorted(p.name for p in path.iterdir() if p.is_file())
     members = {q: member_for(names, q) for q in TABLES}
     if members["gyro"] is None:
-        raise GyroFileError(f"{path}: the folder has no Gyroscope.csv")
+        raise GyroFileError(f"{path}: the folder has no Gyroscope.csv (nor Raw Data.csv)")
     return {q: ((path / m).read_bytes(), str(path / m)) for q, m in members.items() if m}
 
 
@@ -423,9 +423,10 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
       decimal comma accepted with tab and semicolon, headers such as
       ``"Time (s)","Gyroscope x (rad/s)"``), or an export folder or ``.zip``
       holding ``Gyroscope.csv`` and possibly ``Accelerometer.csv`` and
-      ``Magnetometer.csv``, each at its own rate: those are interpolated
-      linearly onto the gyro's time stamps, gyro samples outside their span are
-      dropped, and ``.notes`` says so (a zip archive is recognised by its
+      ``Magnetometer.csv`` (or the one ``Raw Data.csv`` that phyphox's
+      "Gyroscope" experiment exports), each at its own rate: those are
+      interpolated linearly onto the gyro's time stamps, gyro samples outside
+      their span are dropped, and ``.notes`` says so (a zip archive is recognised by its
       content, whatever its name); spreadsheet workbooks (phyphox's "Excel"
       export, ``.xlsx``, ``.xls``, ``.ods``) are refused: export CSV instead;
     - plain CSV/TSV or whitespace tables, ``#`` comment lines, an optional
