@@ -135,15 +135,15 @@ ACCEL_MAG = "t,gx,gy,gz,ax,ay,az,mx,my,mz\n" + "".join(f"{0.01 * k},0.1,0,0,{{a}
 
 
 @pytest.mark.parametrize("accel, mag, message", [
-    ("0.02,-0.01,0.99", "20,0,-40", r"log.csv: the accelerometer's \|a\| is 0.99 \(90th percentile\), taken as m/s² "
-                                    r"\(no unit is given\): a phone held still reads 9.8 m/s²; the numbers look like "
-                                    r"g: name the unit in the header \('ax \(g\)'\) or read them with units=\{'accel': 'g'\}, "
-                                    r"or units=\{'accel': 'm/s2'\} if the values are real"),
+    ("0.02,-0.01,0.99", "20,0,-40",
+     r"log.csv: the accelerometer's \|a\| is 0.99 \(90th percentile\), taken as m/s² \(no unit is given\): a phone "
+     r"held still reads 9.8 m/s²; the numbers look like g: name the unit in the header \('ax \(g\)'\) or read them "
+     r"with units=\{'accel': 'g'\}, or units=\{'accel': 'm/s2'\} if the values are real"),
     ("20,-10,990", "20,0,-40", r"the accelerometer's \|a\| is 990 .* the numbers look like mg"),
-    ("0,0,9.81", "0.2,0,-0.4", r"log.csv: the magnetometer's \|B\| is 0.447 \(median\), taken as µT \(no unit is "
-                               r"given\): the Earth's field is 25…65 µT; the numbers look like G: name the unit in the "
-                               r"header \('mx \(G\)'\) or read them with units=\{'mag': 'G'\}, or "
-                               r"units=\{'mag': 'uT'\} if the values are real"),
+    ("0,0,9.81", "0.2,0,-0.4",
+     r"log.csv: the magnetometer's \|B\| is 0.447 \(median\), taken as µT \(no unit is given\): the Earth's field is "
+     r"25…65 µT; the numbers look like G: name the unit in the header \('mx \(G\)'\) or read them with "
+     r"units=\{'mag': 'G'\}, or units=\{'mag': 'uT'\} if the values are real"),
     ("0,0,9.81", "20000,0,-40000", r"the magnetometer's \|B\| is 4.47e\+04 .* the numbers look like nT"),
 ], ids=["accel in g", "accel in mg", "mag in gauss", "mag in nT"])
 def test_accelerometer_and_magnetometer_without_units_in_other_units_are_named(tmp_path, accel, mag, message):
@@ -172,8 +172,8 @@ def test_accelerometer_and_magnetometer_in_stated_units_are_trusted(tmp_path):
 @pytest.mark.parametrize("header, kw, note", [
     ("t,gx,gy,gz,ax,ay,az", {}, "units assumed where the file names none: time s, gyro rad/s, accelerometer m/s²; "
                                 "name them in the header ('gx (deg/s)') or give units="),
-    ("t,gx (deg/s),gy (deg/s),gz (deg/s),ax,ay,az", {}, "units assumed where the file names none: time s, accelerometer "
-                                                        "m/s²; name them in the header"),
+    ("t,gx (deg/s),gy (deg/s),gz (deg/s),ax,ay,az", {},
+     "units assumed where the file names none: time s, accelerometer m/s²; name them in the header"),
     ("t,gx,gy,gz,ax,ay,az", {"units": {"time": "s", "gyro": "rad/s"}}, "units assumed where the file names none: "
                                                                         "accelerometer m/s²;"),
     ("time (s),gx (rad/s),gy (rad/s),gz (rad/s),ax (g),ay (g),az (g)", {}, None),
@@ -259,6 +259,6 @@ def test_a_phyphox_export_of_another_experiment_is_refused_naming_what_it_holds(
     path = tmp_path / "export.zip"
     with zipfile.ZipFile(path, "w") as archive:
         archive.writestr("Raw Data.csv", RAW_ACCEL)
-    with pytest.raises(GyroFileError, match=r"export.zip:Raw Data.csv:1: the header names no gyro columns, and no other "
-                                            r"column is left; expected three gyro columns x, y, z"):
+    with pytest.raises(GyroFileError, match=r"export.zip:Raw Data.csv:1: the header names no gyro columns, and no "
+                                            r"other column is left; expected three gyro columns x, y, z"):
         kr.io.read_imu(path)
