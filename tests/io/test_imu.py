@@ -247,12 +247,12 @@ def test_rate_times_a_table_without_a_time_column(tmp_path):
     bare = tmp_path / "bare.txt"
     np.savetxt(bare, rows)
     named = tmp_path / "named.csv"
-    np.savetxt(named, np.column_stack([rows, rows + 1.0]), delimiter=",", header="gx,gy,gz,ax,ay,az", comments="")
+    np.savetxt(named, np.column_stack([rows, rows + 9.0]), delimiter=",", header="gx,gy,gz,ax,ay,az", comments="")
     for path in (bare, named):
         rec = kr.io.read_imu(path, rate=50)
         np.testing.assert_array_equal(rec.t, np.arange(4) / 50.0)
         np.testing.assert_array_equal(rec.omega, rows)
-    np.testing.assert_array_equal(kr.io.read_imu(named, rate=50).accel, rows + 1.0)
+    np.testing.assert_array_equal(kr.io.read_imu(named, rate=50).accel, rows + 9.0)
 
 
 def test_rate_is_refused_where_the_recording_has_its_own_clock(tmp_path):

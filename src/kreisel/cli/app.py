@@ -521,8 +521,6 @@ def fit(
     _check_output("--json", json_file, force)
     recording = recording_file(recording)
     data = read_recording(read_gyro, recording, units=units)
-    for note in data.notes:
-        say(f"{recording}: {note}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NotFreeRotationWarning)  # the summary reports it
         try:
@@ -530,6 +528,9 @@ def fit(
                                        window=None if start is None and stop is None else (start, stop))
         except ValueError as exc:
             usage_error(f"{recording}: {exc}")
+    # a refusal is one error line: the reader's notes only go with a recording that is fitted
+    for note in data.notes:
+        say(f"{recording}: {note}")
     for line in summary(result):
         console(stderr=not result.free_rotation).print(plain(line), soft_wrap=True)
     if plot_file is not None:

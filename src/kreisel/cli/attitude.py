@@ -144,17 +144,18 @@ def attitude(
         require_all([("matplotlib", "plot")], feature="kreisel attitude --plot")  # before the estimate
     path = recording_file(recording)
     rec = read_recording(read_imu, path, units=units, rate=rate)
-    for line in rec.notes:
-        note(f"{path}: {line}")
     if rec.accel is None:
         usage_error(f"{path}: no accelerometer columns; attitude estimation needs gyro and accelerometer")
-    mag = None if no_mag else rec.mag
-    if mag is None and not no_mag:
-        note(f"{path}: no magnetometer: the heading comes from the gyro alone")
     try:
         sample_rate = rec.sampling_rate()
     except ValueError as exc:
         usage_error(str(exc))
+    # a refusal is one error line: the reader's notes only go with a recording that is used
+    for line in rec.notes:
+        note(f"{path}: {line}")
+    mag = None if no_mag else rec.mag
+    if mag is None and not no_mag:
+        note(f"{path}: no magnetometer: the heading comes from the gyro alone")
     try:
         estimate = estimate_attitude(rec.omega, rec.accel, mag, rate=sample_rate, offline=offline, frame=frame,
                                      method=None if method == "kreisel" else method)

@@ -12,6 +12,7 @@ with a file is reported as one :class:`GyroFileError` naming the file and line.
 from __future__ import annotations
 
 import dataclasses
+import io
 import os
 import pathlib
 import re
@@ -47,6 +48,20 @@ _LIKELY = ("deg/s", "mdeg/s", "mrad/s")
 _LIKELY_CLOCKS = ("ms", "us", "ns")
 _SLOWEST_STEP = 0.1
 _BROAD_FIELDS = "gyr, acc, mag, opt_quat, movement, sampling_rate"
+# how a zip archive (phyphox's export, or an .xlsx/.ods workbook) and an OLE file (an .xls workbook) begin
+_ZIP = b"PK\x03\x04"
+_OLE = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"
+# how an accelerometer or magnetometer without a unit is judged: the statistic of |values|, the band a phone reads
+# in m/s² (held still 9.8; beyond 40 g no phone accelerometer reaches) or µT (the Earth's 25…65 µT, with the
+# offsets of a phone's own magnets), the units most likely meant, and how the message names them
+_FIELD_CHECKS = {
+    "accel": ("90th percentile", (4.0, 400.0), ("g", "mg"), "a", "m/s²", "a phone held still reads 9.8 m/s²"),
+    "mag": ("median", (2.0, 2000.0), ("G", "mT", "nT"), "B", "µT", "the Earth's field is 25…65 µT"),
+}
+_SI = {"accel": "m/s2", "mag": "uT"}
+_NAMES = {"accel": "accelerometer", "mag": "magnetometer"}
+# what a table without units is read in, as its note says
+_ASSUMED = {"time": "time s", "gyro": "gyro rad/s", "accel": "accelerometer m/s²", "mag": "magnetometer µT"}
 # characters no text table holds (tab, line breaks and form feeds aside)
 _CONTROL = re.compile(r"[\x00-\x08\x0e-\x1f\x7f]")
 
@@ -78,6 +93,16 @@ def _decode(data, source):
     return text.lstrip("\ufeff"), note
 
 
+def _is_workbook(raw):
+    """Whether the zip archive ``raw`` is an Office Open XML or OpenDocument workbook (or no readable zip)."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as archive:
+            names = archive.namelist()
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError):
+        return True
+    return any(name.startswith("xl/") or name == "content.xml" for name in names)
+
+
 def _read_member(archive, member, path):
     """The bytes of ``member``, refused beyond MAX_MEMBER_BYTES: by its declared size before inflating it, and
     while inflating, in case the declared size lies."""
@@ -101,7 +126,7 @@ def _tables_in_zip(path):
             names = archive.namelist()
             members = {q: member_for(names, q) for q in TABLES}
             if members["gyro"] is None:
-                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv")
+                raise GyroFileError(f"{path}: the archive has no Gyroscope.csv (nor Raw Data.csv)")
             return {q: (_read_member(archive, m, path), f"{path}:{m}") for q, m in members.items() if m}
     except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError) as exc:
         raise GyroFileError(f"{path}: not a readable zip archive ({exc})") from None
@@ -111,7 +136,7 @@ def _tables_in_folder(path):
     names = sorted(p.name for p in path.iterdir() if p.is_file())
     members = {q: member_for(names, q) for q in TABLES}
     if members["gyro"] is None:
-        raise GyroFileError(f"{path}: the folder has no Gyroscope.csv")
+        raise GyroFileError(f"{path}: the folder has no Gyroscope.csv (nor Raw Data.csv)")
     return {q: ((path / m).read_bytes(), str(path / m)) for q, m in members.items() if m}
 
 
@@ -157,8 +182,50 @@ def _plausible_clock(data, stated, source, kind):
                         f"{advice}, or units={{'time': 's'}} if the samples are that far apart")
 
 
-def _record(data, stated, source, kind, notes, **extra):
+def _plausible_field(data, stated, source, quantity):
+    """Refuse accelerometer or magnetometer numbers without a unit that no phone reads in m/s² or µT but that
+    fit another unit (g, mg; G, mT, nT), naming that unit."""
+    origin, _ = stated.get(quantity, ("units", None))
+    values = data.get(quantity)
+    if origin != "assumed" or values is None or not values.size:
+        return
+    statistic, band, likely_units, symbol, unit, reading = _FIELD_CHECKS[quantity]
+    norm = np.linalg.norm(values, axis=1)
+    size = float(np.percentile(norm, 90) if statistic == "90th percentile" else np.median(norm))
+    low, high = band
+    likely = next((shown for shown in likely_units if low <= size * unit_scale(quantity, shown) <= high), None)
+    if low <= size <= high or likely is None:
+        return
+    axis = {"accel": "ax", "mag": "mx"}[quantity]
+    raise GyroFileError(f"{source}: the {_NAMES[quantity]}'s |{symbol}| is {size:.3g} ({statistic}), taken as {unit} "
+                        f"(no unit is given): {reading}; the numbers look like {likely}: name the unit in the header "
+                        f"('{axis} ({likely})') or read them with units={{{quantity!r}: {likely!r}}}, or "
+                        f"units={{{quantity!r}: {_SI[quantity]!r}}} if the values are real")
+
+
+def _assumed_units(data, stated, kind):
+    """The note naming the units the reader assumed for a table that names none, or None."""
+    assumed = [q for q in _ASSUMED if stated.get(q, ("",))[0] == "assumed" and (q == "time" or q in data)]
+    if not assumed:
+        return None
+    shown = ", ".join("gyro rad" if q == "gyro" and kind == "increment" else _ASSUMED[q] for q in assumed)
+    note = f"units assumed where the file names none: {shown}; name them in the header ('gx (deg/s)') or give units="
+    t = data["time"]
+    median = float(np.median(np.diff(t))) if t.size > 1 else 0.0
+    if "time" in assumed and median > _SLOWEST_STEP:
+        # a still sensor does not turn, so the gyro cannot show a clock in ms (_plausible_clock); say it here
+        likely = next((u for u in _LIKELY_CLOCKS if median * UNITS["time"][u] <= _SLOWEST_STEP), "ms")
+        note += (f"; the samples, {median:.3g} s apart (median), are slower than any IMU log (10 Hz and faster): "
+                 f"if the times are {likely}, name the unit ('time ({likely})') or give units={{'time': {likely!r}}}")
+    return note
+
+
+def _record(data, stated, source, kind, notes, assumed=True, **extra):
     _plausible(data, stated, source, kind)
+    _plausible_field(data, stated, source, "accel")
+    _plausible_field(data, stated, source, "mag")
+    note = _assumed_units(data, stated, kind) if assumed else None
+    notes = [note, *notes] if note else notes
     _plausible_clock(data, stated, source, kind)
     t, gyro = data["time"], data["gyro"]
     dtheta = None
@@ -199,7 +266,10 @@ def _table_data(text, source, units, columns, kind, default="gyro", rate=None):
         raise GyroFileError(str(exc)) from None
     if rate is not None:
         table = _evenly_timed(table, rate)
-    return _on_one_clock(table, units, columns, kind, default)
+    data, stated, notes = _on_one_clock(table, units, columns, kind, default)
+    if rate is not None:
+        stated["time"] = ("units", 1.0)   # the caller's rate gave the clock
+    return data, stated, notes
 
 
 def _evenly_timed(table, rate):
@@ -237,7 +307,8 @@ def _from_tables(tables, units, columns, kind, folder):
     sensors = {}
     for quantity in ("accel", "mag"):
         if quantity in texts and quantity not in data:
-            other, _, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            other, other_stated, _ = _table_data(*texts[quantity], units, None, "rate", default=quantity)
+            stated[quantity] = other_stated[quantity]
             sensors[quantity] = (other["time"], other[quantity])
     if sensors:
         data, aligned = _on_gyro_clock(data, sensors, folder)
@@ -308,7 +379,8 @@ def _from_npz(path, units, kind):
                 raise GyroFileError(f"{path}: units gives {unit!r}, not a unit of {quantity}")
             data[quantity] = data[quantity] * scale
             stated[quantity] = ("units" if unit else "assumed", scale)
-    return _record(data, stated, str(path), kind, [], **extra)
+    # BROAD's layout fixes the units (rad/s, m/s², µT): nothing is assumed that the format does not say
+    return _record(data, stated, str(path), kind, [], assumed=False, **extra)
 
 
 def parse_gyro(text, source="<text>", *, units=None, columns=None, kind="rate"):
@@ -351,9 +423,12 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
       decimal comma accepted with tab and semicolon, headers such as
       ``"Time (s)","Gyroscope x (rad/s)"``), or an export folder or ``.zip``
       holding ``Gyroscope.csv`` and possibly ``Accelerometer.csv`` and
-      ``Magnetometer.csv``, each at its own rate: those are interpolated
-      linearly onto the gyro's time stamps, gyro samples outside their span are
-      dropped, and ``.notes`` says so;
+      ``Magnetometer.csv`` (or the one ``Raw Data.csv`` that phyphox's
+      "Gyroscope" experiment exports), each at its own rate: those are
+      interpolated linearly onto the gyro's time stamps, gyro samples outside
+      their span are dropped, and ``.notes`` says so (a zip archive is recognised by its
+      content, whatever its name); spreadsheet workbooks (phyphox's "Excel"
+      export, ``.xlsx``, ``.xls``, ``.ods``) are refused: export CSV instead;
     - plain CSV/TSV or whitespace tables, ``#`` comment lines, an optional
       header line; without a header: time, ωx, ωy, ωz, further columns ignored;
     - BROAD's ``.npz`` layout: ``gyr`` (rad/s), ``acc`` (m/s²), ``mag`` (µT),
@@ -446,7 +521,16 @@ def read_imu(source, *, units=None, columns=None, kind="rate", rate=None):
         return _from_npz(path, units, kind)
     if suffix == ".zip":
         return _from_tables(_tables_in_zip(path), units, columns, kind, path)
-    text, note = _decode(path.read_bytes(), str(path))
+    raw = path.read_bytes()
+    if raw.startswith(_ZIP) and not _is_workbook(raw):
+        if rate is not None:
+            raise GyroFileError(f"{path}: rate= is for a table file without a time column; this zip archive holds "
+                                "phyphox tables with their own clocks")
+        return _from_tables(_tables_in_zip(path), units, columns, kind, path)
+    if raw.startswith((_ZIP, _OLE)):
+        raise GyroFileError(f"{path}: a spreadsheet workbook, not a text table; export it as CSV "
+                            "(phyphox: 'CSV (Comma, decimal point)')")
+    text, note = _decode(raw, str(path))
     data, stated, notes = _table_data(text, str(path), units, columns, kind, rate=rate)
     return _record(data, stated, str(path), kind, [note] * bool(note) + notes)
 

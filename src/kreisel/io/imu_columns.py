@@ -114,6 +114,11 @@ def _words(text):
     return split
 
 
+def _is_other(name):
+    """Whether the header cell ``name`` names a quantity the reader does not use (a norm, gravity, attitude)."""
+    return any(word in _OTHER_WORDS for word in _words(_BRACKETED.sub(" ", name)))
+
+
 def parse_column(name):
     """Quantity, axis and unit of the header cell ``name``.
 
@@ -142,7 +147,7 @@ def parse_column(name):
     named = [k for k, w in enumerate(words) if w in _WORD_QUANTITY
              and (len(w) > 1 or w == "t" or (k + 1 < len(words) and words[k + 1] in ("x", "y", "z")))]
     quantity = None
-    if named and not any(word in _OTHER_WORDS for word in words):
+    if named and not _is_other(name):
         quantity = _WORD_QUANTITY[words[named[0]]]
     if unit is None and quantity is not None:
         rest = words[max([named[0], *axes]) + 1:]
@@ -160,7 +165,8 @@ def layout(columns, source, default="gyro"):
     Raises
     ------
     ValueError
-        A quantity with an axis named twice, or with fewer or more than three columns.
+        A quantity with an axis named twice, or with fewer or more than three columns; a header that names
+        no ``default`` columns and leaves fewer than three columns for them.
     """
     found = {}
     time = next((k for k, c in enumerate(columns) if c.quantity == "time"), 0)
@@ -182,7 +188,17 @@ def layout(columns, source, default="gyro"):
         found[quantity] = members
     if default not in found:
         claimed = {time, *[k for members in found.values() for k in members]}
-        free = [k for k in range(len(columns)) if k not in claimed][:3]
+        # a norm ("Absolute (rad/s)") or linear acceleration is no sensor axis, even where nothing else is named
+        free = [k for k in range(len(columns)) if k not in claimed and not _is_other(columns[k].name)]
+        if len(free) < 3:
+            others = " and the ".join(f"{_SENSOR[q]}'s" for q in found)
+            names = ", ".join(repr(columns[k].name) for k in free)
+            left = (f"{len(free)} other column{'s' * (len(free) != 1)} ({names}) {'is' if len(free) == 1 else 'are'}"
+                    if free else "no other column is")
+            raise ValueError(f"{source}: the header names no {_SENSOR[default]} columns"
+                             f"{f' (it names the {others})' if found else ''}, and {left} left; expected three "
+                             f"{_SENSOR[default]} columns x, y, z: name them with columns=")
+        free = free[:3]
         if sorted(columns[k].axis for k in free if columns[k].axis is not None) == [0, 1, 2]:
             free.sort(key=lambda k: columns[k].axis)
         found[default] = free

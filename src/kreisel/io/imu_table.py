@@ -114,18 +114,29 @@ def _fast_values(data, width):
     return values
 
 
-def _slow_values(data, source, empty_cells, width):
-    """Rows of ``data`` read line by line: the first bad line is named. ``empty_cells``: an empty cell is
-    NaN (a sensor's buffer that ended before the others' in a table with several time columns)."""
+def _column(k, header):
+    """``column 2, 'Gyroscope x (rad/s)'``: the position of the ``k``-th cell, and its header name if any."""
+    name = header[k] if header is not None and k < len(header) and header[k] else None
+    return f"column {k + 1}" + (f", {name!r}" if name else "")
+
+
+def _slow_values(data, source, empty_cells, width, header=None):
+    """Rows of ``data`` read line by line: the first bad cell is named by line and column (``header``
+    names the columns). ``empty_cells``: an empty cell is NaN (a sensor's buffer that ended before the
+    others' in a table with several time columns)."""
     rows = []
     for number, line in data:
         cells = _cells(line)
         values = [float("nan") if empty_cells and cell == "" else _number(cell) for cell in cells]
-        bad = next((cell for cell, value in zip(cells, values) if value is None), None)
+        bad = next((k for k, value in enumerate(values) if value is None), None)
         if bad is not None:
-            raise TableError(f"{source}:{number}: not a number: {bad!r}")
-        if not all(np.isfinite(values) | (np.array(cells) == "")):
-            raise TableError(f"{source}:{number}: not a finite number in {line!r}")
+            empty = ", an empty cell" if cells[bad] == "" else ""
+            raise TableError(f"{source}:{number}: not a number: {cells[bad]!r} ({_column(bad, header)}){empty}; "
+                             "expected a number")
+        infinite = next((k for k, value in enumerate(values) if not np.isfinite(value) and cells[k] != ""), None)
+        if infinite is not None:
+            raise TableError(f"{source}:{number}: not a finite number: {cells[infinite]!r} "
+                             f"({_column(infinite, header)}); expected a finite number")
         if len(values) < width:
             raise TableError(f"{source}:{number}: too few columns ({len(values)}); expected "
                              f"{'time and ' * (width > 3)}the three components of a sensor")
@@ -161,7 +172,7 @@ def parse_table(text, source, timed=True):
     table = _fast_values(data, width)
     if table is None:
         clocks = sum(parse_column(cell).quantity == "time" for cell in header or ())
-        table = _slow_values(data, source, clocks > 1, width)
+        table = _slow_values(data, source, clocks > 1, width, header)
     width = table.shape[1]
     if header is not None:
         header = _header_cells(header, header_text, width)

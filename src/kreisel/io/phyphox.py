@@ -12,17 +12,23 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["TABLES", "member_for", "align"]
+__all__ = ["TABLES", "RAW", "member_for", "align"]
 
 #: file names (lower case) of the sensor tables in a phyphox export, by quantity
 TABLES = {"gyro": "gyroscope.csv", "accel": "accelerometer.csv", "mag": "magnetometer.csv"}
+#: file name (lower case) of the one table of a phyphox experiment's export ("Gyroscope" exports ``Raw Data.csv``)
+RAW = "raw data.csv"
 _NAMES = {"gyro": "gyroscope", "accel": "accelerometer", "mag": "magnetometer"}
 
 
 def member_for(names, quantity):
-    """The shortest of ``names`` (paths in a folder or archive) whose file name is ``quantity``'s table."""
-    found = [name for name in names if name.replace("\\", "/").rsplit("/", 1)[-1].lower() == TABLES[quantity]]
-    return min(found, key=len) if found else None
+    """The shortest of ``names`` (paths in a folder or archive) whose file name is ``quantity``'s table; for
+    the gyro, phyphox's ``Raw Data.csv`` when there is no ``Gyroscope.csv``."""
+    for table in (TABLES[quantity], *(RAW,) * (quantity == "gyro")):
+        found = [name for name in names if name.replace("\\", "/").rsplit("/", 1)[-1].lower() == table]
+        if found:
+            return min(found, key=len)
+    return None
 
 
 def _rate(t):
