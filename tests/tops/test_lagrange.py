@@ -229,15 +229,11 @@ def test_turning_points_of_a_top_that_reaches_the_vertical():
     assert TOP.cubic_roots(euler0, rates0)[1] == 1.0  # 1 − 1.2e-31
 
 
-def _theta_reference(euler0, rates0, t, dps=60):
-    """θ(t) and m1 at ``dps`` digits from the exact values of the doubles given (Theory §6.3).
-
-    The roots of f(u) by mpmath's ``polyroots``, u = u1 + (u2 − u1) sn²(λt + v0 | m) by its
-    ``ellipfun`` (q-series) and ``ellipf``: nothing shared with kreisel's root finding or its
-    m1-carrying elliptic functions.
-    """
+def _mp_cubic(top, euler0, rates0, dps):
+    """a, b, β, the roots u1 <= u2 <= u3 of f(u) (mpmath's ``polyroots``), u0 and sin θ0 · θ̇0 at
+    ``dps`` digits from the exact values of the doubles given (Theory §6.3)."""
     mp.mp.dps = dps
-    I1, I3, mgl = (mp.mpf(x) for x in (TOP.I1, TOP.I3, TOP.mgl))
+    I1, I3, mgl = (mp.mpf(x) for x in (top.I1, top.I3, top.mgl))
     theta0 = mp.mpf(euler0[1])
     phidot, thetadot, psidot = (mp.mpf(x) for x in rates0)
     u0, s = mp.cos(theta0), mp.sin(theta0)
@@ -248,10 +244,21 @@ def _theta_reference(euler0, rates0, t, dps=60):
     alpha, beta = (2 * E - J3**2 / I3) / I1, 2 * mgl / I1
     roots = mp.polyroots([beta, -(alpha + a * a), 2 * a * b - beta, alpha - b * b], maxsteps=500, extraprec=4 * dps)
     u1, u2, u3 = sorted(mp.re(r) for r in roots)
+    return a, b, beta, u1, u2, u3, u0, s * thetadot
+
+
+def _theta_reference(euler0, rates0, t, dps=60):
+    """θ(t) and m1 at ``dps`` digits from the exact values of the doubles given (Theory §6.3).
+
+    The roots of f(u) by mpmath's ``polyroots``, u = u1 + (u2 − u1) sn²(λt + v0 | m) by its
+    ``ellipfun`` (q-series) and ``ellipf``: nothing shared with kreisel's root finding or its
+    m1-carrying elliptic functions.
+    """
+    a, b, beta, u1, u2, u3, u0, udot_sign = _mp_cubic(TOP, euler0, rates0, dps)
     m = (u2 - u1) / (u3 - u1)
     lam = mp.sqrt(beta * (u3 - u1)) / 2
     v0 = mp.ellipf(mp.asin(mp.sqrt(min((u0 - u1) / (u2 - u1), 1))), m)
-    v0 = -v0 if s * thetadot > 0 else v0  # u̇0 = −sin θ0 θ̇0
+    v0 = -v0 if udot_sign > 0 else v0  # u̇0 = −sin θ0 θ̇0
     # u may pass u2 <= 1 by a unit of the 60th digit: acos gets an imaginary part of that size
     theta = [mp.re(mp.acos(u1 + (u2 - u1) * mp.ellipfun("sn", lam * mp.mpf(x) + v0, m=m) ** 2)) for x in t]
     return np.array([float(x) for x in theta]), float(1 - m)
@@ -425,21 +432,10 @@ def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits
 
 
 def _nutation_reference(top, euler0, rates0, dps=60):
-    """u2 − u1, ⟨φ̇⟩ and b − a u at u1, u2 at ``dps`` digits from the exact values of the doubles given:
-    mpmath's polyroots and its tanh–sinh quadrature of φ̇ = (b − a u)/(1 − u²) over the nutation,
+    """u2 − u1, ⟨φ̇⟩ and b − a u at u1, u2 at ``dps`` digits (:func:`_mp_cubic`), the mean by
+    mpmath's tanh–sinh quadrature of φ̇ = (b − a u)/(1 − u²) over the nutation,
     u = u1 + (u2 − u1) sin²x, du/√f = 2 dx/√(β (u3 − u))."""
-    mp.mp.dps = dps
-    I1, I3, mgl = (mp.mpf(x) for x in (top.I1, top.I3, top.mgl))
-    theta0 = mp.mpf(euler0[1])
-    phidot, thetadot, psidot = (mp.mpf(x) for x in rates0)
-    u0, s = mp.cos(theta0), mp.sin(theta0)
-    J3 = I3 * (u0 * phidot + psidot)
-    Jz = I1 * phidot * s**2 + J3 * u0
-    E = (I1 * (thetadot**2 + phidot**2 * s**2) + J3**2 / I3) / 2 + mgl * u0
-    a, b = J3 / I1, Jz / I1
-    alpha, beta = (2 * E - J3**2 / I3) / I1, 2 * mgl / I1
-    roots = mp.polyroots([beta, -(alpha + a * a), 2 * a * b - beta, alpha - b * b], maxsteps=500, extraprec=4 * dps)
-    u1, u2, u3 = sorted(mp.re(r) for r in roots)
+    a, b, beta, u1, u2, u3, _, _ = _mp_cubic(top, euler0, rates0, dps)
 
     def weight(x):
         return 1 / mp.sqrt(beta * (u3 - u1 - (u2 - u1) * mp.sin(x) ** 2))
