@@ -718,6 +718,11 @@ class LagrangeTop:
     def mean_precession_rate(self, euler0: ArrayLike, rates0: ArrayLike) -> float:
         """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind).
 
+        Accurate to a few units of rounding of the largest |φ̇| over the nutation: relative
+        accuracy for a fast top (J3 -> ∞, mean ≈ mgl/J3) and wherever the mean is of the size
+        of φ̇ itself, absolute only for a weak top (mgl -> 0) whose apex circles J away from
+        the vertical, where the mean, O(mgl), is what is left of φ̇ swinging both ways.
+
         Examples
         --------
         Started at the slow steady-precession rate there is no nutation and the mean
