@@ -55,3 +55,15 @@ def test_bad_input():
         kr.KovalevskayaTop(1.0, 0.0)
     with pytest.raises(ValueError, match="gamma"):
         TOP.integrals([1.0, 2.0, 3.0], [1.0, 0.0])
+
+
+def test_integrals_beyond_the_largest_double_are_refused_without_a_warning(recwarn):
+    top = kr.KovalevskayaTop(1.0, 1.0)
+    omega = np.array([0.5, 0.2, 1.0])
+    # K ~ |ω|⁴ is still a double at |ω| ~ 1e76, where the c γ terms are lost below its rounding
+    big = top.integrals(omega * 1e76, [0.0, 0.0, 1.0])
+    assert big.kovalevskaya == pytest.approx(top.integrals(omega, [0.0, 0.0, 1.0]).kovalevskaya * 1e304, rel=1e-14)
+    for scale in (1e78, 1e160, 1e200):
+        with pytest.raises(ValueError, match="omega and gamma are out of range: the integral"):
+            top.integrals(omega * scale, [0.0, 0.0, 1.0])
+    assert not recwarn.list

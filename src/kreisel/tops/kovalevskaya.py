@@ -118,12 +118,19 @@ class KovalevskayaTop:
         p, q, r = np.moveaxis(omega, -1, 0)
         g1, g2, g3 = np.moveaxis(gamma, -1, 0)
         c = self.c
-        return KovalevskayaIntegrals(
-            energy=self.I3 * (p * p + q * q + 0.5 * r * r) + self.mgl * g1,
-            area=2.0 * p * g1 + 2.0 * q * g2 + r * g3,
-            geometric=g1 * g1 + g2 * g2 + g3 * g3,
-            kovalevskaya=(p * p - q * q - c * g1) ** 2 + (2.0 * p * q - c * g2) ** 2,
-        )
+        with np.errstate(over="ignore", invalid="ignore"):
+            integrals = KovalevskayaIntegrals(
+                energy=self.I3 * (p * p + q * q + 0.5 * r * r) + self.mgl * g1,
+                area=2.0 * p * g1 + 2.0 * q * g2 + r * g3,
+                geometric=g1 * g1 + g2 * g2 + g3 * g3,
+                kovalevskaya=(p * p - q * q - c * g1) ** 2 + (2.0 * p * q - c * g2) ** 2,
+            )
+        # K grows like |ω|⁴ (past 1e308 from |ω| ~ 1e77): an inf there is no value of the integral
+        for name, value in vars(integrals).items():
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"omega and gamma are out of range: the integral {name} exceeds the largest "
+                                 "double (K grows like |omega|**4, the energy like |omega|**2)")
+        return integrals
 
     def simulate(self, t: ArrayLike, omega0: ArrayLike, q0: ArrayLike | None = None, method: str | None = None,
                  **options: Any) -> Trajectory:
