@@ -58,9 +58,10 @@ def test_bad_input():
 
 
 @pytest.mark.parametrize("omega", [[1e200, 0.0, 0.0], [0.0, 2e77, 0.0], [1.0, 0.0, 1e160]])
-def test_integrals_beyond_double_precision_are_refused(omega):
+def test_integrals_beyond_double_precision_are_refused_without_a_warning(omega, recwarn):
     with pytest.raises(ValueError, match=r"omega and gamma are out of range for the \w+ integral"):
         TOP.integrals(omega, [0.0, 0.6, 0.8])
+    assert not recwarn.list
 
 
 def test_integrals_just_inside_double_precision_stay_finite_and_exact():

@@ -229,15 +229,11 @@ def test_turning_points_of_a_top_that_reaches_the_vertical():
     assert TOP.cubic_roots(euler0, rates0)[1] == 1.0  # 1 − 1.2e-31
 
 
-def _theta_reference(euler0, rates0, t, dps=60):
-    """θ(t) and m1 at ``dps`` digits from the exact values of the doubles given (Theory §6.3).
-
-    The roots of f(u) by mpmath's ``polyroots``, u = u1 + (u2 − u1) sn²(λt + v0 | m) by its
-    ``ellipfun`` (q-series) and ``ellipf``: nothing shared with kreisel's root finding or its
-    m1-carrying elliptic functions.
-    """
+def _mp_cubic(top, euler0, rates0, dps):
+    """a, b, β, the roots u1 <= u2 <= u3 of f(u) (mpmath's ``polyroots``), u0 and sin θ0 · θ̇0 at
+    ``dps`` digits from the exact values of the doubles given (Theory §6.3)."""
     mp.mp.dps = dps
-    I1, I3, mgl = (mp.mpf(x) for x in (TOP.I1, TOP.I3, TOP.mgl))
+    I1, I3, mgl = (mp.mpf(x) for x in (top.I1, top.I3, top.mgl))
     theta0 = mp.mpf(euler0[1])
     phidot, thetadot, psidot = (mp.mpf(x) for x in rates0)
     u0, s = mp.cos(theta0), mp.sin(theta0)
@@ -248,10 +244,21 @@ def _theta_reference(euler0, rates0, t, dps=60):
     alpha, beta = (2 * E - J3**2 / I3) / I1, 2 * mgl / I1
     roots = mp.polyroots([beta, -(alpha + a * a), 2 * a * b - beta, alpha - b * b], maxsteps=500, extraprec=4 * dps)
     u1, u2, u3 = sorted(mp.re(r) for r in roots)
+    return a, b, beta, u1, u2, u3, u0, s * thetadot
+
+
+def _theta_reference(euler0, rates0, t, dps=60):
+    """θ(t) and m1 at ``dps`` digits from the exact values of the doubles given (Theory §6.3).
+
+    The roots of f(u) by mpmath's ``polyroots``, u = u1 + (u2 − u1) sn²(λt + v0 | m) by its
+    ``ellipfun`` (q-series) and ``ellipf``: nothing shared with kreisel's root finding or its
+    m1-carrying elliptic functions.
+    """
+    a, b, beta, u1, u2, u3, u0, udot_sign = _mp_cubic(TOP, euler0, rates0, dps)
     m = (u2 - u1) / (u3 - u1)
     lam = mp.sqrt(beta * (u3 - u1)) / 2
     v0 = mp.ellipf(mp.asin(mp.sqrt(min((u0 - u1) / (u2 - u1), 1))), m)
-    v0 = -v0 if s * thetadot > 0 else v0  # u̇0 = −sin θ0 θ̇0
+    v0 = -v0 if udot_sign > 0 else v0  # u̇0 = −sin θ0 θ̇0
     # u may pass u2 <= 1 by a unit of the 60th digit: acos gets an imaginary part of that size
     theta = [mp.re(mp.acos(u1 + (u2 - u1) * mp.ellipfun("sn", lam * mp.mpf(x) + v0, m=m) ** 2)) for x in t]
     return np.array([float(x) for x in theta]), float(1 - m)
@@ -422,3 +429,59 @@ def test_long_sample_arrays_are_solved_in_interruptible_calls_with_the_same_bits
     assert len(calls) == 143 and max(calls) == 7
     np.testing.assert_array_equal(chunked.q, whole.q)
     np.testing.assert_array_equal(chunked.omega, whole.omega)
+
+
+def _nutation_reference(top, euler0, rates0, dps=60):
+    """u2 − u1, ⟨φ̇⟩ and b − a u at u1, u2 at ``dps`` digits (:func:`_mp_cubic`), the mean by
+    mpmath's tanh–sinh quadrature of φ̇ = (b − a u)/(1 − u²) over the nutation,
+    u = u1 + (u2 − u1) sin²x, du/√f = 2 dx/√(β (u3 − u))."""
+    a, b, beta, u1, u2, u3, _, _ = _mp_cubic(top, euler0, rates0, dps)
+
+    def weight(x):
+        return 1 / mp.sqrt(beta * (u3 - u1 - (u2 - u1) * mp.sin(x) ** 2))
+
+    def rate(x):
+        u = u1 + (u2 - u1) * mp.sin(x) ** 2
+        return (b - a * u) / (1 - u * u) * weight(x)
+
+    mean = mp.quad(rate, [0, mp.pi / 2]) / mp.quad(weight, [0, mp.pi / 2])
+    return float(u2 - u1), float(mean), float(b - a * u1), float(b - a * u2)
+
+
+# released from rest (cusp) and pushed along (φ̇0 = 3 mgl/J3: a loop), spun up to J3 = 1e8:
+# the nutation (u2 − u1 ~ 2 I1 mgl sin²θ0/J3², down to 1e-16) and the precession (~ mgl/J3)
+# are far below the O(1) terms they used to be differences of
+FAST_TOPS = {f"{kind}-{omega3:g}": ([0.1, 0.8, -0.2], [phidot, 0.0, omega3])
+             for omega3 in (2e4, 2e6, 2e8) for kind, phidot in (("cusp", 0.0), ("loop", 6.0 / omega3))}
+
+
+@pytest.mark.filterwarnings("ignore:Descending:DeprecationWarning")
+@pytest.mark.parametrize("label", FAST_TOPS)
+def test_fast_top_keeps_the_digits_of_its_nutation_and_precession(label):
+    euler0, rates0 = FAST_TOPS[label]
+    amplitude, mean, g1, g2 = _nutation_reference(TOP, euler0, rates0)
+    assert TOP.mean_precession_rate(euler0, rates0) == pytest.approx(mean, rel=1e-12)
+    assert TOP.apex_locus_kind(euler0, rates0) == label.split("-")[0]
+    assert g1 * g2 < 0.0 if label.startswith("loop") else abs(g2) < 1e-9 * abs(g1)
+    # the exact solution starts from the state given, φ̇0 included (b − a u of size mgl/J3, a of size J3)
+    tr = TOP.solve([0.0, 1e-9], euler0, rates0)
+    np.testing.assert_allclose(tr.zxz_rates[0], rates0, rtol=1e-13, atol=1e-300)
+    if label.startswith("cusp"):
+        fast = TOP.fast_top(euler0[1], rates0[2])
+        assert fast.exact_nutation_amplitude == pytest.approx(amplitude, rel=1e-13)
+        assert fast.exact_precession_rate == pytest.approx(mean, rel=1e-12)
+        assert fast.exact_precession_rate == pytest.approx(fast.approx_precession_rate, rel=10.0 / rates0[2])
+
+
+def test_a_weak_top_is_solved_or_refused_by_name(recwarn):
+    # mgl -> 0: u3 ~ (J3/I1)²/β passes 1e154 (mgl ~ 1e-153) and overflows near mgl ~ 1e-307
+    euler0, rates0 = [0.0, 1.0, 0.0], [0.3, 0.2, 10.0]
+    free = kr.LagrangeTop(1.0, 0.5, 1e-100)
+    for mgl in (1e-160, 1e-250, 1e-300):
+        top = kr.LagrangeTop(1.0, 0.5, mgl)
+        assert top.turning_points(euler0, rates0) == pytest.approx(free.turning_points(euler0, rates0), rel=1e-15)
+        assert top.nutation_period(euler0, rates0) == pytest.approx(free.nutation_period(euler0, rates0), rel=1e-15)
+        assert np.isfinite(top.solve([0.0, 1.0], euler0, rates0).q).all()
+    with pytest.raises(ValueError, match=r"mgl is too small .* exceeds the largest double"):
+        kr.LagrangeTop(1.0, 0.5, 1e-308).solve([0.0, 1.0], euler0, rates0)
+    assert not recwarn.list

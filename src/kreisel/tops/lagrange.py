@@ -220,7 +220,8 @@ class _Quadrature:
     """
 
     def __init__(self, top: LagrangeTop, euler0: NDArray[np.float64], rates0: NDArray[np.float64]) -> None:
-        I1 = top.I1
+        # Python floats: an overflow below is then a silent inf, refused by name, not a numpy warning
+        I1, I3, mgl = float(top.I1), float(top.I3), float(top.mgl)
         self.I1_over_I3 = top.I1 / top.I3
         phidot, thetadot, psidot = (float(x) for x in rates0)
         # 1 ∓ u0 = 2 sin²(θ0/2), 2 cos²(θ0/2) (relative accuracy at both verticals), u0 = cos θ0
@@ -230,8 +231,8 @@ class _Quadrature:
         u0 = _dd_add(g2, (-h2[0], -h2[1]))
         u0 = (0.5 * u0[0], 0.5 * u0[1])
         # a = J3/I1 = I3 (u0 φ̇ + ψ̇)/I1, β = 2 mgl/I1
-        a2 = _dd_div(_dd_mul(_dd_add(_dd_mul(u0, (phidot, 0.0)), (psidot, 0.0)), (top.I3, 0.0)), I1)
-        beta2 = _dd_div((2.0 * top.mgl, 0.0), I1)
+        a2 = _dd_div(_dd_mul(_dd_add(_dd_mul(u0, (phidot, 0.0)), (psidot, 0.0)), (I3, 0.0)), I1)
+        beta2 = _dd_div((2.0 * mgl, 0.0), I1)
         # δb = φ̇ sin²θ − a(1 − u0) = (1 − u0)(φ̇(1 + u0) − a) = (Jz − J3)/I1,
         # δα = θ̇² + φ̇² sin²θ − β(1 − u0) = θ̇² + (1 − u0)(φ̇²(1 + u0) − β) = α − β
         phig = _dd_mul((phidot, 0.0), g2)
@@ -266,9 +267,15 @@ class _Quadrature:
             total = (-c1 / beta - q) / root
         else:
             total = c2 / beta - root
-        spread = math.sqrt(total * total - 4.0 * q)  # q <= 0: no cancellation
+        # q <= 0: no cancellation; hypot, since a weak top (mgl -> 0) has w3 ~ −a²/β beyond 1e154
+        spread = math.hypot(total, 2.0 * math.sqrt(-q))
         big = 0.5 * (total + math.copysign(spread, total))
         small = q / big if big != 0.0 else 0.0
+        if not math.isfinite(small * big):
+            raise ValueError(
+                f"mgl is too small for the exact solution of this state: the third root u3 of f(u), about "
+                f"(J3/I1)²/(2 mgl/I1), exceeds the largest double (mgl={mgl:g}, J3/I1={a:g})"
+            )
         others = (max(big, small), min(big, small))  # >= 0 and <= 0
         # clamped to the physical ranges: exactly, f(±1) <= 0 puts u1, u2 in [−1, 1] and u3 >= 1
         w1, w2 = min(max(root, others[0]), 2.0), max(min(root, others[0]), 0.0)
@@ -283,6 +290,31 @@ class _Quadrature:
                 "turns by pi there faster than doubles can follow"
             )
         self.w1, self.w2, self.w3, self.v1, self.sigma_b = w1, w2, w3, v1, sigma_b
+        udot0_squared = h * g * thetadot * thetadot
+        # A nutation much narrower than 1 ∓ u0 (a fast top: u2 − u1 ~ 2 I1 mgl sin²θ0/J3²) is lost in
+        # w1 − w2, and b − a u at the turning points (O(a (u2 − u1)), the precession) in δb + a w. The
+        # cubic in x = w − h instead has the roots x1 >= 0 >= x2 and x3 = w3 − h < 0 with, by Vieta,
+        # x1 x2 = F(h)/(β x3) <= 0 and x1 + x2 = −F′(h)/(β x3) − x1 x2/x3, F(h) = u̇0² and
+        # F′(h) = 2u0(θ̇0² + φ̇0² sin²θ0) + (β − 2aφ̇0) sin²θ0 from the state; b − a u = φ̇0 sin²θ0 + a x.
+        sin2 = h * g
+        self.g0 = g0 = phidot * sin2
+        x3 = w3 - h
+        fprime = 2.0 * u0[0] * (thetadot * thetadot + phidot * phidot * sin2) + (beta - 2.0 * a * phidot) * sin2
+        product = udot0_squared / (beta * x3)
+        total = -fprime / (beta * x3) - product / x3
+        spread = math.hypot(total, 2.0 * math.sqrt(-product))
+        # narrow in u and in θ: next to a vertical u hardly moves while θ swings (F′(h) cancels there)
+        self.local = spread <= 0.25 * min(h, g)
+        if self.local:
+            big = 0.5 * (total + math.copysign(spread, total))
+            small = product / big if big != 0.0 else 0.0
+            x1, x2 = max(big, small, 0.0), min(big, small, 0.0)
+            self.delta, self.g1, self.g2 = spread, g0 + a * x1, g0 + a * x2
+        else:
+            self.delta = w1 - w2
+            # b − a u = δb + a w = σb − a(2 − w): the form whose O(1) terms do not cancel
+            self.g1 = delta_b + a * w1 if w1 <= 1.0 else sigma_b - a * v1
+            self.g2 = delta_b + a * w2 if w2 <= 1.0 else sigma_b - a * (v1 + self.delta)
         self.u1, self.u2, self.u3 = (1.0 - w1 if w1 < 1.0 else v1 - 1.0), 1.0 - w2, 1.0 - w3
         self.lam = 0.5 * math.sqrt(beta * (w1 - w3))
         self.m1 = (w2 - w3) / (w1 - w3)
@@ -294,8 +326,9 @@ class _Quadrature:
         # (next to the lower vertical u0 − u1 = (1 + u0) − (1 + u1) keeps its digits)
         d1 = max(g - v1 if w1 > 1.0 and w2 < 2.0 else w1 - h, 0.0)
         d2 = max(h - w2, 0.0)
-        udot0_squared = h * g * thetadot * thetadot
-        if d2 <= d1:
+        if self.local:
+            d1, d2 = x1, -x2
+        elif d2 <= d1:
             d2 = udot0_squared / (beta * d1 * (h - w3)) if d1 > 0.0 else 0.0
         else:
             d1 = udot0_squared / (beta * d2 * (h - w3))
@@ -310,9 +343,9 @@ class _Quadrature:
         A vanishing coefficient (b = ±a: the top reaches that vertical, where its
         denominator 1 ∓ u1 may vanish too) drops the term: (0, 0, 1).
         """
-        w1, w2, v1 = self.w1, self.w2, self.v1
-        upper = (self.delta_b / w1, (w1 - w2) / w1, w2 / w1) if self.delta_b != 0.0 else (0.0, 0.0, 1.0)
-        lower = (self.sigma_b / v1, -(w1 - w2) / v1, (2.0 - w2) / v1) if self.sigma_b != 0.0 else (0.0, 0.0, 1.0)
+        w1, w2, v1, delta = self.w1, self.w2, self.v1, self.delta
+        upper = (self.delta_b / w1, delta / w1, w2 / w1) if self.delta_b != 0.0 else (0.0, 0.0, 1.0)
+        lower = (self.sigma_b / v1, -delta / v1, (2.0 - w2) / v1) if self.sigma_b != 0.0 else (0.0, 0.0, 1.0)
         return upper, lower
 
     def motion(self, t: NDArray[np.float64], top: LagrangeTop,
@@ -333,7 +366,7 @@ class _Quadrature:
             _lagrange_samples(t[s:e], self.lam, self.n0, self.r0, self.m1, self.kc, self.quarter, self.w1, self.w2,
                               self.v1, terms, out[s:e])
         u, one_minus_u, one_plus_u, sn, cn, dn, plus, minus = out[:, :8].T
-        udot = 2.0 * (self.w1 - self.w2) * self.lam * sn * cn * dn
+        udot = 2.0 * self.delta * self.lam * sn * cn * dn
         sin_theta = np.sqrt(one_minus_u * one_plus_u)
         half_sin, half_cos = np.sqrt(0.5 * one_minus_u), np.sqrt(0.5 * one_plus_u)
         theta = 2.0 * np.arctan2(half_sin, half_cos)
@@ -341,9 +374,13 @@ class _Quadrature:
         total = euler0[0] + euler0[2] + minus / self.lam + spin_excess  # φ + ψ
         difference = euler0[0] - euler0[2] + plus / self.lam - spin_excess  # φ − ψ
         phi, psi = 0.5 * (total + difference), 0.5 * (total - difference)
-        # b − a u = δb + a(1 − u) = σb − a(1 + u): the form whose O(1) terms do not cancel
+        # b − a u = δb + a(1 − u) = σb − a(1 + u): the form whose O(1) terms do not cancel; a narrow
+        # nutation's g2 + a(u2 − u1) cn², all of whose terms are of the size of b − a u itself
         upper = one_minus_u <= one_plus_u
-        numerator = np.where(upper, self.delta_b + self.a * one_minus_u, self.sigma_b - self.a * one_plus_u)
+        if self.local:
+            numerator = self.g2 + self.a * self.delta * cn * cn
+        else:
+            numerator = np.where(upper, self.delta_b + self.a * one_minus_u, self.sigma_b - self.a * one_plus_u)
         phidot = numerator / (one_minus_u * one_plus_u)
         thetadot = -udot / sin_theta
         omega3 = self.a * top.I1 / top.I3
@@ -364,10 +401,23 @@ class _Quadrature:
                      + abs(self.a * (self.I1_over_I3 - 1.0)))
 
     def mean_precession_rate(self) -> float:
-        """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals)."""
-        total = sum(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc)
-                    for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0)
-        return float(total / (2.0 * self.quarter))
+        """⟨φ̇⟩ over a nutation period: Σ c Π(n | m) / (2K) (complete integrals).
+
+        For a narrow nutation Π(n | m) = K + (n/3) R_J(0, m1, 1, 1 − n) is split: the K terms
+        add up to φ̇ at u1, (b − a u1)/(1 − u1²), and the rest is (u2 − u1)-small, so the two
+        partial fractions, each O(a), are never subtracted to give the O(mgl/J3) precession of
+        a fast top.
+        """
+        terms = [(c, n, one_minus_n) for c, n, one_minus_n in self._partial_fraction_terms() if c != 0.0]
+        if not self.local or self.m1 == 0.0:
+            # a wide nutation: no such cancellation, and next to the lower vertical (n -> −∞) the split
+            # itself would cancel; K infinite (the top creeps towards a vertical): Π's own limit
+            total = sum(c * _elliptic.complete_pi(n, one_minus_n, self.m1, self.kc) for c, n, one_minus_n in terms)
+            return float(total / (2.0 * self.quarter))
+        # a vertical reached (b = ±a) leaves one term: its own ½ c, no cancellation
+        at_u1 = self.g1 / (self.w1 * self.v1) if len(terms) == 2 else 0.5 * sum(c for c, _, _ in terms)
+        corrections = sum(c * n * _elliptic.carlson_rj(0.0, self.m1, 1.0, one_minus_n) for c, n, one_minus_n in terms)
+        return float(at_u1 + corrections / (6.0 * self.quarter))
 
 
 @cached
@@ -413,7 +463,7 @@ class _PlanarPendulum:
     constant.
     """
 
-    a = b = delta_b = sigma_b = 0.0
+    a = b = delta_b = sigma_b = g0 = g1 = g2 = 0.0
 
     def __init__(self, top: LagrangeTop, theta0: float, thetadot0: float) -> None:
         g = top.I1 * thetadot0**2 / (4.0 * top.mgl)
@@ -435,7 +485,7 @@ class _PlanarPendulum:
             sn0, cn0 = np.cos(0.5 * theta0), -thetadot0 * np.sqrt(top.I1 / (4.0 * top.mgl))
             self.w1, self.w2, self.w3 = 2.0, 2.0 * max(s2 - g, 0.0), 0.0  # u2 = cos θ0 + 2g
         self.u1, self.u2, self.u3 = 1.0 - self.w1, 1.0 - self.w2, 1.0 - self.w3
-        self.v1 = 0.0
+        self.v1, self.delta = 0.0, self.w1 - self.w2
         if self.m1 == 0.0:
             self.quarter = np.inf
             self.n0, self.r0 = 0, np.arcsinh(sn0 / cn0)
@@ -628,8 +678,10 @@ class LagrangeTop:
 
         φ̇ = (b − a u)/(1 − u²) has the sign of b − a u: ``"monotone"`` if it keeps
         one sign on [u1, u2], ``"cusp"`` if it vanishes at a turning point
-        (within ``rtol`` of |a| + |b|, e.g. released with θ̇ = φ̇ = 0), ``"loop"``
-        if it changes sign inside the nutation range.
+        (within ``rtol`` of its scale |b − a u0| + |a| (u2 − u1), e.g. released with
+        θ̇ = φ̇ = 0), ``"loop"`` if it changes sign inside the nutation range. The scale
+        is that of b − a u itself, so a fast top's slow precession (b − a u of order
+        mgl/J3 next to a of order J3) and a top next to the vertical are told apart.
 
         Examples
         --------
@@ -641,9 +693,9 @@ class LagrangeTop:
         """
         quad, _, _ = self._quadrature(euler0, rates0)
         # b − a u = δb + a w
-        g1 = quad.delta_b + quad.a * quad.w1
-        g2 = quad.delta_b + quad.a * quad.w2
-        tol = rtol * (abs(quad.a) + abs(quad.b))
+        g1, g2 = quad.g1, quad.g2
+        # the scale of b − a u over the motion: its value at the start and its change over the nutation
+        tol = rtol * (abs(quad.g0) + abs(quad.a) * quad.delta)
         if min(abs(g1), abs(g2)) <= tol:
             return "cusp"
         return "loop" if g1 * g2 < 0.0 else "monotone"
@@ -665,6 +717,11 @@ class LagrangeTop:
 
     def mean_precession_rate(self, euler0: ArrayLike, rates0: ArrayLike) -> float:
         """Exact mean φ̇ over a nutation period, rad/s (complete integrals of the third kind).
+
+        Accurate to a few units of rounding of the largest |φ̇| over the nutation: relative
+        accuracy for a fast top (J3 -> ∞, mean ≈ mgl/J3) and wherever the mean is of the size
+        of φ̇ itself, absolute only for a weak top (mgl -> 0) whose apex circles J away from
+        the vertical, where the mean, O(mgl), is what is left of φ̇ swinging both ways.
 
         Examples
         --------
@@ -754,7 +811,7 @@ class LagrangeTop:
             approx_nutation_amplitude=2.0 * self.I1 * self.mgl * np.sin(theta0) ** 2 / J3**2,
             approx_nutation_frequency=abs(J3) / self.I1,
             approx_precession_rate=self.mgl / J3,
-            exact_nutation_amplitude=float(quad.w1 - quad.w2),
+            exact_nutation_amplitude=float(quad.delta),
             exact_nutation_frequency=float(np.pi * quad.lam / quad.quarter),
             exact_precession_rate=quad.mean_precession_rate(),
         )
