@@ -23,14 +23,14 @@ def test_python_examples_run(page):
         exec(compile(block, page, "exec"), namespace)
 
 
-
 USER_GUIDE_WITH_CODE = sorted(path.name for path in (DOCS / "user_guide").glob("*.rst")
                               if ".. code-block:: python" in path.read_text(encoding="utf-8"))
 
 
 @pytest.mark.parametrize("page", USER_GUIDE_WITH_CODE)
-def test_user_guide_page_runs_on_its_own(page):
+def test_user_guide_page_runs_on_its_own(page, tmp_path, monkeypatch):
     """A reader who lands on one page can paste its code into a fresh session."""
+    monkeypatch.chdir(tmp_path)  # pages save figures such as fit.png where the reader works
     namespace = {}
     for block in _python_blocks(f"user_guide/{page}"):
         exec(compile(block, page, "exec"), namespace)
