@@ -66,7 +66,7 @@ async (cjk) => {
 
 
 def cjk_glyphs(page, characters=CJK):
-    """Check the page loaded in ``page`` (a Playwright page of chromium).
+    r"""Check the page loaded in ``page`` (a Playwright page of chromium).
 
     ``characters`` is the (JavaScript) regular expression of the characters checked: CJK by default, ``r"\S"``
     for every visible character (the tour report: Greek, math symbols, ✓ too).
