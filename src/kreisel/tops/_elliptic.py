@@ -100,7 +100,7 @@ def _series_rd_rj(X, Y, Z, P):
 
 
 @cached
-def carlson_rd(x, y, z):
+def carlson_rd(x: float, y: float, z: float) -> float:
     """R_D(x, y, z) = R_J(x, y, z, z), x, y >= 0 (at most one zero), z > 0."""
     a0 = (x + y + 3.0 * z) / 5.0
     q = _RJ_FACTOR * max(abs(a0 - x), abs(a0 - y), abs(a0 - z))
@@ -119,7 +119,7 @@ def carlson_rd(x, y, z):
 
 
 @cached
-def carlson_rj(x, y, z, p):
+def carlson_rj(x: float, y: float, z: float, p: float) -> float:
     """R_J(x, y, z, p), x, y, z >= 0 (at most one zero), p > 0."""
     a0 = (x + y + z + 2.0 * p) / 5.0
     q = _RJ_FACTOR * max(abs(a0 - x), abs(a0 - y), abs(a0 - z), abs(a0 - p))
