@@ -32,7 +32,7 @@ demo: $(VENV)/.installed-run
 	$(PY) -m kreisel tour --out tour --force
 
 test: $(VENV)/.installed-dev docs/node_modules/.installed
-	$(PY) -m pytest -n 2 --dist loadfile -q
+	$(PY) -m pytest -n 2 -q
 
 $(VENV)/.installed-bench: pyproject.toml $(VENV)/.created
 	$(PY) -m pip install --quiet -e ".[all,dev,bench]"
