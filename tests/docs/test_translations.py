@@ -3,10 +3,12 @@
 A page listed in the Makefile's ``TRANSLATED`` has every entry of its catalog translated and none fuzzy, so that an
 edit of the English page without its translation fails here (``make docs-po`` then marks what changed). Wherever an
 English text contains a term of docs/locale/zh_CN/glossary.toml, its translation contains the chapter's Chinese term.
+Every number of an English text is in its translation.
 """
 
 import re
 import tomllib
+from collections import Counter
 
 import polib
 import pytest
@@ -92,6 +94,28 @@ def _references(text):
     """Literals, roles' and links' targets and math of ``text``: what a translation keeps (a title may be translated)."""
     kept = [re.sub(r"^(:[a-z:]+:)?`[^`<]*<([^>]*)>`(_?)$", r"\1`\2`\3", token) for token in _MARKUP.findall(text)]
     return sorted(kept)
+
+
+#: A number of a text (``45``, ``0.0186``, ``1776``): digits not inside a word, so "3D" (三维) is not one.
+_NUMBER = re.compile(r"(?<![0-9A-Za-z_.])\d+(?:\.\d+)?(?![0-9A-Za-z])")
+
+
+def _changed_numbers(entry):
+    """The numbers of ``entry.msgid`` that its translation lacks (a number retyped wrongly, or dropped)."""
+    return sorted((Counter(_NUMBER.findall(entry.msgid)) - Counter(_NUMBER.findall(entry.msgstr))).elements())
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_every_number_of_the_english_text_is_in_its_translation(page):
+    changed = [(numbers, entry.msgid[:60]) for entry in _catalog(page).translated_entries()
+               if (numbers := _changed_numbers(entry))]
+    assert changed == []
+
+
+def test_the_number_check_would_catch_a_retyped_number_and_not_3d():
+    entry = polib.POEntry(msgid="At Hefei the plane turns once in 45 h 28 min; the 3D viewer shows it.",
+                          msgstr="在合肥，摆动平面每 45 h 23 min 转一周；三维查看器显示了这一点。")
+    assert _changed_numbers(entry) == ["28"]
 
 
 def test_the_glossary_has_one_chinese_term_per_english_term():
