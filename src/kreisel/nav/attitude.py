@@ -114,6 +114,9 @@ def _samples(x, name, n=None):
 LARGEST_COMPONENT = 1e150
 #: Smallest length of the first accelerometer sample that gives the up direction, m/s².
 SMALLEST_FIRST_ACCEL = 1e-6
+#: Band, in units of the ``gravity`` parameter, that the 90th percentile of |a| must lie in for kreisel's estimator
+#: (the band :func:`kreisel.io.read_imu` judges a unitless accelerometer by: held still 1, beyond 40 g no phone).
+ACCEL_BAND = (4.0 / 9.81, 400.0 / 9.81)
 
 
 def _parameters(method, params):
@@ -330,7 +333,10 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         the heading would be undefined. Later zero-length accelerometer or
         magnetometer samples are skipped (the gyro carries the attitude
         through them); later fields without a horizontal part are rejected
-        by kreisel's estimator's disturbance test.
+        by kreisel's estimator's disturbance test. For kreisel's estimator,
+        an accelerometer not in m/s²: the 90th percentile of |a| outside
+        0.41 … 41 g (:data:`ACCEL_BAND`, as :func:`kreisel.io.read_imu` judges
+        a unitless one), which g or mg give.
 
     Examples
     --------
@@ -377,6 +383,15 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
             raise ValueError("mag has no horizontal part in its first sample (zero, or parallel to the measured up): "
                              "the heading is undefined; pass mag=None for a gyro-only heading")
     params = _parameters(method, dict(params or {}))
+    if method == "kreisel":
+        # kreisel's estimator weighs the accelerometer by |a| against gravity (the published filters use only
+        # its direction): in g or mg it would reject or trust every sample and return a wrong attitude
+        typical = float(np.percentile(np.linalg.norm(acc, axis=1), 90))
+        low, high = (bound * params["gravity"] for bound in ACCEL_BAND)
+        if not low <= typical <= high:
+            raise ValueError(f"accel's samples are {typical:.3g} long (90th percentile), outside {low:.3g} … "
+                             f"{high:.3g}: kreisel's estimator needs them in m/s² (gravity {params['gravity']:g}); "
+                             "convert g by × 9.80665, mg by × 0.00980665")
     dt = 1.0 / rate
     if method == "kreisel":
         q, bias, cov = _kreisel(gyr, acc, mag, dt, params, offline)
