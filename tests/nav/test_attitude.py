@@ -312,3 +312,20 @@ def test_accelerometer_in_another_unit_is_refused(unit, scale):
     # the published filters normalise the samples: any unit gives the same attitude
     np.testing.assert_allclose(estimate_attitude(gyr, acc * scale, mag, rate=RATE, method="mahony").q,
                                estimate_attitude(gyr, acc, mag, rate=RATE, method="mahony").q, atol=1e-12)
+
+
+@pytest.mark.parametrize("name, offline", [("gravity", False), ("rest_tau", False), ("mag_ref_tau", False),
+                                           ("acc_noise", True), ("mag_noise", True)])
+def test_parameters_that_divide_must_be_positive(name, offline):
+    # zero here divided by zero inside the compiled filter (or, offline, in fusing two passes that are both
+    # certain): a bare ZeroDivisionError after the work had started
+    gyr, acc, mag, _ = motion(100)
+    with pytest.raises(ValueError, match=rf"parameter {name} must be a finite number > 0, got 0.0"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, offline=offline, params={name: 0.0})
+
+
+def test_offline_takes_a_field_time_longer_than_the_recording():
+    # a mag_new_time of 1e20 s overflowed the window's sample count (OverflowError) in the offline judgement
+    gyr, acc, mag, q_true = motion(300)
+    est = estimate_attitude(gyr, acc, mag, rate=RATE, offline=True, params={"mag_new_time": 1e20})
+    assert attitude_error(est.q, q_true)[0] < 1e-6

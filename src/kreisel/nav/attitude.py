@@ -119,14 +119,19 @@ SMALLEST_FIRST_ACCEL = 1e-6
 ACCEL_BAND = (4.0 / 9.81, 400.0 / 9.81)
 
 
-def _parameters(method, params):
+def _parameters(method, params, offline=False):
     defaults = KREISEL_DEFAULTS if method == "kreisel" else _PUBLISHED[method]
     unknown = set(params) - set(defaults)
     if unknown:
         raise ValueError(f"unknown parameter(s) {sorted(unknown)} for method {method!r}; "
                          f"expected some of {sorted(defaults)}")
     merged = {**defaults, **params}
+    # the filter divides by these; offline, the fusion of the two passes divides by the sum of their tilt and
+    # heading variances, which these noises keep from being zero in both
+    positive = {"gravity", "rest_tau", "mag_ref_tau"} | ({"acc_noise", "mag_noise"} if offline else set())
     for key, value in merged.items():
+        if key in positive and not (np.isfinite(value) and value > 0):
+            raise ValueError(f"parameter {key} must be a finite number > 0, got {value!r}")
         if not (np.isfinite(value) and value >= 0):
             raise ValueError(f"parameter {key} must be a finite number >= 0, got {value!r}")
     return merged
@@ -225,7 +230,8 @@ def _agrees_with_heading(q, mag, dt, params):
     f = quat_apply(q, mag)
     horizontal = np.hypot(f[:, 0], f[:, 1])
     turn = np.divide(-f[:, 0], horizontal, out=np.zeros(len(f)), where=horizontal > 0.0)
-    half = int(0.5 * params["mag_new_time"] / dt)
+    # capped at the recording's length: a longer window holds the same samples (and int() of a huge one overflows)
+    half = int(min(0.5 * params["mag_new_time"] / dt, len(f)))
     sums = np.concatenate([[0.0], np.cumsum(turn)])
     index = np.arange(len(f))
     lo, hi = np.maximum(index - half, 0), np.minimum(index + half + 1, len(f))
@@ -303,7 +309,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         attitude towards the TRIAD attitude of each sample (``gain`` 0.0005).
     params : dict, optional
         Parameters overriding the method's defaults (see
-        :data:`KREISEL_DEFAULTS` for kreisel's estimator).
+        :data:`KREISEL_DEFAULTS` for kreisel's estimator): finite and
+        >= 0, and > 0 for ``gravity``, ``rest_tau``, ``mag_ref_tau`` (and,
+        offline, ``acc_noise``, ``mag_noise``).
 
     Returns
     -------
@@ -382,7 +390,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         if not horizontal > 1e-6 * np.linalg.norm(mag[0]):
             raise ValueError("mag has no horizontal part in its first sample (zero, or parallel to the measured up): "
                              "the heading is undefined; pass mag=None for a gyro-only heading")
-    params = _parameters(method, dict(params or {}))
+    params = _parameters(method, dict(params or {}), offline)
     if method == "kreisel":
         # kreisel's estimator weighs the accelerometer by |a| against gravity (the published filters use only
         # its direction): in g or mg it would reject or trust every sample and return a wrong attitude
