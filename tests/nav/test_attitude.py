@@ -329,3 +329,21 @@ def test_offline_takes_a_field_time_longer_than_the_recording():
     gyr, acc, mag, q_true = motion(300)
     est = estimate_attitude(gyr, acc, mag, rate=RATE, offline=True, params={"mag_new_time": 1e20})
     assert attitude_error(est.q, q_true)[0] < 1e-6
+
+
+def test_vector_attitude_refuses_what_it_would_ignore():
+    acc, mag = [0.3, -0.2, 9.7], [5.0, 18.0, -44.0]
+    # a zero weight leaves a direction unmeasured: (1, 0) returned an arbitrary heading, (0, 0) the identity
+    for weights in [(1.0, 0.0), (0.0, 1.0), (0.0, 0.0)]:
+        with pytest.raises(ValueError, match=r"weights must be two numbers > 0 \(up, field\)"):
+            attitude_from_vectors(acc, mag, method="quest", weights=weights)
+    with pytest.raises(ValueError, match=r"weights must be two numbers > 0 \(up, field\), got shape \(3,\)"):
+        attitude_from_vectors(acc, mag, method="quest", weights=(1.0, 1.0, 1.0))
+    # TRIAD takes up exactly and never the dip: a dip or weights given with it were silently dropped
+    with pytest.raises(ValueError, match="dip applies to method='quest' only"):
+        attitude_from_vectors(acc, mag, dip=0.5)
+    with pytest.raises(ValueError, match="weights apply to method='quest' only"):
+        attitude_from_vectors(acc, mag, weights=(10.0, 1.0))
+    # an infinite weight on up is TRIAD
+    np.testing.assert_allclose(attitude_from_vectors(acc, mag, method="quest", weights=(np.inf, 1.0)),
+                               attitude_from_vectors(acc, mag), atol=1e-12)
