@@ -347,3 +347,28 @@ def test_vector_attitude_refuses_what_it_would_ignore():
     # an infinite weight on up is TRIAD
     np.testing.assert_allclose(attitude_from_vectors(acc, mag, method="quest", weights=(np.inf, 1.0)),
                                attitude_from_vectors(acc, mag), atol=1e-12)
+
+
+def test_compare_attitude_checks_its_arguments_before_estimating(monkeypatch):
+    gyr, acc, mag, q_true = motion(100)
+    calls = []
+    monkeypatch.setattr("kreisel.nav.attitude.estimate_attitude", lambda *a, **k: calls.append(1))
+    # a reference or mask of the wrong length was found only by the first method's error computation, after
+    # its estimate; a str of one name was read letter by letter, and no method at all returned {}
+    with pytest.raises(ValueError, match=r"reference must have as many rows as gyro \(100\), got 99"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true[:-1])
+    with pytest.raises(ValueError, match=r"mask must be a boolean array of shape \(100,\)"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, mask=np.ones(99, bool))
+    with pytest.raises(TypeError, match=r"methods must be a sequence of method names, not one str \('mahony'\)"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, methods="mahony")
+    with pytest.raises(ValueError, match="methods must name at least one method"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, methods=())
+    assert not calls
+
+
+def test_offline_must_be_a_bool():
+    # offline="no" is truthy: it ran the smoother
+    gyr, acc, mag, _ = motion(50)
+    with pytest.raises(TypeError, match="offline must be True or False, got 'no'"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, offline="no")
+    assert estimate_attitude(gyr, acc, mag, rate=RATE, offline=np.bool_(True)).covariance is not None

@@ -366,6 +366,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     method = "kreisel" if method is None else method
     if frame not in _FRAMES:
         raise ValueError(f"frame must be 'ENU' or 'NED', got {frame!r}")
+    if not isinstance(offline, (bool, np.bool_)):
+        # any other object is truthy or falsy by accident ("no" would smooth)
+        raise TypeError(f"offline must be True or False, got {offline!r}")
     if offline and method != "kreisel":
         raise ValueError(f"offline=True is available for kreisel's estimator only, not method {method!r}")
     rate = positive_float(rate, "rate")
@@ -447,10 +450,24 @@ def compare_attitude(gyro, accel, mag=None, *, rate, reference, mask=None,
     {'kreisel': 0.0, 'mahony': 0.0}
     """
     known = ("kreisel", "kreisel offline", "madgwick", "mahony", "complementary")
+    if isinstance(methods, str):
+        # a str is a sequence too: of letters, none of them a method
+        raise TypeError(f"methods must be a sequence of method names, not one str ({methods!r}); "
+                        f"e.g. ({methods!r},)")
+    methods = tuple(methods)
+    if not methods:
+        raise ValueError(f"methods must name at least one method among {', '.join(map(repr, known))}")
     unknown = [m for m in methods if m not in known]
     if unknown:
         raise ValueError(f"methods must be among {', '.join(map(repr, known))}, got {unknown}")
+    # reference and mask checked against the samples here, not by the first error computation after its estimate
     reference = quaternion_rows(reference, "reference")
+    n = np.shape(gyro)[0] if np.ndim(gyro) else 0
+    if reference.shape[0] != n:
+        raise ValueError(f"reference must have as many rows as gyro ({n}), got {reference.shape[0]}")
+    if mask is not None and (np.asarray(mask).dtype != bool or np.shape(mask) != (n,)):
+        raise ValueError(f"mask must be a boolean array of shape ({n},), got {np.asarray(mask).dtype} "
+                         f"{np.shape(mask)}")
     results = {}
     for name in methods:
         offline = name == "kreisel offline"
