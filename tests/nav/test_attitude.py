@@ -120,6 +120,28 @@ def test_ned_is_the_enu_result_turned():
     np.testing.assert_allclose(np.abs(np.sum(ned.q * expected, axis=1)), 1.0, atol=1e-13)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from([(None, False), (None, True), ("madgwick", False), ("mahony", False),
+                        ("complementary", False)]),
+       st.lists(st.floats(-1.0, 1.0), min_size=4, max_size=4).filter(lambda q: np.linalg.norm(q) > 0.1),
+       st.lists(st.floats(-2.0, 2.0), min_size=3, max_size=3), st.booleans())
+def test_ned_is_the_enu_result_turned_for_every_method(variant, q0, w, with_mag):
+    # the same samples give, in NED, the ENU attitude turned by the fixed half turn NED ← ENU, the same bias
+    # and the covariance in NED components (y, x, −z)
+    method, offline = variant
+    gyr, acc, mag, _ = motion(150, w=w, q0=q0)
+    mag = mag if with_mag else None
+    enu = estimate_attitude(gyr, acc, mag, rate=RATE, method=method, offline=offline)
+    ned = estimate_attitude(gyr, acc, mag, rate=RATE, method=method, offline=offline, frame="NED")
+    turn = Rotation.from_matrix([[0, 1, 0], [1, 0, 0], [0, 0, -1]])
+    expected = (turn * Rotation.from_quat(enu.q, scalar_first=True)).as_quat(scalar_first=True)
+    np.testing.assert_allclose(np.abs(np.sum(ned.q * expected, axis=1)), 1.0, atol=1e-13)
+    assert (enu.bias is None and ned.bias is None) or np.array_equal(enu.bias, ned.bias)
+    if enu.covariance is not None:
+        m = turn.as_matrix()
+        np.testing.assert_allclose(ned.covariance, m @ enu.covariance @ m.T, atol=1e-18)
+
+
 def test_without_magnetometer_the_heading_is_the_sensors():
     gyr, acc, _, _ = motion(500, w=(0.0, 0.0, 0.0), q0=(1.0, 0.0, 0.0, 0.0))
     est = estimate_attitude(gyr, acc, rate=RATE)
