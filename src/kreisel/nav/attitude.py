@@ -81,8 +81,9 @@ class AttitudeEstimate:
         Estimated gyro bias in rad/s, sensor axes (None for filters that do not estimate it).
     covariance : ndarray, shape (n, 3, 3) or None
         Covariance (rad²) of the attitude error δ, q = exp(δ) ⊗ q_true, δ in
-        the ENU frame (kreisel's estimator only); its square-rooted diagonal
-        bounds the tilt about east, north and the heading error.
+        the earth frame of ``q`` (kreisel's estimator only); its square-rooted
+        diagonal bounds the tilt about east and north (in NED: north and east)
+        and the heading error.
     method : str
         The filter that produced it.
     """
