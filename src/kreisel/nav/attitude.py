@@ -115,6 +115,8 @@ def _samples(x, name, n=None):
 LARGEST_COMPONENT = 1e150
 #: Smallest length of the first accelerometer sample that gives the up direction, m/s².
 SMALLEST_FIRST_ACCEL = 1e-6
+#: Band, relative to the recording's median |a|, for the length of the first accelerometer sample (the start tilt).
+FIRST_ACCEL_BAND = (0.5, 2.0)
 #: Band, in units of the ``gravity`` parameter, that the 90th percentile of |a| must lie in for kreisel's estimator
 #: (the band :func:`kreisel.io.read_imu` judges a unitless accelerometer by: held still 1, beyond 40 g no phone).
 ACCEL_BAND = (4.0 / 9.81, 400.0 / 9.81)
@@ -337,7 +339,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         For shapes that disagree, non-finite samples (remove or interpolate
         them first: a filter cannot step over a hole without making up the
         motion in it), a non-positive or non-finite ``rate``, an
-        accelerometer sample of zero length at the start, a magnetometer
+        accelerometer sample of zero length at the start or one outside
+        0.5 … 2 times the recording's median length (:data:`FIRST_ACCEL_BAND`:
+        free fall or a jolt, not gravity, would give the start tilt), a magnetometer
         whose first sample has no horizontal part (along the measured up):
         the heading would be undefined. Later zero-length accelerometer or
         magnetometer samples are skipped (the gyro carries the attitude
@@ -388,6 +392,14 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         raise ValueError(f"accel's first sample has length {np.linalg.norm(acc[0]):.3g} m/s², below "
                          f"{SMALLEST_FIRST_ACCEL:g}: the initial inclination needs the up direction, which gravity "
                          "gives (start the recording at rest)")
+    first, typical = np.linalg.norm(acc[0]), float(np.median(np.linalg.norm(acc, axis=1)))
+    if not FIRST_ACCEL_BAND[0] * typical <= first <= FIRST_ACCEL_BAND[1] * typical:
+        # a first sample that is not mostly gravity (free fall, a jolt) gives a wrong start tilt, which the
+        # filters then take many seconds to forget
+        raise ValueError(f"accel's first sample has length {first:.3g}, outside {FIRST_ACCEL_BAND[0]:g} … "
+                         f"{FIRST_ACCEL_BAND[1]:g} times the recording's median length {typical:.3g}: the start tilt "
+                         "needs a sample that is mostly gravity (start the recording at rest, or drop the first "
+                         "samples)")
     if mag is not None:
         up = acc[0] / np.linalg.norm(acc[0])
         horizontal = np.linalg.norm(mag[0] - (mag[0] @ up) * up)
