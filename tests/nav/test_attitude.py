@@ -312,6 +312,30 @@ def test_vector_attitude_triad_and_quest_agree_with_the_truth():
         attitude_from_vectors(np.zeros(3), FIELD)
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 0.5))
+def test_vector_attitude_against_scipy_align_vectors(seed, noise):
+    # inconsistent vectors (noise on both): TRIAD is scipy's fit with an infinite weight on up, the q-method
+    # scipy's least-squares fit of the unit directions with the given dip
+    rng = np.random.default_rng(seed)
+    r = Rotation.random(random_state=rng)
+    acc = r.inv().apply([0.0, 0.0, 9.81]) + noise * 9.81 * rng.normal(size=3)
+    mag = r.inv().apply(FIELD) + noise * 49.0 * rng.normal(size=3)
+    if np.linalg.norm(np.cross(acc, mag)) < 1e-3 * np.linalg.norm(acc) * np.linalg.norm(mag):
+        return  # field along up: refused (tested above)
+    field_ref = FIELD / np.linalg.norm(FIELD)
+    dip = np.arcsin(-field_ref[2])
+    expected, _ = Rotation.align_vectors([[0.0, 0.0, 1.0], field_ref], [acc, mag], weights=[np.inf, 1.0])
+    q = attitude_from_vectors(acc, mag)
+    e = expected.as_quat(scalar_first=True)
+    assert min(np.abs(q - e).max(), np.abs(q + e).max()) < 1e-12
+    expected, _ = Rotation.align_vectors([[0.0, 0.0, 1.0], field_ref],
+                                         [acc / np.linalg.norm(acc), mag / np.linalg.norm(mag)], weights=[2.0, 1.0])
+    q = attitude_from_vectors(acc, mag, method="quest", dip=dip, weights=(2.0, 1.0))
+    e = expected.as_quat(scalar_first=True)
+    assert min(np.abs(q - e).max(), np.abs(q + e).max()) < 1e-12
+
+
 def test_compare_attitude_runs_each_method_once(trial):
     cut = slice(int(11.5 * 285.714), int(21.5 * 285.714))
     gyr, acc, mag = (trial[k][cut].astype(float) for k in ("gyr", "acc", "mag"))
