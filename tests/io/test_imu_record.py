@@ -40,3 +40,18 @@ def test_rate_recording_attitude(tmp_path):
     np.testing.assert_allclose(angle, np.radians(10.0) * t, atol=1e-15)
     with pytest.raises(ValueError, match="samples_per_update applies to increment gyros"):
         kr.io.read_imu(path).attitude(samples_per_update=2)
+
+
+def test_uneven_spacing_names_where_the_rate_changes():
+    # 100 Hz for 2 s, then 50 Hz: the error named "interval 0.01 s after t = 1.12 s" (the interval farthest from
+    # the mean, among equals), not where the spacing changes
+    t = np.concatenate([np.arange(200) / 100.0, 1.99 + np.arange(1, 201) / 50.0])
+    rec = kr.io.ImuRecording(t, np.zeros((t.size, 3)), source="change.csv")
+    with pytest.raises(ValueError, match=r"the interval changes from 0.01 s to 0.02 s after t = 1.99 s"):
+        rec.sampling_rate()
+    # a gap is named where it is
+    t = np.arange(300) / 100.0
+    t[150:] += 0.5
+    with pytest.raises(ValueError, match=r"interval 0.51 s after t = 1.49 s.*changes from 0.01 s to 0.51 s after "
+                                         r"t = 1.49 s"):
+        kr.io.ImuRecording(t, np.zeros((300, 3))).sampling_rate()

@@ -120,6 +120,28 @@ def test_ned_is_the_enu_result_turned():
     np.testing.assert_allclose(np.abs(np.sum(ned.q * expected, axis=1)), 1.0, atol=1e-13)
 
 
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from([(None, False), (None, True), ("madgwick", False), ("mahony", False),
+                        ("complementary", False)]),
+       st.lists(st.floats(-1.0, 1.0), min_size=4, max_size=4).filter(lambda q: np.linalg.norm(q) > 0.1),
+       st.lists(st.floats(-2.0, 2.0), min_size=3, max_size=3), st.booleans())
+def test_ned_is_the_enu_result_turned_for_every_method(variant, q0, w, with_mag):
+    # the same samples give, in NED, the ENU attitude turned by the fixed half turn NED ← ENU, the same bias
+    # and the covariance in NED components (y, x, −z)
+    method, offline = variant
+    gyr, acc, mag, _ = motion(150, w=w, q0=q0)
+    mag = mag if with_mag else None
+    enu = estimate_attitude(gyr, acc, mag, rate=RATE, method=method, offline=offline)
+    ned = estimate_attitude(gyr, acc, mag, rate=RATE, method=method, offline=offline, frame="NED")
+    turn = Rotation.from_matrix([[0, 1, 0], [1, 0, 0], [0, 0, -1]])
+    expected = (turn * Rotation.from_quat(enu.q, scalar_first=True)).as_quat(scalar_first=True)
+    np.testing.assert_allclose(np.abs(np.sum(ned.q * expected, axis=1)), 1.0, atol=1e-13)
+    assert (enu.bias is None and ned.bias is None) or np.array_equal(enu.bias, ned.bias)
+    if enu.covariance is not None:
+        m = turn.as_matrix()
+        np.testing.assert_allclose(ned.covariance, m @ enu.covariance @ m.T, atol=1e-18)
+
+
 def test_without_magnetometer_the_heading_is_the_sensors():
     gyr, acc, _, _ = motion(500, w=(0.0, 0.0, 0.0), q0=(1.0, 0.0, 0.0, 0.0))
     est = estimate_attitude(gyr, acc, rate=RATE)
@@ -290,6 +312,30 @@ def test_vector_attitude_triad_and_quest_agree_with_the_truth():
         attitude_from_vectors(np.zeros(3), FIELD)
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 0.5))
+def test_vector_attitude_against_scipy_align_vectors(seed, noise):
+    # inconsistent vectors (noise on both): TRIAD is scipy's fit with an infinite weight on up, the q-method
+    # scipy's least-squares fit of the unit directions with the given dip
+    rng = np.random.default_rng(seed)
+    r = Rotation.random(random_state=rng)
+    acc = r.inv().apply([0.0, 0.0, 9.81]) + noise * 9.81 * rng.normal(size=3)
+    mag = r.inv().apply(FIELD) + noise * 49.0 * rng.normal(size=3)
+    if np.linalg.norm(np.cross(acc, mag)) < 1e-3 * np.linalg.norm(acc) * np.linalg.norm(mag):
+        return  # field along up: refused (tested above)
+    field_ref = FIELD / np.linalg.norm(FIELD)
+    dip = np.arcsin(-field_ref[2])
+    expected, _ = Rotation.align_vectors([[0.0, 0.0, 1.0], field_ref], [acc, mag], weights=[np.inf, 1.0])
+    q = attitude_from_vectors(acc, mag)
+    e = expected.as_quat(scalar_first=True)
+    assert min(np.abs(q - e).max(), np.abs(q + e).max()) < 1e-12
+    expected, _ = Rotation.align_vectors([[0.0, 0.0, 1.0], field_ref],
+                                         [acc / np.linalg.norm(acc), mag / np.linalg.norm(mag)], weights=[2.0, 1.0])
+    q = attitude_from_vectors(acc, mag, method="quest", dip=dip, weights=(2.0, 1.0))
+    e = expected.as_quat(scalar_first=True)
+    assert min(np.abs(q - e).max(), np.abs(q + e).max()) < 1e-12
+
+
 def test_compare_attitude_runs_each_method_once(trial):
     cut = slice(int(11.5 * 285.714), int(21.5 * 285.714))
     gyr, acc, mag = (trial[k][cut].astype(float) for k in ("gyr", "acc", "mag"))
@@ -300,3 +346,90 @@ def test_compare_attitude_runs_each_method_once(trial):
     assert errors["mahony"] == direct
     with pytest.raises(ValueError, match="methods must be among"):
         compare_attitude(gyr, acc, mag, rate=rate, reference=trial["opt_quat"][cut], methods=("vqf",))
+
+
+@pytest.mark.parametrize("unit, scale", [("g", 1 / 9.80665), ("mg", 1000 / 9.80665)])
+def test_accelerometer_in_another_unit_is_refused(unit, scale):
+    # kreisel's estimator weighs the accelerometer by |a| against gravity in m/s²: in g it silently lost the
+    # tilt (noisy gyro, 30 s: total error 5.2° in m/s², 25.9° in g, 129° in mg)
+    gyr, acc, mag, _ = motion(600)
+    with pytest.raises(ValueError, match=rf"accel's samples are .* long .* in m/s²"):
+        estimate_attitude(gyr, acc * scale, mag, rate=RATE)
+    # the published filters normalise the samples: any unit gives the same attitude
+    np.testing.assert_allclose(estimate_attitude(gyr, acc * scale, mag, rate=RATE, method="mahony").q,
+                               estimate_attitude(gyr, acc, mag, rate=RATE, method="mahony").q, atol=1e-12)
+
+
+@pytest.mark.parametrize("name, offline", [("gravity", False), ("rest_tau", False), ("mag_ref_tau", False),
+                                           ("acc_noise", True), ("mag_noise", True)])
+def test_parameters_that_divide_must_be_positive(name, offline):
+    # zero here divided by zero inside the compiled filter (or, offline, in fusing two passes that are both
+    # certain): a bare ZeroDivisionError after the work had started
+    gyr, acc, mag, _ = motion(100)
+    with pytest.raises(ValueError, match=rf"parameter {name} must be a finite number > 0, got 0.0"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, offline=offline, params={name: 0.0})
+
+
+def test_offline_takes_a_field_time_longer_than_the_recording():
+    # a mag_new_time of 1e20 s overflowed the window's sample count (OverflowError) in the offline judgement
+    gyr, acc, mag, q_true = motion(300)
+    est = estimate_attitude(gyr, acc, mag, rate=RATE, offline=True, params={"mag_new_time": 1e20})
+    assert attitude_error(est.q, q_true)[0] < 1e-6
+
+
+def test_vector_attitude_refuses_what_it_would_ignore():
+    acc, mag = [0.3, -0.2, 9.7], [5.0, 18.0, -44.0]
+    # a zero weight leaves a direction unmeasured: (1, 0) returned an arbitrary heading, (0, 0) the identity
+    for weights in [(1.0, 0.0), (0.0, 1.0), (0.0, 0.0)]:
+        with pytest.raises(ValueError, match=r"weights must be two numbers > 0 \(up, field\)"):
+            attitude_from_vectors(acc, mag, method="quest", weights=weights)
+    with pytest.raises(ValueError, match=r"weights must be two numbers > 0 \(up, field\), got shape \(3,\)"):
+        attitude_from_vectors(acc, mag, method="quest", weights=(1.0, 1.0, 1.0))
+    # TRIAD takes up exactly and never the dip: a dip or weights given with it were silently dropped
+    with pytest.raises(ValueError, match="dip applies to method='quest' only"):
+        attitude_from_vectors(acc, mag, dip=0.5)
+    with pytest.raises(ValueError, match="weights apply to method='quest' only"):
+        attitude_from_vectors(acc, mag, weights=(10.0, 1.0))
+    # an infinite weight on up is TRIAD
+    np.testing.assert_allclose(attitude_from_vectors(acc, mag, method="quest", weights=(np.inf, 1.0)),
+                               attitude_from_vectors(acc, mag), atol=1e-12)
+
+
+def test_compare_attitude_checks_its_arguments_before_estimating(monkeypatch):
+    gyr, acc, mag, q_true = motion(100)
+    calls = []
+    monkeypatch.setattr("kreisel.nav.attitude.estimate_attitude", lambda *a, **k: calls.append(1))
+    # a reference or mask of the wrong length was found only by the first method's error computation, after
+    # its estimate; a str of one name was read letter by letter, and no method at all returned {}
+    with pytest.raises(ValueError, match=r"reference must have as many rows as gyro \(100\), got 99"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true[:-1])
+    with pytest.raises(ValueError, match=r"mask must be a boolean array of shape \(100,\)"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, mask=np.ones(99, bool))
+    with pytest.raises(TypeError, match=r"methods must be a sequence of method names, not one str \('mahony'\)"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, methods="mahony")
+    with pytest.raises(ValueError, match="methods must name at least one method"):
+        compare_attitude(gyr, acc, mag, rate=RATE, reference=q_true, methods=())
+    assert not calls
+
+
+def test_offline_must_be_a_bool():
+    # offline="no" is truthy: it ran the smoother
+    gyr, acc, mag, _ = motion(50)
+    with pytest.raises(TypeError, match="offline must be True or False, got 'no'"):
+        estimate_attitude(gyr, acc, mag, rate=RATE, offline="no")
+    assert estimate_attitude(gyr, acc, mag, rate=RATE, offline=np.bool_(True)).covariance is not None
+
+
+@pytest.mark.parametrize("first", [0.08, 30.0])
+def test_a_first_accelerometer_sample_far_from_gravity_is_refused(first):
+    # the start tilt is read from the first sample: from one in free fall (|a| = 0.08 m/s², noise) kreisel's
+    # estimator was still 26° off after 5 s at rest and 2° after 15 s, with no error
+    gyr, acc, mag, _ = motion(300, w=(0.0, 0.0, 0.0))
+    acc[0] = first * np.array([0.6, 0.0, 0.8])
+    for method in (None, "mahony"):
+        with pytest.raises(ValueError, match=rf"accel's first sample has length {first:.3g}, outside 0.5 … 2 times "
+                                             r"the recording's median length 9.81"):
+            estimate_attitude(gyr, acc, mag, rate=RATE, method=method)
+    # a start within that band is taken (a moving start: |a| 1.3 g)
+    acc[0] = 1.3 * 9.81 * np.array([0.0, 0.0, 1.0])
+    assert np.isfinite(estimate_attitude(gyr, acc, mag, rate=RATE).q).all()

@@ -78,6 +78,17 @@ def test_increments_broadcast_over_batches():
     np.testing.assert_allclose(np.linalg.norm(q, axis=-1), 1.0, atol=1e-15)
 
 
+@pytest.mark.parametrize("n", [1, 2, 3, 4])
+def test_no_increments_leave_q0(n):
+    # zero increments are zero updates: the attitude after them is q0 alone (this raised numpy's "cannot
+    # reshape array of size 0 into shape (0,3)", which names neither argument)
+    q0 = random_unit_quaternions(np.random.default_rng(5), (2,))
+    # (q0 as given, renormalised to rounding)
+    np.testing.assert_allclose(nav.attitude_from_increments(q0[0], np.zeros((0, 3)), n), q0[:1], atol=1e-15)
+    np.testing.assert_allclose(nav.attitude_from_increments(q0[:, None], np.zeros((3, 0, 3)), n),
+                               np.broadcast_to(q0[:, None, None], (2, 3, 1, 4)), atol=1e-15)
+
+
 def test_increments_bad_input():
     d = np.zeros((10, 3))
     with pytest.raises(ValueError, match=r"10 samples, not divisible by samples_per_update=3 \(1 left over\)"):

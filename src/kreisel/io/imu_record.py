@@ -97,9 +97,15 @@ class ImuRecording:
         mean = float(t[-1] - t[0]) / (t.size - 1)
         worst = int(np.argmax(np.abs(step - mean)))
         if abs(step[worst] - mean) > SPACING_TOLERANCE * mean:
+            # where a rate changes, every interval on one side is as far from the mean: name the first that departs
+            # from the mean of those before it too, which is where the spacing changes
+            before = np.cumsum(step)[:-1] / np.arange(1, step.size)
+            changed = np.flatnonzero(np.abs(step[1:] - before) > SPACING_TOLERANCE * before)
+            change = "" if not changed.size else (f"; the interval changes from {before[changed[0]]:.6g} s to "
+                                                  f"{step[changed[0] + 1]:.6g} s after t = {t[changed[0] + 1]:.6g} s")
             raise ValueError(f"{self.source}: samples are not evenly spaced (interval {step[worst]:.6g} s after "
-                             f"t = {t[worst]:.6g} s, mean {mean:.6g} s); the filters step at one rate: resample "
-                             "the recording first")
+                             f"t = {t[worst]:.6g} s, mean {mean:.6g} s{change}); the filters step at one rate: "
+                             "resample the recording first")
         return 1.0 / mean
 
     def attitude(self, q0=(1.0, 0.0, 0.0, 0.0), samples_per_update=None, method=None):

@@ -81,8 +81,9 @@ class AttitudeEstimate:
         Estimated gyro bias in rad/s, sensor axes (None for filters that do not estimate it).
     covariance : ndarray, shape (n, 3, 3) or None
         Covariance (rad²) of the attitude error δ, q = exp(δ) ⊗ q_true, δ in
-        the ENU frame (kreisel's estimator only); its square-rooted diagonal
-        bounds the tilt about east, north and the heading error.
+        the earth frame of ``q`` (kreisel's estimator only); its square-rooted
+        diagonal bounds the tilt about east and north (in NED: north and east)
+        and the heading error.
     method : str
         The filter that produced it.
     """
@@ -114,16 +115,26 @@ def _samples(x, name, n=None):
 LARGEST_COMPONENT = 1e150
 #: Smallest length of the first accelerometer sample that gives the up direction, m/s².
 SMALLEST_FIRST_ACCEL = 1e-6
+#: Band, relative to the recording's median |a|, for the length of the first accelerometer sample (the start tilt).
+FIRST_ACCEL_BAND = (0.5, 2.0)
+#: Band, in units of the ``gravity`` parameter, that the 90th percentile of |a| must lie in for kreisel's estimator
+#: (the band :func:`kreisel.io.read_imu` judges a unitless accelerometer by: held still 1, beyond 40 g no phone).
+ACCEL_BAND = (4.0 / 9.81, 400.0 / 9.81)
 
 
-def _parameters(method, params):
+def _parameters(method, params, offline=False):
     defaults = KREISEL_DEFAULTS if method == "kreisel" else _PUBLISHED[method]
     unknown = set(params) - set(defaults)
     if unknown:
         raise ValueError(f"unknown parameter(s) {sorted(unknown)} for method {method!r}; "
                          f"expected some of {sorted(defaults)}")
     merged = {**defaults, **params}
+    # the filter divides by these; offline, the fusion of the two passes divides by the sum of their tilt and
+    # heading variances, which these noises keep from being zero in both
+    positive = {"gravity", "rest_tau", "mag_ref_tau"} | ({"acc_noise", "mag_noise"} if offline else set())
     for key, value in merged.items():
+        if key in positive and not (np.isfinite(value) and value > 0):
+            raise ValueError(f"parameter {key} must be a finite number > 0, got {value!r}")
         if not (np.isfinite(value) and value >= 0):
             raise ValueError(f"parameter {key} must be a finite number >= 0, got {value!r}")
     return merged
@@ -222,7 +233,8 @@ def _agrees_with_heading(q, mag, dt, params):
     f = quat_apply(q, mag)
     horizontal = np.hypot(f[:, 0], f[:, 1])
     turn = np.divide(-f[:, 0], horizontal, out=np.zeros(len(f)), where=horizontal > 0.0)
-    half = int(0.5 * params["mag_new_time"] / dt)
+    # capped at the recording's length: a longer window holds the same samples (and int() of a huge one overflows)
+    half = int(min(0.5 * params["mag_new_time"] / dt, len(f)))
     sums = np.concatenate([[0.0], np.cumsum(turn)])
     index = np.arange(len(f))
     lo, hi = np.maximum(index - half, 0), np.minimum(index + half + 1, len(f))
@@ -300,7 +312,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         attitude towards the TRIAD attitude of each sample (``gain`` 0.0005).
     params : dict, optional
         Parameters overriding the method's defaults (see
-        :data:`KREISEL_DEFAULTS` for kreisel's estimator).
+        :data:`KREISEL_DEFAULTS` for kreisel's estimator): finite and
+        >= 0, and > 0 for ``gravity``, ``rest_tau``, ``mag_ref_tau`` (and,
+        offline, ``acc_noise``, ``mag_noise``).
 
     Returns
     -------
@@ -325,12 +339,17 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         For shapes that disagree, non-finite samples (remove or interpolate
         them first: a filter cannot step over a hole without making up the
         motion in it), a non-positive or non-finite ``rate``, an
-        accelerometer sample of zero length at the start, a magnetometer
+        accelerometer sample of zero length at the start or one outside
+        0.5 … 2 times the recording's median length (:data:`FIRST_ACCEL_BAND`:
+        free fall or a jolt, not gravity, would give the start tilt), a magnetometer
         whose first sample has no horizontal part (along the measured up):
         the heading would be undefined. Later zero-length accelerometer or
         magnetometer samples are skipped (the gyro carries the attitude
         through them); later fields without a horizontal part are rejected
-        by kreisel's estimator's disturbance test.
+        by kreisel's estimator's disturbance test. For kreisel's estimator,
+        an accelerometer not in m/s²: the 90th percentile of |a| outside
+        0.41 … 41 g (:data:`ACCEL_BAND`, as :func:`kreisel.io.read_imu` judges
+        a unitless one), which g or mg give.
 
     Examples
     --------
@@ -352,6 +371,9 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     method = "kreisel" if method is None else method
     if frame not in _FRAMES:
         raise ValueError(f"frame must be 'ENU' or 'NED', got {frame!r}")
+    if not isinstance(offline, (bool, np.bool_)):
+        # any other object is truthy or falsy by accident ("no" would smooth)
+        raise TypeError(f"offline must be True or False, got {offline!r}")
     if offline and method != "kreisel":
         raise ValueError(f"offline=True is available for kreisel's estimator only, not method {method!r}")
     rate = positive_float(rate, "rate")
@@ -370,13 +392,30 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         raise ValueError(f"accel's first sample has length {np.linalg.norm(acc[0]):.3g} m/s², below "
                          f"{SMALLEST_FIRST_ACCEL:g}: the initial inclination needs the up direction, which gravity "
                          "gives (start the recording at rest)")
+    first, typical = np.linalg.norm(acc[0]), float(np.median(np.linalg.norm(acc, axis=1)))
+    if not FIRST_ACCEL_BAND[0] * typical <= first <= FIRST_ACCEL_BAND[1] * typical:
+        # a first sample that is not mostly gravity (free fall, a jolt) gives a wrong start tilt, which the
+        # filters then take many seconds to forget
+        raise ValueError(f"accel's first sample has length {first:.3g}, outside {FIRST_ACCEL_BAND[0]:g} … "
+                         f"{FIRST_ACCEL_BAND[1]:g} times the recording's median length {typical:.3g}: the start tilt "
+                         "needs a sample that is mostly gravity (start the recording at rest, or drop the first "
+                         "samples)")
     if mag is not None:
         up = acc[0] / np.linalg.norm(acc[0])
         horizontal = np.linalg.norm(mag[0] - (mag[0] @ up) * up)
         if not horizontal > 1e-6 * np.linalg.norm(mag[0]):
             raise ValueError("mag has no horizontal part in its first sample (zero, or parallel to the measured up): "
                              "the heading is undefined; pass mag=None for a gyro-only heading")
-    params = _parameters(method, dict(params or {}))
+    params = _parameters(method, dict(params or {}), offline)
+    if method == "kreisel":
+        # kreisel's estimator weighs the accelerometer by |a| against gravity (the published filters use only
+        # its direction): in g or mg it would reject or trust every sample and return a wrong attitude
+        typical = float(np.percentile(np.linalg.norm(acc, axis=1), 90))
+        low, high = (bound * params["gravity"] for bound in ACCEL_BAND)
+        if not low <= typical <= high:
+            raise ValueError(f"accel's samples are {typical:.3g} long (90th percentile), outside {low:.3g} … "
+                             f"{high:.3g}: kreisel's estimator needs them in m/s² (gravity {params['gravity']:g}); "
+                             "convert g by × 9.80665, mg by × 0.00980665")
     dt = 1.0 / rate
     if method == "kreisel":
         q, bias, cov = _kreisel(gyr, acc, mag, dt, params, offline)
@@ -424,10 +463,24 @@ def compare_attitude(gyro, accel, mag=None, *, rate, reference, mask=None,
     {'kreisel': 0.0, 'mahony': 0.0}
     """
     known = ("kreisel", "kreisel offline", "madgwick", "mahony", "complementary")
+    if isinstance(methods, str):
+        # a str is a sequence too: of letters, none of them a method
+        raise TypeError(f"methods must be a sequence of method names, not one str ({methods!r}); "
+                        f"e.g. ({methods!r},)")
+    methods = tuple(methods)
+    if not methods:
+        raise ValueError(f"methods must name at least one method among {', '.join(map(repr, known))}")
     unknown = [m for m in methods if m not in known]
     if unknown:
         raise ValueError(f"methods must be among {', '.join(map(repr, known))}, got {unknown}")
+    # reference and mask checked against the samples here, not by the first error computation after its estimate
     reference = quaternion_rows(reference, "reference")
+    n = np.shape(gyro)[0] if np.ndim(gyro) else 0
+    if reference.shape[0] != n:
+        raise ValueError(f"reference must have as many rows as gyro ({n}), got {reference.shape[0]}")
+    if mask is not None and (np.asarray(mask).dtype != bool or np.shape(mask) != (n,)):
+        raise ValueError(f"mask must be a boolean array of shape ({n},), got {np.asarray(mask).dtype} "
+                         f"{np.shape(mask)}")
     results = {}
     for name in methods:
         offline = name == "kreisel offline"

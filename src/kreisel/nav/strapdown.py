@@ -41,8 +41,10 @@ def _batched(q0, data, name):
         raise ValueError(f"q0 batch shape {q0.shape[:-1]} does not broadcast with {name} batch shape "
                          f"{data.shape[:-2]}") from None
     n = data.shape[-2]
-    q0b = np.ascontiguousarray(np.broadcast_to(q0, batch + (4,)).reshape(-1, 4))
-    datab = np.ascontiguousarray(np.broadcast_to(data, batch + (n, 3)).reshape(-1, n, 3))
+    # the batch size spelled out: reshape cannot infer it (-1) from data without samples (n = 0)
+    size = int(np.prod(batch, dtype=np.int64))
+    q0b = np.ascontiguousarray(np.broadcast_to(q0, batch + (4,)).reshape(size, 4))
+    datab = np.ascontiguousarray(np.broadcast_to(data, batch + (n, 3)).reshape(size, n, 3))
     return q0b, datab, batch
 
 

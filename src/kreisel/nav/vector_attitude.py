@@ -38,7 +38,8 @@ def attitude_from_vectors(accel, mag, *, method="triad", dip=None, weights=(1.0,
         Dip angle I in radians (positive: the field points below the
         horizon), "quest" only; default: the mean dip measured.
     weights : tuple of two floats
-        Weights of up and of the field direction ("quest" only).
+        Weights (> 0, one may be inf) of up and of the field direction
+        ("quest" only).
 
     Returns
     -------
@@ -49,7 +50,9 @@ def attitude_from_vectors(accel, mag, *, method="triad", dip=None, weights=(1.0,
     ------
     ValueError
         If an accelerometer sample has zero length or a field sample has no
-        horizontal part (zero, or along up): the heading is then undefined.
+        horizontal part (zero, or along up): the heading is then undefined;
+        if a weight is not > 0; if ``dip`` or ``weights`` are given with
+        ``method="triad"``, which would ignore them.
 
     Examples
     --------
@@ -63,6 +66,20 @@ def attitude_from_vectors(accel, mag, *, method="triad", dip=None, weights=(1.0,
     """
     if method not in ("triad", "quest"):
         raise ValueError(f"method must be 'triad' or 'quest', got {method!r}")
+    try:
+        weights = np.asarray(weights, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"weights must be two numbers (up, field), got {weights!r}") from None
+    if method == "triad":
+        # TRIAD takes up exactly and the field's horizontal part only: neither would enter
+        if dip is not None:
+            raise ValueError(f"dip applies to method='quest' only (TRIAD never uses the dip), got dip={dip!r}")
+        if not np.array_equal(weights, (1.0, 1.0)):
+            raise ValueError(f"weights apply to method='quest' only (TRIAD takes up exactly), got {weights.tolist()}")
+    # a zero weight leaves a direction unmeasured: the heading (or the tilt) would be arbitrary
+    elif weights.shape != (2,) or not (weights > 0).all():
+        raise ValueError(f"weights must be two numbers > 0 (up, field), got shape {weights.shape}: "
+                         f"{weights.tolist()}")
     acc = as_float_array(accel, "accel", tail=(3,))
     field = as_float_array(mag, "mag", tail=(3,))
     # only directions matter: dividing each sample by its largest component keeps the norms finite
