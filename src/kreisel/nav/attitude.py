@@ -340,7 +340,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         them first: a filter cannot step over a hole without making up the
         motion in it), a non-positive or non-finite ``rate``, an
         accelerometer sample of zero length at the start or one outside
-        0.5 … 2 times the recording's median length (:data:`FIRST_ACCEL_BAND`:
+        0.5 … 2 times the recording's median length (``FIRST_ACCEL_BAND``:
         free fall or a jolt, not gravity, would give the start tilt), a magnetometer
         whose first sample has no horizontal part (along the measured up):
         the heading would be undefined. Later zero-length accelerometer or
@@ -348,7 +348,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         through them); later fields without a horizontal part are rejected
         by kreisel's estimator's disturbance test. For kreisel's estimator,
         an accelerometer not in m/s²: the 90th percentile of |a| outside
-        0.41 … 41 g (:data:`ACCEL_BAND`, as :func:`kreisel.io.read_imu` judges
+        0.41 … 41 g (``ACCEL_BAND``, as :func:`kreisel.io.read_imu` judges
         a unitless one), which g or mg give.
 
     Examples
