@@ -388,11 +388,13 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
         # beyond half a turn between samples a rate no longer tells which way the body turned (aliasing)
         raise ValueError(f"rate = {rate:g} Hz is too low for gyro: the body turns up to {turn:.3g} rad between "
                          "samples, and a sampled rate resolves less than π")
-    if not np.linalg.norm(acc[0]) >= SMALLEST_FIRST_ACCEL:
-        raise ValueError(f"accel's first sample has length {np.linalg.norm(acc[0]):.3g} m/s², below "
+    lengths = np.linalg.norm(acc, axis=1)
+    first = lengths[0]
+    if not first >= SMALLEST_FIRST_ACCEL:
+        raise ValueError(f"accel's first sample has length {first:.3g} m/s², below "
                          f"{SMALLEST_FIRST_ACCEL:g}: the initial inclination needs the up direction, which gravity "
                          "gives (start the recording at rest)")
-    first, typical = np.linalg.norm(acc[0]), float(np.median(np.linalg.norm(acc, axis=1)))
+    typical = float(np.median(lengths))
     if not FIRST_ACCEL_BAND[0] * typical <= first <= FIRST_ACCEL_BAND[1] * typical:
         # a first sample that is not mostly gravity (free fall, a jolt) gives a wrong start tilt, which the
         # filters then take many seconds to forget
@@ -401,7 +403,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
                          "needs a sample that is mostly gravity (start the recording at rest, or drop the first "
                          "samples)")
     if mag is not None:
-        up = acc[0] / np.linalg.norm(acc[0])
+        up = acc[0] / first
         horizontal = np.linalg.norm(mag[0] - (mag[0] @ up) * up)
         if not horizontal > 1e-6 * np.linalg.norm(mag[0]):
             raise ValueError("mag has no horizontal part in its first sample (zero, or parallel to the measured up): "
@@ -410,7 +412,7 @@ def estimate_attitude(gyro, accel, mag=None, *, rate, offline=False, frame="ENU"
     if method == "kreisel":
         # kreisel's estimator weighs the accelerometer by |a| against gravity (the published filters use only
         # its direction): in g or mg it would reject or trust every sample and return a wrong attitude
-        typical = float(np.percentile(np.linalg.norm(acc, axis=1), 90))
+        typical = float(np.percentile(lengths, 90))
         low, high = (bound * params["gravity"] for bound in ACCEL_BAND)
         if not low <= typical <= high:
             raise ValueError(f"accel's samples are {typical:.3g} long (90th percentile), outside {low:.3g} … "

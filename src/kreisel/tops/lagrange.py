@@ -692,8 +692,7 @@ class LagrangeTop:
         ['cusp', 'monotone', 'loop']
         """
         quad, _, _ = self._quadrature(euler0, rates0)
-        # b − a u = δb + a w
-        g1, g2 = quad.g1, quad.g2
+        g1, g2 = quad.g1, quad.g2  # b − a u at the turning points u1, u2
         # the scale of b − a u over the motion: its value at the start and its change over the nutation
         tol = rtol * (abs(quad.g0) + abs(quad.a) * quad.delta)
         if min(abs(g1), abs(g2)) <= tol:
